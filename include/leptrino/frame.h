@@ -1,0 +1,92 @@
+/* Frame codec (spec 2.3): DLE STX | stuffed message | DLE ETX | BCC.
+ *
+ * Sans-I/O: pure functions and a push decoder. No allocation, no clock.
+ * The decoder gives identical events for any chunking of the same input. */
+#ifndef LEPTRINO_FRAME_H
+#define LEPTRINO_FRAME_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "export.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define LEP_DLE 0x10u
+#define LEP_STX 0x02u
+#define LEP_ETX 0x03u
+#define LEP_NAK 0x15u
+
+/* Longest unstuffed message (Length .. end of Data). */
+#define LEP_MAX_MESSAGE 128u
+/* Longest frame on the wire: every message byte stuffed, plus 5 control bytes. */
+#define LEP_MAX_FRAME (2u * LEP_MAX_MESSAGE + 5u)
+
+/* BCC of an unstuffed message: XOR of its bytes and ETX. */
+LEP_API uint8_t lep_bcc(const uint8_t *msg, size_t len);
+
+/* Encode msg[0..len) as a frame into out[0..cap); *out_len receives its size.
+ * Errors: LEP_E_ARG (NULL, len 0), LEP_E_TOO_LONG (len > 128),
+ * LEP_E_BUFFER (cap too small; out is then unspecified). */
+LEP_API int lep_frame_encode(const uint8_t *msg, size_t len, uint8_t *out, size_t cap,
+                             size_t *out_len);
+
+/* Size the frame of msg will take on the wire (0 if msg is NULL). */
+LEP_API size_t lep_frame_size(const uint8_t *msg, size_t len);
+
+enum lep_frame_event_type {
+    LEP_FRAME_NONE = 0,    /* all input consumed, no event */
+    LEP_FRAME_MESSAGE = 1, /* a complete message with a correct BCC */
+    LEP_FRAME_NAK = 2,     /* DLE NAK between messages */
+    LEP_FRAME_ERROR = 3    /* a frame was rejected: see error */
+};
+
+typedef struct lep_frame_event {
+    int type;           /* enum lep_frame_event_type */
+    int error;          /* with LEP_FRAME_ERROR: LEP_E_BCC, LEP_E_ESCAPE or LEP_E_TOO_LONG */
+    const uint8_t *msg; /* with LEP_FRAME_MESSAGE: the unstuffed message, valid until the next feed */
+    size_t len;         /* its length (1..128) */
+} lep_frame_event;
+
+/* Decoder counters; they only grow (wrap at 2^32). */
+typedef struct lep_frame_stats {
+    uint32_t messages;        /* messages delivered */
+    uint32_t naks;            /* DLE NAK seen */
+    uint32_t bcc_errors;      /* frames rejected for a BCC mismatch */
+    uint32_t escape_errors;   /* frames rejected for an illegal byte after DLE */
+    uint32_t overruns;        /* frames rejected for exceeding 128 bytes */
+    uint32_t restarts;        /* partial frames abandoned at a new DLE STX */
+    uint32_t bytes_discarded; /* wire bytes not part of a delivered message or NAK */
+} lep_frame_stats;
+
+/* Push decoder state. Caller-allocated; fields are private. */
+typedef struct lep_frame_decoder {
+    uint8_t state;
+    uint8_t bcc;
+    uint16_t len;
+    uint16_t raw; /* wire bytes of the frame in progress */
+    uint8_t buf[LEP_MAX_MESSAGE];
+    lep_frame_stats stats;
+} lep_frame_decoder;
+
+/* Reset the decoder to hunt for DLE STX and zero its counters. */
+LEP_API void lep_frame_decoder_init(lep_frame_decoder *d);
+
+/* Consume bytes of data[0..len) up to and including the first one that
+ * completes an event, and return how many were consumed. Call again with the
+ * rest. ev->type is LEP_FRAME_NONE when all input was consumed without an
+ * event. Never fails; d, ev must not be NULL (data may be NULL when len is 0). */
+LEP_API size_t lep_frame_decoder_feed(lep_frame_decoder *d, const uint8_t *data, size_t len,
+                                      lep_frame_event *ev);
+
+/* True when the decoder is inside a frame (between DLE STX and its BCC). */
+LEP_API bool lep_frame_decoder_busy(const lep_frame_decoder *d);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
