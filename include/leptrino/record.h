@@ -27,11 +27,15 @@ typedef struct lep_record_batch {
     uint16_t *seq;    /* [cap] the two reserved bytes (sequence number of leptrino-sim) */
 } lep_record_batch;
 
-/* Append stream samples to b until it is full or the monotonic clock passes
- * until_s (ignored when <= 0). Each sample is stamped with the time the read
- * that delivered it returned. The client must be streaming (lep_client_start).
- * Returns LEP_OK, LEP_E_TIMEOUT when no sample came for timeout_ms, or the
- * client's error; b->n counts what was filled in every case. */
+/* Append stream samples to b until it is full or the monotonic clock
+ * (lep_monotonic_seconds) passes until_s (ignored when <= 0). Blocks; waits
+ * are clipped to the time left before until_s. Each sample is stamped with the
+ * time the read that delivered it returned. The client must be streaming
+ * (lep_client_start). Returns LEP_OK (full, or until_s reached), LEP_E_TIMEOUT
+ * when no sample came for timeout_ms (< 0: wait forever), LEP_E_ARG (NULL c,
+ * b or b->t, n > cap, si without rated), LEP_E_STATE (not streaming), or the
+ * client's error (LEP_E_DISCONNECTED, ...); b->n counts what was filled in
+ * every case, and nothing already read is lost. */
 LEP_API int lep_record_fill(lep_client *c, const lep_rated *rated, lep_record_batch *b,
                             double until_s, int timeout_ms);
 
