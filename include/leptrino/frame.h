@@ -48,7 +48,7 @@ typedef struct lep_frame_event {
     int type;           /* enum lep_frame_event_type */
     int error;          /* with LEP_FRAME_ERROR: LEP_E_BCC, LEP_E_ESCAPE or LEP_E_TOO_LONG */
     const uint8_t *msg; /* with LEP_FRAME_MESSAGE: the unstuffed message, valid until the next feed */
-    size_t len;         /* its length (1..128) */
+    size_t len;         /* its length (0..128; an empty message is delivered for the message layer to reject) */
 } lep_frame_event;
 
 /* Decoder counters; they only grow (wrap at 2^32). */

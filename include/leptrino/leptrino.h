@@ -12,7 +12,7 @@
 #include "export.h"
 #include "frame.h"
 #include "message.h"
-#include "version.h"
+#include "leptrino/version.h"
 
 #ifdef __cplusplus
 extern "C" {

@@ -1,0 +1,162 @@
+/* Sensor side: answer commands and keep the protocol state of a sensor. */
+#include "leptrino/device.h"
+
+#include <string.h>
+
+#include "leptrino/error.h"
+
+static bool ratings_ok(const lep_rated *rated)
+{
+    lep_response r;
+    uint8_t msg[LEP_LEN_RATED];
+    size_t n;
+    memset(&r, 0, sizeof(r));
+    r.code = LEP_CMD_RATED;
+    r.u.rated = *rated;
+    return lep_response_encode(&r, msg, sizeof(msg), &n) == LEP_OK;
+}
+
+int lep_device_init(lep_device *d, const lep_product_info *info, const lep_rated *rated,
+                    uint8_t filter)
+{
+    if (d == NULL || info == NULL || rated == NULL) {
+        return LEP_E_ARG;
+    }
+    if (filter > LEP_FILTER_MAX || !ratings_ok(rated)) {
+        return LEP_E_VALUE;
+    }
+    memset(d, 0, sizeof(*d));
+    lep_frame_decoder_init(&d->dec);
+    d->info = *info;
+    d->rated = *rated;
+    d->filter_active = filter;
+    d->filter_pending = filter;
+    return LEP_OK;
+}
+
+void lep_device_set_sample(lep_device *d, const lep_sample *s)
+{
+    if (d != NULL && s != NULL) {
+        d->sample = *s;
+    }
+}
+
+bool lep_device_streaming(const lep_device *d)
+{
+    return d != NULL && d->streaming;
+}
+
+uint8_t lep_device_filter(const lep_device *d)
+{
+    return d == NULL ? 0u : d->filter_active;
+}
+
+uint8_t lep_device_filter_pending(const lep_device *d)
+{
+    return d == NULL ? 0u : d->filter_pending;
+}
+
+void lep_device_power_cycle(lep_device *d)
+{
+    if (d != NULL) {
+        lep_frame_stats stats = d->dec.stats;
+        lep_frame_decoder_init(&d->dec);
+        d->dec.stats = stats;
+        d->streaming = false;
+        d->filter_active = d->filter_pending;
+    }
+}
+
+int lep_device_stream_frame(const lep_sample *s, uint8_t *out, size_t cap, size_t *len)
+{
+    lep_response r;
+    if (s == NULL) {
+        return LEP_E_ARG;
+    }
+    memset(&r, 0, sizeof(r));
+    r.code = LEP_CMD_START;
+    r.stream = true;
+    r.u.sample = *s;
+    return lep_response_frame(&r, out, cap, len);
+}
+
+/* Apply a valid command to the state and fill its answer. */
+static void apply(lep_device *d, const lep_command *cmd, lep_response *r)
+{
+    switch (cmd->code) {
+    case LEP_CMD_PRODUCT_INFO: r->u.info = d->info; break;
+    case LEP_CMD_RATED: r->u.rated = d->rated; break;
+    case LEP_CMD_FILTER_GET: r->u.filter = d->filter_active; break;
+    case LEP_CMD_SAMPLE: r->u.sample = d->sample; break;
+    case LEP_CMD_START:
+        if (d->streaming) {
+            r->result = LEP_RESULT_STATE;
+        }
+        d->streaming = true;
+        break;
+    case LEP_CMD_STOP: d->streaming = false; break;
+    default: /* LEP_CMD_FILTER_SET */
+        if (d->streaming) {
+            r->result = LEP_RESULT_STATE;
+        } else {
+            d->filter_pending = cmd->filter;
+        }
+        break;
+    }
+}
+
+static void answer(lep_device *d, const uint8_t *msg, size_t len, lep_device_event *ev,
+                   uint8_t *out, size_t cap, size_t *out_len)
+{
+    lep_command cmd;
+    lep_response r;
+    uint8_t result;
+    int rc = lep_command_decode(msg, len, &cmd, &result);
+    if (len < 3u) {
+        ev->type = LEP_DEVICE_REJECTED; /* no command code to answer to */
+        return;
+    }
+    memset(&r, 0, sizeof(r));
+    r.code = cmd.code;
+    r.result = result;
+    if (rc == LEP_OK) {
+        apply(d, &cmd, &r);
+    }
+    ev->type = LEP_DEVICE_COMMAND;
+    ev->code = cmd.code;
+    ev->result = r.result;
+    ev->filter = cmd.filter;
+    if (lep_response_frame(&r, out, cap, out_len) != LEP_OK) {
+        *out_len = 0;
+    }
+}
+
+size_t lep_device_feed(lep_device *d, const uint8_t *in, size_t len, lep_device_event *ev,
+                       uint8_t *out, size_t cap, size_t *out_len)
+{
+    lep_frame_event fev;
+    size_t n;
+    if (ev != NULL) {
+        memset(ev, 0, sizeof(*ev));
+    }
+    if (out_len != NULL) {
+        *out_len = 0;
+    }
+    if (d == NULL || ev == NULL || out == NULL || out_len == NULL || (in == NULL && len > 0)) {
+        return 0;
+    }
+    n = lep_frame_decoder_feed(&d->dec, in, len, &fev);
+    if (fev.type == LEP_FRAME_MESSAGE) {
+        answer(d, fev.msg, fev.len, ev, out, cap, out_len);
+    } else if (fev.type == LEP_FRAME_ERROR && fev.error == LEP_E_BCC) {
+        ev->type = LEP_DEVICE_NAK;
+        if (cap >= 2u) {
+            out[0] = LEP_DLE;
+            out[1] = LEP_NAK;
+            *out_len = 2;
+        }
+    } else if (fev.type == LEP_FRAME_ERROR) {
+        ev->type = LEP_DEVICE_REJECTED;
+    }
+    return n;
+}
