@@ -116,7 +116,8 @@ LEP_API int lep_command_decode(const uint8_t *msg, size_t len, lep_command *cmd,
 LEP_API int lep_response_decode(const uint8_t *msg, size_t len, lep_response *r);
 
 /* Sensor side: encode r into msg[0..cap). A non-zero result gives the 4-byte
- * form. Errors: LEP_E_ARG, LEP_E_UNEXPECTED, LEP_E_VALUE, LEP_E_BUFFER. */
+ * form (for any code, so unknown commands can be answered). Errors: LEP_E_ARG,
+ * LEP_E_UNEXPECTED (unknown code with result 0), LEP_E_VALUE, LEP_E_BUFFER. */
 LEP_API int lep_response_encode(const lep_response *r, uint8_t *msg, size_t cap, size_t *len);
 
 /* Encode straight to a wire frame (message codec + frame codec). */

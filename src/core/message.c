@@ -297,11 +297,11 @@ static void encode_sample(uint8_t *msg, const lep_sample *s)
 /* Length of the encoded response r, or 0 when r cannot be encoded. */
 static size_t response_length(const lep_response *r)
 {
+    if (r->result != LEP_RESULT_OK) {
+        return LEP_LEN_HEADER; /* any code: a sensor answers unknown commands with 0x02 */
+    }
     if (!known_code(r->code)) {
         return 0;
-    }
-    if (r->result != LEP_RESULT_OK) {
-        return LEP_LEN_HEADER;
     }
     switch (r->code) {
     case LEP_CMD_PRODUCT_INFO:

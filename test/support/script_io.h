@@ -1,0 +1,50 @@
+/* Scripted in-memory sensor for client tests: a lep_io whose clock is virtual
+ * (a read that finds nothing advances it by its timeout), answered by a real
+ * lep_device unless the test forces NAKs, silence or a reply of its own. */
+#ifndef LEP_TEST_SCRIPT_IO_H
+#define LEP_TEST_SCRIPT_IO_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "leptrino/leptrino.h"
+
+#define SCRIPT_IN_CAP 16384u
+#define SCRIPT_OUT_CAP 4096u
+
+typedef struct script_io {
+    uint32_t now;              /* virtual clock, ms */
+    uint8_t in[SCRIPT_IN_CAP]; /* bytes waiting for the host */
+    size_t in_len;
+    size_t in_pos;
+    uint8_t out[SCRIPT_OUT_CAP]; /* everything the host wrote */
+    size_t out_len;
+    unsigned writes;          /* write calls */
+    unsigned commands;        /* commands the device answered */
+    size_t max_chunk;         /* read returns at most this many bytes (0: no limit) */
+    int naks_left;            /* answer the next N commands with DLE NAK */
+    bool silent;              /* ignore commands: no answer, no effect */
+    unsigned inflight;        /* data frames sent before each answer while streaming */
+    bool endless_stream;      /* while streaming, an empty line grows a data frame per ms */
+    int read_error;           /* non-zero: read returns it */
+    int write_error;          /* non-zero: write returns it */
+    uint8_t forced[128];      /* raw bytes sent instead of the device's next answer */
+    size_t forced_len;
+    uint16_t seq;             /* sequence number put into generated data frames */
+    lep_device dev;
+} script_io;
+
+/* Reset s with a PFS055YA501U6-like device, filter 0, endless streaming on. */
+void script_io_init(script_io *s);
+lep_io script_io_table(script_io *s);
+/* Queue raw bytes for the host. */
+void script_push(script_io *s, const uint8_t *data, size_t len);
+/* Queue the frame of a response message. */
+void script_push_msg(script_io *s, const uint8_t *msg, size_t len);
+/* Queue one continuous data frame with the next sequence number. */
+void script_push_data(script_io *s);
+/* Bytes queued but not read yet. */
+size_t script_pending(const script_io *s);
+
+#endif

@@ -1,0 +1,460 @@
+/* Host client against the scripted in-memory sensor (test/support/script_io). */
+#include <string.h>
+
+#include "script_io.h"
+#include "unity.h"
+
+static script_io sio;
+static lep_client client;
+
+void setUp(void)
+{
+    lep_io io;
+    script_io_init(&sio);
+    io = script_io_table(&sio);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_init(&client, &io));
+}
+
+void tearDown(void)
+{
+}
+
+static lep_client_stats stats(void)
+{
+    lep_client_stats st;
+    lep_client_get_stats(&client, &st);
+    return st;
+}
+
+static void force_reply(const uint8_t *msg, size_t len)
+{
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_frame_encode(msg, len, sio.forced, sizeof(sio.forced), &sio.forced_len));
+}
+
+static void test_init_rejects_incomplete_io(void)
+{
+    lep_io io = script_io_table(&sio);
+    lep_client c;
+    io.now_ms = NULL;
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_init(&c, &io));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_init(NULL, &io));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_set_timeout(&client, 0));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_set_retries(&client, 256));
+    TEST_ASSERT_EQUAL_size_t(sizeof(lep_client), lep_client_size());
+}
+
+static void test_product_info_and_rated(void)
+{
+    lep_product_info info;
+    lep_rated rated;
+    uint8_t filter = 9;
+    static const uint8_t cmd[] = {0x10, 0x02, 0x04, 0xFF, 0x2A, 0x00, 0x10, 0x03, 0xD2};
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_product_info(&client, &info));
+    TEST_ASSERT_EQUAL_UINT8_ARRAY(cmd, sio.out, sizeof(cmd));
+    TEST_ASSERT_EQUAL_STRING("PFS055YA501U6", info.model);
+    TEST_ASSERT_EQUAL_STRING("12345678", info.serial);
+    TEST_ASSERT_EQUAL_STRING("1.13", info.firmware);
+    TEST_ASSERT_FALSE(info.has_output_rate);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_rated(&client, &rated));
+    TEST_ASSERT_EQUAL_FLOAT(500.0f, rated.axis[LEP_FX]);
+    TEST_ASSERT_EQUAL_FLOAT(8.0f, rated.axis[LEP_MZ]);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_filter_get(&client, &filter));
+    TEST_ASSERT_EQUAL_UINT8(0, filter);
+    TEST_ASSERT_EQUAL_UINT32(3, stats().messages);
+    TEST_ASSERT_EQUAL_UINT32(0, stats().unexpected);
+}
+
+static void test_handshake_sample(void)
+{
+    lep_sample want;
+    lep_sample got;
+    memset(&want, 0, sizeof(want));
+    want.raw[LEP_FX] = -10000;
+    want.raw[LEP_MZ] = 4112;
+    want.status = LEP_STATUS_OVERLOAD;
+    lep_device_set_sample(&sio.dev, &want);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_sample(&client, &got));
+    TEST_ASSERT_EQUAL_INT16_ARRAY(want.raw, got.raw, LEP_AXES);
+    TEST_ASSERT_EQUAL_HEX8(LEP_STATUS_OVERLOAD, got.status);
+}
+
+static void test_filter_set_needs_power_cycle(void)
+{
+    uint8_t f = 9;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_filter_set(&client, 2));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_filter_get(&client, &f));
+    TEST_ASSERT_EQUAL_UINT8(0, f);
+    lep_device_power_cycle(&sio.dev);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_filter_get(&client, &f));
+    TEST_ASSERT_EQUAL_UINT8(2, f);
+}
+
+static void test_filter_set_rejects_bad_code_without_writing(void)
+{
+    TEST_ASSERT_EQUAL_INT(LEP_E_VALUE, lep_client_filter_set(&client, 4));
+    TEST_ASSERT_EQUAL_UINT(0, sio.writes);
+}
+
+static void test_nak_then_success(void)
+{
+    lep_rated rated;
+    sio.naks_left = 2;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_rated(&client, &rated));
+    TEST_ASSERT_EQUAL_UINT(3, sio.writes);
+    TEST_ASSERT_EQUAL_UINT32(2, stats().naks);
+    TEST_ASSERT_EQUAL_UINT32(2, stats().retries);
+    /* Every retransmission is the same frame. */
+    TEST_ASSERT_EQUAL_MEMORY(sio.out, sio.out + 9, 9);
+    TEST_ASSERT_EQUAL_MEMORY(sio.out, sio.out + 18, 9);
+}
+
+static void test_nak_past_the_limit(void)
+{
+    lep_rated rated;
+    sio.naks_left = 100;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_retries(&client, 3));
+    TEST_ASSERT_EQUAL_INT(LEP_E_NAK, lep_client_rated(&client, &rated));
+    TEST_ASSERT_EQUAL_UINT(4, sio.writes);
+    TEST_ASSERT_EQUAL_UINT32(3, stats().retries);
+    TEST_ASSERT_FALSE(lep_client_busy(&client));
+}
+
+static void test_no_retries_when_disabled(void)
+{
+    lep_rated rated;
+    sio.naks_left = 1;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_retries(&client, 0));
+    TEST_ASSERT_EQUAL_INT(LEP_E_NAK, lep_client_rated(&client, &rated));
+    TEST_ASSERT_EQUAL_UINT(1, sio.writes);
+}
+
+static void test_timeout(void)
+{
+    lep_product_info info;
+    sio.silent = true;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_timeout(&client, 250));
+    TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, lep_client_product_info(&client, &info));
+    TEST_ASSERT_EQUAL_UINT32(250, sio.now);
+    TEST_ASSERT_EQUAL_UINT32(1, stats().timeouts);
+    TEST_ASSERT_FALSE(lep_client_busy(&client));
+}
+
+static void test_wrong_response_type_is_skipped(void)
+{
+    static const uint8_t filter_answer[] = {0x08, 0xFF, 0xB6, 0x00, 0x01, 0x00, 0x00, 0x00};
+    lep_rated rated;
+    /* The sensor first sends an answer of another type, then the right one. */
+    script_push_msg(&sio, filter_answer, sizeof(filter_answer));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_rated(&client, &rated));
+    TEST_ASSERT_EQUAL_FLOAT(500.0f, rated.axis[LEP_FY]);
+    TEST_ASSERT_EQUAL_UINT32(1, stats().unexpected);
+}
+
+static void test_only_wrong_type_times_out(void)
+{
+    static const uint8_t filter_answer[] = {0x08, 0xFF, 0xB6, 0x00, 0x01, 0x00, 0x00, 0x00};
+    lep_rated rated;
+    force_reply(filter_answer, sizeof(filter_answer));
+    TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, lep_client_rated(&client, &rated));
+    TEST_ASSERT_EQUAL_UINT32(1, stats().unexpected);
+}
+
+static void test_sensor_error_codes(void)
+{
+    uint8_t code;
+    for (code = 1; code <= 4; code++) {
+        uint8_t msg[4] = {0x04, 0xFF, 0x2B, 0};
+        lep_rated rated;
+        msg[3] = code;
+        force_reply(msg, sizeof(msg));
+        TEST_ASSERT_EQUAL_INT(LEP_E_SENSOR, lep_client_rated(&client, &rated));
+        TEST_ASSERT_EQUAL_UINT8(code, lep_client_last_result(&client));
+    }
+    TEST_ASSERT_EQUAL_STRING("state error", lep_result_str(lep_client_last_result(&client)));
+}
+
+static void test_invalid_answer_is_counted_not_taken(void)
+{
+    /* Rated values with a NaN for Fx: framed correctly, invalid as a message. */
+    uint8_t msg[28] = {0x1C, 0xFF, 0x2B, 0x00, 0x00, 0x00, 0xC0, 0x7F};
+    lep_rated rated;
+    force_reply(msg, sizeof(msg));
+    TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, lep_client_rated(&client, &rated));
+    TEST_ASSERT_EQUAL_UINT32(1, stats().invalid);
+}
+
+static void test_corrupt_answer_is_counted(void)
+{
+    static const uint8_t bad[] = {0x10, 0x02, 0x04, 0xFF, 0x2A, 0x00, 0x10, 0x03, 0xD3};
+    lep_product_info info;
+    memcpy(sio.forced, bad, sizeof(bad));
+    sio.forced_len = sizeof(bad);
+    TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, lep_client_product_info(&client, &info));
+    TEST_ASSERT_EQUAL_UINT32(1, stats().bcc_errors);
+    TEST_ASSERT_EQUAL_UINT32(sizeof(bad), stats().bytes_discarded);
+}
+
+static void test_stale_stream_does_not_answer_queries(void)
+{
+    lep_rated rated;
+    lep_device_event ev;
+    uint8_t out[LEP_MAX_FRAME];
+    size_t n;
+    static const uint8_t start[] = {0x10, 0x02, 0x04, 0xFF, 0x32, 0x00, 0x10, 0x03, 0xCA};
+    /* A stream left running by an earlier program. */
+    (void)lep_device_feed(&sio.dev, start, sizeof(start), &ev, out, sizeof(out), &n);
+    TEST_ASSERT_TRUE(lep_device_streaming(&sio.dev));
+    script_push_data(&sio);
+    script_push_data(&sio);
+    sio.inflight = 3;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_rated(&client, &rated));
+    TEST_ASSERT_EQUAL_FLOAT(10.0f, rated.axis[LEP_MX]);
+    TEST_ASSERT_EQUAL_UINT32(5, stats().unexpected);
+}
+
+static void test_sync_recovers_stale_stream(void)
+{
+    lep_product_info info;
+    lep_device_event ev;
+    uint8_t out[LEP_MAX_FRAME];
+    size_t n;
+    static const uint8_t start[] = {0x10, 0x02, 0x04, 0xFF, 0x32, 0x00, 0x10, 0x03, 0xCA};
+    (void)lep_device_feed(&sio.dev, start, sizeof(start), &ev, out, sizeof(out), &n);
+    script_push_data(&sio);
+    /* Half a frame on the line when the program starts. */
+    script_push(&sio, start + 3, 4);
+    sio.inflight = 4;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_sync(&client, 20, &info));
+    TEST_ASSERT_FALSE(lep_device_streaming(&sio.dev));
+    TEST_ASSERT_FALSE(lep_client_streaming(&client));
+    TEST_ASSERT_EQUAL_STRING("PFS055YA501U6", info.model);
+    TEST_ASSERT_EQUAL_size_t(0, script_pending(&sio));
+}
+
+static void test_sync_on_a_silent_line_times_out(void)
+{
+    sio.silent = true;
+    TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, lep_client_sync(&client, 20, NULL));
+}
+
+static void test_sync_gives_up_on_endless_noise(void)
+{
+    /* A device that answers nothing but streams forever: the line never goes quiet. */
+    lep_device_event ev;
+    uint8_t out[LEP_MAX_FRAME];
+    size_t n;
+    static const uint8_t start[] = {0x10, 0x02, 0x04, 0xFF, 0x32, 0x00, 0x10, 0x03, 0xCA};
+    (void)lep_device_feed(&sio.dev, start, sizeof(start), &ev, out, sizeof(out), &n);
+    sio.silent = true;
+    TEST_ASSERT_EQUAL_INT(LEP_E_NO_SYNC, lep_client_sync(&client, 20, NULL));
+}
+
+static void test_stream_start_next_stop(void)
+{
+    lep_sample s;
+    unsigned i;
+    TEST_ASSERT_EQUAL_INT(LEP_E_STATE, lep_client_next_sample(&client, &s, 10));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
+    TEST_ASSERT_TRUE(lep_client_streaming(&client));
+    for (i = 0; i < 50; i++) {
+        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_next_sample(&client, &s, 100));
+        TEST_ASSERT_EQUAL_UINT16(i, s.reserved);
+    }
+    TEST_ASSERT_EQUAL_INT(LEP_E_STATE, lep_client_sample(&client, &s));
+    sio.inflight = 7; /* data already on the line when the stop is answered */
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_stop(&client));
+    TEST_ASSERT_FALSE(lep_client_streaming(&client));
+    TEST_ASSERT_FALSE(lep_device_streaming(&sio.dev));
+    TEST_ASSERT_EQUAL_UINT32(0, stats().unexpected);
+    TEST_ASSERT_EQUAL_UINT32(50, stats().samples);
+}
+
+static void test_start_while_streaming_is_a_state_error(void)
+{
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
+    TEST_ASSERT_EQUAL_INT(LEP_E_SENSOR, lep_client_start(&client));
+    TEST_ASSERT_EQUAL_UINT8(LEP_RESULT_STATE, lep_client_last_result(&client));
+    TEST_ASSERT_TRUE(lep_client_streaming(&client));
+}
+
+static void test_next_samples_batches_buffered_data(void)
+{
+    lep_sample s[16];
+    size_t n = 0;
+    unsigned i;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
+    sio.endless_stream = false;
+    for (i = 0; i < 10; i++) {
+        script_push_data(&sio);
+    }
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_next_samples(&client, s, 16, &n, 100));
+    TEST_ASSERT_EQUAL_size_t(10, n);
+    for (i = 0; i < 10; i++) {
+        TEST_ASSERT_EQUAL_UINT16(i, s[i].reserved);
+    }
+    TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, lep_client_next_samples(&client, s, 16, &n, 30));
+    TEST_ASSERT_EQUAL_size_t(0, n);
+}
+
+static void test_next_sample_timeout_when_stream_stalls(void)
+{
+    lep_sample s;
+    uint32_t t0;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
+    sio.endless_stream = false;
+    t0 = sio.now;
+    TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, lep_client_next_sample(&client, &s, 40));
+    TEST_ASSERT_EQUAL_UINT32(t0 + 40, sio.now);
+    TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, lep_client_next_sample(&client, &s, 0));
+    TEST_ASSERT_EQUAL_UINT32(2, stats().timeouts);
+}
+
+static void test_byte_by_byte_reads(void)
+{
+    lep_product_info info;
+    lep_sample s;
+    sio.max_chunk = 1;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_product_info(&client, &info));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_next_sample(&client, &s, 100));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_next_sample(&client, &s, 100));
+    TEST_ASSERT_EQUAL_UINT16(1, s.reserved);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_stop(&client));
+}
+
+static void test_io_errors_propagate(void)
+{
+    lep_product_info info;
+    lep_sample s;
+    sio.read_error = LEP_E_DISCONNECTED;
+    TEST_ASSERT_EQUAL_INT(LEP_E_DISCONNECTED, lep_client_product_info(&client, &info));
+    TEST_ASSERT_FALSE(lep_client_busy(&client));
+    sio.read_error = 0;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
+    sio.read_error = LEP_E_DISCONNECTED;
+    TEST_ASSERT_EQUAL_INT(LEP_E_DISCONNECTED, lep_client_next_sample(&client, &s, 100));
+    sio.write_error = LEP_E_IO;
+    TEST_ASSERT_EQUAL_INT(LEP_E_IO, lep_client_stop(&client));
+}
+
+static void test_step_api_without_read(void)
+{
+    /* An MCU super-loop: the client never reads; bytes are fed as they come. */
+    lep_command cmd = {LEP_CMD_RATED, 0};
+    lep_io io = script_io_table(&sio);
+    lep_client c;
+    size_t used;
+    size_t i;
+    int rc = LEP_STEP_NONE;
+    io.read = NULL;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_init(&c, &io));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_rated(&c, &(lep_rated){{0}}));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_send(&c, &cmd));
+    TEST_ASSERT_TRUE(lep_client_busy(&c));
+    for (i = sio.in_pos; i < sio.in_len; i++) {
+        rc = lep_client_step(&c, &sio.in[i], 1, &used);
+        TEST_ASSERT_EQUAL_size_t(1, used);
+        if (rc != LEP_STEP_NONE) {
+            break;
+        }
+    }
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_RESPONSE, rc);
+    TEST_ASSERT_EQUAL_size_t(sio.in_len - 1, i);
+    TEST_ASSERT_EQUAL_FLOAT(40.0f / 4.0f, lep_client_response(&c)->u.rated.axis[LEP_MY]);
+    TEST_ASSERT_FALSE(lep_client_busy(&c));
+}
+
+static void test_step_api_deadline(void)
+{
+    lep_command cmd = {LEP_CMD_STOP, 0};
+    size_t used;
+    sio.silent = true;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_send(&client, &cmd));
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step(&client, NULL, 0, &used));
+    sio.now += LEP_CLIENT_DEFAULT_TIMEOUT_MS;
+    TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, lep_client_step(&client, NULL, 0, &used));
+}
+
+static void test_step_api_stops_at_each_sample(void)
+{
+    uint8_t wire[3 * 29];
+    size_t len = 0;
+    size_t used;
+    size_t pos = 0;
+    unsigned got = 0;
+    unsigned i;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
+    sio.endless_stream = false;
+    for (i = 0; i < 3; i++) {
+        script_push_data(&sio);
+    }
+    len = script_pending(&sio);
+    TEST_ASSERT_TRUE(len <= sizeof(wire));
+    memcpy(wire, sio.in + sio.in_pos, len);
+    while (pos < len) {
+        int rc = lep_client_step(&client, wire + pos, len - pos, &used);
+        pos += used;
+        if (rc == LEP_STEP_SAMPLE) {
+            TEST_ASSERT_EQUAL_UINT16(got, lep_client_response(&client)->u.sample.reserved);
+            got++;
+        }
+    }
+    TEST_ASSERT_EQUAL_UINT(3, got);
+}
+
+static void test_two_clients_are_independent(void)
+{
+    script_io other;
+    lep_client c2;
+    lep_client_stats st2;
+    lep_io io;
+    lep_product_info info;
+    lep_rated rated;
+    script_io_init(&other);
+    io = script_io_table(&other);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_init(&c2, &io));
+    other.naks_left = 1;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_product_info(&c2, &info));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_rated(&c2, &rated));
+    TEST_ASSERT_TRUE(lep_client_streaming(&client));
+    TEST_ASSERT_FALSE(lep_client_streaming(&c2));
+    TEST_ASSERT_EQUAL_UINT32(0, stats().naks);
+    lep_client_get_stats(&c2, &st2);
+    TEST_ASSERT_EQUAL_UINT32(1, st2.naks);
+    TEST_ASSERT_EQUAL_UINT32(1, st2.retries);
+}
+
+int main(void)
+{
+    UNITY_BEGIN();
+    RUN_TEST(test_init_rejects_incomplete_io);
+    RUN_TEST(test_product_info_and_rated);
+    RUN_TEST(test_handshake_sample);
+    RUN_TEST(test_filter_set_needs_power_cycle);
+    RUN_TEST(test_filter_set_rejects_bad_code_without_writing);
+    RUN_TEST(test_nak_then_success);
+    RUN_TEST(test_nak_past_the_limit);
+    RUN_TEST(test_no_retries_when_disabled);
+    RUN_TEST(test_timeout);
+    RUN_TEST(test_wrong_response_type_is_skipped);
+    RUN_TEST(test_only_wrong_type_times_out);
+    RUN_TEST(test_sensor_error_codes);
+    RUN_TEST(test_invalid_answer_is_counted_not_taken);
+    RUN_TEST(test_corrupt_answer_is_counted);
+    RUN_TEST(test_stale_stream_does_not_answer_queries);
+    RUN_TEST(test_sync_recovers_stale_stream);
+    RUN_TEST(test_sync_on_a_silent_line_times_out);
+    RUN_TEST(test_sync_gives_up_on_endless_noise);
+    RUN_TEST(test_stream_start_next_stop);
+    RUN_TEST(test_start_while_streaming_is_a_state_error);
+    RUN_TEST(test_next_samples_batches_buffered_data);
+    RUN_TEST(test_next_sample_timeout_when_stream_stalls);
+    RUN_TEST(test_byte_by_byte_reads);
+    RUN_TEST(test_io_errors_propagate);
+    RUN_TEST(test_step_api_without_read);
+    RUN_TEST(test_step_api_deadline);
+    RUN_TEST(test_step_api_stops_at_each_sample);
+    RUN_TEST(test_two_clients_are_independent);
+    return UNITY_END();
+}
