@@ -1,0 +1,40 @@
+# Convenience front door; CMake does the work (see CMakePresets.json).
+#   make demo   build everything, then stream 3 s from the virtual sensor
+#   make test   build everything and run the whole suite (C via ctest, Python via pytest)
+PYTHON ?= python3
+VENV ?= build/venv
+LEPTRINO := build/dev/tools/leptrino/leptrino
+
+.PHONY: all demo test test-c test-python sanitize clang core clean
+
+all:
+	cmake --preset dev
+	cmake --build --preset dev
+
+demo: all
+	$(LEPTRINO) stream --sim --duration 3
+
+test: test-c test-python
+
+test-c:
+	cmake --workflow --preset dev
+
+test-python:
+	$(PYTHON) -m venv $(VENV)
+	$(VENV)/bin/python -m pip install -q --upgrade pip
+	$(VENV)/bin/python -m pip install -q "./bindings/python[test]"
+	cd bindings/python && ../../$(VENV)/bin/python -m pytest -q tests
+
+sanitize:
+	cmake --workflow --preset sanitize
+
+core:
+	cmake --workflow --preset core
+
+clang:
+	CC=clang cmake -S . -B build/clang -G Ninja -DLEPTRINO_BUILD_TESTS=ON
+	cmake --build build/clang
+	ctest --test-dir build/clang --output-on-failure
+
+clean:
+	rm -rf build
