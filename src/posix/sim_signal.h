@@ -1,0 +1,39 @@
+/* Private: what the virtual sensor measures (models, waveform, replay). */
+#ifndef LEPTRINO_SIM_SIGNAL_H
+#define LEPTRINO_SIM_SIGNAL_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "leptrino/message.h"
+#include "leptrino/sim.h"
+
+/* splitmix64: a small seedable generator (no rand(), no global state). */
+uint64_t lep_priv_splitmix64(uint64_t *state);
+/* Uniform in [0, 1). */
+double lep_priv_uniform(uint64_t *state);
+
+typedef struct lep_sim_signal {
+    lep_rated rated;
+    double rate_hz;
+    double amplitude, noise;
+    int constant;
+    uint64_t seed;
+    double freq[LEP_AXES], phase[LEP_AXES];
+    double overload_every_s, overload_duration_s;
+    lep_sample *replay; /* rows of the replay file (status -1 = derive), or NULL */
+    int16_t *replay_status; /* per row: status given in the file, or -1 */
+    size_t replay_rows;
+} lep_sim_signal;
+
+/* Set up from the options (loads the replay file). On failure returns a
+ * LEP_E_* code with a one-line message in err. */
+int lep_priv_signal_init(lep_sim_signal *g, const lep_sim_options *o, const lep_rated *rated,
+                         char *err, size_t errlen);
+void lep_priv_signal_free(lep_sim_signal *g);
+
+/* The sample at index n of the sample clock (t = n / rate_hz): a pure
+ * function of the options, the seed and n. reserved is left 0. */
+void lep_priv_signal_sample(const lep_sim_signal *g, uint64_t n, lep_sample *out);
+
+#endif
