@@ -1,0 +1,99 @@
+"""leptrino: Leptrino 6-axis force/torque sensors from Python.
+
+A thin layer over libleptrino (the same shared library C programs link),
+through ctypes (default) or cffi in ABI mode; choose with the environment
+variable LEPTRINO_BACKEND=ctypes|cffi or the backend= argument.
+
+    import leptrino
+    with leptrino.Simulator() as port, leptrino.Sensor(port) as sensor:
+        print(sensor.product_info.model, sensor.rated)
+        rec = sensor.record(seconds=1.0)       # numpy arrays, filled by C
+
+Importing loads the library of the default backend and raises ImportError,
+listing what was tried, when it cannot be found.
+"""
+
+from __future__ import annotations
+
+from ._backend import BACKENDS, get_backend
+from .decode import Decoder, Event, decode
+from .errors import (
+    BusyError,
+    DisconnectedError,
+    LeptrinoError,
+    NakError,
+    NoSyncError,
+    NotATerminalError,
+    PortError,
+    PortNotFoundError,
+    PortPermissionError,
+    ProtocolError,
+    SensorError,
+    StateError,
+    TimeoutError,
+)
+from .sensor import PowerCycleWarning, Sensor, Stream, list_ports
+from .simulator import Simulator
+from .values import (
+    ClientStats,
+    PortInfo,
+    ProductInfo,
+    Rated,
+    Recording,
+    Sample,
+    SimStats,
+)
+
+__all__ = [
+    "BACKENDS",
+    "BusyError",
+    "ClientStats",
+    "Decoder",
+    "DisconnectedError",
+    "Event",
+    "LeptrinoError",
+    "NakError",
+    "NoSyncError",
+    "NotATerminalError",
+    "PortError",
+    "PortInfo",
+    "PortNotFoundError",
+    "PortPermissionError",
+    "PowerCycleWarning",
+    "ProductInfo",
+    "ProtocolError",
+    "Rated",
+    "Recording",
+    "Sample",
+    "Sensor",
+    "SensorError",
+    "SimStats",
+    "Simulator",
+    "StateError",
+    "Stream",
+    "TimeoutError",
+    "decode",
+    "get_backend",
+    "library_version",
+    "list_ports",
+]
+
+
+def library_version(backend: str | None = None) -> str:
+    """Version of the libleptrino actually loaded, e.g. "0.1.0"."""
+    be = get_backend(backend)
+    return str(be.text(be.lib.lep_version()))
+
+
+# Load the default backend now: a missing library is an ImportError at import.
+get_backend()
+
+try:
+    from importlib.metadata import PackageNotFoundError, version as _pkg_version
+
+    try:
+        __version__ = _pkg_version("leptrino")
+    except PackageNotFoundError:  # running from the source tree
+        __version__ = library_version()
+except ImportError:  # pragma: no cover - Python < 3.8
+    __version__ = library_version()

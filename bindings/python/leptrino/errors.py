@@ -1,0 +1,126 @@
+"""Exceptions. Every error raised by leptrino is a LeptrinoError.
+
+    LeptrinoError                    .error: the library's LEP_E_* code
+    ├── TimeoutError                 also the built-in TimeoutError
+    ├── DisconnectedError            also the built-in ConnectionError
+    ├── SensorError                  the sensor's own result code: .code, .meaning
+    ├── NakError                     the sensor kept answering DLE NAK
+    ├── ProtocolError                malformed or unexpected message
+    ├── StateError                   call not valid now (e.g. sample while streaming)
+    ├── NoSyncError                  the line never went quiet at start-up
+    └── PortError                    opening the port failed
+        ├── PortNotFoundError        also FileNotFoundError
+        ├── PortPermissionError      also PermissionError
+        ├── NotATerminalError
+        └── BusyError                the port is in use by another program
+"""
+
+from __future__ import annotations
+
+import builtins
+from typing import Any, Dict, Optional, Type
+
+from . import _constants as K
+
+
+class LeptrinoError(Exception):
+    """Base of every leptrino error; .error is the LEP_E_* code (0 when none)."""
+
+    def __init__(self, message: str, error: int = 0) -> None:
+        super().__init__(message)
+        self.error = error
+        self.message = message
+
+    def __str__(self) -> str:
+        return self.message
+
+
+class TimeoutError(LeptrinoError, builtins.TimeoutError):  # noqa: A001 - intended shadow
+    """No answer (or no sample) within the timeout."""
+
+
+class DisconnectedError(LeptrinoError, builtins.ConnectionError):
+    """The port went away (hang-up, USB cable pulled)."""
+
+
+class SensorError(LeptrinoError):
+    """The sensor answered with a non-zero result code.
+
+    .code is the result code (1 length error, 2 undefined command, 3 invalid
+    setting value, 4 state error), .meaning its description, .command the
+    command code answered when known."""
+
+    def __init__(self, code: int, meaning: str, command: Optional[int] = None) -> None:
+        what = f" to command 0x{command:02X}" if command is not None else ""
+        super().__init__(
+            f"sensor answered{what} with result 0x{code:02X}: {meaning}", K.LEP_E_SENSOR
+        )
+        self.code = code
+        self.meaning = meaning
+        self.command = command
+
+
+class NakError(LeptrinoError):
+    """The sensor kept answering DLE NAK past the retry limit."""
+
+
+class ProtocolError(LeptrinoError):
+    """A malformed, invalid or unexpected message (bad length, BCC, value...)."""
+
+
+class StateError(LeptrinoError):
+    """The call is not valid in the current state (for example while streaming)."""
+
+
+class NoSyncError(LeptrinoError):
+    """The line never went quiet during start-up recovery."""
+
+
+class PortError(LeptrinoError):
+    """Opening the port failed."""
+
+
+class PortNotFoundError(PortError, builtins.FileNotFoundError):
+    """No such port."""
+
+
+class PortPermissionError(PortError, builtins.PermissionError):
+    """No permission to open the port."""
+
+
+class NotATerminalError(PortError):
+    """The path is not a terminal device."""
+
+
+class BusyError(PortError):
+    """The port is already in use by another program."""
+
+
+_BY_CODE: Dict[int, Type[LeptrinoError]] = {
+    K.LEP_E_TIMEOUT: TimeoutError,
+    K.LEP_E_DISCONNECTED: DisconnectedError,
+    K.LEP_E_NAK: NakError,
+    K.LEP_E_TOO_LONG: ProtocolError,
+    K.LEP_E_BCC: ProtocolError,
+    K.LEP_E_ESCAPE: ProtocolError,
+    K.LEP_E_LENGTH: ProtocolError,
+    K.LEP_E_RESERVED: ProtocolError,
+    K.LEP_E_UNEXPECTED: ProtocolError,
+    K.LEP_E_VALUE: ProtocolError,
+    K.LEP_E_STATE: StateError,
+    K.LEP_E_NO_SYNC: NoSyncError,
+    K.LEP_E_NOT_FOUND: PortNotFoundError,
+    K.LEP_E_PERMISSION: PortPermissionError,
+    K.LEP_E_NOT_TTY: NotATerminalError,
+    K.LEP_E_BUSY: BusyError,
+}
+
+
+def error_for(be: Any, rc: int, detail: str = "", *, result: Optional[int] = None,
+              command: Optional[int] = None) -> LeptrinoError:
+    """The exception for a negative LEP_E_* return code rc."""
+    if rc == K.LEP_E_SENSOR and result is not None:
+        return SensorError(result, be.text(be.lib.lep_result_str(result)), command)
+    text = be.text(be.lib.lep_strerror(rc))
+    msg = f"{detail}: {text}" if detail and detail != text else (detail or text)
+    return _BY_CODE.get(rc, LeptrinoError)(msg, rc)
