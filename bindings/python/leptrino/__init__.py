@@ -16,7 +16,17 @@ listing what was tried, when it cannot be found.
 from __future__ import annotations
 
 from ._backend import BACKENDS, get_backend
-from .decode import Decoder, Event, decode
+from .codec import (
+    Decoder,
+    Event,
+    Message,
+    decode,
+    decode_message,
+    encode_command,
+    encode_frame,
+    sample_to_si,
+    saturation_mask,
+)
 from .errors import (
     BusyError,
     DisconnectedError,
@@ -51,6 +61,7 @@ __all__ = [
     "Decoder",
     "DisconnectedError",
     "Event",
+    "Message",
     "LeptrinoError",
     "NakError",
     "NoSyncError",
@@ -73,9 +84,14 @@ __all__ = [
     "Stream",
     "TimeoutError",
     "decode",
+    "decode_message",
+    "encode_command",
+    "encode_frame",
     "get_backend",
     "library_version",
     "list_ports",
+    "sample_to_si",
+    "saturation_mask",
 ]
 
 

@@ -194,6 +194,17 @@ typedef struct lep_sim_stats {
     bool streaming;
     uint8_t filter;
     uint8_t filter_pending;
+    bool hung_up;
+    uint16_t sequence;
+    uint64_t responses;
+    uint64_t faked_naks;
+    uint64_t samples_skipped;
+    uint64_t samples_blocked;
+    uint64_t garbage_bytes;
+    uint64_t bytes_received;
+    uint64_t reopens;
+    uint64_t power_cycles;
+    uint64_t stalls;
 } lep_sim_stats;
 
 void lep_sim_options_init(lep_sim_options *o);
@@ -206,6 +217,7 @@ void lep_sim_hangup(lep_sim *s);
 void lep_sim_stall(lep_sim *s, int ms);
 void lep_sim_get_stats(lep_sim *s, lep_sim_stats *out);
 void lep_sim_stop(lep_sim *s);
+const char *lep_sim_pty_path(const lep_sim *s);
 
 /* record.h */
 typedef struct lep_record_batch {

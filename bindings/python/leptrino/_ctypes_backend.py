@@ -193,6 +193,17 @@ class lep_sim_stats(Structure):
         ("streaming", c_bool),
         ("filter", c_uint8),
         ("filter_pending", c_uint8),
+        ("hung_up", c_bool),
+        ("sequence", c_uint16),
+        ("responses", c_uint64),
+        ("faked_naks", c_uint64),
+        ("samples_skipped", c_uint64),
+        ("samples_blocked", c_uint64),
+        ("garbage_bytes", c_uint64),
+        ("bytes_received", c_uint64),
+        ("reopens", c_uint64),
+        ("power_cycles", c_uint64),
+        ("stalls", c_uint64),
     ]
 
 
@@ -297,6 +308,7 @@ FUNCTIONS: Dict[str, Tuple[Any, List[Any]]] = {
     "lep_sim_stall": (None, [_P(lep_sim), c_int]),
     "lep_sim_get_stats": (None, [_P(lep_sim), _P(lep_sim_stats)]),
     "lep_sim_stop": (None, [_P(lep_sim)]),
+    "lep_sim_pty_path": (c_char_p, [_P(lep_sim)]),
     # record.h
     "lep_record_fill": (
         c_int,

@@ -163,6 +163,17 @@ class SimStats:
     streaming: bool
     filter: int
     filter_pending: int
+    hung_up: bool
+    sequence: int  # sequence number the next stream sample will carry
+    responses: int
+    faked_naks: int
+    samples_skipped: int
+    samples_blocked: int
+    garbage_bytes: int
+    bytes_received: int
+    reopens: int
+    power_cycles: int
+    stalls: int
 
 
 @dataclass(frozen=True)
