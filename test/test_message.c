@@ -1,0 +1,627 @@
+/* Message codec tests driven by test/vectors/messages.json: commands and
+ * responses in both directions (host and sensor side), validation errors with
+ * the result code a sensor answers, SI conversion, saturation, status bits and
+ * the static strings. */
+#include <stdio.h>
+#include <string.h>
+
+#include "hex.h"
+#include "json.h"
+#include "leptrino/error.h"
+#include "leptrino/frame.h"
+#include "leptrino/message.h"
+#include "unity.h"
+#include "vectors.h"
+
+static lep_json *g_vectors;
+static char g_ctx[512];
+
+void setUp(void)
+{
+}
+
+void tearDown(void)
+{
+}
+
+/* ---- helpers --------------------------------------------------------------- */
+
+static const char *ctx(const char *name, const char *how)
+{
+    snprintf(g_ctx, sizeof(g_ctx), "vector '%s' (%s)", name != NULL ? name : "?", how);
+    return g_ctx;
+}
+
+static size_t parse_hex(const char *hex, uint8_t *out, size_t cap)
+{
+    size_t n = 0;
+    TEST_ASSERT_NOT_NULL_MESSAGE(hex, "vector without a hex field");
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, lep_hex_parse(hex, out, cap, &n), hex);
+    return n;
+}
+
+static const lep_json *section(const char *name)
+{
+    const lep_json *s = lep_json_get(g_vectors, name);
+    TEST_ASSERT_NOT_NULL_MESSAGE(g_vectors, "messages.json did not load");
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_JSON_ARRAY, lep_json_type(s), name);
+    TEST_ASSERT_GREATER_THAN_size_t_MESSAGE(0u, lep_json_len(s), name);
+    return s;
+}
+
+static int error_code(const char *name)
+{
+    static const struct {
+        const char *name;
+        int code;
+    } map[] = {{"arg", LEP_E_ARG},         {"buffer", LEP_E_BUFFER},
+               {"too_long", LEP_E_TOO_LONG}, {"bcc", LEP_E_BCC},
+               {"escape", LEP_E_ESCAPE},   {"length", LEP_E_LENGTH},
+               {"reserved", LEP_E_RESERVED}, {"unexpected", LEP_E_UNEXPECTED},
+               {"value", LEP_E_VALUE},     {"sensor", LEP_E_SENSOR}};
+    size_t i;
+    TEST_ASSERT_NOT_NULL_MESSAGE(name, "vector without an error name");
+    for (i = 0; i < sizeof(map) / sizeof(map[0]); i++) {
+        if (strcmp(map[i].name, name) == 0) {
+            return map[i].code;
+        }
+    }
+    TEST_FAIL_MESSAGE(name);
+    return 0;
+}
+
+static uint8_t get_u8(const lep_json *v, const char *key)
+{
+    long n = lep_json_get_int(v, key, -1);
+    TEST_ASSERT_TRUE_MESSAGE(n >= 0 && n <= 255, key);
+    return (uint8_t)n;
+}
+
+static void copy_text(char *dst, size_t cap, const lep_json *obj, const char *key)
+{
+    const char *s = lep_json_get_str(obj, key);
+    TEST_ASSERT_NOT_NULL_MESSAGE(s, key);
+    TEST_ASSERT_LESS_THAN_size_t_MESSAGE(cap, strlen(s), key);
+    memcpy(dst, s, strlen(s) + 1u);
+}
+
+/* The fields of a response vector as a lep_response (what a sensor encodes). */
+static void response_of(const lep_json *v, lep_response *r)
+{
+    const lep_json *info = lep_json_get(v, "info");
+    const lep_json *rated = lep_json_get(v, "rated");
+    const lep_json *sample = lep_json_get(v, "sample");
+    size_t i;
+    memset(r, 0, sizeof(*r));
+    r->code = get_u8(v, "code");
+    r->result = get_u8(v, "result");
+    r->stream = lep_json_get_bool(v, "stream", false);
+    if (info != NULL) {
+        copy_text(r->u.info.model, sizeof(r->u.info.model), info, "model");
+        copy_text(r->u.info.serial, sizeof(r->u.info.serial), info, "serial");
+        copy_text(r->u.info.firmware, sizeof(r->u.info.firmware), info, "firmware");
+        copy_text(r->u.info.output_rate, sizeof(r->u.info.output_rate), info, "output_rate");
+        r->u.info.has_output_rate = lep_json_get_bool(info, "has_output_rate", false);
+        r->u.info.output_rate_hz = (uint32_t)lep_json_get_int(info, "output_rate_hz", 0);
+    } else if (rated != NULL) {
+        TEST_ASSERT_EQUAL_size_t(LEP_AXES, lep_json_len(rated));
+        for (i = 0; i < LEP_AXES; i++) {
+            r->u.rated.axis[i] = (float)lep_json_num(lep_json_at(rated, i));
+        }
+    } else if (lep_json_has(v, "filter")) {
+        r->u.filter = get_u8(v, "filter");
+    } else if (sample != NULL) {
+        const lep_json *raw = lep_json_get(sample, "raw");
+        TEST_ASSERT_EQUAL_size_t(LEP_AXES, lep_json_len(raw));
+        for (i = 0; i < LEP_AXES; i++) {
+            r->u.sample.raw[i] = (int16_t)lep_json_num(lep_json_at(raw, i));
+        }
+        r->u.sample.reserved = (uint16_t)lep_json_get_int(sample, "reserved", 0);
+        r->u.sample.status = get_u8(sample, "status");
+    }
+}
+
+/* ---- commands ---------------------------------------------------------------- */
+
+static void test_command_vectors_encode_and_decode(void)
+{
+    const lep_json *cmds = section("commands");
+    size_t i;
+    for (i = 0; i < lep_json_len(cmds); i++) {
+        const lep_json *v = lep_json_at(cmds, i);
+        const char *name = lep_json_get_str(v, "name");
+        uint8_t want[LEP_MAX_MESSAGE];
+        uint8_t out[LEP_MAX_MESSAGE];
+        uint8_t wire[LEP_MAX_FRAME];
+        uint8_t wire2[LEP_MAX_FRAME];
+        size_t wlen = parse_hex(lep_json_get_str(v, "message"), want, sizeof(want));
+        size_t n = 0;
+        size_t fn = 0;
+        size_t fn2 = 0;
+        uint8_t result = 0xEE;
+        lep_command cmd;
+        lep_command got;
+        cmd.code = get_u8(v, "code");
+        cmd.filter = lep_json_has(v, "filter") ? get_u8(v, "filter") : 0u;
+
+        /* Host side: encode. */
+        TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_command_encode(&cmd, out, sizeof(out), &n),
+                                      ctx(name, "encode"));
+        TEST_ASSERT_EQUAL_size_t_MESSAGE(wlen, n, ctx(name, "encoded length"));
+        TEST_ASSERT_EQUAL_HEX8_ARRAY_MESSAGE(want, out, wlen, ctx(name, "encoded bytes"));
+        TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_command_encode(&cmd, out, wlen, &n),
+                                      ctx(name, "exact capacity"));
+        TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_E_BUFFER, lep_command_encode(&cmd, out, wlen - 1u, &n),
+                                      ctx(name, "capacity one short"));
+
+        /* Straight to a frame: the same as framing the message. */
+        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_command_frame(&cmd, wire, sizeof(wire), &fn));
+        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_frame_encode(want, wlen, wire2, sizeof(wire2), &fn2));
+        TEST_ASSERT_EQUAL_size_t_MESSAGE(fn2, fn, ctx(name, "frame size"));
+        TEST_ASSERT_EQUAL_HEX8_ARRAY_MESSAGE(wire2, wire, fn2, ctx(name, "frame bytes"));
+        TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_E_BUFFER, lep_command_frame(&cmd, wire, fn2 - 1u, &fn),
+                                      ctx(name, "frame capacity one short"));
+
+        /* Sensor side: decode. */
+        memset(&got, 0xA5, sizeof(got));
+        TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_command_decode(want, wlen, &got, &result),
+                                      ctx(name, "decode"));
+        TEST_ASSERT_EQUAL_HEX8_MESSAGE(LEP_RESULT_OK, result, ctx(name, "decode result"));
+        TEST_ASSERT_EQUAL_HEX8_MESSAGE(cmd.code, got.code, ctx(name, "decoded code"));
+        if (cmd.code == LEP_CMD_FILTER_SET) {
+            TEST_ASSERT_EQUAL_UINT8_MESSAGE(cmd.filter, got.filter, ctx(name, "decoded filter"));
+        }
+    }
+}
+
+static void test_invalid_command_vectors(void)
+{
+    const lep_json *bad = section("invalid_commands");
+    size_t i;
+    for (i = 0; i < lep_json_len(bad); i++) {
+        const lep_json *v = lep_json_at(bad, i);
+        const char *name = lep_json_get_str(v, "name");
+        uint8_t msg[LEP_MAX_MESSAGE];
+        size_t len = parse_hex(lep_json_get_str(v, "message"), msg, sizeof(msg));
+        uint8_t result = 0xEE;
+        lep_command cmd;
+        memset(&cmd, 0xA5, sizeof(cmd));
+        TEST_ASSERT_EQUAL_INT_MESSAGE(error_code(lep_json_get_str(v, "error")),
+                                      lep_command_decode(msg, len, &cmd, &result), ctx(name, "error"));
+        TEST_ASSERT_EQUAL_HEX8_MESSAGE(get_u8(v, "result"), result, ctx(name, "result to answer"));
+        TEST_ASSERT_EQUAL_HEX8_MESSAGE(get_u8(v, "code"), cmd.code, ctx(name, "reported code"));
+    }
+}
+
+static void test_command_encode_error_vectors(void)
+{
+    const lep_json *errs = section("command_encode_errors");
+    size_t i;
+    for (i = 0; i < lep_json_len(errs); i++) {
+        const lep_json *v = lep_json_at(errs, i);
+        uint8_t out[LEP_MAX_MESSAGE];
+        uint8_t wire[LEP_MAX_FRAME];
+        size_t n = 99;
+        lep_command cmd;
+        cmd.code = get_u8(v, "code");
+        cmd.filter = lep_json_has(v, "filter") ? get_u8(v, "filter") : 0u;
+        TEST_ASSERT_EQUAL_INT_MESSAGE(error_code(lep_json_get_str(v, "error")),
+                                      lep_command_encode(&cmd, out, sizeof(out), &n),
+                                      ctx(lep_json_get_str(v, "name"), "encode"));
+        TEST_ASSERT_EQUAL_INT_MESSAGE(error_code(lep_json_get_str(v, "error")),
+                                      lep_command_frame(&cmd, wire, sizeof(wire), &n),
+                                      ctx(lep_json_get_str(v, "name"), "frame"));
+    }
+}
+
+static void test_command_null_arguments(void)
+{
+    lep_command cmd = {LEP_CMD_STOP, 0};
+    uint8_t out[16];
+    uint8_t result = 0;
+    size_t n;
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_command_encode(NULL, out, sizeof(out), &n));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_command_encode(&cmd, NULL, sizeof(out), &n));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_command_encode(&cmd, out, sizeof(out), NULL));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_command_decode(NULL, 4, &cmd, &result));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_command_decode(out, 4, NULL, &result));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_command_decode(out, 4, &cmd, NULL));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_command_frame(&cmd, out, sizeof(out), NULL));
+}
+
+/* ---- responses --------------------------------------------------------------- */
+
+static void expect_fields(const lep_response *want, const lep_response *got, const char *name)
+{
+    size_t i;
+    TEST_ASSERT_EQUAL_HEX8_MESSAGE(want->code, got->code, ctx(name, "code"));
+    TEST_ASSERT_EQUAL_HEX8_MESSAGE(want->result, got->result, ctx(name, "result"));
+    TEST_ASSERT_EQUAL_INT_MESSAGE(want->stream, got->stream, ctx(name, "stream"));
+    if (want->result != LEP_RESULT_OK) {
+        return;
+    }
+    switch (want->code) {
+    case LEP_CMD_PRODUCT_INFO:
+        TEST_ASSERT_EQUAL_STRING_MESSAGE(want->u.info.model, got->u.info.model, ctx(name, "model"));
+        TEST_ASSERT_EQUAL_STRING_MESSAGE(want->u.info.serial, got->u.info.serial, ctx(name, "serial"));
+        TEST_ASSERT_EQUAL_STRING_MESSAGE(want->u.info.firmware, got->u.info.firmware,
+                                         ctx(name, "firmware"));
+        TEST_ASSERT_EQUAL_STRING_MESSAGE(want->u.info.output_rate, got->u.info.output_rate,
+                                         ctx(name, "output_rate"));
+        TEST_ASSERT_EQUAL_INT_MESSAGE(want->u.info.has_output_rate, got->u.info.has_output_rate,
+                                      ctx(name, "has_output_rate"));
+        TEST_ASSERT_EQUAL_UINT32_MESSAGE(want->u.info.output_rate_hz, got->u.info.output_rate_hz,
+                                         ctx(name, "output_rate_hz"));
+        break;
+    case LEP_CMD_RATED:
+        for (i = 0; i < LEP_AXES; i++) {
+            /* Exact: the vectors hold float32 values. */
+            TEST_ASSERT_TRUE_MESSAGE(want->u.rated.axis[i] == got->u.rated.axis[i], ctx(name, "rated"));
+        }
+        break;
+    case LEP_CMD_FILTER_GET:
+        TEST_ASSERT_EQUAL_UINT8_MESSAGE(want->u.filter, got->u.filter, ctx(name, "filter"));
+        break;
+    case LEP_CMD_SAMPLE:
+    case LEP_CMD_START:
+        if (want->code == LEP_CMD_SAMPLE || want->stream) {
+            TEST_ASSERT_EQUAL_INT16_ARRAY_MESSAGE(want->u.sample.raw, got->u.sample.raw, LEP_AXES,
+                                                  ctx(name, "raw"));
+            TEST_ASSERT_EQUAL_HEX16_MESSAGE(want->u.sample.reserved, got->u.sample.reserved,
+                                            ctx(name, "reserved"));
+            TEST_ASSERT_EQUAL_HEX8_MESSAGE(want->u.sample.status, got->u.sample.status,
+                                           ctx(name, "status"));
+        }
+        break;
+    default:
+        break;
+    }
+}
+
+static void test_response_vectors_decode(void)
+{
+    const lep_json *rs = section("responses");
+    size_t i;
+    for (i = 0; i < lep_json_len(rs); i++) {
+        const lep_json *v = lep_json_at(rs, i);
+        const char *name = lep_json_get_str(v, "name");
+        const char *err = lep_json_get_str(v, "error");
+        uint8_t msg[LEP_MAX_MESSAGE];
+        size_t len = parse_hex(lep_json_get_str(v, "message"), msg, sizeof(msg));
+        lep_response want;
+        lep_response got;
+        response_of(v, &want);
+        memset(&got, 0xA5, sizeof(got));
+        TEST_ASSERT_EQUAL_INT_MESSAGE(err != NULL ? error_code(err) : LEP_OK,
+                                      lep_response_decode(msg, len, &got), ctx(name, "decode"));
+        expect_fields(&want, &got, name);
+    }
+}
+
+static void test_response_vectors_encode(void)
+{
+    const lep_json *rs = section("responses");
+    size_t i;
+    for (i = 0; i < lep_json_len(rs); i++) {
+        const lep_json *v = lep_json_at(rs, i);
+        const char *name = lep_json_get_str(v, "name");
+        uint8_t want[LEP_MAX_MESSAGE];
+        uint8_t out[LEP_MAX_MESSAGE];
+        uint8_t wire[LEP_MAX_FRAME];
+        uint8_t wire2[LEP_MAX_FRAME];
+        size_t wlen = parse_hex(lep_json_get_str(v, "message"), want, sizeof(want));
+        size_t n = 0;
+        size_t fn = 0;
+        size_t fn2 = 0;
+        lep_response r;
+        response_of(v, &r);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_response_encode(&r, out, sizeof(out), &n),
+                                      ctx(name, "encode"));
+        TEST_ASSERT_EQUAL_size_t_MESSAGE(wlen, n, ctx(name, "encoded length"));
+        TEST_ASSERT_EQUAL_HEX8_ARRAY_MESSAGE(want, out, wlen, ctx(name, "encoded bytes"));
+        TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_response_encode(&r, out, wlen, &n),
+                                      ctx(name, "exact capacity"));
+        TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_E_BUFFER, lep_response_encode(&r, out, wlen - 1u, &n),
+                                      ctx(name, "capacity one short"));
+        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_response_frame(&r, wire, sizeof(wire), &fn));
+        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_frame_encode(want, wlen, wire2, sizeof(wire2), &fn2));
+        TEST_ASSERT_EQUAL_size_t_MESSAGE(fn2, fn, ctx(name, "frame size"));
+        TEST_ASSERT_EQUAL_HEX8_ARRAY_MESSAGE(wire2, wire, fn2, ctx(name, "frame bytes"));
+    }
+}
+
+/* Decode then encode gives the same bytes (whatever the fields' JSON form). */
+static void test_response_vectors_round_trip(void)
+{
+    const lep_json *rs = section("responses");
+    size_t i;
+    for (i = 0; i < lep_json_len(rs); i++) {
+        const lep_json *v = lep_json_at(rs, i);
+        const char *name = lep_json_get_str(v, "name");
+        uint8_t msg[LEP_MAX_MESSAGE];
+        uint8_t out[LEP_MAX_MESSAGE];
+        size_t len = parse_hex(lep_json_get_str(v, "message"), msg, sizeof(msg));
+        size_t n = 0;
+        lep_response r;
+        (void)lep_response_decode(msg, len, &r); /* LEP_E_SENSOR still fills code and result */
+        TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_response_encode(&r, out, sizeof(out), &n),
+                                      ctx(name, "re-encode"));
+        TEST_ASSERT_EQUAL_size_t_MESSAGE(len, n, ctx(name, "re-encoded length"));
+        TEST_ASSERT_EQUAL_HEX8_ARRAY_MESSAGE(msg, out, len, ctx(name, "re-encoded bytes"));
+    }
+}
+
+static void test_invalid_response_vectors(void)
+{
+    const lep_json *bad = section("invalid_responses");
+    size_t i;
+    for (i = 0; i < lep_json_len(bad); i++) {
+        const lep_json *v = lep_json_at(bad, i);
+        uint8_t msg[LEP_MAX_MESSAGE];
+        size_t len = parse_hex(lep_json_get_str(v, "message"), msg, sizeof(msg));
+        lep_response r;
+        TEST_ASSERT_EQUAL_INT_MESSAGE(error_code(lep_json_get_str(v, "error")),
+                                      lep_response_decode(msg, len, &r),
+                                      ctx(lep_json_get_str(v, "name"), "decode"));
+    }
+}
+
+/* Every non-zero result code is the sensor's error, kept apart from library errors. */
+static void test_sensor_result_codes(void)
+{
+    uint8_t result;
+    for (result = 1; result <= 4; result++) {
+        uint8_t msg[4] = {0x04, 0xFF, LEP_CMD_RATED, 0};
+        lep_response r;
+        msg[3] = result;
+        TEST_ASSERT_EQUAL_INT(LEP_E_SENSOR, lep_response_decode(msg, sizeof(msg), &r));
+        TEST_ASSERT_EQUAL_HEX8(LEP_CMD_RATED, r.code);
+        TEST_ASSERT_EQUAL_HEX8(result, r.result);
+    }
+}
+
+static void test_response_encode_errors(void)
+{
+    static const uint32_t bad_bits[] = {0x7FC00000u, 0x7F800000u, 0xFF800000u, 0x00000000u,
+                                        0x80000000u, 0xC1200000u /* -10.0 */};
+    uint8_t out[LEP_MAX_MESSAGE];
+    size_t n;
+    size_t i;
+    lep_response r;
+    memset(&r, 0, sizeof(r));
+    r.code = LEP_CMD_RATED;
+    for (i = 0; i < sizeof(bad_bits) / sizeof(bad_bits[0]); i++) {
+        size_t axis;
+        for (axis = 0; axis < LEP_AXES; axis++) {
+            r.u.rated.axis[axis] = 100.0f;
+        }
+        memcpy(&r.u.rated.axis[i % LEP_AXES], &bad_bits[i], sizeof(float));
+        TEST_ASSERT_EQUAL_INT(LEP_E_VALUE, lep_response_encode(&r, out, sizeof(out), &n));
+    }
+    memset(&r, 0, sizeof(r));
+    r.code = LEP_CMD_FILTER_GET;
+    r.u.filter = 4;
+    TEST_ASSERT_EQUAL_INT(LEP_E_VALUE, lep_response_encode(&r, out, sizeof(out), &n));
+    r.code = 0x40;
+    r.u.filter = 0;
+    TEST_ASSERT_EQUAL_INT(LEP_E_UNEXPECTED, lep_response_encode(&r, out, sizeof(out), &n));
+    TEST_ASSERT_EQUAL_INT(LEP_E_UNEXPECTED, lep_response_frame(&r, out, sizeof(out), &n));
+    r.code = LEP_CMD_STOP;
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_response_encode(NULL, out, sizeof(out), &n));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_response_encode(&r, NULL, sizeof(out), &n));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_response_encode(&r, out, sizeof(out), NULL));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_response_decode(NULL, 4, &r));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_response_decode(out, 4, NULL));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_response_frame(&r, out, sizeof(out), NULL));
+}
+
+/* Text fields: trailing spaces and NULs are removed on decode, spaces added on encode. */
+static void test_product_info_padding(void)
+{
+    uint8_t msg[LEP_LEN_PRODUCT_INFO];
+    uint8_t out[LEP_LEN_PRODUCT_INFO];
+    lep_response r;
+    size_t n;
+    memset(msg, 0, sizeof(msg));
+    msg[0] = LEP_LEN_PRODUCT_INFO;
+    msg[1] = 0xFF;
+    msg[2] = LEP_CMD_PRODUCT_INFO;
+    memcpy(msg + 4, "AB  ", 4); /* then NULs up to 16 bytes */
+    memcpy(msg + 20, "1234    ", 8);
+    memcpy(msg + 28, "1.0 ", 4);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_response_decode(msg, sizeof(msg), &r));
+    TEST_ASSERT_EQUAL_STRING("AB", r.u.info.model);
+    TEST_ASSERT_EQUAL_STRING("1234", r.u.info.serial);
+    TEST_ASSERT_EQUAL_STRING("1.0", r.u.info.firmware);
+    TEST_ASSERT_FALSE(r.u.info.has_output_rate);
+    TEST_ASSERT_EQUAL_STRING("", r.u.info.output_rate);
+    TEST_ASSERT_EQUAL_UINT32(0u, r.u.info.output_rate_hz);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_response_encode(&r, out, sizeof(out), &n));
+    TEST_ASSERT_EQUAL_size_t(LEP_LEN_PRODUCT_INFO, n);
+    TEST_ASSERT_EQUAL_MEMORY("AB              ", out + 4, 16);
+    TEST_ASSERT_EQUAL_MEMORY("1234    1.0 ", out + 20, 12);
+}
+
+/* ---- samples ------------------------------------------------------------------ */
+
+static void test_si_vectors(void)
+{
+    const lep_json *si = section("si");
+    size_t i;
+    for (i = 0; i < lep_json_len(si); i++) {
+        const lep_json *v = lep_json_at(si, i);
+        const char *name = lep_json_get_str(v, "name");
+        const lep_json *rated = lep_json_get(v, "rated");
+        const lep_json *raw = lep_json_get(v, "raw");
+        const lep_json *want = lep_json_get(v, "si");
+        lep_sample s;
+        lep_rated rt;
+        double got[LEP_AXES];
+        size_t a;
+        memset(&s, 0, sizeof(s));
+        for (a = 0; a < LEP_AXES; a++) {
+            rt.axis[a] = (float)lep_json_num(lep_json_at(rated, a));
+            s.raw[a] = (int16_t)lep_json_num(lep_json_at(raw, a));
+        }
+        lep_sample_to_si(&s, &rt, got);
+        for (a = 0; a < LEP_AXES; a++) {
+            double w = lep_json_num(lep_json_at(want, a));
+            TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(1e-12 * ((w < 0 ? -w : w) + 1.0), w, got[a], ctx(name, "si"));
+        }
+    }
+}
+
+static void test_si_of_the_spec_sample(void)
+{
+    /* Spec data response: (16, -16, 10000, -10000, 4112, 32000) with PFS055YA501U6 ratings. */
+    const lep_sample s = {{16, -16, 10000, -10000, 4112, 32000}, 0, LEP_STATUS_OVERLOAD};
+    const lep_rated rt = {{500.0f, 500.0f, 500.0f, 10.0f, 10.0f, 8.0f}};
+    double si[LEP_AXES];
+    lep_sample_to_si(&s, &rt, si);
+    TEST_ASSERT_DOUBLE_WITHIN(1e-9, 0.8, si[LEP_FX]);
+    TEST_ASSERT_DOUBLE_WITHIN(1e-9, -0.8, si[LEP_FY]);
+    TEST_ASSERT_DOUBLE_WITHIN(1e-9, 500.0, si[LEP_FZ]);
+    TEST_ASSERT_DOUBLE_WITHIN(1e-9, -10.0, si[LEP_MX]);
+    TEST_ASSERT_DOUBLE_WITHIN(1e-9, 4.112, si[LEP_MY]);
+    TEST_ASSERT_DOUBLE_WITHIN(1e-9, 25.6, si[LEP_MZ]);
+}
+
+static void test_saturation_vectors(void)
+{
+    const lep_json *sat = section("saturation");
+    size_t i;
+    for (i = 0; i < lep_json_len(sat); i++) {
+        const lep_json *v = lep_json_at(sat, i);
+        const lep_json *raw = lep_json_get(v, "raw");
+        lep_sample s;
+        size_t a;
+        memset(&s, 0, sizeof(s));
+        for (a = 0; a < LEP_AXES; a++) {
+            s.raw[a] = (int16_t)lep_json_num(lep_json_at(raw, a));
+        }
+        TEST_ASSERT_EQUAL_HEX8_MESSAGE(get_u8(v, "mask"),
+                                       lep_sample_saturated(&s, (int16_t)lep_json_get_int(v, "limit", 0)),
+                                       ctx(lep_json_get_str(v, "name"), "mask"));
+    }
+    TEST_ASSERT_EQUAL_INT(32000, LEP_SATURATION_V113);
+    TEST_ASSERT_EQUAL_INT(15000, LEP_SATURATION_LATER);
+    TEST_ASSERT_EQUAL_INT(10000, LEP_RAW_FULL_SCALE);
+    TEST_ASSERT_EQUAL_HEX8(0u, lep_sample_saturated(NULL, LEP_SATURATION_V113));
+}
+
+static void test_status_bits(void)
+{
+    static const uint8_t msg[] = {0x14, 0xFF, 0x30, 0x00, 0, 0, 0, 0, 0, 0, 0, 0,
+                                  0,    0,    0,    0,    0, 0, 0x07, 0};
+    lep_response r;
+    TEST_ASSERT_EQUAL_HEX8(0x01, LEP_STATUS_CALIBRATION);
+    TEST_ASSERT_EQUAL_HEX8(0x02, LEP_STATUS_SENSOR_FAULT);
+    TEST_ASSERT_EQUAL_HEX8(0x04, LEP_STATUS_OVERLOAD);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_response_decode(msg, sizeof(msg), &r));
+    TEST_ASSERT_BITS_HIGH(LEP_STATUS_CALIBRATION | LEP_STATUS_SENSOR_FAULT | LEP_STATUS_OVERLOAD,
+                          r.u.sample.status);
+    TEST_ASSERT_FALSE(r.stream);
+}
+
+/* ---- static strings ------------------------------------------------------------ */
+
+static void expect_distinct(const char *const *s, size_t n, const char *what)
+{
+    size_t i;
+    size_t j;
+    for (i = 0; i < n; i++) {
+        TEST_ASSERT_NOT_NULL_MESSAGE(s[i], what);
+        TEST_ASSERT_GREATER_THAN_size_t_MESSAGE(0u, strlen(s[i]), what);
+        for (j = 0; j < i; j++) {
+            TEST_ASSERT_TRUE_MESSAGE(strcmp(s[i], s[j]) != 0, s[i]);
+        }
+    }
+}
+
+static void test_strerror_every_code(void)
+{
+    static const int codes[] = {
+        LEP_OK,          LEP_E_ARG,          LEP_E_BUFFER,    LEP_E_TOO_LONG,  LEP_E_BCC,
+        LEP_E_ESCAPE,    LEP_E_LENGTH,       LEP_E_RESERVED,  LEP_E_UNEXPECTED, LEP_E_VALUE,
+        LEP_E_SENSOR,    LEP_E_NAK,          LEP_E_TIMEOUT,   LEP_E_IO,        LEP_E_DISCONNECTED,
+        LEP_E_BUSY,      LEP_E_NOT_FOUND,    LEP_E_PERMISSION, LEP_E_NOT_TTY,  LEP_E_STATE,
+        LEP_E_NO_SYNC,   LEP_E_UNSUPPORTED};
+    const char *s[sizeof(codes) / sizeof(codes[0]) + 1];
+    size_t i;
+    for (i = 0; i < sizeof(codes) / sizeof(codes[0]); i++) {
+        s[i] = lep_strerror(codes[i]);
+    }
+    s[i] = lep_strerror(-9999); /* the unknown text differs from every known one */
+    expect_distinct(s, i + 1u, "lep_strerror");
+    TEST_ASSERT_NOT_NULL(lep_strerror(1));
+    TEST_ASSERT_NOT_NULL(lep_strerror(LEP_E_UNSUPPORTED - 1));
+}
+
+static void test_result_str(void)
+{
+    const char *s[6];
+    uint8_t i;
+    for (i = 0; i <= 5; i++) {
+        s[i] = lep_result_str(i); /* 5 is not a result code of the spec */
+    }
+    expect_distinct(s, 6, "lep_result_str");
+    TEST_ASSERT_EQUAL_STRING(lep_result_str(5), lep_result_str(0xFF));
+}
+
+static void test_filter_labels(void)
+{
+    const char *s[5];
+    uint8_t i;
+    for (i = 0; i <= 4; i++) {
+        s[i] = lep_filter_label(i);
+    }
+    expect_distinct(s, 5, "lep_filter_label");
+    TEST_ASSERT_EQUAL_STRING("off", lep_filter_label(0));
+    TEST_ASSERT_EQUAL_STRING("10 Hz", lep_filter_label(1));
+    TEST_ASSERT_EQUAL_STRING("100 Hz", lep_filter_label(2));
+    TEST_ASSERT_EQUAL_STRING("200 Hz", lep_filter_label(3));
+    TEST_ASSERT_EQUAL_STRING(lep_filter_label(4), lep_filter_label(0xFF));
+}
+
+static void test_command_names(void)
+{
+    const char *s[8];
+    s[0] = lep_command_name(LEP_CMD_PRODUCT_INFO);
+    s[1] = lep_command_name(LEP_CMD_RATED);
+    s[2] = lep_command_name(LEP_CMD_FILTER_GET);
+    s[3] = lep_command_name(LEP_CMD_SAMPLE);
+    s[4] = lep_command_name(LEP_CMD_START);
+    s[5] = lep_command_name(LEP_CMD_STOP);
+    s[6] = lep_command_name(LEP_CMD_FILTER_SET);
+    s[7] = lep_command_name(0x40);
+    expect_distinct(s, 8, "lep_command_name");
+}
+
+int main(void)
+{
+    int failures;
+    g_vectors = lep_vectors_load("messages.json");
+    UNITY_BEGIN();
+    RUN_TEST(test_command_vectors_encode_and_decode);
+    RUN_TEST(test_invalid_command_vectors);
+    RUN_TEST(test_command_encode_error_vectors);
+    RUN_TEST(test_command_null_arguments);
+    RUN_TEST(test_response_vectors_decode);
+    RUN_TEST(test_response_vectors_encode);
+    RUN_TEST(test_response_vectors_round_trip);
+    RUN_TEST(test_invalid_response_vectors);
+    RUN_TEST(test_sensor_result_codes);
+    RUN_TEST(test_response_encode_errors);
+    RUN_TEST(test_product_info_padding);
+    RUN_TEST(test_si_vectors);
+    RUN_TEST(test_si_of_the_spec_sample);
+    RUN_TEST(test_saturation_vectors);
+    RUN_TEST(test_status_bits);
+    RUN_TEST(test_strerror_every_code);
+    RUN_TEST(test_result_str);
+    RUN_TEST(test_filter_labels);
+    RUN_TEST(test_command_names);
+    failures = UNITY_END();
+    lep_json_free(g_vectors);
+    return failures;
+}
