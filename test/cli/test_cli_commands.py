@@ -1,0 +1,128 @@
+"""`leptrino list / info / read / filter`, and errors about the port."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import time
+
+from conftest import CSV_HEADER, SimProcess, cli_path, parse_csv, run
+
+
+def info_fields(text: str) -> dict[str, str]:
+    fields = {}
+    for line in text.splitlines():
+        key, _, value = line.partition(":")
+        fields[key.strip()] = value.strip()
+    return fields
+
+
+def test_info_sim_default_model() -> None:
+    r = run(["info", "--sim"])
+    assert r.returncode == 0, r.stderr
+    f = info_fields(r.stdout)
+    assert f["model"] == "PFS055YA501U6"
+    assert f["serial"] == "00000001"
+    assert f["firmware"] == "1.13"
+    assert f["output rate"] == "not reported"
+    assert "32-byte" in f["protocol"]
+    assert f["rated"].startswith("Fx 500 N,") and "N m" in f["rated"]
+    assert f["filter"] == "0 (off)"
+
+
+def test_info_sim_options() -> None:
+    r = run(["info", "--sim", "--sim-model", "CFS034CA301U", "--sim-output-rate",
+             "--sim-filter", "2", "--sim-serial", "12345678"])
+    assert r.returncode == 0, r.stderr
+    f = info_fields(r.stdout)
+    assert f["model"] == "CFS034CA301U"
+    assert f["serial"] == "12345678"
+    assert f["output rate"].endswith("Hz")
+    assert "38-byte" in f["protocol"]
+    assert f["rated"].startswith("Fx 150 N,")
+    assert f["filter"] == "2 (100 Hz)"
+
+
+def test_read_n_samples() -> None:
+    r = run(["read", "--sim", "-n", "5"])
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.splitlines()[0] == CSV_HEADER
+    rows, _ = parse_csv(r.stdout)
+    assert len(rows) == 5
+    r = run(["read", "--sim", "--count", "3", "--format", "jsonl", "--units", "raw"])
+    assert r.returncode == 0, r.stderr
+    recs = [json.loads(line) for line in r.stdout.splitlines()]
+    assert len(recs) == 3 and all(isinstance(rec["fx"], int) for rec in recs)
+
+
+def test_filter_set_power_cycle_get_round_trip() -> None:
+    sim = SimProcess()
+    try:
+        r = run(["filter", sim.port])
+        assert r.returncode == 0, r.stderr
+        assert r.stdout.strip() == "filter: 0 (off)"
+        r = run(["filter", sim.port, "2"])
+        assert r.returncode == 0, r.stderr
+        assert r.stdout.strip() == "filter set to 2 (100 Hz)"
+        assert "power-cycled" in r.stderr
+        assert sim.stats()["pending"] == 2
+        assert sim.ask("power") == "ok"
+        r = run(["filter", sim.port])
+        assert r.returncode == 0, r.stderr
+        assert r.stdout.strip() == "filter: 2 (100 Hz)"
+        r = run(["filter", sim.port, "off"])
+        assert r.returncode == 0, r.stderr
+        assert sim.ask("power") == "ok"
+        r = run(["filter", sim.port])
+        assert r.stdout.strip() == "filter: 0 (off)"
+    finally:
+        sim.close()
+
+
+def test_filter_with_sim_option() -> None:
+    r = run(["filter", "--sim", "3"])
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.strip() == "filter set to 3 (200 Hz)"
+
+
+def test_list_runs() -> None:
+    r = run(["list"])
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.strip() != ""
+
+
+def test_missing_port_exit_6_names_the_path() -> None:
+    r = run(["info", "/dev/leptrino-no-such-port"])
+    assert r.returncode == 6
+    assert "/dev/leptrino-no-such-port" in r.stderr
+    assert len(r.stderr.splitlines()) == 1
+
+
+def test_not_a_tty_exit_6() -> None:
+    r = run(["info", "/dev/null"])
+    assert r.returncode == 6
+    assert "/dev/null" in r.stderr
+
+
+def test_busy_port_exit_7() -> None:
+    sim = SimProcess()
+    holder = subprocess.Popen([cli_path(), "stream", sim.port, "-o", "/dev/null"],
+                              stdin=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    try:
+        deadline = time.monotonic() + 10
+        while sim.stats()["streaming"] == 0 and time.monotonic() < deadline:
+            time.sleep(0.05)
+        r = run(["info", sim.port])
+        assert r.returncode == 7, r.stderr
+        assert sim.port in r.stderr
+    finally:
+        holder.terminate()
+        holder.wait(timeout=10)
+        sim.close()
+
+
+def test_silent_port_times_out_exit_3() -> None:
+    # A stalled virtual sensor answers nothing: exit code 3.
+    r = run(["info", "--sim", "--sim-stall", "5000", "--timeout", "50"])
+    assert r.returncode == 3, r.stderr
+    assert "timeout" in r.stderr or "quiet" in r.stderr or "answer" in r.stderr

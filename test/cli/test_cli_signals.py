@@ -1,0 +1,108 @@
+"""Ending a stream: Ctrl-C / SIGTERM stop the sensor's stream; a vanished
+port is an error, or with --reconnect a marked gap."""
+
+from __future__ import annotations
+
+import json
+import signal
+import subprocess
+import time
+from pathlib import Path
+
+import pytest
+
+from conftest import SimProcess, cli_path, parse_csv, run
+
+
+def wait_streaming(sim: SimProcess, want: int, timeout: float = 10.0) -> bool:
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        if sim.stats()["streaming"] == want:
+            return True
+        time.sleep(0.05)
+    return False
+
+
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["SIGINT", "SIGTERM"])
+def test_signal_stops_the_sensor_stream_and_exits_0(sig: signal.Signals, tmp_path: Path) -> None:
+    sim = SimProcess()
+    out = tmp_path / "out.csv"
+    try:
+        proc = subprocess.Popen([cli_path(), "stream", sim.port, "-o", str(out)],
+                                stdin=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        assert wait_streaming(sim, 1), "the stream never started"
+        time.sleep(0.5)
+        proc.send_signal(sig)
+        _, err = proc.communicate(timeout=20)
+        assert proc.returncode == 0, err
+        assert "stopped by signal" in err
+        # The sensor is left quiet: not streaming, and the line is usable at once.
+        assert sim.stats()["streaming"] == 0
+        rows, _ = parse_csv(out.read_text())  # flushed and complete
+        assert len(rows) > 100
+        r = run(["read", sim.port, "-n", "2"])
+        assert r.returncode == 0, r.stderr
+    finally:
+        sim.close()
+
+
+def test_sigint_with_in_process_sim_exits_0() -> None:
+    proc = subprocess.Popen([cli_path(), "stream", "--sim", "-f", "jsonl"],
+                            stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+    time.sleep(1.5)
+    proc.send_signal(signal.SIGINT)
+    out, err = proc.communicate(timeout=20)
+    assert proc.returncode == 0, err
+    lines = out.splitlines()
+    assert len(lines) > 100
+    for line in lines:
+        json.loads(line)  # every line complete, the last one included
+
+
+def test_closed_output_pipe_stops_cleanly() -> None:
+    proc = subprocess.Popen([cli_path(), "stream", "--sim"], stdin=subprocess.DEVNULL,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    assert proc.stdout is not None
+    proc.stdout.readline()
+    proc.stdout.close()
+    _, err = proc.communicate(timeout=20)
+    assert proc.returncode == 0, err
+
+
+def test_disconnect_without_reconnect_exits_4(tmp_path: Path) -> None:
+    out = tmp_path / "out.csv"
+    r = run(["stream", "--sim", "--sim-hangup-after", "0.5", "-o", str(out)])
+    assert r.returncode == 4, r.stderr
+    assert "disconnected" in r.stderr
+    rows, _ = parse_csv(out.read_text())
+    assert len(rows) > 100  # what came before the hang-up is kept
+
+
+@pytest.mark.parametrize("fmt", ["csv", "jsonl"])
+def test_reconnect_resumes_after_hangup_and_marks_the_gap(fmt: str, tmp_path: Path) -> None:
+    out = tmp_path / f"out.{fmt}"
+    r = run(["stream", "--sim", "--sim-hangup-after", "1", "--sim-reopen-after", "400",
+             "--reconnect", "--duration", "3.5", "-f", fmt, "-o", str(out)], timeout=60)
+    assert r.returncode == 0, r.stderr
+    assert "disconnected" in r.stderr and "resumed" in r.stderr
+    text = out.read_text()
+    if fmt == "csv":
+        rows, comments = parse_csv(text)
+        assert len(comments) == 1 and comments[0].startswith("# gap from=")
+        fields = dict(kv.split("=", 1) for kv in comments[0][2:].split()[1:])
+        gap_from, gap_to = float(fields["from"]), float(fields["to"])
+        assert fields["reason"] == "disconnected"
+        ts = [row[0] for row in rows]
+    else:
+        recs = [json.loads(line) for line in text.splitlines()]
+        gaps = [rec["gap"] for rec in recs if "gap" in rec]
+        assert len(gaps) == 1 and gaps[0]["reason"] == "disconnected"
+        gap_from, gap_to = gaps[0]["from"], gaps[0]["to"]
+        ts = [rec["t"] for rec in recs if "gap" not in rec]
+    assert 0.5 < gap_from < gap_to
+    assert gap_to - gap_from >= 0.3  # the port was away for 400 ms
+    before = [t for t in ts if t <= gap_from]
+    after = [t for t in ts if t >= gap_to]
+    assert len(before) > 500 and len(after) > 300
+    assert len(before) + len(after) == len(ts)
