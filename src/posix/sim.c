@@ -204,6 +204,8 @@ static void close_pty(lep_sim *s)
     s->master = s->slave = -1;
 }
 
+static void publish(lep_sim *s);
+
 /* ---- faults ---- */
 
 static bool roll(lep_sim *s, double p)
@@ -376,6 +378,7 @@ static void power_cycle(lep_sim *s)
     s->out_len = 0; /* bytes in flight die with the power */
     s->power_on = lep_priv_monotonic_ns();
     s->st.power_cycles++;
+    publish(s);
 }
 
 /* ---- stream ---- */
@@ -420,7 +423,6 @@ static void publish(lep_sim *s)
 
 static void hang_up(lep_sim *s, int64_t now)
 {
-    close_pty(s);
     lep_device_power_cycle(&s->dev); /* unplugged: a USB sensor loses power */
     lep_frame_decoder_init(&s->shadow);
     s->pend_len = 0;
@@ -431,6 +433,8 @@ static void hang_up(lep_sim *s, int64_t now)
     s->reopen_at = s->opt.reopen_after_ms >= 0
                        ? now + (int64_t)s->opt.reopen_after_ms * 1000000 + 1
                        : 0;
+    publish(s); /* before the client can notice */
+    close_pty(s);
 }
 
 static void reopen(lep_sim *s)
@@ -441,6 +445,7 @@ static void reopen(lep_sim *s)
         s->hung = false;
         s->power_on = lep_priv_monotonic_ns();
         s->st.reopens++;
+        publish(s);
     }
 }
 
