@@ -122,5 +122,5 @@ def error_for(be: Any, rc: int, detail: str = "", *, result: Optional[int] = Non
     if rc == K.LEP_E_SENSOR and result is not None:
         return SensorError(result, be.text(be.lib.lep_result_str(result)), command)
     text = be.text(be.lib.lep_strerror(rc))
-    msg = f"{detail}: {text}" if detail and detail != text else (detail or text)
+    msg = f"{detail}: {text}" if detail and text not in detail else (detail or text)
     return _BY_CODE.get(rc, LeptrinoError)(msg, rc)
