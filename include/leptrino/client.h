@@ -48,7 +48,7 @@ typedef struct lep_client_stats {
     uint32_t naks;            /* DLE NAK received */
     uint32_t retries;         /* commands sent again after a NAK */
     uint32_t unexpected;      /* good messages of the wrong type, skipped (e.g. a stale stream) */
-    uint32_t invalid;         /* good frames whose message failed validation */
+    uint32_t invalid;         /* good frames whose message failed validation, and empty frames */
     uint32_t timeouts;        /* transactions or reads that timed out */
     uint32_t samples;         /* stream samples delivered to the caller */
 } lep_client_stats;

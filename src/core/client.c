@@ -198,6 +198,8 @@ int lep_client_step(lep_client *c, const uint8_t *data, size_t len, size_t *cons
             rc = on_message(c, &ev);
         } else if (ev.type == LEP_FRAME_NAK) {
             rc = on_nak(c);
+        } else if (ev.type == LEP_FRAME_ERROR && ev.error == LEP_E_LENGTH) {
+            c->stats.invalid++; /* an empty frame */
         }
         if (rc != LEP_STEP_NONE) {
             *consumed = pos;

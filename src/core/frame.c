@@ -178,6 +178,15 @@ static bool step(lep_frame_decoder *d, uint8_t b, lep_frame_event *ev)
             reject(d, ev, LEP_E_BCC, S_IDLE);
             return true;
         }
+        if (d->len == 0) {
+            /* DLE STX DLE ETX BCC: no Length byte, nothing to deliver. */
+            ev->type = LEP_FRAME_ERROR;
+            ev->error = LEP_E_LENGTH;
+            d->stats.bytes_discarded += d->raw;
+            d->raw = 0;
+            d->state = S_IDLE;
+            return true;
+        }
         d->state = S_IDLE;
         d->raw = 0;
         d->stats.messages++;
