@@ -31,7 +31,7 @@ def test_info_sim_default_model() -> None:
 
 
 def test_info_sim_options() -> None:
-    r = run(["info", "--sim", "--sim-model", "CFS034CA301U", "--sim-output-rate",
+    r = run(["info", "--sim", "--sim-model", "CFS034CA301U", "--sim-output-rate-field",
              "--sim-filter", "2", "--sim-serial", "12345678"])
     assert r.returncode == 0, r.stderr
     f = info_fields(r.stdout)
@@ -126,3 +126,16 @@ def test_silent_port_times_out_exit_3() -> None:
     r = run(["info", "--sim", "--sim-stall", "5000", "--timeout", "50"])
     assert r.returncode == 3, r.stderr
     assert "timeout" in r.stderr or "quiet" in r.stderr or "answer" in r.stderr
+
+
+def test_sensor_refusing_every_command_exit_5() -> None:
+    # Every command NAKed past the retry limit: a sensor error, exit code 5.
+    r = run(["info", "--sim", "--sim-nak", "1"])
+    assert r.returncode == 5, r.stderr
+    assert "NAK" in r.stderr
+    assert len(r.stderr.splitlines()) == 1
+
+
+def test_nak_faults_are_retried() -> None:
+    r = run(["info", "--sim", "--sim-nak", "0.2", "--sim-seed", "7"])
+    assert r.returncode == 0, r.stderr

@@ -416,7 +416,7 @@ int cli_cmd_stream(int argc, char **argv)
         code = CLI_FAIL;
     }
     fprintf(stderr,
-            "leptrino: stream: %llu samples in %.2f s (%.1f Hz), %llu errors, %llu overloads, "
+            "leptrino: stream: %llu samples in %.3f s (%.1f Hz), %llu errors, %llu overloads, "
             "%llu gaps%s%s\n",
             (unsigned long long)s.written, elapsed,
             elapsed > 0.0 ? (double)s.received / elapsed : 0.0,

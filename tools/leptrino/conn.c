@@ -61,9 +61,9 @@ static const sim_opt SIM_OPTS[] = {
     {"--sim-model", K_MODEL, "NAME", "model preset (default PFS055YA501U6)"},
     {"--sim-rate", K_DOUBLE, "HZ", "continuous output rate (default 1200)"},
     {"--sim-seed", K_U64, "N", "seed of the waveform and of the faults (default 1)"},
-    {"--sim-serial", K_STR, "DIGITS", "serial number, 8 digits (default 00000001)"},
-    {"--sim-firmware", K_STR, "VER", "firmware version, 4 characters (default 1.13)"},
-    {"--sim-output-rate", K_FLAG, NULL, "answer product info in the 38-byte form with output rate"},
+    {"--sim-serial", K_STR, "DIGITS", "serial number, 1..8 digits (default 00000001)"},
+    {"--sim-firmware", K_STR, "VER", "firmware version, 1..4 characters (default 1.13)"},
+    {"--sim-output-rate-field", K_FLAG, NULL, "product info in the 38-byte form with output rate"},
     {"--sim-filter", K_FILTER, "CODE", "filter code in effect at power-on, 0..3 (default 0)"},
     {"--sim-amplitude", K_DOUBLE, "F", "sine amplitude (or constant level) as a fraction of rated"},
     {"--sim-noise", K_DOUBLE, "F", "noise amplitude as a fraction of rated (default 0.005)"},
@@ -102,7 +102,7 @@ static void apply_sim_option(cli_port_opts *po, cli_args *a, const sim_opt *o)
         break;
     case K_DOUBLE:
         if (strcmp(n, "--sim-rate") == 0)
-            d = cli_args_double(a, 0.0, 100000.0, true);
+            d = cli_args_double(a, 0.0, 10000.0, true);
         else if (strcmp(n, "--sim-amplitude") == 0)
             d = cli_args_double(a, 0.0, 3.2, false);
         else if (strcmp(n, "--sim-noise") == 0)
@@ -143,17 +143,17 @@ static void apply_sim_option(cli_port_opts *po, cli_args *a, const sim_opt *o)
     else if (strcmp(n, "--sim-seed") == 0) so->seed = u;
     else if (strcmp(n, "--sim-serial") == 0) {
         size_t i, len = strlen(s);
-        bool ok = len == LEP_SERIAL_LEN;
+        bool ok = len >= 1 && len <= LEP_SERIAL_LEN;
         for (i = 0; ok && i < len; ++i)
             ok = s[i] >= '0' && s[i] <= '9';
         if (!ok)
-            cli_args_error(a, "option %s: '%s' is not 8 digits", n, s);
+            cli_args_error(a, "option %s: '%s' is not 1 to 8 digits", n, s);
         so->serial = s;
     } else if (strcmp(n, "--sim-firmware") == 0) {
-        if (strlen(s) != LEP_FIRMWARE_LEN)
-            cli_args_error(a, "option %s: '%s' is not 4 characters", n, s);
+        if (strlen(s) > LEP_FIRMWARE_LEN)
+            cli_args_error(a, "option %s: '%s' is longer than 4 characters", n, s);
         so->firmware = s;
-    } else if (strcmp(n, "--sim-output-rate") == 0) so->output_rate_field = true;
+    } else if (strcmp(n, "--sim-output-rate-field") == 0) so->output_rate_field = true;
     else if (strcmp(n, "--sim-filter") == 0) so->filter = (uint8_t)u;
     else if (strcmp(n, "--sim-amplitude") == 0) so->amplitude = d;
     else if (strcmp(n, "--sim-noise") == 0) so->noise = d;
@@ -331,7 +331,7 @@ int cli_conn_open(cli_conn *c, const cli_port_opts *po, const char *cmd)
             fprintf(stderr, "leptrino: %s: %s\n", cmd, err);
             code = cli_exit_code(rc);
         } else {
-            code = cli_conn_fail(c, "no answer to start-up recovery", rc);
+            code = cli_conn_fail(c, "start-up recovery (stop, drain, product info)", rc);
         }
         cli_conn_close(c);
         return code == CLI_OK ? CLI_FAIL : code;
