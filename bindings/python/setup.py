@@ -86,6 +86,12 @@ class build_py(_build_py):
 
     def build_native(self, src: Path, build: Path, major: str) -> Path:
         cmake = cmake_exe()
+        cache = build / "CMakeCache.txt"
+        if cache.is_file():  # a build directory left by a checkout elsewhere: start afresh
+            m = re.search(r"^CMAKE_HOME_DIRECTORY:INTERNAL=(.*)$",
+                          cache.read_text(encoding="utf-8", errors="replace"), re.M)
+            if not m or Path(m.group(1)).resolve() != src:
+                shutil.rmtree(build)
         configure = [
             cmake,
             "-S", str(src),

@@ -10,7 +10,7 @@ import json
 import signal
 import sys
 from contextlib import ExitStack
-from typing import Any, Dict, List, Optional, Sequence, TextIO
+from typing import Any, Dict, List, NoReturn, Optional, Sequence, TextIO
 
 from . import errors as E
 from ._backend import BACKENDS, get_backend
@@ -63,7 +63,7 @@ class _Terminated(Exception):
 
 
 class _Parser(argparse.ArgumentParser):
-    def error(self, message: str) -> None:  # one clear line, exit 2
+    def error(self, message: str) -> NoReturn:  # one clear line, exit 2
         self.exit(EXIT_USAGE, f"{self.prog}: {message} (try --help)\n")
 
 

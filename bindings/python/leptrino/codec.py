@@ -217,7 +217,7 @@ def encode_frame(msg: bytes, *, backend: Optional[str] = None) -> bytes:
     rc = int(be.lib.lep_frame_encode(be.bytes_in(msg), len(msg), out, K.LEP_MAX_FRAME, n))
     if rc < 0:
         raise error_for(be, rc, f"framing a {len(msg)}-byte message")
-    return be.bytes_at(out, int(be.value(n)))
+    return bytes(be.bytes_at(out, int(be.value(n))))
 
 
 def encode_command(code: int, filter: int = 0, *, framed: bool = True,
@@ -234,7 +234,7 @@ def encode_command(code: int, filter: int = 0, *, framed: bool = True,
     rc = int(fn(cmd, out, K.LEP_MAX_FRAME, n))
     if rc < 0:
         raise error_for(be, rc, f"encoding command 0x{int(code) & 0xFF:02X}")
-    return be.bytes_at(out, int(be.value(n)))
+    return bytes(be.bytes_at(out, int(be.value(n))))
 
 
 def sample_to_si(raw: Sequence[int], rated: Sequence[float], *,

@@ -204,7 +204,7 @@ class Sensor:
         """The spec's label of a filter code ("off", "10 Hz", ...); models differ."""
         if code is None:
             code = self.filter
-        return self._be.text(self._be.lib.lep_filter_label(int(code) & 0xFF))
+        return str(self._be.text(self._be.lib.lep_filter_label(int(code) & 0xFF)))
 
     @property
     def stats(self) -> ClientStats:
@@ -334,19 +334,24 @@ class Sensor:
 class _Batch:
     """numpy arrays and the lep_record_batch that points into them."""
 
+    t: np.ndarray
+    si: np.ndarray
+    raw: np.ndarray
+    status: np.ndarray
+    seq: np.ndarray
+
     def __init__(self, be: Any, cap: int) -> None:
         self.be = be
         self.c = be.new("lep_record_batch")
         self._alloc(cap, 0)
 
     def _alloc(self, cap: int, keep: int) -> None:
-        old = getattr(self, "t", None)
         t = np.empty(cap, dtype=np.float64)
         si = np.empty((cap, K.LEP_AXES), dtype=np.float64)
         raw = np.empty((cap, K.LEP_AXES), dtype=np.int16)
         status = np.empty(cap, dtype=np.uint8)
         seq = np.empty(cap, dtype=np.uint16)
-        if old is not None and keep:
+        if keep:
             t[:keep] = self.t[:keep]
             si[:keep] = self.si[:keep]
             raw[:keep] = self.raw[:keep]

@@ -115,14 +115,14 @@ class Recording:
 
     @property
     def overload(self) -> np.ndarray:
-        return (self.status & K.LEP_STATUS_OVERLOAD) != 0
+        return np.asarray((self.status & K.LEP_STATUS_OVERLOAD) != 0, dtype=bool)
 
     def missing(self) -> int:
         """Samples lost between the first and the last, counted from the
         sequence numbers (meaningful with leptrino-sim, which numbers them)."""
         if len(self) < 2:
             return 0
-        steps = np.diff(self.seq.astype(np.int64)) % 65536
+        steps = np.mod(np.diff(self.seq.astype(np.int64)), 65536)
         return int(np.sum(steps - 1))
 
     @property

@@ -96,7 +96,7 @@ def test_record_one_second(backend: str) -> None:
         n = len(rec)
         assert 1200 * 0.98 <= n <= 1200 * 1.02, n
         # sequence-exact accounting: every sample numbered, none lost, none twice
-        steps = np.diff(rec.seq.astype(np.int64)) % 65536
+        steps = np.mod(np.diff(rec.seq.astype(np.int64)), 65536)
         assert np.all(steps == 1)
         assert rec.missing() == 0
         assert rec.t.shape == (n,) and rec.si.shape == (n, 6) and rec.raw.shape == (n, 6)
