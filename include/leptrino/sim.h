@@ -70,7 +70,7 @@ typedef struct lep_sim_stats {
     uint16_t sequence;        /* sequence number the next stream sample will carry */
     uint64_t responses;       /* answers to commands queued to the port */
     uint64_t faked_naks;      /* of naks: those sent by the p_nak fault */
-    uint64_t samples_skipped; /* sample periods with nothing sent: a stall, or > 100 ms late */
+    uint64_t samples_skipped; /* sample periods with nothing sent: a stall, or > 500 ms late */
     uint64_t samples_blocked; /* data messages not sent because nobody read the port */
     uint64_t garbage_bytes;   /* bytes added by the p_garbage fault */
     uint64_t bytes_received;  /* bytes read from the host */

@@ -26,10 +26,11 @@
 #include "posix_clock.h"
 #include "sim_signal.h"
 
-#define OUTQ_SIZE 8192u
+#define OUTQ_SIZE 32768u
 #define PEND_SIZE 1024u
-/* Beyond this lag behind schedule, samples are skipped instead of sent in a burst. */
-#define MAX_LAG_NS 100000000
+/* Beyond this lag behind schedule (the process was not scheduled), samples
+ * are skipped instead of sent in a burst. A stall skips what it covered. */
+#define MAX_LAG_NS 500000000
 #define NS_PER_S 1000000000.0
 
 struct lep_sim {
@@ -407,6 +408,15 @@ static void stream_due(lep_sim *s, int64_t now)
     }
 }
 
+/* Samples due during a stall are not sent later: skip them (a sequence gap). */
+static void skip_due(lep_sim *s, int64_t now)
+{
+    while (s->streaming && deadline_of(s, s->k) <= now) {
+        s->st.samples_skipped++;
+        s->k++;
+    }
+}
+
 /* ---- the serving thread ---- */
 
 static void publish(lep_sim *s)
@@ -494,8 +504,10 @@ static void *serve(void *arg)
         bool stop, cycle, hangup;
         int stall_ms;
 
-        if (s->stall_until != 0 && !stalled)
+        if (s->stall_until != 0 && !stalled) {
             s->stall_until = 0;
+            skip_due(s, now);
+        }
         if (s->stall_at != 0 && now >= s->stall_at) {
             s->stall_at = 0;
             s->stall_until = now + (int64_t)s->opt.stall_ms * 1000000;
@@ -557,6 +569,8 @@ static void *serve(void *arg)
         if (hangup && !s->hung)
             hang_up(s, now);
         if (stall_ms >= 0) {
+            if (s->stall_until != 0 && stall_ms == 0)
+                skip_due(s, now);
             s->stall_until = stall_ms > 0 ? now + (int64_t)stall_ms * 1000000 : 0;
             if (stall_ms > 0)
                 s->st.stalls++;
