@@ -68,3 +68,14 @@ def sim(backend: str) -> Iterator[Any]:
 @pytest.fixture
 def python() -> str:
     return sys.executable
+
+
+def subprocess_env(**extra: str) -> dict:
+    """Environment for a child Python that must import the same leptrino."""
+    import leptrino
+
+    pkg_parent = str(Path(leptrino.__file__).resolve().parent.parent)
+    env = dict(os.environ, **extra)
+    env["PYTHONPATH"] = os.pathsep.join(
+        [pkg_parent] + [p for p in env.get("PYTHONPATH", "").split(os.pathsep) if p])
+    return env

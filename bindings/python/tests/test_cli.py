@@ -13,9 +13,11 @@ from typing import Any, Dict, List
 
 import pytest
 
+from conftest import subprocess_env
+
 
 def run(backend: str, *args: str, timeout: float = 60) -> subprocess.CompletedProcess:
-    env = dict(os.environ, LEPTRINO_BACKEND=backend)
+    env = subprocess_env(LEPTRINO_BACKEND=backend)
     return subprocess.run([sys.executable, "-m", "leptrino", *args], capture_output=True,
                           text=True, timeout=timeout, env=env)
 
@@ -60,7 +62,7 @@ def test_stream_tare(backend: str) -> None:
 
 
 def test_stream_sigint_exits_0(backend: str) -> None:
-    env = dict(os.environ, LEPTRINO_BACKEND=backend)
+    env = subprocess_env(LEPTRINO_BACKEND=backend)
     p = subprocess.Popen([sys.executable, "-m", "leptrino", "stream", "--sim"],
                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
     try:

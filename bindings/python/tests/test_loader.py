@@ -10,6 +10,7 @@ from typing import List
 
 import pytest
 
+from conftest import subprocess_env
 from leptrino import _loader
 
 
@@ -60,8 +61,8 @@ def test_explicit_path_is_the_only_candidate(tmp_path: Path) -> None:
 def test_import_error_in_a_fresh_interpreter(tmp_path: Path, backend_name: str) -> None:
     if backend_name == "cffi":
         pytest.importorskip("cffi")
-    env = dict(os.environ, LEPTRINO_LIBRARY=str(tmp_path / "libleptrino.so.0"),
-               LEPTRINO_BACKEND=backend_name)
+    env = subprocess_env(LEPTRINO_LIBRARY=str(tmp_path / "libleptrino.so.0"),
+                         LEPTRINO_BACKEND=backend_name)
     r = subprocess.run([sys.executable, "-c", "import leptrino"], capture_output=True,
                        text=True, env=env, timeout=60)
     assert r.returncode != 0
@@ -74,7 +75,7 @@ def test_bad_backend_name() -> None:
 
     with pytest.raises(ValueError):
         leptrino.get_backend("rust")
-    env = dict(os.environ, LEPTRINO_BACKEND="rust")
+    env = subprocess_env(LEPTRINO_BACKEND="rust")
     r = subprocess.run([sys.executable, "-c", "import leptrino"], capture_output=True,
                        text=True, env=env, timeout=60)
     assert r.returncode != 0 and "LEPTRINO_BACKEND" in r.stderr

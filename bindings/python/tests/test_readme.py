@@ -10,6 +10,8 @@ from pathlib import Path
 
 import pytest
 
+from conftest import subprocess_env
+
 README = Path(__file__).resolve().parent.parent / "README.md"
 
 
@@ -24,7 +26,7 @@ def example() -> str:
 def test_readme_example_runs(backend: str, tmp_path: Path) -> None:
     script = tmp_path / "example.py"
     script.write_text(example(), encoding="utf-8")
-    env = dict(os.environ, LEPTRINO_BACKEND=backend)
+    env = subprocess_env(LEPTRINO_BACKEND=backend)
     r = subprocess.run([sys.executable, str(script)], capture_output=True, text=True,
                        env=env, timeout=120, cwd=tmp_path)
     assert r.returncode == 0, r.stderr
