@@ -521,11 +521,11 @@ static void *serve(void *arg)
         }
         if (s->hung && s->reopen_at != 0 && now >= s->reopen_at)
             reopen(s);
-        if (!s->hung && !stalled) {
+        if (!s->hung && !stalled)
             stream_due(s, now);
+        publish(s); /* counters first: a host that got an answer sees them */
+        if (!s->hung && !stalled)
             flush_out(s);
-        }
-        publish(s);
 
         p[0].fd = s->wake[0];
         p[0].events = POLLIN;
