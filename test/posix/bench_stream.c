@@ -122,7 +122,7 @@ int main(int argc, char **argv)
         printf("  reads              %lu (%lu returned nothing), %.2f per sample\n", k.reads,
                k.empty_reads, (double)k.reads / (double)n);
         printf("  bytes per read     %.1f (%.2f samples)\n", (double)k.bytes / (double)k.reads,
-               (double)k.bytes / (double)k.reads / 29.0);
+               (double)k.bytes / (double)k.reads / 25.0); /* 20-byte message + 5 */
         printf("  syscalls per read  2 (one poll, one read); per sample %.2f\n",
                2.0 * (double)k.reads / (double)n);
         printf("  process CPU        %.2f %% of one core (client + sim thread)\n",
