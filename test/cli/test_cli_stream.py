@@ -8,7 +8,7 @@ from pathlib import Path
 from conftest import AXES, CSV_HEADER, parse_csv, run
 
 RATE = 1200.0
-DURATION = 3.0
+DURATION = 5.0
 
 
 def expect_count_near(n: int, duration: float, rate: float) -> None:
@@ -35,10 +35,10 @@ def test_csv_well_formed_and_count_matches_duration(tmp_path: Path) -> None:
 
 
 def test_jsonl_well_formed_and_count_matches_duration() -> None:
-    r = run(["stream", "--sim", "--sim-rate", "500", "--duration", "2", "--format", "jsonl"])
+    r = run(["stream", "--sim", "--sim-rate", "800", "--duration", "4", "--format", "jsonl"])
     assert r.returncode == 0, r.stderr
     records = [json.loads(line) for line in r.stdout.splitlines()]
-    expect_count_near(len(records), 2.0, 500.0)
+    expect_count_near(len(records), 4.0, 800.0)
     for rec in records:
         assert list(rec) == ["t", *AXES, "status"]
         assert all(isinstance(rec[a], float) for a in AXES)
@@ -97,6 +97,14 @@ def test_output_file_that_cannot_be_opened(tmp_path: Path) -> None:
     r = run(["stream", "--sim", "--count", "1", "-o", str(tmp_path / "no" / "such" / "f.csv")])
     assert r.returncode == 1
     assert "cannot open output" in r.stderr
+
+
+def test_unreachable_port_leaves_the_output_file_alone(tmp_path: Path) -> None:
+    out = tmp_path / "keep.csv"
+    out.write_text("precious\n")
+    r = run(["stream", "/dev/leptrino-no-such-port", "-o", str(out)])
+    assert r.returncode == 6
+    assert out.read_text() == "precious\n"
 
 
 def test_stale_stream_is_recovered_at_start_up() -> None:

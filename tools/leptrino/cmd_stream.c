@@ -189,6 +189,19 @@ static bool time_is_up(const stream_state *s, const stream_opts *o)
     return o->duration > 0.0 && now_s(s) >= o->duration;
 }
 
+/* The in-process virtual sensor's link keeps pointing at the old pty number
+ * until the port comes back, and another program may have been given that
+ * number meanwhile (a pulled USB cable removes its by-id link instead): do
+ * not open the path while the virtual sensor says it is hung up. */
+static bool sim_still_away(const cli_conn *c)
+{
+    lep_sim_stats st;
+    if (c->sim == NULL)
+        return false;
+    lep_sim_get_stats(c->sim, &st);
+    return st.hung_up;
+}
+
 /* Open again after a disconnect (or a data timeout) and restart streaming.
  * LEP_OK when resumed; 1 when stopped by a signal or the duration. */
 static int reconnect(stream_state *s, const stream_opts *o, const char *reason)
@@ -216,7 +229,7 @@ static int reconnect(stream_state *s, const stream_opts *o, const char *reason)
         if (cli_stop_requested() || time_is_up(s, o))
             return 1;
         attempts++;
-        rc = cli_conn_reopen(&s->c);
+        rc = sim_still_away(&s->c) ? LEP_E_NOT_FOUND : cli_conn_reopen(&s->c);
         if (rc == LEP_OK)
             rc = lep_client_rated(&s->c.client, &s->w.rated);
         if (rc == LEP_OK)
@@ -369,27 +382,29 @@ int cli_cmd_stream(int argc, char **argv)
         return code < 0 ? CLI_OK : code;
 
     memset(&s, 0, sizeof s);
+    cli_signals_install();
+    cli_status_init(&s.st);
+    /* The sensor first: a run that cannot reach it leaves FILE alone. */
+    code = cli_conn_open(&s.c, &o.po, "stream");
+    if (code != CLI_OK)
+        return code;
+    rc = lep_client_rated(&s.c.client, &s.w.rated);
+    if (rc != LEP_OK) {
+        code = cli_conn_fail(&s.c, "rated values", rc);
+        cli_conn_close(&s.c);
+        return code;
+    }
     s.out = open_output(&o, &s.out_tty);
-    if (s.out == NULL)
+    if (s.out == NULL) {
+        cli_conn_close(&s.c);
         return CLI_FAIL;
+    }
     s.w.f = s.out;
     s.w.format = o.format_value;
     s.w.si = o.si;
-    cli_signals_install();
-    cli_status_init(&s.st);
-
-    code = cli_conn_open(&s.c, &o.po, "stream");
-    if (code != CLI_OK) {
-        if (s.out != stdout)
-            fclose(s.out);
-        return code;
-    }
-    rc = lep_client_rated(&s.c.client, &s.w.rated);
-    if (rc != LEP_OK)
-        code = cli_conn_fail(&s.c, "rated values", rc);
-    else if ((rc = lep_client_start(&s.c.client)) != LEP_OK)
-        code = cli_conn_fail(&s.c, "start", rc);
+    rc = lep_client_start(&s.c.client);
     if (rc != LEP_OK) {
+        code = cli_conn_fail(&s.c, "start", rc);
         cli_conn_close(&s.c);
         if (s.out != stdout)
             fclose(s.out);
