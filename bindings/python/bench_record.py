@@ -12,10 +12,23 @@ per-sample Python iterator (Sensor.stream()). Prints the median of the runs.
 from __future__ import annotations
 
 import argparse
+import os
 import statistics
+import sys
 import time
 
-import leptrino
+# Run as a file from bindings/python, this directory would shadow the installed
+# package (whose copy carries the bundled library) with the source tree.
+_HERE = os.path.dirname(os.path.abspath(__file__))
+if not os.path.isdir(os.path.join(_HERE, "leptrino", "_lib")):
+    sys.path[:] = [p for p in sys.path if os.path.abspath(p or ".") != _HERE]
+try:
+    import leptrino
+except ImportError:
+    if _HERE in sys.path:
+        raise
+    sys.path.insert(0, _HERE)  # not installed: the source tree (with LEPTRINO_LIBRARY)
+    import leptrino
 
 
 def main() -> None:
