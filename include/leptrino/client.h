@@ -141,6 +141,7 @@ LEP_API int lep_client_transact(lep_client *c, const lep_command *cmd, lep_respo
  * LEP_E_NO_SYNC when the line never goes quiet; else the query's error. */
 LEP_API int lep_client_sync(lep_client *c, int quiet_ms, lep_product_info *info);
 
+/* Queries; out must not be NULL (LEP_E_ARG). Errors as lep_client_transact. */
 LEP_API int lep_client_product_info(lep_client *c, lep_product_info *out);
 LEP_API int lep_client_rated(lep_client *c, lep_rated *out);
 LEP_API int lep_client_filter_get(lep_client *c, uint8_t *code);
