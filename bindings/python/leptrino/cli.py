@@ -37,7 +37,7 @@ SIM_OPTIONS: Dict[str, Any] = {
     "seed": ("seed", int, "seed of the waveform and of the faults (default 1)"),
     "serial": ("serial", str, "serial number, 8 digits"),
     "firmware": ("firmware", str, "firmware version, 4 characters"),
-    "output-rate": ("output_rate_field", None, "answer product info in the 38-byte form"),
+    "output-rate-field": ("output_rate_field", None, "product info in the 38-byte form"),
     "filter": ("filter", int, "filter code in effect at power-on, 0..3"),
     "amplitude": ("amplitude", float, "sine amplitude (or constant level), fraction of rated"),
     "noise": ("noise", float, "noise amplitude as a fraction of rated"),
@@ -75,8 +75,11 @@ def _port_args(p: argparse.ArgumentParser) -> None:
     g = p.add_argument_group("virtual sensor (with --sim only)")
     for flag, (dest, typ, text) in SIM_OPTIONS.items():
         if typ is None:
-            g.add_argument(f"--sim-{flag}", dest=f"sim_{dest}", action="store_true",
-                           default=None, help=text)
+            # --sim-output-rate: the C tool's earlier spelling, still accepted
+            names = [f"--sim-{flag}"] + (["--sim-output-rate"] if flag == "output-rate-field"
+                                         else [])
+            g.add_argument(*names, dest=f"sim_{dest}", action="store_true", default=None,
+                           help=text)
         else:
             g.add_argument(f"--sim-{flag}", dest=f"sim_{dest}", type=typ, help=text)
 

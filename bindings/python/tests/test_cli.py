@@ -23,7 +23,7 @@ def run(backend: str, *args: str, timeout: float = 60) -> subprocess.CompletedPr
 
 
 def test_info(backend: str) -> None:
-    r = run(backend, "info", "--sim", "--sim-model", "CFS034CA301U", "--sim-output-rate")
+    r = run(backend, "info", "--sim", "--sim-model", "CFS034CA301U", "--sim-output-rate-field")
     assert r.returncode == 0, r.stderr
     lines = dict(line.split(":", 1) for line in r.stdout.splitlines())
     assert lines["model"].strip() == "CFS034CA301U"
