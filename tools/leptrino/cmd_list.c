@@ -26,6 +26,7 @@ int cli_cmd_list(int argc, char **argv)
     cli_args a;
     lep_port_info *ports;
     size_t n = 0, i, shown;
+    bool any_likely = false;
     int rc;
 
     cli_args_init(&a, argc, argv, "list");
@@ -67,12 +68,14 @@ int cli_cmd_list(int argc, char **argv)
             snprintf(ids, sizeof ids, "%04x:%04x", (unsigned)p->vid, (unsigned)p->pid);
         printf("%c %-20s %-9s %s\n", p->likely_sensor ? '*' : ' ', p->path, ids,
                p->description[0] != '\0' ? p->description : "-");
+        any_likely = any_likely || p->likely_sensor;
         if (p->by_id[0] != '\0')
             printf("  %-20s %-9s %s\n", "", "", p->by_id);
     }
     if (n > shown)
         printf("(%lu more not shown)\n", (unsigned long)(n - shown));
-    printf("* likely a Leptrino sensor\n");
+    if (any_likely)
+        printf("* likely a Leptrino sensor\n");
     free(ports);
     return CLI_OK;
 }
