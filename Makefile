@@ -23,7 +23,7 @@ test-python:
 	$(PYTHON) -m venv $(VENV)
 	$(VENV)/bin/python -m pip install -q --upgrade pip
 	$(VENV)/bin/python -m pip install -q "./bindings/python[test]"
-	cd bindings/python && ../../$(VENV)/bin/python -m pytest -q tests
+	$(VENV)/bin/python -m pytest -q -p no:cacheprovider bindings/python/tests
 
 sanitize:
 	cmake --workflow --preset sanitize
