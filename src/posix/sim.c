@@ -431,6 +431,21 @@ static void publish(lep_sim *s)
     pthread_mutex_unlock(&s->lock);
 }
 
+/* Remove the link only while it still points at our pty. */
+static void remove_link(const lep_sim *s)
+{
+    char target[PATH_MAX];
+    ssize_t n;
+    if (s->link[0] == '\0')
+        return;
+    n = readlink(s->link, target, sizeof target - 1);
+    if (n < 0)
+        return;
+    target[n] = '\0';
+    if (strcmp(target, s->pty) == 0)
+        (void)unlink(s->link);
+}
+
 static void hang_up(lep_sim *s, int64_t now)
 {
     lep_device_power_cycle(&s->dev); /* unplugged: a USB sensor loses power */
@@ -444,6 +459,9 @@ static void hang_up(lep_sim *s, int64_t now)
                        ? now + (int64_t)s->opt.reopen_after_ms * 1000000 + 1
                        : 0;
     publish(s); /* before the client can notice */
+    /* Like udev's by-id link on unplug: the name goes away with the device,
+     * so nobody reaches a stranger's pty that reuses the number meanwhile. */
+    remove_link(s);
     close_pty(s);
 }
 
@@ -867,21 +885,6 @@ void lep_sim_get_stats(lep_sim *s, lep_sim_stats *out)
     pthread_mutex_lock(&s->lock);
     *out = s->stats;
     pthread_mutex_unlock(&s->lock);
-}
-
-/* Remove the link only while it still points at our pty. */
-static void remove_link(const lep_sim *s)
-{
-    char target[PATH_MAX];
-    ssize_t n;
-    if (s->link[0] == '\0')
-        return;
-    n = readlink(s->link, target, sizeof target - 1);
-    if (n < 0)
-        return;
-    target[n] = '\0';
-    if (strcmp(target, s->pty) == 0)
-        (void)unlink(s->link);
 }
 
 void lep_sim_stop(lep_sim *s)

@@ -189,19 +189,6 @@ static bool time_is_up(const stream_state *s, const stream_opts *o)
     return o->duration > 0.0 && now_s(s) >= o->duration;
 }
 
-/* The in-process virtual sensor's link keeps pointing at the old pty number
- * until the port comes back, and another program may have been given that
- * number meanwhile (a pulled USB cable removes its by-id link instead): do
- * not open the path while the virtual sensor says it is hung up. */
-static bool sim_still_away(const cli_conn *c)
-{
-    lep_sim_stats st;
-    if (c->sim == NULL)
-        return false;
-    lep_sim_get_stats(c->sim, &st);
-    return st.hung_up;
-}
-
 /* Open again after a disconnect (or a data timeout) and restart streaming.
  * LEP_OK when resumed; 1 when stopped by a signal or the duration. */
 static int reconnect(stream_state *s, const stream_opts *o, const char *reason)
@@ -229,7 +216,7 @@ static int reconnect(stream_state *s, const stream_opts *o, const char *reason)
         if (cli_stop_requested() || time_is_up(s, o))
             return 1;
         attempts++;
-        rc = sim_still_away(&s->c) ? LEP_E_NOT_FOUND : cli_conn_reopen(&s->c);
+        rc = cli_conn_reopen(&s->c);
         if (rc == LEP_OK)
             rc = lep_client_rated(&s->c.client, &s->w.rated);
         if (rc == LEP_OK)
