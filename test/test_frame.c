@@ -16,7 +16,6 @@
 #define RANDOM_SPLIT_SEEDS 64u
 
 static lep_json *g_vectors;
-static char g_ctx[512];
 
 void setUp(void)
 {
@@ -51,50 +50,6 @@ static uint32_t rng_next(uint32_t *s)
     x ^= x << 5;
     *s = x;
     return x;
-}
-
-static const char *ctx(const char *name, const char *how)
-{
-    snprintf(g_ctx, sizeof(g_ctx), "vector '%s' (%s)", name, how);
-    return g_ctx;
-}
-
-static size_t parse_hex(const char *hex, uint8_t *out, size_t cap)
-{
-    size_t n = 0;
-    TEST_ASSERT_NOT_NULL_MESSAGE(hex, "vector without a hex field");
-    TEST_ASSERT_EQUAL_INT_MESSAGE(0, lep_hex_parse(hex, out, cap, &n), hex);
-    return n;
-}
-
-static const lep_json *section(const char *name)
-{
-    const lep_json *s = lep_json_get(g_vectors, name);
-    TEST_ASSERT_NOT_NULL_MESSAGE(g_vectors, "frames.json did not load");
-    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_JSON_ARRAY, lep_json_type(s), name);
-    TEST_ASSERT_GREATER_THAN_size_t_MESSAGE(0u, lep_json_len(s), name);
-    return s;
-}
-
-static int error_code(const char *name)
-{
-    static const struct {
-        const char *name;
-        int code;
-    } map[] = {{"arg", LEP_E_ARG},         {"buffer", LEP_E_BUFFER},
-               {"too_long", LEP_E_TOO_LONG}, {"bcc", LEP_E_BCC},
-               {"escape", LEP_E_ESCAPE},   {"length", LEP_E_LENGTH},
-               {"reserved", LEP_E_RESERVED}, {"unexpected", LEP_E_UNEXPECTED},
-               {"value", LEP_E_VALUE},     {"sensor", LEP_E_SENSOR}};
-    size_t i;
-    TEST_ASSERT_NOT_NULL_MESSAGE(name, "vector without an error name");
-    for (i = 0; i < sizeof(map) / sizeof(map[0]); i++) {
-        if (strcmp(map[i].name, name) == 0) {
-            return map[i].code;
-        }
-    }
-    TEST_FAIL_MESSAGE(name);
-    return 0;
 }
 
 /* Feed one chunk, draining every event it completes. */
@@ -198,12 +153,12 @@ static void expected_of(const lep_json *v, run_result *r)
         TEST_ASSERT_NOT_NULL(type);
         if (strcmp(type, "message") == 0) {
             r->ev[i].type = LEP_FRAME_MESSAGE;
-            r->ev[i].len = parse_hex(lep_json_get_str(e, "message"), r->ev[i].msg, LEP_MAX_MESSAGE);
+            r->ev[i].len = lep_vectors_hex(lep_json_get_str(e, "message"), r->ev[i].msg, LEP_MAX_MESSAGE);
         } else if (strcmp(type, "nak") == 0) {
             r->ev[i].type = LEP_FRAME_NAK;
         } else if (strcmp(type, "error") == 0) {
             r->ev[i].type = LEP_FRAME_ERROR;
-            r->ev[i].error = error_code(lep_json_get_str(e, "error"));
+            r->ev[i].error = lep_vectors_error(lep_json_get_str(e, "error"));
         } else {
             TEST_FAIL_MESSAGE(type);
         }
@@ -226,7 +181,7 @@ static run_result g_got;
 
 static void test_spec_worked_frames_are_in_the_vectors(void)
 {
-    const lep_json *enc = section("encode");
+    const lep_json *enc = lep_vectors_section(g_vectors, "encode");
     size_t i;
     size_t spec = 0;
     for (i = 0; i < lep_json_len(enc); i++) {
@@ -242,7 +197,7 @@ static void test_spec_worked_frames_are_in_the_vectors(void)
 
 static void test_encode_vectors_give_exact_wire_bytes(void)
 {
-    const lep_json *enc = section("encode");
+    const lep_json *enc = lep_vectors_section(g_vectors, "encode");
     size_t i;
     for (i = 0; i < lep_json_len(enc); i++) {
         const lep_json *v = lep_json_at(enc, i);
@@ -250,64 +205,64 @@ static void test_encode_vectors_give_exact_wire_bytes(void)
         uint8_t msg[LEP_MAX_MESSAGE];
         uint8_t wire[LEP_MAX_FRAME];
         uint8_t out[LEP_MAX_FRAME + 8];
-        size_t mlen = parse_hex(lep_json_get_str(v, "message"), msg, sizeof(msg));
-        size_t wlen = parse_hex(lep_json_get_str(v, "wire"), wire, sizeof(wire));
+        size_t mlen = lep_vectors_hex(lep_json_get_str(v, "message"), msg, sizeof(msg));
+        size_t wlen = lep_vectors_hex(lep_json_get_str(v, "wire"), wire, sizeof(wire));
         size_t n = 0;
         TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_frame_encode(msg, mlen, out, sizeof(out), &n),
-                                      ctx(name, "encode"));
-        TEST_ASSERT_EQUAL_size_t_MESSAGE(wlen, n, ctx(name, "encoded size"));
-        TEST_ASSERT_EQUAL_HEX8_ARRAY_MESSAGE(wire, out, wlen, ctx(name, "wire bytes"));
-        TEST_ASSERT_EQUAL_size_t_MESSAGE(wlen, lep_frame_size(msg, mlen), ctx(name, "lep_frame_size"));
-        TEST_ASSERT_EQUAL_HEX8_MESSAGE(wire[wlen - 1], lep_bcc(msg, mlen), ctx(name, "lep_bcc"));
+                                      lep_vectors_ctx(name, "encode"));
+        TEST_ASSERT_EQUAL_size_t_MESSAGE(wlen, n, lep_vectors_ctx(name, "encoded size"));
+        TEST_ASSERT_EQUAL_HEX8_ARRAY_MESSAGE(wire, out, wlen, lep_vectors_ctx(name, "wire bytes"));
+        TEST_ASSERT_EQUAL_size_t_MESSAGE(wlen, lep_frame_size(msg, mlen), lep_vectors_ctx(name, "lep_frame_size"));
+        TEST_ASSERT_EQUAL_HEX8_MESSAGE(wire[wlen - 1], lep_bcc(msg, mlen), lep_vectors_ctx(name, "lep_bcc"));
 
         /* Exactly enough room works; one byte less is LEP_E_BUFFER. */
         TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_frame_encode(msg, mlen, out, wlen, &n),
-                                      ctx(name, "exact capacity"));
-        TEST_ASSERT_EQUAL_HEX8_ARRAY_MESSAGE(wire, out, wlen, ctx(name, "exact capacity bytes"));
+                                      lep_vectors_ctx(name, "exact capacity"));
+        TEST_ASSERT_EQUAL_HEX8_ARRAY_MESSAGE(wire, out, wlen, lep_vectors_ctx(name, "exact capacity bytes"));
         TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_E_BUFFER, lep_frame_encode(msg, mlen, out, wlen - 1u, &n),
-                                      ctx(name, "capacity one short"));
+                                      lep_vectors_ctx(name, "capacity one short"));
     }
 }
 
 static void test_encode_vectors_decode_back(void)
 {
-    const lep_json *enc = section("encode");
+    const lep_json *enc = lep_vectors_section(g_vectors, "encode");
     size_t i;
     for (i = 0; i < lep_json_len(enc); i++) {
         const lep_json *v = lep_json_at(enc, i);
         const char *name = lep_json_get_str(v, "name");
         uint8_t wire[LEP_MAX_FRAME];
-        size_t wlen = parse_hex(lep_json_get_str(v, "wire"), wire, sizeof(wire));
+        size_t wlen = lep_vectors_hex(lep_json_get_str(v, "wire"), wire, sizeof(wire));
         uint32_t seed;
         memset(&g_want, 0, sizeof(g_want));
         g_want.n = 1;
         g_want.ev[0].type = LEP_FRAME_MESSAGE;
-        g_want.ev[0].len = parse_hex(lep_json_get_str(v, "message"), g_want.ev[0].msg, LEP_MAX_MESSAGE);
+        g_want.ev[0].len = lep_vectors_hex(lep_json_get_str(v, "message"), g_want.ev[0].msg, LEP_MAX_MESSAGE);
         g_want.stats.messages = 1;
         run(wire, wlen, SPLIT_WHOLE, 0, &g_got);
-        expect_same(&g_want, &g_got, ctx(name, "decode whole"));
+        expect_same(&g_want, &g_got, lep_vectors_ctx(name, "decode whole"));
         run(wire, wlen, SPLIT_BYTES, 0, &g_got);
-        expect_same(&g_want, &g_got, ctx(name, "decode byte by byte"));
+        expect_same(&g_want, &g_got, lep_vectors_ctx(name, "decode byte by byte"));
         for (seed = 1; seed <= 8u; seed++) {
             run(wire, wlen, SPLIT_RANDOM, seed * 2654435761u, &g_got);
-            expect_same(&g_want, &g_got, ctx(name, "decode random splits"));
+            expect_same(&g_want, &g_got, lep_vectors_ctx(name, "decode random splits"));
         }
     }
 }
 
 static void test_encode_error_vectors(void)
 {
-    const lep_json *errs = section("encode_errors");
+    const lep_json *errs = lep_vectors_section(g_vectors, "encode_errors");
     size_t i;
     for (i = 0; i < lep_json_len(errs); i++) {
         const lep_json *v = lep_json_at(errs, i);
         uint8_t msg[LEP_MAX_MESSAGE + 8];
         uint8_t out[2 * LEP_MAX_FRAME];
-        size_t mlen = parse_hex(lep_json_get_str(v, "message"), msg, sizeof(msg));
+        size_t mlen = lep_vectors_hex(lep_json_get_str(v, "message"), msg, sizeof(msg));
         size_t n = 0;
-        TEST_ASSERT_EQUAL_INT_MESSAGE(error_code(lep_json_get_str(v, "error")),
+        TEST_ASSERT_EQUAL_INT_MESSAGE(lep_vectors_error(lep_json_get_str(v, "error")),
                                       lep_frame_encode(msg, mlen, out, sizeof(out), &n),
-                                      ctx(lep_json_get_str(v, "name"), "encode error"));
+                                      lep_vectors_ctx(lep_json_get_str(v, "name"), "encode error"));
     }
 }
 
@@ -339,23 +294,23 @@ static void check_stream(const lep_json *v, enum split_mode mode, const char *ho
 {
     static uint8_t in[MAX_INPUT];
     const char *name = lep_json_get_str(v, "name");
-    size_t len = parse_hex(lep_json_get_str(v, "input"), in, sizeof(in));
+    size_t len = lep_vectors_hex(lep_json_get_str(v, "input"), in, sizeof(in));
     expected_of(v, &g_want);
     if (mode != SPLIT_RANDOM) {
         run(in, len, mode, 0, &g_got);
-        expect_same(&g_want, &g_got, ctx(name, how));
+        expect_same(&g_want, &g_got, lep_vectors_ctx(name, how));
     } else {
         uint32_t seed;
         for (seed = 1; seed <= RANDOM_SPLIT_SEEDS; seed++) {
             run(in, len, mode, seed * 0x9E3779B9u, &g_got);
-            expect_same(&g_want, &g_got, ctx(name, how));
+            expect_same(&g_want, &g_got, lep_vectors_ctx(name, how));
         }
     }
 }
 
 static void test_decode_streams_whole(void)
 {
-    const lep_json *dec = section("decode");
+    const lep_json *dec = lep_vectors_section(g_vectors, "decode");
     size_t i;
     for (i = 0; i < lep_json_len(dec); i++) {
         check_stream(lep_json_at(dec, i), SPLIT_WHOLE, "whole");
@@ -364,7 +319,7 @@ static void test_decode_streams_whole(void)
 
 static void test_decode_streams_byte_by_byte(void)
 {
-    const lep_json *dec = section("decode");
+    const lep_json *dec = lep_vectors_section(g_vectors, "decode");
     size_t i;
     for (i = 0; i < lep_json_len(dec); i++) {
         check_stream(lep_json_at(dec, i), SPLIT_BYTES, "byte by byte");
@@ -373,7 +328,7 @@ static void test_decode_streams_byte_by_byte(void)
 
 static void test_decode_streams_random_splits(void)
 {
-    const lep_json *dec = section("decode");
+    const lep_json *dec = lep_vectors_section(g_vectors, "decode");
     size_t i;
     for (i = 0; i < lep_json_len(dec); i++) {
         check_stream(lep_json_at(dec, i), SPLIT_RANDOM, "random splits");
@@ -386,14 +341,14 @@ static void test_decode_streams_concatenated(void)
 {
     static uint8_t all[16u * MAX_INPUT];
     static run_result want_all;
-    const lep_json *dec = section("decode");
+    const lep_json *dec = lep_vectors_section(g_vectors, "decode");
     size_t total = 0;
     size_t i;
     memset(&want_all, 0, sizeof(want_all));
     for (i = 0; i < lep_json_len(dec); i++) {
         const lep_json *v = lep_json_at(dec, i);
         size_t j;
-        total += parse_hex(lep_json_get_str(v, "input"), all + total, sizeof(all) - total);
+        total += lep_vectors_hex(lep_json_get_str(v, "input"), all + total, sizeof(all) - total);
         expected_of(v, &g_want);
         for (j = 0; j < g_want.n && want_all.n < MAX_EVENTS; j++) {
             want_all.ev[want_all.n++] = g_want.ev[j];

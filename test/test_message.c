@@ -14,7 +14,6 @@
 #include "vectors.h"
 
 static lep_json *g_vectors;
-static char g_ctx[512];
 
 void setUp(void)
 {
@@ -25,50 +24,6 @@ void tearDown(void)
 }
 
 /* ---- helpers --------------------------------------------------------------- */
-
-static const char *ctx(const char *name, const char *how)
-{
-    snprintf(g_ctx, sizeof(g_ctx), "vector '%s' (%s)", name != NULL ? name : "?", how);
-    return g_ctx;
-}
-
-static size_t parse_hex(const char *hex, uint8_t *out, size_t cap)
-{
-    size_t n = 0;
-    TEST_ASSERT_NOT_NULL_MESSAGE(hex, "vector without a hex field");
-    TEST_ASSERT_EQUAL_INT_MESSAGE(0, lep_hex_parse(hex, out, cap, &n), hex);
-    return n;
-}
-
-static const lep_json *section(const char *name)
-{
-    const lep_json *s = lep_json_get(g_vectors, name);
-    TEST_ASSERT_NOT_NULL_MESSAGE(g_vectors, "messages.json did not load");
-    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_JSON_ARRAY, lep_json_type(s), name);
-    TEST_ASSERT_GREATER_THAN_size_t_MESSAGE(0u, lep_json_len(s), name);
-    return s;
-}
-
-static int error_code(const char *name)
-{
-    static const struct {
-        const char *name;
-        int code;
-    } map[] = {{"arg", LEP_E_ARG},         {"buffer", LEP_E_BUFFER},
-               {"too_long", LEP_E_TOO_LONG}, {"bcc", LEP_E_BCC},
-               {"escape", LEP_E_ESCAPE},   {"length", LEP_E_LENGTH},
-               {"reserved", LEP_E_RESERVED}, {"unexpected", LEP_E_UNEXPECTED},
-               {"value", LEP_E_VALUE},     {"sensor", LEP_E_SENSOR}};
-    size_t i;
-    TEST_ASSERT_NOT_NULL_MESSAGE(name, "vector without an error name");
-    for (i = 0; i < sizeof(map) / sizeof(map[0]); i++) {
-        if (strcmp(map[i].name, name) == 0) {
-            return map[i].code;
-        }
-    }
-    TEST_FAIL_MESSAGE(name);
-    return 0;
-}
 
 static uint8_t get_u8(const lep_json *v, const char *key)
 {
@@ -125,7 +80,7 @@ static void response_of(const lep_json *v, lep_response *r)
 
 static void test_command_vectors_encode_and_decode(void)
 {
-    const lep_json *cmds = section("commands");
+    const lep_json *cmds = lep_vectors_section(g_vectors, "commands");
     size_t i;
     for (i = 0; i < lep_json_len(cmds); i++) {
         const lep_json *v = lep_json_at(cmds, i);
@@ -134,7 +89,7 @@ static void test_command_vectors_encode_and_decode(void)
         uint8_t out[LEP_MAX_MESSAGE];
         uint8_t wire[LEP_MAX_FRAME];
         uint8_t wire2[LEP_MAX_FRAME];
-        size_t wlen = parse_hex(lep_json_get_str(v, "message"), want, sizeof(want));
+        size_t wlen = lep_vectors_hex(lep_json_get_str(v, "message"), want, sizeof(want));
         size_t n = 0;
         size_t fn = 0;
         size_t fn2 = 0;
@@ -146,56 +101,56 @@ static void test_command_vectors_encode_and_decode(void)
 
         /* Host side: encode. */
         TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_command_encode(&cmd, out, sizeof(out), &n),
-                                      ctx(name, "encode"));
-        TEST_ASSERT_EQUAL_size_t_MESSAGE(wlen, n, ctx(name, "encoded length"));
-        TEST_ASSERT_EQUAL_HEX8_ARRAY_MESSAGE(want, out, wlen, ctx(name, "encoded bytes"));
+                                      lep_vectors_ctx(name, "encode"));
+        TEST_ASSERT_EQUAL_size_t_MESSAGE(wlen, n, lep_vectors_ctx(name, "encoded length"));
+        TEST_ASSERT_EQUAL_HEX8_ARRAY_MESSAGE(want, out, wlen, lep_vectors_ctx(name, "encoded bytes"));
         TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_command_encode(&cmd, out, wlen, &n),
-                                      ctx(name, "exact capacity"));
+                                      lep_vectors_ctx(name, "exact capacity"));
         TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_E_BUFFER, lep_command_encode(&cmd, out, wlen - 1u, &n),
-                                      ctx(name, "capacity one short"));
+                                      lep_vectors_ctx(name, "capacity one short"));
 
         /* Straight to a frame: the same as framing the message. */
         TEST_ASSERT_EQUAL_INT(LEP_OK, lep_command_frame(&cmd, wire, sizeof(wire), &fn));
         TEST_ASSERT_EQUAL_INT(LEP_OK, lep_frame_encode(want, wlen, wire2, sizeof(wire2), &fn2));
-        TEST_ASSERT_EQUAL_size_t_MESSAGE(fn2, fn, ctx(name, "frame size"));
-        TEST_ASSERT_EQUAL_HEX8_ARRAY_MESSAGE(wire2, wire, fn2, ctx(name, "frame bytes"));
+        TEST_ASSERT_EQUAL_size_t_MESSAGE(fn2, fn, lep_vectors_ctx(name, "frame size"));
+        TEST_ASSERT_EQUAL_HEX8_ARRAY_MESSAGE(wire2, wire, fn2, lep_vectors_ctx(name, "frame bytes"));
         TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_E_BUFFER, lep_command_frame(&cmd, wire, fn2 - 1u, &fn),
-                                      ctx(name, "frame capacity one short"));
+                                      lep_vectors_ctx(name, "frame capacity one short"));
 
         /* Sensor side: decode. */
         memset(&got, 0xA5, sizeof(got));
         TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_command_decode(want, wlen, &got, &result),
-                                      ctx(name, "decode"));
-        TEST_ASSERT_EQUAL_HEX8_MESSAGE(LEP_RESULT_OK, result, ctx(name, "decode result"));
-        TEST_ASSERT_EQUAL_HEX8_MESSAGE(cmd.code, got.code, ctx(name, "decoded code"));
+                                      lep_vectors_ctx(name, "decode"));
+        TEST_ASSERT_EQUAL_HEX8_MESSAGE(LEP_RESULT_OK, result, lep_vectors_ctx(name, "decode result"));
+        TEST_ASSERT_EQUAL_HEX8_MESSAGE(cmd.code, got.code, lep_vectors_ctx(name, "decoded code"));
         if (cmd.code == LEP_CMD_FILTER_SET) {
-            TEST_ASSERT_EQUAL_UINT8_MESSAGE(cmd.filter, got.filter, ctx(name, "decoded filter"));
+            TEST_ASSERT_EQUAL_UINT8_MESSAGE(cmd.filter, got.filter, lep_vectors_ctx(name, "decoded filter"));
         }
     }
 }
 
 static void test_invalid_command_vectors(void)
 {
-    const lep_json *bad = section("invalid_commands");
+    const lep_json *bad = lep_vectors_section(g_vectors, "invalid_commands");
     size_t i;
     for (i = 0; i < lep_json_len(bad); i++) {
         const lep_json *v = lep_json_at(bad, i);
         const char *name = lep_json_get_str(v, "name");
         uint8_t msg[LEP_MAX_MESSAGE];
-        size_t len = parse_hex(lep_json_get_str(v, "message"), msg, sizeof(msg));
+        size_t len = lep_vectors_hex(lep_json_get_str(v, "message"), msg, sizeof(msg));
         uint8_t result = 0xEE;
         lep_command cmd;
         memset(&cmd, 0xA5, sizeof(cmd));
-        TEST_ASSERT_EQUAL_INT_MESSAGE(error_code(lep_json_get_str(v, "error")),
-                                      lep_command_decode(msg, len, &cmd, &result), ctx(name, "error"));
-        TEST_ASSERT_EQUAL_HEX8_MESSAGE(get_u8(v, "result"), result, ctx(name, "result to answer"));
-        TEST_ASSERT_EQUAL_HEX8_MESSAGE(get_u8(v, "code"), cmd.code, ctx(name, "reported code"));
+        TEST_ASSERT_EQUAL_INT_MESSAGE(lep_vectors_error(lep_json_get_str(v, "error")),
+                                      lep_command_decode(msg, len, &cmd, &result), lep_vectors_ctx(name, "error"));
+        TEST_ASSERT_EQUAL_HEX8_MESSAGE(get_u8(v, "result"), result, lep_vectors_ctx(name, "result to answer"));
+        TEST_ASSERT_EQUAL_HEX8_MESSAGE(get_u8(v, "code"), cmd.code, lep_vectors_ctx(name, "reported code"));
     }
 }
 
 static void test_command_encode_error_vectors(void)
 {
-    const lep_json *errs = section("command_encode_errors");
+    const lep_json *errs = lep_vectors_section(g_vectors, "command_encode_errors");
     size_t i;
     for (i = 0; i < lep_json_len(errs); i++) {
         const lep_json *v = lep_json_at(errs, i);
@@ -205,12 +160,12 @@ static void test_command_encode_error_vectors(void)
         lep_command cmd;
         cmd.code = get_u8(v, "code");
         cmd.filter = lep_json_has(v, "filter") ? get_u8(v, "filter") : 0u;
-        TEST_ASSERT_EQUAL_INT_MESSAGE(error_code(lep_json_get_str(v, "error")),
+        TEST_ASSERT_EQUAL_INT_MESSAGE(lep_vectors_error(lep_json_get_str(v, "error")),
                                       lep_command_encode(&cmd, out, sizeof(out), &n),
-                                      ctx(lep_json_get_str(v, "name"), "encode"));
-        TEST_ASSERT_EQUAL_INT_MESSAGE(error_code(lep_json_get_str(v, "error")),
+                                      lep_vectors_ctx(lep_json_get_str(v, "name"), "encode"));
+        TEST_ASSERT_EQUAL_INT_MESSAGE(lep_vectors_error(lep_json_get_str(v, "error")),
                                       lep_command_frame(&cmd, wire, sizeof(wire), &n),
-                                      ctx(lep_json_get_str(v, "name"), "frame"));
+                                      lep_vectors_ctx(lep_json_get_str(v, "name"), "frame"));
     }
 }
 
@@ -234,43 +189,43 @@ static void test_command_null_arguments(void)
 static void expect_fields(const lep_response *want, const lep_response *got, const char *name)
 {
     size_t i;
-    TEST_ASSERT_EQUAL_HEX8_MESSAGE(want->code, got->code, ctx(name, "code"));
-    TEST_ASSERT_EQUAL_HEX8_MESSAGE(want->result, got->result, ctx(name, "result"));
-    TEST_ASSERT_EQUAL_INT_MESSAGE(want->stream, got->stream, ctx(name, "stream"));
+    TEST_ASSERT_EQUAL_HEX8_MESSAGE(want->code, got->code, lep_vectors_ctx(name, "code"));
+    TEST_ASSERT_EQUAL_HEX8_MESSAGE(want->result, got->result, lep_vectors_ctx(name, "result"));
+    TEST_ASSERT_EQUAL_INT_MESSAGE(want->stream, got->stream, lep_vectors_ctx(name, "stream"));
     if (want->result != LEP_RESULT_OK) {
         return;
     }
     switch (want->code) {
     case LEP_CMD_PRODUCT_INFO:
-        TEST_ASSERT_EQUAL_STRING_MESSAGE(want->u.info.model, got->u.info.model, ctx(name, "model"));
-        TEST_ASSERT_EQUAL_STRING_MESSAGE(want->u.info.serial, got->u.info.serial, ctx(name, "serial"));
+        TEST_ASSERT_EQUAL_STRING_MESSAGE(want->u.info.model, got->u.info.model, lep_vectors_ctx(name, "model"));
+        TEST_ASSERT_EQUAL_STRING_MESSAGE(want->u.info.serial, got->u.info.serial, lep_vectors_ctx(name, "serial"));
         TEST_ASSERT_EQUAL_STRING_MESSAGE(want->u.info.firmware, got->u.info.firmware,
-                                         ctx(name, "firmware"));
+                                         lep_vectors_ctx(name, "firmware"));
         TEST_ASSERT_EQUAL_STRING_MESSAGE(want->u.info.output_rate, got->u.info.output_rate,
-                                         ctx(name, "output_rate"));
+                                         lep_vectors_ctx(name, "output_rate"));
         TEST_ASSERT_EQUAL_INT_MESSAGE(want->u.info.has_output_rate, got->u.info.has_output_rate,
-                                      ctx(name, "has_output_rate"));
+                                      lep_vectors_ctx(name, "has_output_rate"));
         TEST_ASSERT_EQUAL_UINT32_MESSAGE(want->u.info.output_rate_hz, got->u.info.output_rate_hz,
-                                         ctx(name, "output_rate_hz"));
+                                         lep_vectors_ctx(name, "output_rate_hz"));
         break;
     case LEP_CMD_RATED:
         for (i = 0; i < LEP_AXES; i++) {
             /* Exact: the vectors hold float32 values. */
-            TEST_ASSERT_TRUE_MESSAGE(want->u.rated.axis[i] == got->u.rated.axis[i], ctx(name, "rated"));
+            TEST_ASSERT_TRUE_MESSAGE(want->u.rated.axis[i] == got->u.rated.axis[i], lep_vectors_ctx(name, "rated"));
         }
         break;
     case LEP_CMD_FILTER_GET:
-        TEST_ASSERT_EQUAL_UINT8_MESSAGE(want->u.filter, got->u.filter, ctx(name, "filter"));
+        TEST_ASSERT_EQUAL_UINT8_MESSAGE(want->u.filter, got->u.filter, lep_vectors_ctx(name, "filter"));
         break;
     case LEP_CMD_SAMPLE:
     case LEP_CMD_START:
         if (want->code == LEP_CMD_SAMPLE || want->stream) {
             TEST_ASSERT_EQUAL_INT16_ARRAY_MESSAGE(want->u.sample.raw, got->u.sample.raw, LEP_AXES,
-                                                  ctx(name, "raw"));
+                                                  lep_vectors_ctx(name, "raw"));
             TEST_ASSERT_EQUAL_HEX16_MESSAGE(want->u.sample.reserved, got->u.sample.reserved,
-                                            ctx(name, "reserved"));
+                                            lep_vectors_ctx(name, "reserved"));
             TEST_ASSERT_EQUAL_HEX8_MESSAGE(want->u.sample.status, got->u.sample.status,
-                                           ctx(name, "status"));
+                                           lep_vectors_ctx(name, "status"));
         }
         break;
     default:
@@ -280,27 +235,27 @@ static void expect_fields(const lep_response *want, const lep_response *got, con
 
 static void test_response_vectors_decode(void)
 {
-    const lep_json *rs = section("responses");
+    const lep_json *rs = lep_vectors_section(g_vectors, "responses");
     size_t i;
     for (i = 0; i < lep_json_len(rs); i++) {
         const lep_json *v = lep_json_at(rs, i);
         const char *name = lep_json_get_str(v, "name");
         const char *err = lep_json_get_str(v, "error");
         uint8_t msg[LEP_MAX_MESSAGE];
-        size_t len = parse_hex(lep_json_get_str(v, "message"), msg, sizeof(msg));
+        size_t len = lep_vectors_hex(lep_json_get_str(v, "message"), msg, sizeof(msg));
         lep_response want;
         lep_response got;
         response_of(v, &want);
         memset(&got, 0xA5, sizeof(got));
-        TEST_ASSERT_EQUAL_INT_MESSAGE(err != NULL ? error_code(err) : LEP_OK,
-                                      lep_response_decode(msg, len, &got), ctx(name, "decode"));
+        TEST_ASSERT_EQUAL_INT_MESSAGE(err != NULL ? lep_vectors_error(err) : LEP_OK,
+                                      lep_response_decode(msg, len, &got), lep_vectors_ctx(name, "decode"));
         expect_fields(&want, &got, name);
     }
 }
 
 static void test_response_vectors_encode(void)
 {
-    const lep_json *rs = section("responses");
+    const lep_json *rs = lep_vectors_section(g_vectors, "responses");
     size_t i;
     for (i = 0; i < lep_json_len(rs); i++) {
         const lep_json *v = lep_json_at(rs, i);
@@ -309,60 +264,60 @@ static void test_response_vectors_encode(void)
         uint8_t out[LEP_MAX_MESSAGE];
         uint8_t wire[LEP_MAX_FRAME];
         uint8_t wire2[LEP_MAX_FRAME];
-        size_t wlen = parse_hex(lep_json_get_str(v, "message"), want, sizeof(want));
+        size_t wlen = lep_vectors_hex(lep_json_get_str(v, "message"), want, sizeof(want));
         size_t n = 0;
         size_t fn = 0;
         size_t fn2 = 0;
         lep_response r;
         response_of(v, &r);
         TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_response_encode(&r, out, sizeof(out), &n),
-                                      ctx(name, "encode"));
-        TEST_ASSERT_EQUAL_size_t_MESSAGE(wlen, n, ctx(name, "encoded length"));
-        TEST_ASSERT_EQUAL_HEX8_ARRAY_MESSAGE(want, out, wlen, ctx(name, "encoded bytes"));
+                                      lep_vectors_ctx(name, "encode"));
+        TEST_ASSERT_EQUAL_size_t_MESSAGE(wlen, n, lep_vectors_ctx(name, "encoded length"));
+        TEST_ASSERT_EQUAL_HEX8_ARRAY_MESSAGE(want, out, wlen, lep_vectors_ctx(name, "encoded bytes"));
         TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_response_encode(&r, out, wlen, &n),
-                                      ctx(name, "exact capacity"));
+                                      lep_vectors_ctx(name, "exact capacity"));
         TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_E_BUFFER, lep_response_encode(&r, out, wlen - 1u, &n),
-                                      ctx(name, "capacity one short"));
+                                      lep_vectors_ctx(name, "capacity one short"));
         TEST_ASSERT_EQUAL_INT(LEP_OK, lep_response_frame(&r, wire, sizeof(wire), &fn));
         TEST_ASSERT_EQUAL_INT(LEP_OK, lep_frame_encode(want, wlen, wire2, sizeof(wire2), &fn2));
-        TEST_ASSERT_EQUAL_size_t_MESSAGE(fn2, fn, ctx(name, "frame size"));
-        TEST_ASSERT_EQUAL_HEX8_ARRAY_MESSAGE(wire2, wire, fn2, ctx(name, "frame bytes"));
+        TEST_ASSERT_EQUAL_size_t_MESSAGE(fn2, fn, lep_vectors_ctx(name, "frame size"));
+        TEST_ASSERT_EQUAL_HEX8_ARRAY_MESSAGE(wire2, wire, fn2, lep_vectors_ctx(name, "frame bytes"));
     }
 }
 
 /* Decode then encode gives the same bytes (whatever the fields' JSON form). */
 static void test_response_vectors_round_trip(void)
 {
-    const lep_json *rs = section("responses");
+    const lep_json *rs = lep_vectors_section(g_vectors, "responses");
     size_t i;
     for (i = 0; i < lep_json_len(rs); i++) {
         const lep_json *v = lep_json_at(rs, i);
         const char *name = lep_json_get_str(v, "name");
         uint8_t msg[LEP_MAX_MESSAGE];
         uint8_t out[LEP_MAX_MESSAGE];
-        size_t len = parse_hex(lep_json_get_str(v, "message"), msg, sizeof(msg));
+        size_t len = lep_vectors_hex(lep_json_get_str(v, "message"), msg, sizeof(msg));
         size_t n = 0;
         lep_response r;
         (void)lep_response_decode(msg, len, &r); /* LEP_E_SENSOR still fills code and result */
         TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_response_encode(&r, out, sizeof(out), &n),
-                                      ctx(name, "re-encode"));
-        TEST_ASSERT_EQUAL_size_t_MESSAGE(len, n, ctx(name, "re-encoded length"));
-        TEST_ASSERT_EQUAL_HEX8_ARRAY_MESSAGE(msg, out, len, ctx(name, "re-encoded bytes"));
+                                      lep_vectors_ctx(name, "re-encode"));
+        TEST_ASSERT_EQUAL_size_t_MESSAGE(len, n, lep_vectors_ctx(name, "re-encoded length"));
+        TEST_ASSERT_EQUAL_HEX8_ARRAY_MESSAGE(msg, out, len, lep_vectors_ctx(name, "re-encoded bytes"));
     }
 }
 
 static void test_invalid_response_vectors(void)
 {
-    const lep_json *bad = section("invalid_responses");
+    const lep_json *bad = lep_vectors_section(g_vectors, "invalid_responses");
     size_t i;
     for (i = 0; i < lep_json_len(bad); i++) {
         const lep_json *v = lep_json_at(bad, i);
         uint8_t msg[LEP_MAX_MESSAGE];
-        size_t len = parse_hex(lep_json_get_str(v, "message"), msg, sizeof(msg));
+        size_t len = lep_vectors_hex(lep_json_get_str(v, "message"), msg, sizeof(msg));
         lep_response r;
-        TEST_ASSERT_EQUAL_INT_MESSAGE(error_code(lep_json_get_str(v, "error")),
+        TEST_ASSERT_EQUAL_INT_MESSAGE(lep_vectors_error(lep_json_get_str(v, "error")),
                                       lep_response_decode(msg, len, &r),
-                                      ctx(lep_json_get_str(v, "name"), "decode"));
+                                      lep_vectors_ctx(lep_json_get_str(v, "name"), "decode"));
     }
 }
 
@@ -446,7 +401,7 @@ static void test_product_info_padding(void)
 
 static void test_si_vectors(void)
 {
-    const lep_json *si = section("si");
+    const lep_json *si = lep_vectors_section(g_vectors, "si");
     size_t i;
     for (i = 0; i < lep_json_len(si); i++) {
         const lep_json *v = lep_json_at(si, i);
@@ -466,7 +421,7 @@ static void test_si_vectors(void)
         lep_sample_to_si(&s, &rt, got);
         for (a = 0; a < LEP_AXES; a++) {
             double w = lep_json_num(lep_json_at(want, a));
-            TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(1e-12 * ((w < 0 ? -w : w) + 1.0), w, got[a], ctx(name, "si"));
+            TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(1e-12 * ((w < 0 ? -w : w) + 1.0), w, got[a], lep_vectors_ctx(name, "si"));
         }
     }
 }
@@ -488,7 +443,7 @@ static void test_si_of_the_spec_sample(void)
 
 static void test_saturation_vectors(void)
 {
-    const lep_json *sat = section("saturation");
+    const lep_json *sat = lep_vectors_section(g_vectors, "saturation");
     size_t i;
     for (i = 0; i < lep_json_len(sat); i++) {
         const lep_json *v = lep_json_at(sat, i);
@@ -501,7 +456,7 @@ static void test_saturation_vectors(void)
         }
         TEST_ASSERT_EQUAL_HEX8_MESSAGE(get_u8(v, "mask"),
                                        lep_sample_saturated(&s, (int16_t)lep_json_get_int(v, "limit", 0)),
-                                       ctx(lep_json_get_str(v, "name"), "mask"));
+                                       lep_vectors_ctx(lep_json_get_str(v, "name"), "mask"));
     }
     TEST_ASSERT_EQUAL_INT(32000, LEP_SATURATION_V113);
     TEST_ASSERT_EQUAL_INT(15000, LEP_SATURATION_LATER);
