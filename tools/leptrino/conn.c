@@ -16,7 +16,9 @@ void cli_port_opts_init(cli_port_opts *po)
 {
     memset(po, 0, sizeof *po);
     lep_sim_options_init(&po->sim_opts);
-    po->timeout_ms = LEP_CLIENT_DEFAULT_TIMEOUT_MS;
+    /* Longer than the library's 100 ms: a loaded gateway or a USB hub can be
+     * slow to answer, and the wait only matters when no sensor answers. */
+    po->timeout_ms = 500;
 }
 
 static bool model_known(const char *name)
@@ -231,7 +233,7 @@ void cli_port_help(FILE *f)
     fputs("Port:\n"
           "  PORT                    serial device, e.g. /dev/ttyACM0 or /dev/serial/by-id/...\n"
           "  --sim                   use a built-in virtual sensor instead of a port\n"
-          "  -t, --timeout MS        answer timeout per command in ms (default 100)\n"
+          "  -t, --timeout MS        answer timeout per command in ms (default 500)\n"
           "Virtual sensor (with --sim only):\n",
           f);
     for (i = 0; i < N_SIM_OPTS; ++i) {

@@ -70,8 +70,8 @@ class _Parser(argparse.ArgumentParser):
 def _port_args(p: argparse.ArgumentParser) -> None:
     p.add_argument("port", nargs="?", help="serial device, e.g. /dev/ttyACM0")
     p.add_argument("--sim", action="store_true", help="use a virtual sensor instead of a port")
-    p.add_argument("-t", "--timeout", type=int, default=100, metavar="MS",
-                   help="answer timeout per command in ms (default 100)")
+    p.add_argument("-t", "--timeout", type=int, default=500, metavar="MS",
+                   help="answer timeout per command in ms (default 500)")
     g = p.add_argument_group("virtual sensor (with --sim only)")
     for flag, (dest, typ, text) in SIM_OPTIONS.items():
         if typ is None:
