@@ -425,6 +425,201 @@ static void test_two_clients_are_independent(void)
     TEST_ASSERT_EQUAL_UINT32(1, st2.retries);
 }
 
+/* ---- clock wrap-around: now_ms wraps at 2^32 in the middle of a wait ---- */
+
+static void test_transaction_timeout_across_clock_wrap(void)
+{
+    lep_product_info info;
+    sio.now = 0xFFFFFFFFu - 30u;
+    sio.silent = true;
+    TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, lep_client_product_info(&client, &info));
+    TEST_ASSERT_EQUAL_UINT32(0xFFFFFFFFu - 30u + LEP_CLIENT_DEFAULT_TIMEOUT_MS, sio.now);
+}
+
+static void test_nak_retry_and_answer_across_clock_wrap(void)
+{
+    lep_rated rated;
+    sio.now = 0xFFFFFFFFu;
+    sio.naks_left = 2;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_rated(&client, &rated));
+    TEST_ASSERT_EQUAL_UINT32(2, stats().retries);
+    TEST_ASSERT_EQUAL_UINT32(0, stats().timeouts);
+}
+
+static void test_next_sample_timeout_across_clock_wrap(void)
+{
+    lep_sample s;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
+    sio.endless_stream = false;
+    sio.now = 0xFFFFFFFFu - 10u;
+    TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, lep_client_next_sample(&client, &s, 40));
+    TEST_ASSERT_EQUAL_UINT32(29u, sio.now); /* exactly 40 ms later, past the wrap */
+}
+
+static void test_step_api_deadline_across_clock_wrap(void)
+{
+    lep_command cmd = {LEP_CMD_STOP, 0};
+    size_t used;
+    sio.silent = true;
+    sio.now = 0xFFFFFFFFu - 5u;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_send(&client, &cmd));
+    sio.now += LEP_CLIENT_DEFAULT_TIMEOUT_MS - 1u; /* wrapped, 1 ms before the deadline */
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step(&client, NULL, 0, &used));
+    sio.now += 1u;
+    TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, lep_client_step(&client, NULL, 0, &used));
+}
+
+static void test_sync_across_clock_wrap(void)
+{
+    lep_product_info info;
+    sio.now = 0xFFFFFFFFu - 3u;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_sync(&client, 20, &info));
+    TEST_ASSERT_EQUAL_STRING("PFS055YA501U6", info.model);
+}
+
+/* ---- next_sample timeouts ---- */
+
+static void test_next_sample_negative_timeout_waits_forever(void)
+{
+    lep_sample s;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
+    sio.stall_reads = 5; /* five empty reads (5 s of virtual time) before data flows again */
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_next_sample(&client, &s, -1));
+    TEST_ASSERT_EQUAL_INT(-1, sio.last_timeout);
+    TEST_ASSERT_TRUE(sio.now >= 5000u);
+    TEST_ASSERT_EQUAL_UINT32(0, stats().timeouts);
+}
+
+static void test_transaction_times_out_on_endless_noise(void)
+{
+    lep_rated rated;
+    uint32_t t0 = sio.now;
+    sio.silent = true;
+    sio.noise = true;
+    TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, lep_client_rated(&client, &rated));
+    TEST_ASSERT_TRUE(sio.now - t0 >= LEP_CLIENT_DEFAULT_TIMEOUT_MS);
+    TEST_ASSERT_TRUE(sio.now - t0 <= LEP_CLIENT_DEFAULT_TIMEOUT_MS + 2u);
+    TEST_ASSERT_EQUAL_UINT32((uint32_t)sio.total_read, stats().bytes_discarded);
+}
+
+/* ---- counters ---- */
+
+static void test_stop_with_data_in_flight_in_small_reads(void)
+{
+    lep_sample s;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_next_sample(&client, &s, 100));
+    sio.max_chunk = 7;
+    sio.inflight = 5;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_stop(&client));
+    TEST_ASSERT_FALSE(lep_client_streaming(&client));
+    TEST_ASSERT_EQUAL_UINT32(0, stats().unexpected);
+    TEST_ASSERT_EQUAL_UINT32(0, stats().bytes_discarded);
+    TEST_ASSERT_EQUAL_UINT32(1, stats().samples);
+    TEST_ASSERT_EQUAL_INT(LEP_E_STATE, lep_client_next_sample(&client, &s, 0));
+}
+
+/* ---- step API fed from an ISR-filled ring buffer, no read at all ---- */
+
+#define RING_SIZE 32u
+
+typedef struct ring {
+    uint8_t buf[RING_SIZE];
+    uint32_t head; /* written by the "ISR" */
+    uint32_t tail; /* advanced by the main loop */
+} ring;
+
+/* The "ISR": move up to max bytes the sensor sent into the ring. */
+static void isr_receive(ring *r, size_t max)
+{
+    while (max-- > 0 && script_pending(&sio) > 0 && r->head - r->tail < RING_SIZE) {
+        r->buf[r->head % RING_SIZE] = sio.in[sio.in_pos++];
+        r->head++;
+    }
+}
+
+/* The super-loop: feed the ring's contiguous spans to the client until an outcome. */
+static int loop_once(lep_client *c, ring *r)
+{
+    while (r->head != r->tail) {
+        size_t at = r->tail % RING_SIZE;
+        size_t span = r->head - r->tail;
+        size_t used = 0;
+        int rc;
+        if (span > RING_SIZE - at) {
+            span = RING_SIZE - at;
+        }
+        rc = lep_client_step(c, r->buf + at, span, &used);
+        TEST_ASSERT_TRUE(used >= 1 && used <= span);
+        r->tail += (uint32_t)used;
+        if (rc != LEP_STEP_NONE) {
+            return rc;
+        }
+    }
+    return lep_client_step(c, NULL, 0, &(size_t){0});
+}
+
+static int run_until_outcome(lep_client *c, ring *r)
+{
+    unsigned spins;
+    for (spins = 0; spins < 10000u; spins++) {
+        int rc;
+        isr_receive(r, 11); /* odd-sized bursts: frames straddle the ring's end */
+        rc = loop_once(c, r);
+        if (rc != LEP_STEP_NONE) {
+            return rc;
+        }
+        sio.now += 1;
+    }
+    return LEP_STEP_NONE;
+}
+
+static void test_step_api_from_a_ring_buffer(void)
+{
+    lep_io io = script_io_table(&sio);
+    lep_client c;
+    ring r;
+    lep_command start = {LEP_CMD_START, 0};
+    lep_command stop = {LEP_CMD_STOP, 0};
+    lep_command rated = {LEP_CMD_RATED, 0};
+    lep_client_stats st;
+    unsigned i;
+    memset(&r, 0, sizeof(r));
+    io.read = NULL;
+    sio.endless_stream = false;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_init(&c, &io));
+
+    sio.naks_left = 1;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_send(&c, &rated));
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_RESPONSE, run_until_outcome(&c, &r));
+    TEST_ASSERT_EQUAL_FLOAT(500.0f, lep_client_response(&c)->u.rated.axis[LEP_FZ]);
+
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_send(&c, &start));
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_RESPONSE, run_until_outcome(&c, &r));
+    TEST_ASSERT_TRUE(lep_client_streaming(&c));
+    for (i = 0; i < 20; i++) {
+        script_push_data(&sio);
+    }
+    for (i = 0; i < 20; i++) {
+        TEST_ASSERT_EQUAL_INT(LEP_STEP_SAMPLE, run_until_outcome(&c, &r));
+        TEST_ASSERT_EQUAL_UINT16(i, lep_client_response(&c)->u.sample.reserved);
+    }
+    sio.inflight = 3;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_send(&c, &stop));
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_RESPONSE, run_until_outcome(&c, &r));
+    TEST_ASSERT_FALSE(lep_client_streaming(&c));
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, run_until_outcome(&c, &r));
+    TEST_ASSERT_EQUAL_UINT32(0, sio.reads);
+
+    lep_client_get_stats(&c, &st);
+    TEST_ASSERT_EQUAL_UINT32(1, st.naks);
+    TEST_ASSERT_EQUAL_UINT32(1, st.retries);
+    TEST_ASSERT_EQUAL_UINT32(20, st.samples);
+    TEST_ASSERT_EQUAL_UINT32(0, st.unexpected);
+    TEST_ASSERT_EQUAL_UINT32(0, st.bytes_discarded);
+    TEST_ASSERT_EQUAL_UINT32(3 + 20 + 3, st.messages);
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -456,5 +651,14 @@ int main(void)
     RUN_TEST(test_step_api_deadline);
     RUN_TEST(test_step_api_stops_at_each_sample);
     RUN_TEST(test_two_clients_are_independent);
+    RUN_TEST(test_transaction_timeout_across_clock_wrap);
+    RUN_TEST(test_nak_retry_and_answer_across_clock_wrap);
+    RUN_TEST(test_next_sample_timeout_across_clock_wrap);
+    RUN_TEST(test_step_api_deadline_across_clock_wrap);
+    RUN_TEST(test_sync_across_clock_wrap);
+    RUN_TEST(test_next_sample_negative_timeout_waits_forever);
+    RUN_TEST(test_transaction_times_out_on_endless_noise);
+    RUN_TEST(test_stop_with_data_in_flight_in_small_reads);
+    RUN_TEST(test_step_api_from_a_ring_buffer);
     return UNITY_END();
 }

@@ -107,10 +107,22 @@ static int script_read(void *user, uint8_t *buf, size_t cap, int timeout_ms)
 {
     script_io *s = user;
     size_t n;
+    s->reads++;
+    s->last_timeout = timeout_ms;
+    if (s->reads > SCRIPT_MAX_READS) {
+        return LEP_E_IO; /* the client never stopped reading: fail instead of hanging */
+    }
     if (s->read_error != 0) {
         return s->read_error;
     }
-    if (script_pending(s) == 0 && s->endless_stream && lep_device_streaming(&s->dev)) {
+    if (script_pending(s) == 0 && s->stall_reads > 0) {
+        s->stall_reads--;
+    } else if (script_pending(s) == 0 && s->noise) {
+        uint8_t junk[64];
+        memset(junk, 0x55, sizeof(junk));
+        s->now += 1;
+        script_push(s, junk, sizeof(junk));
+    } else if (script_pending(s) == 0 && s->endless_stream && lep_device_streaming(&s->dev)) {
         s->now += 1;
         script_push_data(s);
     }
@@ -127,7 +139,8 @@ static int script_read(void *user, uint8_t *buf, size_t cap, int timeout_ms)
     }
     memcpy(buf, s->in + s->in_pos, n);
     s->in_pos += n;
-    return (int)n;
+    s->total_read += n;
+    return (int)n + s->overclaim;
 }
 
 lep_io script_io_table(script_io *s)

@@ -1,5 +1,7 @@
 /* Scripted in-memory sensor for client tests: a lep_io whose clock is virtual
- * (a read that finds nothing advances it by its timeout), answered by a real
+ * (a read that finds nothing advances it by its timeout, 1000 ms when it is
+ * negative; a read that makes up stream data or noise advances it by 1 ms),
+ * answered by a real
  * lep_device unless the test forces NAKs, silence or a reply of its own. */
 #ifndef LEP_TEST_SCRIPT_IO_H
 #define LEP_TEST_SCRIPT_IO_H
@@ -12,6 +14,7 @@
 
 #define SCRIPT_IN_CAP 16384u
 #define SCRIPT_OUT_CAP 4096u
+#define SCRIPT_MAX_READS 1000000u
 
 typedef struct script_io {
     uint32_t now;              /* virtual clock, ms */
@@ -32,6 +35,12 @@ typedef struct script_io {
     uint8_t forced[128];      /* raw bytes sent instead of the device's next answer */
     size_t forced_len;
     uint16_t seq;             /* sequence number put into generated data frames */
+    unsigned reads;           /* read calls (past SCRIPT_MAX_READS read fails: a runaway loop) */
+    int last_timeout;         /* timeout_ms of the last read call */
+    unsigned stall_reads;     /* the next N reads of an empty line find nothing, even streaming */
+    bool noise;               /* an empty line grows 64 bytes of noise (no frame) per ms */
+    int overclaim;            /* read reports this many bytes more than it copied */
+    size_t total_read;        /* bytes handed to the host by all reads */
     lep_device dev;
 } script_io;
 
