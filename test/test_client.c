@@ -490,6 +490,48 @@ static void test_next_sample_negative_timeout_waits_forever(void)
     TEST_ASSERT_EQUAL_UINT32(0, stats().timeouts);
 }
 
+static void test_next_sample_times_out_on_endless_noise(void)
+{
+    /* Bytes keep coming but never form a frame (e.g. a wrong baud rate). */
+    lep_sample s;
+    uint32_t t0;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
+    sio.endless_stream = false;
+    sio.noise = true;
+    t0 = sio.now;
+    TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, lep_client_next_sample(&client, &s, 50));
+    TEST_ASSERT_TRUE(sio.now - t0 >= 50u);
+    TEST_ASSERT_TRUE(sio.now - t0 <= 52u);
+    TEST_ASSERT_EQUAL_UINT32(1, stats().timeouts);
+}
+
+static void test_next_sample_zero_timeout_reads_once_on_endless_noise(void)
+{
+    lep_sample s;
+    unsigned reads;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
+    sio.endless_stream = false;
+    sio.noise = true;
+    reads = sio.reads;
+    TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, lep_client_next_sample(&client, &s, 0));
+    TEST_ASSERT_TRUE(sio.reads - reads <= 2u);
+}
+
+static void test_next_samples_returns_on_endless_noise(void)
+{
+    lep_sample s[4];
+    size_t n = 9;
+    unsigned reads;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
+    sio.endless_stream = false;
+    script_push_data(&sio);
+    sio.noise = true;
+    reads = sio.reads;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_next_samples(&client, s, 4, &n, 100));
+    TEST_ASSERT_EQUAL_size_t(1, n);
+    TEST_ASSERT_TRUE(sio.reads - reads <= 8u);
+}
+
 static void test_transaction_times_out_on_endless_noise(void)
 {
     lep_rated rated;
@@ -657,6 +699,9 @@ int main(void)
     RUN_TEST(test_step_api_deadline_across_clock_wrap);
     RUN_TEST(test_sync_across_clock_wrap);
     RUN_TEST(test_next_sample_negative_timeout_waits_forever);
+    RUN_TEST(test_next_sample_times_out_on_endless_noise);
+    RUN_TEST(test_next_sample_zero_timeout_reads_once_on_endless_noise);
+    RUN_TEST(test_next_samples_returns_on_endless_noise);
     RUN_TEST(test_transaction_times_out_on_endless_noise);
     RUN_TEST(test_stop_with_data_in_flight_in_small_reads);
     RUN_TEST(test_step_api_from_a_ring_buffer);

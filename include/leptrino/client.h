@@ -153,13 +153,16 @@ LEP_API int lep_client_sample(lep_client *c, lep_sample *out);
 /* Start continuous output. */
 LEP_API int lep_client_start(lep_client *c);
 /* Next stream sample within timeout_ms (< 0 forever, 0 only what is already
- * received or readable now). LEP_E_STATE when not streaming; LEP_E_TIMEOUT. */
+ * received or comes with one read that does not wait). Bytes that arrive
+ * without completing a sample do not extend the wait. LEP_E_STATE when not
+ * streaming; LEP_E_TIMEOUT; a read error. */
 LEP_API int lep_client_next_sample(lep_client *c, lep_sample *out, int timeout_ms);
 /* Up to max samples: waits up to timeout_ms for the first, then returns what
  * is already received without waiting again. *n gets the count. */
 LEP_API int lep_client_next_samples(lep_client *c, lep_sample *out, size_t max, size_t *n,
                                     int timeout_ms);
-/* Stop continuous output; data messages before the answer are discarded. */
+/* Stop continuous output; data messages of our stream that arrive before the
+ * answer are discarded (not counted). */
 LEP_API int lep_client_stop(lep_client *c);
 
 #ifdef __cplusplus

@@ -266,10 +266,14 @@ int lep_client_transact(lep_client *c, const lep_command *cmd, lep_response *res
     return rc;
 }
 
-/* Wait for the next stream sample; count_timeout says whether a timeout is news. */
+/* Wait for the next stream sample; count_timeout says whether a timeout is news.
+ * Once the time is up, one more read that does not wait is made (so timeout 0
+ * takes what is readable now); bytes that keep arriving without completing a
+ * sample never extend the wait. */
 static int next_sample(lep_client *c, lep_sample *out, int timeout_ms, bool count_timeout)
 {
     uint32_t start = now(c);
+    bool polled = false; /* the read after the time was up has been made */
     for (;;) {
         int rc = step_buffered(c);
         int n;
@@ -284,21 +288,26 @@ static int next_sample(lep_client *c, lep_sample *out, int timeout_ms, bool coun
         if (c->rx_pos < c->rx_len) {
             continue;
         }
-        if (timeout_ms > 0) {
+        if (timeout_ms >= 0) {
             uint32_t spent = now(c) - start;
             wait = spent >= (uint32_t)timeout_ms ? 0 : timeout_ms - (int)spent;
+            if (wait == 0 && polled) {
+                break;
+            }
         }
         n = fill(c, wait);
         if (n < 0) {
             return n;
         }
+        polled = wait == 0;
         if (n == 0 && timeout_ms >= 0 && (wait == 0 || now(c) - start >= (uint32_t)timeout_ms)) {
-            if (count_timeout) {
-                c->stats.timeouts++;
-            }
-            return LEP_E_TIMEOUT;
+            break;
         }
     }
+    if (count_timeout) {
+        c->stats.timeouts++;
+    }
+    return LEP_E_TIMEOUT;
 }
 
 int lep_client_next_sample(lep_client *c, lep_sample *out, int timeout_ms)
