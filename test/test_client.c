@@ -546,6 +546,54 @@ static void test_transaction_times_out_on_endless_noise(void)
 
 /* ---- counters ---- */
 
+static void test_samples_skipped_by_a_query_are_not_counted_as_delivered(void)
+{
+    lep_rated rated;
+    lep_sample s;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
+    sio.endless_stream = false;
+    script_push_data(&sio);
+    script_push_data(&sio);
+    script_push_data(&sio);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_rated(&client, &rated));
+    TEST_ASSERT_EQUAL_UINT32(0, stats().samples);
+    TEST_ASSERT_EQUAL_UINT32(3, stats().unexpected);
+    TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, lep_client_next_sample(&client, &s, 0));
+    script_push_data(&sio);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_next_sample(&client, &s, 0));
+    TEST_ASSERT_EQUAL_UINT16(3, s.reserved);
+    TEST_ASSERT_EQUAL_UINT32(1, stats().samples);
+}
+
+static void test_sync_accounts_for_every_stale_byte(void)
+{
+    /* A stale stream: two data frames in flight before the stop answer, one
+     * more right after it, and the reads split that last frame. */
+    static const uint8_t stop_answer[] = {0x10, 0x02, 0x04, 0xFF, 0x33, 0x00, 0x10, 0x03, 0xCB};
+    static const uint8_t start[] = {0x10, 0x02, 0x04, 0xFF, 0x32, 0x00, 0x10, 0x03, 0xCA};
+    lep_product_info info;
+    lep_device_event ev;
+    lep_sample smp;
+    uint8_t out[LEP_MAX_FRAME];
+    size_t n;
+    lep_client_stats st;
+    (void)lep_device_feed(&sio.dev, start, sizeof(start), &ev, out, sizeof(out), &n);
+    memset(&smp, 0, sizeof(smp));
+    memcpy(sio.forced, stop_answer, sizeof(stop_answer));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_device_stream_frame(&smp, sio.forced + sizeof(stop_answer),
+                                                          sizeof(sio.forced) - sizeof(stop_answer), &n));
+    TEST_ASSERT_EQUAL_size_t(25, n);
+    sio.forced_len = sizeof(stop_answer) + n;
+    sio.inflight = 2;
+    sio.max_chunk = 20; /* 25 + 25 + 9 = 59: the third read ends 1 byte into the last frame */
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_sync(&client, 20, &info));
+    st = stats();
+    TEST_ASSERT_EQUAL_UINT32(0, st.bytes_discarded);
+    TEST_ASSERT_EQUAL_UINT32(0, st.bcc_errors + st.frame_errors + st.invalid);
+    TEST_ASSERT_EQUAL_UINT32(3, st.unexpected); /* a stream this client did not start */
+    TEST_ASSERT_EQUAL_UINT32(5, st.messages);   /* 3 data, stop answer, product info */
+}
+
 static void test_stop_with_data_in_flight_in_small_reads(void)
 {
     lep_sample s;
@@ -703,6 +751,8 @@ int main(void)
     RUN_TEST(test_next_sample_zero_timeout_reads_once_on_endless_noise);
     RUN_TEST(test_next_samples_returns_on_endless_noise);
     RUN_TEST(test_transaction_times_out_on_endless_noise);
+    RUN_TEST(test_samples_skipped_by_a_query_are_not_counted_as_delivered);
+    RUN_TEST(test_sync_accounts_for_every_stale_byte);
     RUN_TEST(test_stop_with_data_in_flight_in_small_reads);
     RUN_TEST(test_step_api_from_a_ring_buffer);
     return UNITY_END();

@@ -47,10 +47,11 @@ typedef struct lep_client_stats {
     uint32_t bytes_discarded; /* received bytes that were not part of a good message or NAK */
     uint32_t naks;            /* DLE NAK received */
     uint32_t retries;         /* commands sent again after a NAK */
-    uint32_t unexpected;      /* good messages of the wrong type, skipped (e.g. a stale stream) */
+    uint32_t unexpected;      /* good messages of the wrong type, skipped (a stale stream's data,
+                                 samples arriving while a blocking query waits, late answers) */
     uint32_t invalid;         /* good frames whose message failed validation, and empty frames */
     uint32_t timeouts;        /* transactions or reads that timed out */
-    uint32_t samples;         /* stream samples delivered to the caller */
+    uint32_t samples;         /* stream samples delivered to the caller (LEP_STEP_SAMPLE) */
 } lep_client_stats;
 
 /* Step outcomes (non-negative); failures are negative LEP_E_* codes. */
@@ -132,13 +133,17 @@ LEP_API bool lep_client_busy(const lep_client *c);
 
 /* ---- Blocking calls (use io.read; return within about the timeout) ---- */
 
-/* Send cmd and wait for its answer (with NAK retransmission); *resp may be NULL. */
+/* Send cmd and wait for its answer (with NAK retransmission); *resp may be
+ * NULL. While streaming, samples that arrive meanwhile are skipped (counted as
+ * unexpected). LEP_E_ARG without io.read. */
 LEP_API int lep_client_transact(lep_client *c, const lep_command *cmd, lep_response *resp);
 
-/* Start-up recovery: stop any running stream, drain until the line has been
- * quiet for quiet_ms (at most about 20 timeouts), then confirm the sensor
- * answers a product-info query, stored in *info when not NULL.
- * LEP_E_NO_SYNC when the line never goes quiet; else the query's error. */
+/* Start-up recovery: stop any running stream (its data is counted as
+ * unexpected), drain until the line has been quiet for quiet_ms (<= 0: 50 ms;
+ * gives up after about 20 timeouts), then confirm the sensor answers a
+ * product-info query, stored in *info when not NULL. A stop that times out
+ * or is refused does not end the recovery. LEP_E_NO_SYNC when the line never
+ * goes quiet; else the query's error. */
 LEP_API int lep_client_sync(lep_client *c, int quiet_ms, lep_product_info *info);
 
 /* Queries; out must not be NULL (LEP_E_ARG). Errors as lep_client_transact. */

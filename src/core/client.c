@@ -153,15 +153,15 @@ static int on_message(lep_client *c, const lep_frame_event *ev)
         return LEP_STEP_NONE;
     }
     if (c->resp.stream && rc == LEP_OK) {
+        if ((c->state & ST_STREAM) == 0u) {
+            c->stats.unexpected++; /* a stream we did not start (e.g. a stale one) */
+            return LEP_STEP_NONE;
+        }
         if (waiting && c->pending.code == LEP_CMD_STOP) {
-            return LEP_STEP_NONE; /* data still in flight before the stop answer */
+            return LEP_STEP_NONE; /* our data still in flight before the stop answer */
         }
-        if ((c->state & ST_STREAM) != 0u) {
-            c->stats.samples++;
-            return LEP_STEP_SAMPLE;
-        }
-        c->stats.unexpected++; /* a stream we did not start */
-        return LEP_STEP_NONE;
+        c->stats.samples++;
+        return LEP_STEP_SAMPLE;
     }
     if (waiting && c->resp.code == c->pending.code) {
         return finish(c, rc);
@@ -253,6 +253,11 @@ int lep_client_transact(lep_client *c, const lep_command *cmd, lep_response *res
                 *resp = c->resp;
             }
             return LEP_OK;
+        }
+        if (rc == LEP_STEP_SAMPLE) {
+            /* A stream sample while waiting for another answer: skipped, not delivered. */
+            c->stats.samples--;
+            c->stats.unexpected++;
         }
         if (rc < 0 || c->rx_pos < c->rx_len) {
             continue; /* an error ends the loop; a sample leaves bytes to step over */
@@ -414,7 +419,13 @@ int lep_client_sample(lep_client *c, lep_sample *out)
 static int drain(lep_client *c, int quiet_ms)
 {
     uint32_t start = now(c);
-    uint32_t limit = (uint32_t)c->timeout_ms * SYNC_DRAIN_TIMEOUTS + (uint32_t)quiet_ms;
+    uint32_t limit = 0x7FFFFFFFu; /* saturated: at most about 24 days */
+    if ((uint32_t)c->timeout_ms < (limit - (uint32_t)quiet_ms) / SYNC_DRAIN_TIMEOUTS) {
+        limit = (uint32_t)c->timeout_ms * SYNC_DRAIN_TIMEOUTS + (uint32_t)quiet_ms;
+    }
+    while (c->rx_pos < c->rx_len) {
+        (void)step_buffered(c); /* what the stop's reads brought after its answer */
+    }
     for (;;) {
         int n = fill(c, quiet_ms);
         if (n == 0) {
