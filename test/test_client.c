@@ -594,6 +594,14 @@ static void test_sync_accounts_for_every_stale_byte(void)
     TEST_ASSERT_EQUAL_UINT32(5, st.messages);   /* 3 data, stop answer, product info */
 }
 
+static void test_read_claiming_more_than_asked_is_an_io_error(void)
+{
+    lep_product_info info;
+    sio.overclaim = 1000;
+    TEST_ASSERT_EQUAL_INT(LEP_E_IO, lep_client_product_info(&client, &info));
+    TEST_ASSERT_FALSE(lep_client_busy(&client));
+}
+
 static void test_stop_with_data_in_flight_in_small_reads(void)
 {
     lep_sample s;
@@ -753,6 +761,7 @@ int main(void)
     RUN_TEST(test_transaction_times_out_on_endless_noise);
     RUN_TEST(test_samples_skipped_by_a_query_are_not_counted_as_delivered);
     RUN_TEST(test_sync_accounts_for_every_stale_byte);
+    RUN_TEST(test_read_claiming_more_than_asked_is_an_io_error);
     RUN_TEST(test_stop_with_data_in_flight_in_small_reads);
     RUN_TEST(test_step_api_from_a_ring_buffer);
     return UNITY_END();

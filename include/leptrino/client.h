@@ -31,8 +31,8 @@ typedef struct lep_io {
     int (*write)(void *user, const uint8_t *data, size_t len);
     /* Wait up to timeout_ms for input and read what is available, at most
      * cap bytes. Return the count (> 0), 0 on timeout, or a negative LEP_E_*
-     * code (LEP_E_DISCONNECTED when the port is gone). Not needed by the
-     * step API (may be NULL there). */
+     * code (LEP_E_DISCONNECTED when the port is gone); a count above cap is
+     * taken as LEP_E_IO. Not needed by the step API (may be NULL there). */
     int (*read)(void *user, uint8_t *buf, size_t cap, int timeout_ms);
     /* Monotonic clock in milliseconds (wraps at 2^32). */
     uint32_t (*now_ms)(void *user);

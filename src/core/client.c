@@ -224,13 +224,18 @@ static int step_buffered(lep_client *c)
     return rc;
 }
 
-/* Read more input into c->rx; > 0 bytes, 0 on timeout, < 0 error. */
+/* Read more input into c->rx (only once the bytes there are all stepped);
+ * > 0 bytes, 0 on timeout, < 0 error. A read claiming more than it was
+ * allowed is a broken backend: LEP_E_IO rather than a guess at the bytes. */
 static int fill(lep_client *c, int timeout_ms)
 {
     int n = c->io.read(c->io.user, c->rx, sizeof(c->rx), timeout_ms);
+    if (n > (int)sizeof(c->rx)) {
+        return LEP_E_IO;
+    }
     if (n > 0) {
         c->rx_pos = 0;
-        c->rx_len = (uint16_t)(n > (int)sizeof(c->rx) ? (int)sizeof(c->rx) : n);
+        c->rx_len = (uint16_t)n;
     }
     return n;
 }
