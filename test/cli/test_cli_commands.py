@@ -104,6 +104,14 @@ def test_not_a_tty_exit_6() -> None:
     assert "/dev/null" in r.stderr
 
 
+def test_virtual_sensor_that_cannot_start_exit_1() -> None:
+    # A missing replay file is not "port not found" (6): an other failure, 1.
+    r = run(["info", "--sim", "--sim-replay", "/nonexistent/leptrino-replay.csv"])
+    assert r.returncode == 1, r.stderr
+    assert "/nonexistent/leptrino-replay.csv" in r.stderr
+    assert len(r.stderr.splitlines()) == 1
+
+
 def test_busy_port_exit_7() -> None:
     sim = SimProcess()
     holder = subprocess.Popen([cli_path(), "stream", sim.port, "-o", "/dev/null"],

@@ -211,6 +211,10 @@ bool cli_port_check(cli_port_opts *po, cli_args *a)
         cli_args_error(a, "missing PORT (a serial device such as /dev/ttyACM0) or --sim");
         return false;
     }
+    if (!po->sim && po->port[0] == '\0') {
+        cli_args_error(a, "PORT is empty (a serial device such as /dev/ttyACM0)");
+        return false;
+    }
     if (!po->sim && po->sim_option != NULL) {
         cli_args_error(a, "option %s needs --sim", po->sim_option);
         return false;
@@ -319,7 +323,8 @@ int cli_conn_open(cli_conn *c, const cli_port_opts *po, const char *cmd)
             c->sim = NULL;
             fprintf(stderr, "leptrino: %s: cannot start the virtual sensor: %s\n", cmd,
                     err[0] != '\0' ? err : lep_strerror(rc));
-            return cli_exit_code(rc) == CLI_OK ? CLI_FAIL : cli_exit_code(rc);
+            /* Not a port problem (a missing --sim-replay file is not exit 6). */
+            return CLI_FAIL;
         }
         snprintf(c->path, sizeof c->path, "%s", lep_sim_port(c->sim));
     } else {

@@ -72,16 +72,22 @@ static const cli_command *find_command(const char *name)
 int main(int argc, char **argv)
 {
     const cli_command *cmd;
+    bool help;
     if (argc < 2) {
         fprintf(stderr, "leptrino: missing command (see 'leptrino --help')\n");
         return CLI_USAGE;
     }
-    if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0) {
-        usage(stdout);
-        return CLI_OK;
-    }
-    if (strcmp(argv[1], "--version") == 0 || strcmp(argv[1], "-V") == 0) {
-        printf("leptrino %s\n", lep_version());
+    help = strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0;
+    if (help || strcmp(argv[1], "--version") == 0 || strcmp(argv[1], "-V") == 0) {
+        if (argc > 2) {
+            fprintf(stderr, "leptrino: unexpected argument '%s' after %s (see 'leptrino --help')\n",
+                    argv[2], argv[1]);
+            return CLI_USAGE;
+        }
+        if (help)
+            usage(stdout);
+        else
+            printf("leptrino %s\n", lep_version());
         return CLI_OK;
     }
     if (strcmp(argv[1], "help") == 0) {
