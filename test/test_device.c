@@ -73,6 +73,34 @@ static void test_init_validates(void)
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_device_init(NULL, &info, &good, 0));
 }
 
+static void test_init_rejects_identity_that_cannot_be_answered(void)
+{
+    /* Fields that do not fit the product-info answer would make every 0x2A go
+     * unanswered: refuse them up front. */
+    lep_product_info info;
+    lep_rated good = {{1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f}};
+    lep_response r;
+    memset(&info, 0, sizeof(info));
+    memset(info.model, 'M', sizeof(info.model)); /* 17 characters, no NUL */
+    TEST_ASSERT_EQUAL_INT(LEP_E_VALUE, lep_device_init(&dev, &info, &good, 0));
+    memset(&info, 0, sizeof(info));
+    memset(info.output_rate, '9', sizeof(info.output_rate));
+    info.has_output_rate = true;
+    TEST_ASSERT_EQUAL_INT(LEP_E_VALUE, lep_device_init(&dev, &info, &good, 0));
+    /* The same string without the rate field is fine, and answered in the 38-byte form when set. */
+    info.has_output_rate = false;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_device_init(&dev, &info, &good, 0));
+    memset(&info, 0, sizeof(info));
+    strcpy(info.model, "PFS080YS102U6");
+    strcpy(info.output_rate, "1200");
+    info.has_output_rate = true;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_device_init(&dev, &info, &good, 0));
+    send_cmd(LEP_CMD_PRODUCT_INFO, 0);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, answer(&r));
+    TEST_ASSERT_TRUE(r.u.info.has_output_rate);
+    TEST_ASSERT_EQUAL_UINT32(1200, r.u.info.output_rate_hz);
+}
+
 static void test_answers_queries(void)
 {
     lep_response r;
@@ -234,6 +262,7 @@ int main(void)
 {
     UNITY_BEGIN();
     RUN_TEST(test_init_validates);
+    RUN_TEST(test_init_rejects_identity_that_cannot_be_answered);
     RUN_TEST(test_answers_queries);
     RUN_TEST(test_handshake_answers_current_sample);
     RUN_TEST(test_bad_bcc_gets_nak);

@@ -52,7 +52,8 @@ typedef struct lep_device {
 } lep_device;
 
 /* Reset d with its identity, ratings and active filter code (copied).
- * LEP_E_ARG for NULL, LEP_E_VALUE for a filter code > 3 or invalid ratings. */
+ * LEP_E_ARG for NULL; LEP_E_VALUE for a filter code > 3, invalid ratings, or
+ * an identity field longer than its place in the product-info answer. */
 LEP_API int lep_device_init(lep_device *d, const lep_product_info *info, const lep_rated *rated,
                             uint8_t filter);
 

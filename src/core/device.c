@@ -5,14 +5,21 @@
 
 #include "leptrino/error.h"
 
-static bool ratings_ok(const lep_rated *rated)
+/* True when the answers to 0x2A and 0x2B can be encoded from info and rated. */
+static bool identity_ok(const lep_product_info *info, const lep_rated *rated)
 {
     lep_response r;
-    uint8_t msg[LEP_LEN_RATED];
+    uint8_t msg[LEP_LEN_PRODUCT_INFO_RATE];
     size_t n;
     memset(&r, 0, sizeof(r));
     r.code = LEP_CMD_RATED;
     r.u.rated = *rated;
+    if (lep_response_encode(&r, msg, sizeof(msg), &n) != LEP_OK) {
+        return false;
+    }
+    memset(&r, 0, sizeof(r));
+    r.code = LEP_CMD_PRODUCT_INFO;
+    r.u.info = *info;
     return lep_response_encode(&r, msg, sizeof(msg), &n) == LEP_OK;
 }
 
@@ -22,7 +29,7 @@ int lep_device_init(lep_device *d, const lep_product_info *info, const lep_rated
     if (d == NULL || info == NULL || rated == NULL) {
         return LEP_E_ARG;
     }
-    if (filter > LEP_FILTER_MAX || !ratings_ok(rated)) {
+    if (filter > LEP_FILTER_MAX || !identity_ok(info, rated)) {
         return LEP_E_VALUE;
     }
     memset(d, 0, sizeof(*d));
