@@ -215,7 +215,7 @@ def cmd_stream(args: argparse.Namespace, out: TextIO) -> int:
     if args.tare < 0:
         raise _Usage("--tare must be >= 0")
     raw = args.units == "raw"
-    n = overloads = 0
+    n = overloads = tare_n = 0
     with ExitStack() as stack:
         s = _open(args, stack)
         dest = out if args.output == "-" else stack.enter_context(
@@ -228,6 +228,7 @@ def cmd_stream(args: argparse.Namespace, out: TextIO) -> int:
         try:
             if args.tare:
                 s.tare(args.tare)
+                tare_n = args.tare  # received, not written: they count in the rate
             while True:
                 left = None if end is None else end - float(s._be.lib.lep_monotonic_seconds())
                 if left is not None and left <= 0:
@@ -259,7 +260,7 @@ def cmd_stream(args: argparse.Namespace, out: TextIO) -> int:
         st = s.stats
         errs = st.bcc_errors + st.frame_errors + st.invalid
         print(f"leptrino: stream: {n} samples in {secs:.2f} s "
-              f"({(n / secs) if secs > 0 else 0:.1f} Hz), {errs} errors, "
+              f"({((n + tare_n) / secs) if secs > 0 else 0:.1f} Hz), {errs} errors, "
               f"{overloads} overloads", file=sys.stderr)
     return EXIT_OK
 

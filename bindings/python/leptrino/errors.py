@@ -117,10 +117,16 @@ _BY_CODE: Dict[int, Type[LeptrinoError]] = {
 
 
 def error_for(be: Any, rc: int, detail: str = "", *, result: Optional[int] = None,
-              command: Optional[int] = None) -> LeptrinoError:
-    """The exception for a negative LEP_E_* return code rc."""
+              command: Optional[int] = None, complete: bool = False) -> LeptrinoError:
+    """The exception for a negative LEP_E_* return code rc.
+
+    complete: detail is already the library's full message (from its err
+    buffer), so the generic lep_strerror text is not appended to it."""
     if rc == K.LEP_E_SENSOR and result is not None:
         return SensorError(result, be.text(be.lib.lep_result_str(result)), command)
     text = be.text(be.lib.lep_strerror(rc))
-    msg = f"{detail}: {text}" if detail and text not in detail else (detail or text)
+    if complete and detail:
+        msg = detail
+    else:
+        msg = f"{detail}: {text}" if detail and text not in detail else (detail or text)
     return _BY_CODE.get(rc, LeptrinoError)(msg, rc)

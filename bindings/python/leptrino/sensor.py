@@ -81,7 +81,8 @@ class Sensor:
         err = be.new_text(512)
         rc = be.lib.lep_serial_open(self.port.encode(), out, err, 512)
         if rc < 0:
-            raise error_for(be, rc, be.text(err) or self.port)
+            msg = be.text(err)
+            raise error_for(be, rc, msg or self.port, complete=bool(msg))
         self._serial = be.handle(out)
         try:
             self._client, self._client_mem = be.new_client()

@@ -73,7 +73,8 @@ class Simulator:
         err = be.new_text(512)
         rc = be.lib.lep_sim_start(opts, out, err, 512)
         if rc < 0:
-            raise error_for(be, rc, be.text(err) or "starting the virtual sensor")
+            msg = be.text(err)
+            raise error_for(be, rc, msg or "starting the virtual sensor", complete=bool(msg))
         self._sim = be.handle(out)
         self.port: str = be.text(be.lib.lep_sim_port(self._sim))
 
