@@ -17,7 +17,9 @@ for f in "${files[@]}"; do
     case "$inc" in
       '"'*) name=${inc#\"}
             case "$name" in
-              leptrino/*|export.h|error.h|frame.h|message.h|client.h|device.h|version.h) ;;
+              leptrino/leptrino.h|leptrino/export.h|leptrino/error.h|leptrino/frame.h|\
+              leptrino/message.h|leptrino/client.h|leptrino/device.h|leptrino/version.h|\
+              export.h|error.h|frame.h|message.h|client.h|device.h|version.h|leptrino/version.h) ;;
               *) echo "FAIL $f: project include outside the core: $name"; fail=1 ;;
             esac ;;
       '<'*) name=${inc#<}
