@@ -1,7 +1,9 @@
 /* Fuzz entry: arbitrary bytes into every receiving path of the core (frame
  * decoder in two chunkings, response decoder, command decoder, device, client
- * step). Invariants: no crash or UB, chunking never changes the outcome, and
- * every input byte is accounted for by the decoder's counters. */
+ * step, and the client's blocking calls over a port serving the input).
+ * Invariants: no crash or UB, chunking never changes the outcome, every input
+ * byte is accounted for by the decoder's counters, and the blocking calls
+ * return (their reads stay bounded) with the sample counter exact. */
 #include <stddef.h>
 #include <stdint.h>
 #include <string.h>
@@ -29,6 +31,98 @@ static void check(int ok)
     if (!ok) {
         __builtin_trap();
     }
+}
+
+/* A port serving the input in uneven chunks, 1 ms per chunk, then silence;
+ * its clock starts just before the 32-bit wrap. */
+typedef struct fuzz_port {
+    const uint8_t *data;
+    size_t len;
+    size_t pos;
+    uint32_t now;
+    size_t reads;
+} fuzz_port;
+
+static uint32_t port_clock(void *user)
+{
+    return ((fuzz_port *)user)->now;
+}
+
+static int port_read(void *user, uint8_t *buf, size_t cap, int timeout_ms)
+{
+    fuzz_port *p = user;
+    size_t n;
+    p->reads++;
+    /* Every read either hands over input or lets time pass: a client that
+     * keeps reading past this bound ignores its timeouts. */
+    check(p->reads <= p->len + 10000u);
+    if (p->pos >= p->len) {
+        p->now += (uint32_t)(timeout_ms < 0 ? 1000 : timeout_ms);
+        return 0;
+    }
+    n = 1u + (size_t)((p->data[p->pos] + p->reads) % 37u);
+    if (n > cap) {
+        n = cap;
+    }
+    if (n > p->len - p->pos) {
+        n = p->len - p->pos;
+    }
+    memcpy(buf, p->data + p->pos, n);
+    p->pos += n;
+    p->now += 1u;
+    return (int)n;
+}
+
+/* The blocking calls over the input: recovery, a query, then a stream read
+ * to the end. Every call must return, and the counters must stay consistent. */
+static void blocking_client(const uint8_t *data, size_t size)
+{
+    static const uint8_t start_answer[] = {0x10, 0x02, 0x04, 0xFF, 0x32, 0x00, 0x10, 0x03, 0xCA};
+    fuzz_port port = {data, size, 0, 0xFFFFFF00u, 0};
+    lep_io io = {sink_write, port_read, port_clock, &port};
+    lep_client c;
+    lep_command start = {LEP_CMD_START, 0};
+    lep_client_stats st;
+    lep_sample batch[8];
+    lep_rated rated;
+    size_t used;
+    size_t n;
+    size_t rounds;
+    uint32_t delivered = 0;
+    uint32_t t0;
+    check(lep_client_init(&c, &io) == LEP_OK);
+    check(lep_client_set_timeout(&c, 5) == LEP_OK);
+    /* Time is honoured: 1 ms passes per chunk read, so a call that kept
+     * reading past its deadline would show here. Bounds: 4 attempts (3 NAK
+     * retries) of 5 ms + 1 ms each; a drain of 20 timeouts + quiet time. */
+    t0 = port.now;
+    (void)lep_client_sync(&c, 3, NULL);
+    check(port.now - t0 <= 4u * 6u + (20u * 5u + 3u + 1u) + 4u * 6u);
+    t0 = port.now;
+    (void)lep_client_rated(&c, &rated);
+    check(port.now - t0 <= 4u * 6u);
+    /* Enter streaming through the step API with a canned start answer. */
+    check(lep_client_send(&c, &start) == LEP_OK);
+    if (lep_client_step(&c, start_answer, sizeof(start_answer), &used) != LEP_STEP_RESPONSE) {
+        return; /* the input left the decoder inside a frame */
+    }
+    check(lep_client_streaming(&c));
+    for (rounds = 0; rounds <= size; rounds++) {
+        int rc;
+        t0 = port.now;
+        rc = lep_client_next_samples(&c, batch, 8, &n, 5);
+        check(port.now - t0 <= 5u + 2u + 2u * 8u);
+        check(n <= 8);
+        delivered += (uint32_t)n;
+        if (rc != LEP_OK) {
+            break;
+        }
+        check(n >= 1);
+    }
+    check(rounds <= size);
+    lep_client_get_stats(&c, &st);
+    check(st.samples == delivered);
+    (void)lep_client_stop(&c);
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
@@ -106,5 +200,6 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             }
         }
     }
+    blocking_client(data, size);
     return 0;
 }
