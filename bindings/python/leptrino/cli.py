@@ -247,8 +247,16 @@ def cmd_stream(args: argparse.Namespace, out: TextIO) -> int:
                             rec.status, raw)
                 n += len(rec)
                 overloads += int(rec.overload.sum())
-        except (KeyboardInterrupt, _Terminated):
-            pass
+        except (KeyboardInterrupt, _Terminated) as exc:
+            # The batch in flight when the signal came is kept, not lost.
+            rec = getattr(exc, "recording", None)
+            if rec is not None and len(rec) and tare_n == args.tare:
+                if args.count is not None and len(rec) > args.count - n:
+                    rec = _cut(rec, args.count - n)
+                _write_rows(dest, args.format, rec.t - t0, rec.raw if raw else rec.si,
+                            rec.status, raw)
+                n += len(rec)
+                overloads += int(rec.overload.sum())
         finally:
             secs = float(s._be.lib.lep_monotonic_seconds()) - t0
             dest.flush()

@@ -261,8 +261,9 @@ class Sensor:
 
         The C library fills the arrays (one call per batch, no per-sample Python
         work). Starts the stream if it is not running and stops it again after.
-        On an error (TimeoutError, DisconnectedError...) the exception's
-        .recording holds what was recorded until then."""
+        On an error (TimeoutError, DisconnectedError...) and on an interruption
+        (KeyboardInterrupt, an exception raised by a signal handler) the
+        exception's .recording holds what was recorded until then."""
         if (seconds is None) == (count is None):
             raise ValueError("give exactly one of seconds= or count=")
         if seconds is not None and not seconds > 0:
@@ -301,6 +302,14 @@ class Sensor:
                     if count is not None:
                         break
                     arrays.grow()
+        except BaseException as exc:
+            # Ctrl-C lands between two batches: keep what was received.
+            if not isinstance(exc, LeptrinoError) and not hasattr(exc, "recording"):
+                try:
+                    exc.recording = arrays.result(self._offset)  # type: ignore[attr-defined]
+                except Exception:
+                    pass
+            raise
         finally:
             if started and self._serial is not None:
                 try:

@@ -77,6 +77,33 @@ def test_stream_sigint_exits_0(backend: str) -> None:
     assert "samples" in err
 
 
+def test_stream_sigterm_writes_every_sample_received(backend: str) -> None:
+    # The batch in flight when the signal comes is written, not dropped:
+    # every sample the virtual sensor sent is a row of the output.
+    import leptrino
+
+    env = subprocess_env(LEPTRINO_BACKEND=backend)
+    sim = leptrino.Simulator(backend=backend)
+    with sim as port:
+        p = subprocess.Popen([sys.executable, "-m", "leptrino", "stream", port],
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                             env=env)
+        try:
+            assert p.stdout is not None
+            assert p.stdout.readline().startswith("t,fx")
+            time.sleep(0.45)
+            p.send_signal(signal.SIGTERM)
+            out, err = p.communicate(timeout=20)
+        finally:
+            p.kill() if p.poll() is None else None
+        sent = sim.stats.samples_sent  # the stream was stopped before the exit
+    assert p.returncode == 0, err
+    rows = out.splitlines()
+    assert len(rows) >= 100
+    assert len(rows) == sent, (len(rows), sent, err)
+    assert f"{sent} samples" in err
+
+
 def test_exit_codes(backend: str, tmp_path: Path) -> None:
     assert run(backend, "info").returncode == 2
     assert run(backend, "stream", "--sim", "--count", "0").returncode == 2

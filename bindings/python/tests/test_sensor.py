@@ -205,6 +205,23 @@ def test_disconnect_during_record(backend: str) -> None:
     # leaving the with block after the hang-up is clean
 
 
+def test_ctrl_c_during_record_keeps_the_samples(backend: str) -> None:
+    import _thread
+
+    with leptrino.Simulator(backend=backend) as port, \
+            leptrino.Sensor(port, backend=backend) as s:
+        timer = threading.Timer(0.4, _thread.interrupt_main)  # as Ctrl-C would
+        timer.start()
+        try:
+            with pytest.raises(KeyboardInterrupt) as info:
+                s.record(seconds=10.0)
+        finally:
+            timer.cancel()
+        partial = info.value.recording  # type: ignore[attr-defined]
+        assert 100 <= len(partial) <= 12000 and partial.missing() == 0
+        assert not s.streaming  # and the stream was stopped
+
+
 def test_disconnect_while_streaming(backend: str) -> None:
     sim = leptrino.Simulator(hangup_after_s=0.5, backend=backend)
     with sim as port, leptrino.Sensor(port, backend=backend) as s:
