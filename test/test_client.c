@@ -247,6 +247,43 @@ static void test_sync_gives_up_on_endless_noise(void)
     (void)lep_device_feed(&sio.dev, start, sizeof(start), &ev, out, sizeof(out), &n);
     sio.silent = true;
     TEST_ASSERT_EQUAL_INT(LEP_E_NO_SYNC, lep_client_sync(&client, 20, NULL));
+    /* The stop's timeout, then at most 20 timeouts + the quiet time of draining. */
+    TEST_ASSERT_TRUE(sio.now <= LEP_CLIENT_DEFAULT_TIMEOUT_MS * 21u + 20u + 2u);
+}
+
+static void test_late_answer_is_skipped_by_the_next_query(void)
+{
+    static const uint8_t rated_answer[28] = {0x1C, 0xFF, 0x2B, 0x00, 0x00, 0x00, 0x80, 0x3F,
+                                             0x00, 0x00, 0x80, 0x3F, 0x00, 0x00, 0x80, 0x3F,
+                                             0x00, 0x00, 0x80, 0x3F, 0x00, 0x00, 0x80, 0x3F,
+                                             0x00, 0x00, 0x80, 0x3F};
+    lep_rated rated;
+    lep_product_info info;
+    sio.silent = true;
+    TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, lep_client_rated(&client, &rated));
+    sio.silent = false;
+    script_push_msg(&sio, rated_answer, sizeof(rated_answer)); /* the answer, too late */
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_product_info(&client, &info));
+    TEST_ASSERT_EQUAL_STRING("12345678", info.serial);
+    TEST_ASSERT_EQUAL_UINT32(1, stats().unexpected);
+    TEST_ASSERT_EQUAL_UINT32(1, stats().timeouts);
+}
+
+static void test_timeout_applies_to_each_attempt(void)
+{
+    /* A NAK just before the deadline restarts the wait for the retransmission. */
+    static const uint8_t nak[2] = {LEP_DLE, LEP_NAK};
+    lep_command cmd = {LEP_CMD_RATED, 0};
+    size_t used;
+    sio.silent = true;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_send(&client, &cmd));
+    sio.now += LEP_CLIENT_DEFAULT_TIMEOUT_MS - 1u;
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step(&client, nak, sizeof(nak), &used));
+    TEST_ASSERT_EQUAL_UINT(2, sio.writes);
+    sio.now += LEP_CLIENT_DEFAULT_TIMEOUT_MS - 1u;
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step(&client, NULL, 0, &used));
+    sio.now += 1u;
+    TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, lep_client_step(&client, NULL, 0, &used));
 }
 
 static void test_stream_start_next_stop(void)
@@ -739,6 +776,8 @@ int main(void)
     RUN_TEST(test_sync_recovers_stale_stream);
     RUN_TEST(test_sync_on_a_silent_line_times_out);
     RUN_TEST(test_sync_gives_up_on_endless_noise);
+    RUN_TEST(test_late_answer_is_skipped_by_the_next_query);
+    RUN_TEST(test_timeout_applies_to_each_attempt);
     RUN_TEST(test_stream_start_next_stop);
     RUN_TEST(test_start_while_streaming_is_a_state_error);
     RUN_TEST(test_next_samples_batches_buffered_data);

@@ -93,7 +93,9 @@ LEP_API size_t lep_client_size(void);
  * Returns LEP_E_ARG when c or io is NULL or io lacks write or now_ms. */
 LEP_API int lep_client_init(lep_client *c, const lep_io *io);
 
-/* Transaction timeout in ms (> 0), default 100. Returns LEP_E_ARG if <= 0. */
+/* Transaction timeout in ms (> 0), default 100, for each attempt: a NAK
+ * restarts it for the retransmission, so a transaction takes at most
+ * (retries + 1) x timeout. Returns LEP_E_ARG if <= 0. */
 LEP_API int lep_client_set_timeout(lep_client *c, int timeout_ms);
 
 /* Times a NAKed command is sent again before LEP_E_NAK (0..255), default 3. */
