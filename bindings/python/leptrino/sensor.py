@@ -440,10 +440,12 @@ class Stream:
         if not self._started:
             raise StopIteration
         if self._count is not None and self._n >= self._count:
+            self.close()  # done: do not leave the sensor streaming until collected
             raise StopIteration
         if self._end is not None:
             left = self._end - float(self._sensor._be.lib.lep_monotonic_seconds())
             if left <= 0:
+                self.close()
                 raise StopIteration
         sample = self._sensor.next_sample()
         self._n += 1

@@ -90,6 +90,18 @@ def test_stream_context_manager(backend: str) -> None:
         s.read()  # handshake works again after the stream
 
 
+def test_stream_iterator_stops_the_stream_when_exhausted(backend: str) -> None:
+    with leptrino.Simulator(backend=backend) as port, \
+            leptrino.Sensor(port, backend=backend) as s:
+        it = s.stream(count=5)  # kept alive: no with block, no garbage collection
+        assert len(list(it)) == 5
+        assert not s.streaming
+        it2 = s.stream(seconds=0.1)
+        assert len(list(it2)) > 0
+        assert not s.streaming
+        assert s.read() is not None  # handshake works again
+
+
 def test_record_one_second(backend: str) -> None:
     with leptrino.Simulator(backend=backend) as port, leptrino.Sensor(port, backend=backend) as s:
         rec = s.record(1.0)
