@@ -58,7 +58,8 @@ LEP_API int lep_device_init(lep_device *d, const lep_product_info *info, const l
                             uint8_t filter);
 
 /* Feed bytes received from the host; consumes up to and including the byte
- * that completes a frame and returns the count. On LEP_DEVICE_COMMAND and
+ * that completes a frame and returns the count (at least 1 when len > 0;
+ * 0 with ev->type LEP_DEVICE_NONE for a NULL argument). On LEP_DEVICE_COMMAND and
  * LEP_DEVICE_NAK the frame to send back is in out[0..*out_len) (cap of
  * LEP_MAX_FRAME always suffices); otherwise *out_len is 0. If cap is too
  * small the answer is dropped and *out_len is 0. */

@@ -77,9 +77,10 @@ typedef struct lep_frame_decoder {
 LEP_API void lep_frame_decoder_init(lep_frame_decoder *d);
 
 /* Consume bytes of data[0..len) up to and including the first one that
- * completes an event, and return how many were consumed. Call again with the
- * rest. ev->type is LEP_FRAME_NONE when all input was consumed without an
- * event. Never fails; d, ev must not be NULL (data may be NULL when len is 0). */
+ * completes an event, and return how many were consumed (at least 1 when
+ * len > 0). Call again with the rest. ev->type is LEP_FRAME_NONE when all
+ * input was consumed without an event. Never fails; d, ev must not be NULL
+ * (data may be NULL when len is 0). */
 LEP_API size_t lep_frame_decoder_feed(lep_frame_decoder *d, const uint8_t *data, size_t len,
                                       lep_frame_event *ev);
 
