@@ -40,7 +40,8 @@ LEP_API size_t lep_frame_size(const uint8_t *msg, size_t len);
 enum lep_frame_event_type {
     LEP_FRAME_NONE = 0,    /* all input consumed, no event */
     LEP_FRAME_MESSAGE = 1, /* a complete message with a correct BCC */
-    LEP_FRAME_NAK = 2,     /* DLE NAK between messages */
+    LEP_FRAME_NAK = 2,     /* DLE NAK (inside a frame it also drops the partial frame, counted
+                              as an escape error, so a NAK is never lost) */
     LEP_FRAME_ERROR = 3    /* a frame was rejected: see error */
 };
 

@@ -120,6 +120,16 @@ static bool append(lep_frame_decoder *d, lep_frame_event *ev, uint8_t b)
     return true;
 }
 
+/* A DLE NAK completed: deliver it and hunt for the next frame. */
+static bool nak(lep_frame_decoder *d, lep_frame_event *ev)
+{
+    d->state = S_IDLE;
+    d->raw = 0;
+    d->stats.naks++;
+    ev->type = LEP_FRAME_NAK;
+    return true;
+}
+
 /* Advance by one byte; true when it completed an event. */
 static bool step(lep_frame_decoder *d, uint8_t b, lep_frame_event *ev)
 {
@@ -135,10 +145,7 @@ static bool step(lep_frame_decoder *d, uint8_t b, lep_frame_event *ev)
         if (b == LEP_STX) {
             begin_frame(d);
         } else if (b == LEP_NAK) {
-            d->state = S_IDLE;
-            d->stats.naks++;
-            ev->type = LEP_FRAME_NAK;
-            return true;
+            return nak(d, ev);
         } else if (b == LEP_DLE) {
             d->stats.bytes_discarded++; /* the earlier DLE; this one may still start a frame */
         } else {
@@ -169,6 +176,13 @@ static bool step(lep_frame_decoder *d, uint8_t b, lep_frame_event *ev)
             d->stats.restarts++;
             begin_frame(d);
             return false;
+        }
+        if (b == LEP_NAK) {
+            /* The sensor NAKs while a frame of its is broken off: drop the
+             * partial frame (an escape error) but never lose the NAK. */
+            d->stats.bytes_discarded += (uint32_t)(d->raw - 2u);
+            d->stats.escape_errors++;
+            return nak(d, ev);
         }
         reject(d, ev, LEP_E_ESCAPE, S_IDLE);
         return true;
@@ -204,6 +218,8 @@ static bool step(lep_frame_decoder *d, uint8_t b, lep_frame_event *ev)
     case S_SKIP_DLE:
         if (b == LEP_STX) {
             begin_frame(d);
+        } else if (b == LEP_NAK) {
+            return nak(d, ev);
         } else {
             d->stats.bytes_discarded += 2;
             d->state = b == LEP_ETX ? S_SKIP_BCC : (b == LEP_DLE ? S_SKIP : S_IDLE);

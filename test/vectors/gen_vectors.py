@@ -78,6 +78,12 @@ class RefDecoder:
         self.buf = bytearray()
         self.raw = 2
 
+    def _nak(self) -> None:
+        self.events.append({"type": "nak"})
+        self.stats["naks"] += 1
+        self.raw = 0
+        self.state = "idle"
+
     def _append(self, b: int) -> None:
         if len(self.buf) >= MAX_MESSAGE:
             self._reject("too_long", "overruns", "skip")
@@ -100,9 +106,7 @@ class RefDecoder:
             if b == STX:
                 self._begin()
             elif b == NAK:
-                self.events.append({"type": "nak"})
-                st["naks"] += 1
-                self.state = "idle"
+                self._nak()
             elif b == DLE:
                 st["bytes_discarded"] += 1  # the first DLE; this one may start a frame
             else:
@@ -125,6 +129,10 @@ class RefDecoder:
                 st["bytes_discarded"] += self.raw - 2
                 st["restarts"] += 1
                 self._begin()
+            elif b == NAK:  # the partial frame is dropped, the NAK is kept
+                st["bytes_discarded"] += self.raw - 2
+                st["escape_errors"] += 1
+                self._nak()
             else:
                 self._reject("escape", "escape_errors", "idle")
         elif s == "bcc":
@@ -144,6 +152,8 @@ class RefDecoder:
         elif s == "skip_dle":
             if b == STX:
                 self._begin()
+            elif b == NAK:
+                self._nak()
             else:
                 st["bytes_discarded"] += 2
                 self.state = {ETX: "skip_bcc", DLE: "skip"}.get(b, "idle")
@@ -317,8 +327,11 @@ def frames_vectors() -> dict[str, Any]:
         ("illegal byte after DLE, then resync on the next frame",
          unhex("10 02 04 FF 10 41 2A 00 10 03 D2") + frame(rated),
          [err_ev("escape"), msg_ev(rated)]),
-        ("DLE NAK inside a frame is an illegal escape",
-         unhex("10 02 04 FF 10 15") + frame(pi), [err_ev("escape"), msg_ev(pi)]),
+        ("DLE NAK inside a frame drops the partial frame and is delivered",
+         unhex("10 02 04 FF 10 15") + frame(pi), [nak_ev, msg_ev(pi)]),
+        ("DLE NAK inside an over-long frame is delivered",
+         frame(over129)[:-3] + unhex("10 15") + frame(pi),
+         [err_ev("too_long"), nak_ev, msg_ev(pi)]),
         ("over-long frame (129 bytes) then a good frame", frame(over129) + frame(pi),
          [err_ev("too_long"), msg_ev(pi)]),
         ("over-long frame whose stuffed 10 10 02 must not resync",
