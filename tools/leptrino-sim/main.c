@@ -56,7 +56,7 @@ static const char usage[] =
     "  --start-streaming     power up already streaming (a stream left by an earlier program)\n"
     "other:\n"
     "  --link PATH           also make a symlink to the port at PATH; the first line shows it\n"
-    "  --exit-after S        exit by itself after S seconds\n"
+    "  --exit-after S        exit by itself after S seconds (0: never)\n"
     "  --stats               print the simulator's counters on stderr at exit\n"
     "  --list-models         print the model presets with their rated values, then exit\n"
     "  --help, --version\n";
