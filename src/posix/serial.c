@@ -9,7 +9,6 @@
 #include <fcntl.h>
 #include <limits.h>
 #include <poll.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -26,6 +25,7 @@
 #include <IOKit/serial/ioss.h>
 #endif
 
+#include "errmsg.h"
 #include "leptrino/error.h"
 #include "leptrino/serial.h"
 #include "posix_clock.h"
@@ -48,16 +48,6 @@ struct lep_serial {
     char path[PATH_MAX];
 };
 
-static void set_err(char *err, size_t errlen, const char *fmt, ...)
-{
-    va_list ap;
-    if (err == NULL || errlen == 0)
-        return;
-    va_start(ap, fmt);
-    vsnprintf(err, errlen, fmt, ap);
-    va_end(ap);
-}
-
 static int open_error(int e, const char *path, char *err, size_t errlen)
 {
     switch (e) {
@@ -65,27 +55,27 @@ static int open_error(int e, const char *path, char *err, size_t errlen)
     case ENOTDIR:
     case ELOOP:
     case ENAMETOOLONG:
-        set_err(err, errlen, "%s: no such port", path);
+        lep_priv_set_err(err, errlen, "%s: no such port", path);
         return LEP_E_NOT_FOUND;
     case ENXIO:
     case ENODEV:
-        set_err(err, errlen, "%s: no device behind this port (unplugged?)", path);
+        lep_priv_set_err(err, errlen, "%s: no device behind this port (unplugged?)", path);
         return LEP_E_NOT_FOUND;
     case EACCES:
     case EPERM:
     case EROFS:
-        set_err(err, errlen,
+        lep_priv_set_err(err, errlen,
                 "%s: permission denied (add yourself to the port's group, e.g. dialout, or use a udev rule)",
                 path);
         return LEP_E_PERMISSION;
     case EBUSY:
-        set_err(err, errlen, "%s: in use by another program", path);
+        lep_priv_set_err(err, errlen, "%s: in use by another program", path);
         return LEP_E_BUSY;
     case EISDIR:
-        set_err(err, errlen, "%s: not a terminal device (a directory)", path);
+        lep_priv_set_err(err, errlen, "%s: not a terminal device (a directory)", path);
         return LEP_E_NOT_TTY;
     default:
-        set_err(err, errlen, "%s: cannot open: %s", path, strerror(e));
+        lep_priv_set_err(err, errlen, "%s: cannot open: %s", path, strerror(e));
         return LEP_E_IO;
     }
 }
@@ -110,7 +100,7 @@ static int configure(lep_serial *s, char *err, size_t errlen)
 {
     struct termios t;
     if (tcgetattr(s->fd, &t) != 0) {
-        set_err(err, errlen, "%s: cannot read the port settings: %s", s->path, strerror(errno));
+        lep_priv_set_err(err, errlen, "%s: cannot read the port settings: %s", s->path, strerror(errno));
         return LEP_E_IO;
     }
     s->saved = t;
@@ -125,14 +115,14 @@ static int configure(lep_serial *s, char *err, size_t errlen)
     cfsetospeed(&t, B460800);
 #endif
     if (tcsetattr(s->fd, TCSANOW, &t) != 0) {
-        set_err(err, errlen, "%s: cannot set 460800 8N1 raw mode: %s", s->path, strerror(errno));
+        lep_priv_set_err(err, errlen, "%s: cannot set 460800 8N1 raw mode: %s", s->path, strerror(errno));
         return LEP_E_IO;
     }
 #if defined(__APPLE__)
     {
         speed_t speed = LEP_BAUD;
         if (ioctl(s->fd, IOSSIOSPEED, &speed) != 0) {
-            set_err(err, errlen, "%s: cannot set 460800 baud: %s", s->path, strerror(errno));
+            lep_priv_set_err(err, errlen, "%s: cannot set 460800 baud: %s", s->path, strerror(errno));
             return LEP_E_IO;
         }
     }
@@ -239,11 +229,11 @@ int lep_serial_open(const char *path, lep_serial **out, char *err, size_t errlen
     if (out != NULL)
         *out = NULL;
     if (path == NULL || out == NULL || path[0] == '\0') {
-        set_err(err, errlen, "no port given");
+        lep_priv_set_err(err, errlen, "no port given");
         return LEP_E_ARG;
     }
     if (strlen(path) >= PATH_MAX) {
-        set_err(err, errlen, "%.64s...: path too long", path);
+        lep_priv_set_err(err, errlen, "%.64s...: path too long", path);
         return LEP_E_NOT_FOUND;
     }
     fd = open(path, O_RDWR | O_NOCTTY | O_CLOEXEC | O_NONBLOCK);
@@ -258,7 +248,7 @@ int lep_serial_open(const char *path, lep_serial **out, char *err, size_t errlen
             else if (S_ISCHR(st.st_mode))
                 what = " (a character device that is not a tty)";
         }
-        set_err(err, errlen, "%s: not a terminal device%s", path, what);
+        lep_priv_set_err(err, errlen, "%s: not a terminal device%s", path, what);
         close(fd);
         return LEP_E_NOT_TTY;
     }
@@ -267,16 +257,16 @@ int lep_serial_open(const char *path, lep_serial **out, char *err, size_t errlen
         int e = errno;
         close(fd);
         if (e == EWOULDBLOCK || e == EAGAIN) {
-            set_err(err, errlen, "%s: in use by another program", path);
+            lep_priv_set_err(err, errlen, "%s: in use by another program", path);
             return LEP_E_BUSY;
         }
-        set_err(err, errlen, "%s: cannot lock: %s", path, strerror(e));
+        lep_priv_set_err(err, errlen, "%s: cannot lock: %s", path, strerror(e));
         return LEP_E_IO;
     }
     s = calloc(1, sizeof *s);
     if (s == NULL) {
         close(fd);
-        set_err(err, errlen, "%s: out of memory", path);
+        lep_priv_set_err(err, errlen, "%s: out of memory", path);
         return LEP_E_IO;
     }
     s->fd = fd;

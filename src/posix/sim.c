@@ -11,7 +11,6 @@
 #include <poll.h>
 #include <pthread.h>
 #include <signal.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -19,6 +18,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "errmsg.h"
 #include "leptrino/device.h"
 #include "leptrino/error.h"
 #include "leptrino/frame.h"
@@ -71,16 +71,6 @@ struct lep_sim {
     int64_t stall_until, stall_at, hangup_at, reopen_at; /* 0: none */
     bool hung;
 };
-
-static void set_err(char *err, size_t errlen, const char *fmt, ...)
-{
-    va_list ap;
-    if (err == NULL || errlen == 0)
-        return;
-    va_start(ap, fmt);
-    vsnprintf(err, errlen, fmt, ap);
-    va_end(ap);
-}
 
 void lep_sim_options_init(lep_sim_options *o)
 {
@@ -153,17 +143,17 @@ static int open_pty(lep_sim *s, char *err, size_t errlen)
     int m = posix_openpt(O_RDWR | O_NOCTTY);
     const char *name;
     if (m < 0) {
-        set_err(err, errlen, "cannot open a pseudo-terminal: %s", strerror(errno));
+        lep_priv_set_err(err, errlen, "cannot open a pseudo-terminal: %s", strerror(errno));
         return LEP_E_IO;
     }
     if (grantpt(m) != 0 || unlockpt(m) != 0 || set_flags(m) != 0) {
-        set_err(err, errlen, "cannot set up the pseudo-terminal: %s", strerror(errno));
+        lep_priv_set_err(err, errlen, "cannot set up the pseudo-terminal: %s", strerror(errno));
         close(m);
         return LEP_E_IO;
     }
 #if defined(__linux__)
     if (ptsname_r(m, s->pty, sizeof s->pty) != 0) {
-        set_err(err, errlen, "cannot name the pseudo-terminal: %s", strerror(errno));
+        lep_priv_set_err(err, errlen, "cannot name the pseudo-terminal: %s", strerror(errno));
         close(m);
         return LEP_E_IO;
     }
@@ -171,7 +161,7 @@ static int open_pty(lep_sim *s, char *err, size_t errlen)
 #else
     name = ptsname(m);
     if (name == NULL || strlen(name) >= sizeof s->pty) {
-        set_err(err, errlen, "cannot name the pseudo-terminal");
+        lep_priv_set_err(err, errlen, "cannot name the pseudo-terminal");
         close(m);
         return LEP_E_IO;
     }
@@ -180,14 +170,14 @@ static int open_pty(lep_sim *s, char *err, size_t errlen)
     (void)name;
     s->slave = open(s->pty, O_RDWR | O_NOCTTY | O_CLOEXEC | O_NONBLOCK);
     if (s->slave < 0) {
-        set_err(err, errlen, "%s: cannot open: %s", s->pty, strerror(errno));
+        lep_priv_set_err(err, errlen, "%s: cannot open: %s", s->pty, strerror(errno));
         close(m);
         return LEP_E_IO;
     }
     raw_termios(s->slave);
     s->master = m;
     if (s->link[0] != '\0' && relink(s->link, s->pty) != 0) {
-        set_err(err, errlen, "%s: cannot make the link: %s", s->link, strerror(errno));
+        lep_priv_set_err(err, errlen, "%s: cannot make the link: %s", s->link, strerror(errno));
         close(s->slave);
         close(s->master);
         s->slave = s->master = -1;
@@ -645,53 +635,53 @@ static int check_options(const lep_sim_options *o, char *err, size_t errlen)
     lep_rated r;
     const char *model = o->model ? o->model : "PFS055YA501U6";
     if (lep_sim_model_rated(model, &r) != LEP_OK) {
-        set_err(err, errlen,
+        lep_priv_set_err(err, errlen,
                 "unknown model '%s' (known: CFS018CA201U, CFS034CA301U, PFS055YA501U6, PFS080YS102U6)",
                 model);
         return LEP_E_ARG;
     }
     if (o->serial && !all_digits(o->serial, LEP_SERIAL_LEN)) {
-        set_err(err, errlen, "serial '%s': expected 1 to 8 digits", o->serial);
+        lep_priv_set_err(err, errlen, "serial '%s': expected 1 to 8 digits", o->serial);
         return LEP_E_ARG;
     }
     if (o->firmware && !printable(o->firmware, LEP_FIRMWARE_LEN)) {
-        set_err(err, errlen, "firmware '%s': expected 1 to 4 printable ASCII characters", o->firmware);
+        lep_priv_set_err(err, errlen, "firmware '%s': expected 1 to 4 printable ASCII characters", o->firmware);
         return LEP_E_ARG;
     }
     if (!(o->rate_hz >= 1.0 && o->rate_hz <= 10000.0)) {
-        set_err(err, errlen, "rate %g Hz: expected 1 to 10000", o->rate_hz);
+        lep_priv_set_err(err, errlen, "rate %g Hz: expected 1 to 10000", o->rate_hz);
         return LEP_E_ARG;
     }
     if (o->filter > LEP_FILTER_MAX) {
-        set_err(err, errlen, "filter code %u: expected 0 to 3", (unsigned)o->filter);
+        lep_priv_set_err(err, errlen, "filter code %u: expected 0 to 3", (unsigned)o->filter);
         return LEP_E_ARG;
     }
     if (!(o->amplitude >= 0.0 && o->amplitude <= 4.0) || !(o->noise >= 0.0 && o->noise <= 1.0)) {
-        set_err(err, errlen, "amplitude must be 0..4 and noise 0..1 (fractions of rated)");
+        lep_priv_set_err(err, errlen, "amplitude must be 0..4 and noise 0..1 (fractions of rated)");
         return LEP_E_ARG;
     }
     if (!prob_ok(o->p_nak) || !prob_ok(o->p_corrupt) || !prob_ok(o->p_garbage) ||
         !prob_ok(o->p_drop)) {
-        set_err(err, errlen, "fault probabilities must be between 0 and 1");
+        lep_priv_set_err(err, errlen, "fault probabilities must be between 0 and 1");
         return LEP_E_ARG;
     }
     if (!(o->overload_every_s >= 0.0) ||
         (o->overload_every_s > 0 && !(o->overload_duration_s > 0.0 &&
                                       o->overload_duration_s < o->overload_every_s))) {
-        set_err(err, errlen, "overload: every must be >= 0 and 0 < duration < every");
+        lep_priv_set_err(err, errlen, "overload: every must be >= 0 and 0 < duration < every");
         return LEP_E_ARG;
     }
     if (o->stall_ms < 0 || !(o->stall_after_s >= 0.0) || !(o->hangup_after_s >= 0.0) ||
         o->reopen_after_ms < -1) {
-        set_err(err, errlen, "stall, stall-after and hang-up times must be >= 0");
+        lep_priv_set_err(err, errlen, "stall, stall-after and hang-up times must be >= 0");
         return LEP_E_ARG;
     }
     if (o->reopen_after_ms >= 0 && (o->link == NULL || o->link[0] == '\0')) {
-        set_err(err, errlen, "reopen after a hang-up needs a link path");
+        lep_priv_set_err(err, errlen, "reopen after a hang-up needs a link path");
         return LEP_E_ARG;
     }
     if (o->link && strlen(o->link) >= PATH_MAX - 32) {
-        set_err(err, errlen, "link path too long");
+        lep_priv_set_err(err, errlen, "link path too long");
         return LEP_E_ARG;
     }
     return LEP_OK;
@@ -722,7 +712,7 @@ static int init_device(lep_sim *s, char *err, size_t errlen)
     }
     rc = lep_device_init(&s->dev, &s->info, &s->rated, o->filter);
     if (rc != LEP_OK) {
-        set_err(err, errlen, "cannot set up the device: %s", lep_strerror(rc));
+        lep_priv_set_err(err, errlen, "cannot set up the device: %s", lep_strerror(rc));
         return rc;
     }
     if (o->start_streaming) {
@@ -751,7 +741,7 @@ int lep_sim_start(const lep_sim_options *o, lep_sim **out, char *err, size_t err
     if (err != NULL && errlen > 0)
         err[0] = '\0';
     if (out == NULL) {
-        set_err(err, errlen, "no place for the result");
+        lep_priv_set_err(err, errlen, "no place for the result");
         return LEP_E_ARG;
     }
     *out = NULL;
@@ -764,7 +754,7 @@ int lep_sim_start(const lep_sim_options *o, lep_sim **out, char *err, size_t err
         return rc;
     s = calloc(1, sizeof *s);
     if (s == NULL) {
-        set_err(err, errlen, "out of memory");
+        lep_priv_set_err(err, errlen, "out of memory");
         return LEP_E_IO;
     }
     s->master = s->slave = -1;
@@ -783,7 +773,7 @@ int lep_sim_start(const lep_sim_options *o, lep_sim **out, char *err, size_t err
     (void)lep_sim_model_rated(s->model, &s->rated);
     if (pthread_mutex_init(&s->lock, NULL) != 0) {
         free(s);
-        set_err(err, errlen, "cannot create a mutex");
+        lep_priv_set_err(err, errlen, "cannot create a mutex");
         return LEP_E_IO;
     }
     rc = lep_priv_signal_init(&s->sig, o, &s->rated, err, errlen);
@@ -797,7 +787,7 @@ int lep_sim_start(const lep_sim_options *o, lep_sim **out, char *err, size_t err
     s->opt.firmware = NULL;
     if (rc == LEP_OK && (pipe(s->wake) != 0 || set_flags(s->wake[0]) != 0 ||
                          set_flags(s->wake[1]) != 0)) {
-        set_err(err, errlen, "cannot create a pipe: %s", strerror(errno));
+        lep_priv_set_err(err, errlen, "cannot create a pipe: %s", strerror(errno));
         rc = LEP_E_IO;
     }
     if (rc == LEP_OK)
@@ -822,7 +812,7 @@ int lep_sim_start(const lep_sim_options *o, lep_sim **out, char *err, size_t err
     rc = pthread_create(&s->thread, NULL, serve, s);
     pthread_sigmask(SIG_SETMASK, &old, NULL);
     if (rc != 0) {
-        set_err(err, errlen, "cannot start the serving thread");
+        lep_priv_set_err(err, errlen, "cannot start the serving thread");
         lep_sim_stop(s);
         return LEP_E_IO;
     }

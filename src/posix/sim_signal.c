@@ -7,11 +7,11 @@
 
 #include <ctype.h>
 #include <errno.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "errmsg.h"
 #include "leptrino/error.h"
 #include "sim_signal.h"
 
@@ -30,16 +30,6 @@ uint64_t lep_priv_splitmix64(uint64_t *state)
 double lep_priv_uniform(uint64_t *state)
 {
     return (double)(lep_priv_splitmix64(state) >> 11) * (1.0 / 9007199254740992.0);
-}
-
-static void set_err(char *err, size_t errlen, const char *fmt, ...)
-{
-    va_list ap;
-    if (err == NULL || errlen == 0)
-        return;
-    va_start(ap, fmt);
-    vsnprintf(err, errlen, fmt, ap);
-    va_end(ap);
 }
 
 /* Parse one CSV line of 6 or 7 integers. Returns 1 for a row, 0 for a line
@@ -102,7 +92,7 @@ static int load_replay(lep_sim_signal *g, const char *file, char *err, size_t er
     size_t cap = 0, lineno = 0;
     FILE *f = fopen(file, "r");
     if (f == NULL) {
-        set_err(err, errlen, "%s: cannot open replay file: %s", file, strerror(errno));
+        lep_priv_set_err(err, errlen, "%s: cannot open replay file: %s", file, strerror(errno));
         return errno == ENOENT ? LEP_E_NOT_FOUND : LEP_E_IO;
     }
     while (fgets(line, sizeof line, f) != NULL) {
@@ -114,7 +104,7 @@ static int load_replay(lep_sim_signal *g, const char *file, char *err, size_t er
         if (r == 0)
             continue;
         if (r < 0) {
-            set_err(err, errlen,
+            lep_priv_set_err(err, errlen,
                     "%s:%zu: expected 6 or 7 integers fx,fy,fz,mx,my,mz[,status] (int16, status 0..255)",
                     file, lineno);
             fclose(f);
@@ -126,14 +116,14 @@ static int load_replay(lep_sim_signal *g, const char *file, char *err, size_t er
             int16_t *ns;
             if (nr == NULL) {
                 fclose(f);
-                set_err(err, errlen, "%s: out of memory", file);
+                lep_priv_set_err(err, errlen, "%s: out of memory", file);
                 return LEP_E_IO;
             }
             g->replay = nr;
             ns = realloc(g->replay_status, ncap * sizeof *ns);
             if (ns == NULL) {
                 fclose(f);
-                set_err(err, errlen, "%s: out of memory", file);
+                lep_priv_set_err(err, errlen, "%s: out of memory", file);
                 return LEP_E_IO;
             }
             g->replay_status = ns;
@@ -145,7 +135,7 @@ static int load_replay(lep_sim_signal *g, const char *file, char *err, size_t er
     }
     fclose(f);
     if (g->replay_rows == 0) {
-        set_err(err, errlen, "%s: no samples in replay file", file);
+        lep_priv_set_err(err, errlen, "%s: no samples in replay file", file);
         return LEP_E_VALUE;
     }
     return LEP_OK;
