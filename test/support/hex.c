@@ -4,7 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 
-static int nibble(char c)
+int lep_hex_digit(char c)
 {
     if (c >= '0' && c <= '9') {
         return c - '0';
@@ -34,7 +34,7 @@ int lep_hex_parse(const char *hex, uint8_t *out, size_t cap, size_t *len)
             }
             continue;
         }
-        d = nibble(*hex);
+        d = lep_hex_digit(*hex);
         if (d < 0) {
             return -1;
         }

@@ -5,6 +5,9 @@
 #include <stddef.h>
 #include <stdint.h>
 
+/* Value of one hex digit (0..15), or -1 if c is not one. */
+int lep_hex_digit(char c);
+
 /* Parse hex into out[0..cap); *len gets the byte count. Whitespace between
  * bytes is ignored. Returns 0, or -1 for an odd digit count, a non-hex
  * character or out of room. hex NULL parses as empty. */

@@ -5,6 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "hex.h"
+
 #define MAX_DEPTH 64
 
 struct lep_json {
@@ -73,20 +75,6 @@ static bool literal(parser *ps, const char *word)
     return false;
 }
 
-static int hex_digit(char c)
-{
-    if (c >= '0' && c <= '9') {
-        return c - '0';
-    }
-    if (c >= 'a' && c <= 'f') {
-        return c - 'a' + 10;
-    }
-    if (c >= 'A' && c <= 'F') {
-        return c - 'A' + 10;
-    }
-    return -1;
-}
-
 static bool read_u4(parser *ps, unsigned long *out)
 {
     unsigned long v = 0;
@@ -96,7 +84,7 @@ static bool read_u4(parser *ps, unsigned long *out)
         return false;
     }
     for (i = 0; i < 4; i++) {
-        int d = hex_digit(ps->p[i]);
+        int d = lep_hex_digit(ps->p[i]);
         if (d < 0) {
             fail(ps, "bad \\u escape");
             return false;
