@@ -36,7 +36,8 @@ enum lep_error {
     LEP_E_NOT_TTY = -18,      /* path is not a terminal device */
     LEP_E_STATE = -19,        /* call not valid in the client's current state */
     LEP_E_NO_SYNC = -20,      /* the line never went quiet during recovery */
-    LEP_E_UNSUPPORTED = -21   /* not supported on this platform or port */
+    LEP_E_UNSUPPORTED = -21,  /* not supported on this platform or port */
+    LEP_E_END = -22           /* a session reached its duration or count (not a failure) */
 };
 
 /* Sensor result codes (spec 3.2.1). */

@@ -26,6 +26,7 @@ const char *lep_strerror(int err)
     case LEP_E_STATE: return "not allowed in the current state";
     case LEP_E_NO_SYNC: return "line never went quiet during recovery";
     case LEP_E_UNSUPPORTED: return "not supported";
+    case LEP_E_END: return "end of the requested duration or count";
     default: return "unknown error";
     }
 }

@@ -1,0 +1,251 @@
+/* Host session (OS layer): what a user does with one sensor, written once.
+ *
+ * A session owns a port (a serial path, or an in-process virtual sensor that
+ * it starts and stops) and a client on it. Opening does the start-up
+ * recovery (stop a stale stream, drain, identify), reads the rated values
+ * and the sensor's filter. While streaming it delivers samples in batches of
+ * plain C arrays (struct of arrays, so bindings hand them to numpy without
+ * per-sample work), each with a monotonic arrival time, a UTC time, raw
+ * counts, tare-zeroed counts, SI values (tare, host low-pass, decimation,
+ * rotation and moment-point shift applied, in that order), the sensor's
+ * status bits and the session's flags. Events (gaps, disconnects,
+ * reconnects, tare changes, overload begin/end) are queued beside the data.
+ *
+ * Threads: one thread drives a session (open, start, read, stop, close).
+ * lep_session_tare, _untare, _set_tare, _get_tare, _set_lowpass,
+ * _set_rotation, _get_health and _get_metadata may also be called from other
+ * threads at any time (a mutex inside the session); they never block on I/O.
+ * Sessions are independent: several in one process just work.
+ *
+ * Errors are LEP_E_* codes (leptrino/error.h); functions taking err/errlen
+ * also write a one-line message there (naming the port) when err is not NULL. */
+#ifndef LEPTRINO_SESSION_H
+#define LEPTRINO_SESSION_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "client.h"
+#include "export.h"
+#include "message.h"
+#include "sim.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct lep_session lep_session;
+
+/* Nominal output rate of the spec when the sensor does not report its own. */
+#define LEP_SESSION_NOMINAL_HZ 1200.0
+
+/* Options; start from lep_session_options_init(). Copied at open. */
+typedef struct lep_session_options {
+    /* ---- the port ---- */
+    const char *port;        /* serial port path (used when use_sim is false) */
+    bool use_sim;            /* start an in-process virtual sensor with sim instead */
+    lep_sim_options sim;     /* its options (lep_sim_options_init'ed by default) */
+    /* ---- start-up and transactions ---- */
+    int timeout_ms;          /* answer timeout per attempt, default 500 */
+    int sync_quiet_ms;       /* quiet time that ends the start-up drain, default 30 */
+    /* ---- stream ---- */
+    int data_timeout_ms;     /* no sample for this long while streaming: a disconnect
+                                (reconnect) or LEP_E_TIMEOUT, default 2000 */
+    double gap_periods;      /* a hole longer than this many nominal periods is a gap, default 3 */
+    double nominal_hz;       /* 0 (default): the sensor's output-rate field, else 1200 */
+    bool reconnect;          /* after a disconnect or data timeout, reopen with backoff,
+                                re-sync and restart the stream (default false) */
+    int reconnect_min_ms;    /* backoff from ... (default 100) */
+    int reconnect_max_ms;    /* ... doubling up to this (default 1000) */
+    int reconnect_give_up_ms; /* give up after this long without the sensor, < 0 never (default) */
+    int latency_ms;          /* latency budget: how long delivery may hold samples back to
+                                save wake-ups; 0 (default) delivers as soon as a read returns */
+    /* ---- processing (all can be changed later except tare_samples) ---- */
+    unsigned tare_samples;   /* tare over the first N samples after start; they are not
+                                delivered (0 = none) */
+    double lowpass_hz;       /* host low-pass cut-off on SI values, 0 = off */
+    unsigned decimate;       /* deliver every Nth sample (after the low-pass), default 1 */
+    double rotation[9];      /* row-major R: output force = R f, moment = R m (identity) */
+    double shift_m[3];       /* moment reference point, in the output frame, metres: the
+                                moment about it is m' - r x f' (default 0) */
+    /* ---- end of stream ---- */
+    double duration_s;       /* lep_session_read gives LEP_E_END after this long from the
+                                first delivered sample's arrival, 0 = none */
+    uint64_t count;          /* ... or after this many samples delivered, 0 = none */
+} lep_session_options;
+
+/* Per-sample flags (lep_session_batch.flags). */
+#define LEP_SF_GAP 0x01u      /* a gap (hole, disconnect) lies just before this sample */
+#define LEP_SF_OVERLOAD 0x02u /* overload status bit, or an axis at saturation */
+#define LEP_SF_TARING 0x04u   /* a tare is averaging this sample (zeroed uses the old offset) */
+#define LEP_SF_SETTLING 0x08u /* the host low-pass has not settled since start or a gap */
+
+/* Destination arrays, caller-owned. Every pointer may be NULL to skip that
+ * column. lep_session_read appends from n up to cap. */
+typedef struct lep_session_batch {
+    size_t cap;       /* capacity in samples */
+    size_t n;         /* samples filled so far */
+    double *t_mono;   /* [cap] s, lep_monotonic_seconds() when the read delivering it returned */
+    double *t_utc;    /* [cap] s since 1970-01-01 UTC, the same instant on the wall clock */
+    int16_t *raw;     /* [cap*6] counts as received */
+    double *zeroed;   /* [cap*6] raw - tare offset, counts */
+    double *si;       /* [cap*6] N, N m: zeroed, low-passed, decimated, rotated, shifted */
+    uint8_t *status;  /* [cap] the sensor's LEP_STATUS_* bits */
+    uint8_t *flags;   /* [cap] LEP_SF_* */
+    uint16_t *seq;    /* [cap] the reserved bytes (leptrino-sim's sequence number) */
+} lep_session_batch;
+
+enum lep_session_event_type {
+    LEP_EV_GAP = 1,          /* a hole in the data: lost samples, a stall, a stolen read */
+    LEP_EV_DISCONNECTED = 2, /* the port went away or the data timed out (error says which) */
+    LEP_EV_RECONNECTED = 3,  /* the stream runs again after a disconnect */
+    LEP_EV_TARE = 4,         /* the tare offsets changed (tare done, untare, set) */
+    LEP_EV_OVERLOAD_BEGIN = 5,
+    LEP_EV_OVERLOAD_END = 6
+};
+
+typedef struct lep_session_event {
+    int type;              /* enum lep_session_event_type */
+    uint64_t sample;       /* index (count of samples delivered before it) where it applies */
+    double t_mono;         /* when, monotonic s */
+    double t_utc;          /* when, UTC s */
+    double gap_from;       /* GAP/RECONNECTED: arrival of the last sample before (mono s) */
+    double gap_to;         /* ... and of the first after */
+    uint32_t lost;         /* GAP: samples estimated lost (from sequence numbers on the
+                              virtual sensor, from arrival times otherwise) */
+    int error;             /* DISCONNECTED: LEP_E_DISCONNECTED or LEP_E_TIMEOUT */
+    uint8_t axes;          /* OVERLOAD_*: bit i = axis i saturated; status bits in status */
+    uint8_t status;
+    double tare[LEP_AXES]; /* TARE: the offsets now in force (counts; zeros when untared) */
+} lep_session_event;
+
+/* Health, since lep_session_start. */
+typedef struct lep_session_health {
+    double elapsed_s;       /* from the first sample to the last */
+    double nominal_hz;      /* 1200, or the sensor's output-rate field */
+    double measured_hz;     /* samples received / elapsed (decimation not applied) */
+    double recent_hz;       /* over the last second or so */
+    bool shortfall;         /* measured_hz below 98 % of nominal over at least 1 s */
+    uint64_t received;      /* samples received (tare samples included) */
+    uint64_t delivered;     /* samples delivered (after decimation) */
+    uint64_t lost;          /* samples estimated lost in gaps */
+    uint64_t gaps;
+    uint64_t errors;        /* framing, BCC, invalid messages, timeouts (all connections) */
+    uint64_t overloads;     /* overload episodes begun */
+    uint64_t disconnects;
+    uint64_t reconnects;
+    double max_gap_s;
+    lep_client_stats client; /* the current connection's counters */
+} lep_session_health;
+
+/* What a recording says about itself. Strings are NUL-terminated. */
+typedef struct lep_session_metadata {
+    lep_product_info info;       /* model, serial, firmware, output-rate field */
+    char protocol[24];           /* "v1.13 (32-byte info)" or "output-rate field (38-byte info)" */
+    lep_rated rated;
+    int sensor_filter;           /* the sensor's filter code, -1 when it refused or did not answer */
+    char sensor_filter_label[24]; /* lep_filter_label, or "not supported by this sensor" */
+    double nominal_hz;
+    double lowpass_hz;           /* host low-pass cut-off, 0 off */
+    char lowpass_name[48];       /* the filter's name, "" when off */
+    double lowpass_delay_s;      /* its group delay at low frequency */
+    unsigned decimate;
+    double rotation[9];
+    double shift_m[3];
+    bool tared;
+    double tare[LEP_AXES];       /* counts */
+    double start_utc;            /* UTC s of lep_session_start (0 before) */
+    double start_mono;           /* monotonic s of lep_session_start (0 before) */
+    char port[256];
+    bool sim;
+    char library_version[16];    /* lep_version() */
+} lep_session_metadata;
+
+/* Defaults as documented on each field. o must not be NULL. */
+LEP_API void lep_session_options_init(lep_session_options *o);
+
+/* Rotation matrix (row-major) from roll, pitch, yaw in radians (R = Rz(yaw)
+ * Ry(pitch) Rx(roll)). */
+LEP_API void lep_rotation_from_rpy(double roll, double pitch, double yaw, double r[9]);
+
+/* Open: start the virtual sensor or open the port, start-up recovery,
+ * product info, rated values, filter code (a refusal or no answer is not an
+ * error: sensor_filter = -1). Blocks up to a few answer timeouts. On success
+ * *out owns everything; on failure nothing is left open. LEP_E_ARG for bad
+ * options (message in err), the serial/sim/client error otherwise. */
+LEP_API int lep_session_open(const lep_session_options *o, lep_session **out, char *err,
+                             size_t errlen);
+
+/* Stop the stream if running (best effort), close the port, stop the virtual
+ * sensor, free. NULL is fine. */
+LEP_API void lep_session_close(lep_session *s);
+
+/* Start streaming (resends and recovery as in the client); clears the
+ * health counters and sets start_utc. LEP_E_STATE when already streaming. */
+LEP_API int lep_session_start(lep_session *s);
+
+/* Stop streaming. Samples already received and not yet read are lost. */
+LEP_API int lep_session_stop(lep_session *s);
+
+/* Append samples to b (from b->n up to b->cap). Waits up to timeout_ms
+ * (< 0 forever) for the first one; then returns when b is full, or at once
+ * when the latency budget is 0, or when the budget since the first new
+ * sample's arrival has run out. Returns LEP_OK when at least one sample was
+ * appended or an event was queued; LEP_E_TIMEOUT when nothing came (without
+ * reconnect, after data_timeout_ms of silence the stream counts as lost:
+ * LEP_E_TIMEOUT then and on later calls); LEP_E_END once duration_s or count
+ * is reached (the samples up to the limit are appended first);
+ * LEP_E_DISCONNECTED without reconnect; LEP_E_STATE when not streaming;
+ * LEP_E_ARG. Samples are never lost across calls: a full b leaves the rest
+ * queued for the next call. With reconnect the session reconnects inside this
+ * call and reports it as events. */
+LEP_API int lep_session_read(lep_session *s, lep_session_batch *b, int timeout_ms);
+
+/* Pop the oldest queued event into *ev; false when none. */
+LEP_API bool lep_session_next_event(lep_session *s, lep_session_event *ev);
+
+/* Tare: average the raw counts of the next n samples (or of duration_s
+ * seconds when n is 0) while the stream goes on, then make the mean the
+ * offset and queue LEP_EV_TARE. Replaces a tare in progress. LEP_E_ARG when
+ * both are 0. Usable before start (it begins with the stream). */
+LEP_API int lep_session_tare(lep_session *s, unsigned n, double duration_s);
+/* Zero offsets (queues LEP_EV_TARE; cancels a tare in progress). */
+LEP_API int lep_session_untare(lep_session *s);
+/* Set the offsets in counts (queues LEP_EV_TARE). */
+LEP_API int lep_session_set_tare(lep_session *s, const double offset[LEP_AXES]);
+/* Current offsets; returns true when a tare is in force. */
+LEP_API bool lep_session_get_tare(lep_session *s, double offset[LEP_AXES]);
+/* True while a tare is averaging. */
+LEP_API bool lep_session_taring(lep_session *s);
+
+/* Change the host low-pass (0 = off; LEP_E_VALUE above 0.45 x nominal rate)
+ * and the output frame; take effect from the next sample. */
+LEP_API int lep_session_set_lowpass(lep_session *s, double cutoff_hz);
+LEP_API int lep_session_set_rotation(lep_session *s, const double rotation[9],
+                                     const double shift_m[3]);
+
+LEP_API void lep_session_get_health(lep_session *s, lep_session_health *out);
+LEP_API void lep_session_get_metadata(lep_session *s, lep_session_metadata *out);
+
+/* The metadata as one JSON object (no newline) into buf[0..cap); *len gets
+ * its length. LEP_E_BUFFER when it does not fit (buf then holds nothing
+ * usable). Every front end writes this same object. */
+LEP_API int lep_session_metadata_json(lep_session *s, char *buf, size_t cap, size_t *len);
+
+/* The client, for commands the session does not wrap (a single sample,
+ * filter set). Do not start or stop the stream through it. NULL while
+ * disconnected. */
+LEP_API lep_client *lep_session_client(lep_session *s);
+/* The virtual sensor when use_sim, else NULL (for fault injection). */
+LEP_API lep_sim *lep_session_sim(lep_session *s);
+/* The port's path; the fd to poll for input (-1 while disconnected). */
+LEP_API const char *lep_session_port(const lep_session *s);
+LEP_API int lep_session_fd(const lep_session *s);
+LEP_API bool lep_session_streaming(const lep_session *s);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
