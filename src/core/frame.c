@@ -236,6 +236,16 @@ size_t lep_frame_decoder_feed(lep_frame_decoder *d, const uint8_t *data, size_t 
                               lep_frame_event *ev)
 {
     size_t i;
+    if (ev == NULL) {
+        return 0;
+    }
+    if (d == NULL || (data == NULL && len > 0)) {
+        ev->type = LEP_FRAME_ERROR;
+        ev->error = LEP_E_ARG;
+        ev->msg = NULL;
+        ev->len = 0;
+        return 0;
+    }
     ev->type = LEP_FRAME_NONE;
     ev->error = LEP_OK;
     ev->msg = NULL;
