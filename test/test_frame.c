@@ -11,7 +11,7 @@
 #include "unity.h"
 #include "vectors.h"
 
-#define MAX_EVENTS 64u
+#define MAX_EVENTS 256u
 #define MAX_INPUT 4096u
 #define RANDOM_SPLIT_SEEDS 64u
 

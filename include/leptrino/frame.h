@@ -1,7 +1,12 @@
 /* Frame codec (spec 2.3): DLE STX | stuffed message | DLE ETX | BCC.
  *
  * Sans-I/O: pure functions and a push decoder. No allocation, no clock.
- * The decoder gives identical events for any chunking of the same input. */
+ * The decoder gives identical events for any chunking of the same input.
+ * Its rules where the spec is silent (restart at DLE STX, NAK inside a frame,
+ * over-long frames, resync after a lost BCC byte) are listed with the shared
+ * vectors in test/vectors/README.md. In short, a lost BCC never costs the next
+ * frame: a DLE where the BCC should be (and the BCC is not 0x10) rejects the
+ * frame and may itself start the next one. */
 #ifndef LEPTRINO_FRAME_H
 #define LEPTRINO_FRAME_H
 
