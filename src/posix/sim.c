@@ -45,8 +45,7 @@ struct lep_sim {
 
     /* set at start, read-only afterwards */
     lep_sim_options opt;
-    char model[LEP_MODEL_LEN + 1];
-    char link[PATH_MAX];
+    const char *link; /* opt.link, "" for none */
     char port[PATH_MAX]; /* what lep_sim_port returns: the link, or the pty */
     lep_product_info info;
     lep_rated rated;
@@ -71,22 +70,6 @@ struct lep_sim {
     int64_t stall_until, stall_at, hangup_at, reopen_at; /* 0: none */
     bool hung;
 };
-
-void lep_sim_options_init(lep_sim_options *o)
-{
-    if (o == NULL)
-        return;
-    memset(o, 0, sizeof *o);
-    o->model = "PFS055YA501U6";
-    o->serial = "00000001";
-    o->firmware = "1.13";
-    o->rate_hz = 1200.0;
-    o->seed = 1;
-    o->amplitude = 0.2;
-    o->noise = 0.005;
-    o->overload_duration_s = 0.1;
-    o->reopen_after_ms = -1;
-}
 
 /* ---- pty ---- */
 
@@ -426,7 +409,7 @@ static void remove_link(const lep_sim *s)
 {
     char target[PATH_MAX];
     ssize_t n;
-    if (s->link[0] == '\0')
+    if (s->link == NULL || s->link[0] == '\0')
         return;
     n = readlink(s->link, target, sizeof target - 1);
     if (n < 0)
@@ -603,90 +586,6 @@ static void *serve(void *arg)
 
 /* ---- API ---- */
 
-static bool all_digits(const char *x, size_t max)
-{
-    size_t i, n = strlen(x);
-    if (n == 0 || n > max)
-        return false;
-    for (i = 0; i < n; i++)
-        if (x[i] < '0' || x[i] > '9')
-            return false;
-    return true;
-}
-
-static bool printable(const char *x, size_t max)
-{
-    size_t i, n = strlen(x);
-    if (n == 0 || n > max)
-        return false;
-    for (i = 0; i < n; i++)
-        if (x[i] < 0x20 || x[i] > 0x7E)
-            return false;
-    return true;
-}
-
-static bool prob_ok(double p)
-{
-    return p >= 0.0 && p <= 1.0;
-}
-
-static int check_options(const lep_sim_options *o, char *err, size_t errlen)
-{
-    lep_rated r;
-    const char *model = o->model ? o->model : "PFS055YA501U6";
-    if (lep_sim_model_rated(model, &r) != LEP_OK) {
-        lep_priv_set_err(err, errlen,
-                "unknown model '%s' (known: CFS018CA201U, CFS034CA301U, PFS055YA501U6, PFS080YS102U6)",
-                model);
-        return LEP_E_ARG;
-    }
-    if (o->serial && !all_digits(o->serial, LEP_SERIAL_LEN)) {
-        lep_priv_set_err(err, errlen, "serial '%s': expected 1 to 8 digits", o->serial);
-        return LEP_E_ARG;
-    }
-    if (o->firmware && !printable(o->firmware, LEP_FIRMWARE_LEN)) {
-        lep_priv_set_err(err, errlen, "firmware '%s': expected 1 to 4 printable ASCII characters", o->firmware);
-        return LEP_E_ARG;
-    }
-    if (!(o->rate_hz >= 1.0 && o->rate_hz <= 10000.0)) {
-        lep_priv_set_err(err, errlen, "rate %g Hz: expected 1 to 10000", o->rate_hz);
-        return LEP_E_ARG;
-    }
-    if (o->filter > LEP_FILTER_MAX) {
-        lep_priv_set_err(err, errlen, "filter code %u: expected 0 to 3", (unsigned)o->filter);
-        return LEP_E_ARG;
-    }
-    if (!(o->amplitude >= 0.0 && o->amplitude <= 4.0) || !(o->noise >= 0.0 && o->noise <= 1.0)) {
-        lep_priv_set_err(err, errlen, "amplitude must be 0..4 and noise 0..1 (fractions of rated)");
-        return LEP_E_ARG;
-    }
-    if (!prob_ok(o->p_nak) || !prob_ok(o->p_corrupt) || !prob_ok(o->p_garbage) ||
-        !prob_ok(o->p_drop)) {
-        lep_priv_set_err(err, errlen, "fault probabilities must be between 0 and 1");
-        return LEP_E_ARG;
-    }
-    if (!(o->overload_every_s >= 0.0) ||
-        (o->overload_every_s > 0 && !(o->overload_duration_s > 0.0 &&
-                                      o->overload_duration_s < o->overload_every_s))) {
-        lep_priv_set_err(err, errlen, "overload: every must be >= 0 and 0 < duration < every");
-        return LEP_E_ARG;
-    }
-    if (o->stall_ms < 0 || !(o->stall_after_s >= 0.0) || !(o->hangup_after_s >= 0.0) ||
-        o->reopen_after_ms < -1) {
-        lep_priv_set_err(err, errlen, "stall, stall-after and hang-up times must be >= 0");
-        return LEP_E_ARG;
-    }
-    if (o->reopen_after_ms >= 0 && (o->link == NULL || o->link[0] == '\0')) {
-        lep_priv_set_err(err, errlen, "reopen after a hang-up needs a link path");
-        return LEP_E_ARG;
-    }
-    if (o->link && strlen(o->link) >= PATH_MAX - 32) {
-        lep_priv_set_err(err, errlen, "link path too long");
-        return LEP_E_ARG;
-    }
-    return LEP_OK;
-}
-
 static void copy_field(char *dst, size_t cap, const char *src)
 {
     size_t n = strlen(src);
@@ -701,9 +600,9 @@ static int init_device(lep_sim *s, char *err, size_t errlen)
     const lep_sim_options *o = &s->opt;
     int rc;
     memset(&s->info, 0, sizeof s->info);
-    copy_field(s->info.model, sizeof s->info.model, s->model);
-    copy_field(s->info.serial, sizeof s->info.serial, o->serial ? o->serial : "00000001");
-    copy_field(s->info.firmware, sizeof s->info.firmware, o->firmware ? o->firmware : "1.13");
+    copy_field(s->info.model, sizeof s->info.model, o->model);
+    copy_field(s->info.serial, sizeof s->info.serial, o->serial);
+    copy_field(s->info.firmware, sizeof s->info.firmware, o->firmware);
     if (o->output_rate_field) {
         s->info.has_output_rate = true;
         s->info.output_rate_hz = (uint32_t)(o->rate_hz + 0.5);
@@ -749,7 +648,7 @@ int lep_sim_start(const lep_sim_options *o, lep_sim **out, char *err, size_t err
         lep_sim_options_init(&defaults);
         o = &defaults;
     }
-    rc = check_options(o, err, errlen);
+    rc = lep_sim_options_check(o, err, errlen);
     if (rc != LEP_OK)
         return rc;
     s = calloc(1, sizeof *s);
@@ -761,16 +660,10 @@ int lep_sim_start(const lep_sim_options *o, lep_sim **out, char *err, size_t err
     s->wake[0] = s->wake[1] = -1;
     s->req_stall_ms = -1;
     s->opt = *o;
-    copy_field(s->model, sizeof s->model, o->model ? o->model : "PFS055YA501U6");
-    if (o->link)
-        copy_field(s->link, sizeof s->link, o->link);
-    /* Strings are copied: do not keep the caller's pointers. */
-    s->opt.model = s->model;
-    s->opt.link = s->link[0] ? s->link : NULL;
-    s->opt.replay_csv = NULL;
+    s->link = s->opt.link;
     s->period_ns = NS_PER_S / o->rate_hz;
     s->rng = o->seed ^ 0x5EEDF00DCAFEBEEFu;
-    (void)lep_sim_model_rated(s->model, &s->rated);
+    (void)lep_sim_model_rated(s->opt.model, &s->rated);
     if (pthread_mutex_init(&s->lock, NULL) != 0) {
         free(s);
         lep_priv_set_err(err, errlen, "cannot create a mutex");
@@ -783,8 +676,6 @@ int lep_sim_start(const lep_sim_options *o, lep_sim **out, char *err, size_t err
         return rc;
     }
     rc = init_device(s, err, errlen);
-    s->opt.serial = NULL;
-    s->opt.firmware = NULL;
     if (rc == LEP_OK && (pipe(s->wake) != 0 || set_flags(s->wake[0]) != 0 ||
                          set_flags(s->wake[1]) != 0)) {
         lep_priv_set_err(err, errlen, "cannot create a pipe: %s", strerror(errno));
@@ -793,7 +684,7 @@ int lep_sim_start(const lep_sim_options *o, lep_sim **out, char *err, size_t err
     if (rc == LEP_OK)
         rc = open_pty(s, err, errlen);
     if (rc != LEP_OK) {
-        s->link[0] = '\0';
+        s->link = "";
         lep_sim_stop(s);
         return rc;
     }

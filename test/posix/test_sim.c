@@ -131,9 +131,9 @@ static void test_every_command(void)
     lep_sample smp;
     uint8_t code = 0xFF;
     lep_sim_options_init(&o);
-    o.model = "PFS080YS102U6";
-    o.serial = "12345678";
-    o.firmware = "1.31";
+    snprintf(o.model, sizeof o.model, "%s", "PFS080YS102U6");
+    snprintf(o.serial, sizeof o.serial, "%s", "12345678");
+    snprintf(o.firmware, sizeof o.firmware, "%s", "1.31");
     o.filter = 2;
     start_sim(&o);
     open_client();
@@ -376,7 +376,7 @@ static void test_hangup_after_and_reopen_at_link(void)
     lep_sim_options_init(&o);
     o.hangup_after_s = 0.3;
     o.reopen_after_ms = 200;
-    o.link = link;
+    snprintf(o.link, sizeof o.link, "%s", link);
     start_sim(&o);
     TEST_ASSERT_EQUAL_STRING(link, lep_sim_port(sim));
     open_client();
@@ -586,7 +586,7 @@ static void test_replay_and_determinism(void)
           f);
     fclose(f);
     lep_sim_options_init(&o);
-    o.replay_csv = file;
+    snprintf(o.replay_csv, sizeof o.replay_csv, "%s", file);
     start_sim(&o);
     open_client();
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
@@ -611,7 +611,7 @@ static void test_replay_and_determinism(void)
     (void)unlink(file);
 
     /* a missing replay file is a clear error */
-    o.replay_csv = "/nonexistent/replay.csv";
+    snprintf(o.replay_csv, sizeof o.replay_csv, "%s", "/nonexistent/replay.csv");
     TEST_ASSERT_EQUAL_INT(LEP_E_NOT_FOUND, lep_sim_start(&o, &sim, err, sizeof err));
     TEST_ASSERT_NOT_NULL(strstr(err, "/nonexistent/replay.csv"));
 
@@ -640,7 +640,7 @@ static void test_bad_options(void)
 {
     lep_sim_options o;
     lep_sim_options_init(&o);
-    o.model = "XYZ";
+    snprintf(o.model, sizeof o.model, "%s", "XYZ");
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_sim_start(&o, &sim, err, sizeof err));
     TEST_ASSERT_NOT_NULL(strstr(err, "XYZ"));
     lep_sim_options_init(&o);
@@ -650,7 +650,7 @@ static void test_bad_options(void)
     o.filter = 4;
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_sim_start(&o, &sim, err, sizeof err));
     lep_sim_options_init(&o);
-    o.serial = "12a";
+    snprintf(o.serial, sizeof o.serial, "%s", "12a");
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_sim_start(&o, &sim, err, sizeof err));
     lep_sim_options_init(&o);
     o.p_nak = 1.5;

@@ -198,7 +198,7 @@ static void test_bad_arguments(void)
     expect_usage_error(a2, "fast");
     expect_usage_error(a3, "--bogus");
     expect_usage_error(a4, "--nak");
-    expect_usage_error(a5, "--link");
+    expect_usage_error(a5, "needs link");
     expect_usage_error(a6, "--filter");
     expect_usage_error(a7, "12ab");
 }
