@@ -43,6 +43,7 @@ int lep_sim_start(const lep_sim_options *o, lep_sim **out, char *err, size_t err
         return LEP_E_IO;
     }
     s->master = s->slave = -1;
+    s->lock_fd = -1;
     s->wake[0] = s->wake[1] = -1;
     s->req_stall_ms = -1;
     s->opt = *o;
@@ -67,6 +68,8 @@ int lep_sim_start(const lep_sim_options *o, lep_sim **out, char *err, size_t err
         lep_priv_set_err(err, errlen, "cannot create a pipe: %s", strerror(errno));
         rc = LEP_E_IO;
     }
+    if (rc == LEP_OK)
+        rc = lep_priv_sim_link_claim(s, err, errlen);
     if (rc == LEP_OK)
         rc = lep_priv_sim_open_pty(s, err, errlen);
     if (rc != LEP_OK) {
@@ -163,6 +166,7 @@ void lep_sim_stop(lep_sim *s)
         pthread_join(s->thread, NULL);
     }
     lep_priv_sim_remove_link(s);
+    lep_priv_sim_link_release(s);
     lep_priv_sim_close_pty(s);
     if (s->wake[0] >= 0)
         close(s->wake[0]);

@@ -34,6 +34,8 @@ struct lep_sim {
     /* set at start, read-only afterwards */
     lep_sim_options opt;
     const char *link; /* opt.link, "" for none */
+    int lock_fd;      /* flock held on lock_path while we own the link, or -1 */
+    char lock_path[PATH_MAX];
     char port[PATH_MAX]; /* what lep_sim_port returns: the link, or the pty */
     lep_product_info info;
     lep_rated rated;
@@ -66,9 +68,17 @@ void lep_priv_sim_close_pty(lep_sim *s);
 void lep_priv_sim_flush_out(lep_sim *s);
 bool lep_priv_sim_queue(lep_sim *s, const uint8_t *b, size_t n);
 
-/* sim_link.c */
-int lep_priv_sim_relink(const char *link, const char *target);
+/* sim_link.c: ownership of the link path (see the file's comment) */
+/* Take the link's lock and check what is at the path: LEP_OK (nothing to
+ * do without a link), LEP_E_BUSY (owned by a running sensor, or holding
+ * something that is not a stale pty link), LEP_E_IO, with a message. */
+int lep_priv_sim_link_claim(lep_sim *s, char *err, size_t errlen);
+/* Point the link at s->pty, if what is at the path may be replaced. */
+int lep_priv_sim_relink(const lep_sim *s, char *err, size_t errlen);
+/* Remove the link while it points at our pty. */
 void lep_priv_sim_remove_link(const lep_sim *s);
+/* Remove the lock file and drop the lock (after remove_link). */
+void lep_priv_sim_link_release(lep_sim *s);
 
 /* sim_faults.c */
 void lep_priv_sim_emit(lep_sim *s, const uint8_t *frame, size_t len, bool data);

@@ -86,12 +86,14 @@ int lep_priv_sim_open_pty(lep_sim *s, char *err, size_t errlen)
     }
     raw_termios(s->slave);
     s->master = m;
-    if (s->link[0] != '\0' && lep_priv_sim_relink(s->link, s->pty) != 0) {
-        lep_priv_set_err(err, errlen, "%s: cannot make the link: %s", s->link, strerror(errno));
-        close(s->slave);
-        close(s->master);
-        s->slave = s->master = -1;
-        return LEP_E_IO;
+    if (s->link[0] != '\0') {
+        int rc = lep_priv_sim_relink(s, err, errlen);
+        if (rc != LEP_OK) {
+            close(s->slave);
+            close(s->master);
+            s->slave = s->master = -1;
+            return rc;
+        }
     }
     return LEP_OK;
 }
