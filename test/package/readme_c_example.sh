@@ -1,11 +1,15 @@
 #!/usr/bin/env bash
 # Every ```c block of README.md is a complete program: extract each one,
-# compile it exactly as shown (C99, warnings as errors) against the build
-# tree's headers and shared library, and, when the virtual sensor program is
-# given, run it against leptrino-sim and check that it prints samples.
-# usage: readme_c_example.sh README CC SOURCE_INCLUDE BUILD_INCLUDE LIBLEPTRINO_SO [LEPTRINO_SIM]
+# compile it as shown (C99, warnings as errors) with the given flags (the build
+# tree's, or `pkg-config --cflags --libs leptrino` for an installed copy as the
+# README says), and, when the virtual sensor program is given (not "-"), run it
+# against leptrino-sim and check that it identifies the sensor and prints 10
+# samples.
+# usage: readme_c_example.sh README CC LEPTRINO_SIM|- COMPILER_AND_LINKER_FLAGS...
 set -eu
-readme=$1 cc=$2 inc_src=$3 inc_build=$4 lib=$5 sim=${6:-}
+readme=$1 cc=$2 sim=$3
+shift 3
+[ "$sim" = "-" ] && sim=
 tmp=$(mktemp -d)
 sim_pid=
 cleanup() {
@@ -25,11 +29,9 @@ if [ "$count" -lt 1 ]; then
   echo "FAIL no \`\`\`c block in $readme"; exit 1
 fi
 
-libdir=$(dirname "$lib")
 for i in $(seq 1 "$count"); do
   src="$tmp/example$i.c"
-  if ! "$cc" -std=c99 -Wall -Wextra -Wpedantic -Werror -I"$inc_src" -I"$inc_build" "$src" \
-       -o "$tmp/example$i" -L"$libdir" -lleptrino -Wl,-rpath,"$libdir"; then
+  if ! "$cc" -std=c99 -Wall -Wextra -Wpedantic -Werror "$src" "$@" -o "$tmp/example$i"; then
     echo "FAIL README.md C block $i does not compile and link as shown:"; cat -n "$src"; exit 1
   fi
 done
