@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Firmware configurations of the portable core: each compile-time option
 # (LEP_CONFIG_*) built for a Cortex-M0+ with the project's warnings as errors,
-# and it must really leave code out (a smaller .text than the default build).
+# and it must really leave code out (a smaller .text than the default build);
+# then all of them together.
 # usage: config_builds.sh SOURCE_DIR OPTION...
 set -uo pipefail
 src=$1
@@ -40,4 +41,14 @@ for opt in "$@"; do
     echo "FAIL $opt: $size bytes of .text, nothing left out (is the option implemented?)"; fail=1
   fi
 done
+# All of them together.
+if [ $# -gt 1 ]; then
+  defs=()
+  for opt in "$@"; do defs+=("-D$opt=1"); done
+  if build "$work/all" "${defs[@]}"; then
+    echo "ok   all options: $(text_of "$work/all") bytes of .text"
+  else
+    echo "FAIL all options together: does not build warning-free"; fail=1
+  fi
+fi
 exit $fail
