@@ -5,6 +5,7 @@
  * register block, the clock and the IRQ number; the gateway stays as it is.
  * Register layout: Arm Cortex-M System Design Kit TRM (DDI 0479), APB UART. */
 #include "board.h"
+#include "systick.h"
 
 #ifndef BOARD_CPU_HZ
 #define BOARD_CPU_HZ 25000000u
@@ -28,9 +29,6 @@ typedef struct cmsdk_uart {
 #define UART_CTRL_RX_INT 0x8u
 #define UART_INT_RX 0x2u
 
-#define SYST_CSR (*(volatile uint32_t *)0xE000E010u)
-#define SYST_RVR (*(volatile uint32_t *)0xE000E014u)
-#define SYST_CVR (*(volatile uint32_t *)0xE000E018u)
 #define NVIC_ISER (*(volatile uint32_t *)0xE000E100u)
 #define UART0_RX_IRQ 0u
 
@@ -66,9 +64,7 @@ void board_init(void)
     UART0->bauddiv = BOARD_CPU_HZ / SENSOR_BAUD;
     UART0->ctrl = UART_CTRL_TX_EN | UART_CTRL_RX_EN | UART_CTRL_RX_INT;
     NVIC_ISER = 1u << UART0_RX_IRQ;
-    SYST_RVR = BOARD_CPU_HZ / 1000u - 1u;
-    SYST_CVR = 0u;
-    SYST_CSR = 7u; /* processor clock, interrupt, enable */
+    systick_start_1khz(BOARD_CPU_HZ);
 }
 
 uint32_t board_millis(void)

@@ -17,11 +17,9 @@
 #include <string.h>
 
 #include "board.h"
+#include "systick.h"
 #include "leptrino/leptrino.h"
 
-#define SYST_CSR (*(volatile uint32_t *)0xE000E010u)
-#define SYST_RVR (*(volatile uint32_t *)0xE000E014u)
-#define SYST_CVR (*(volatile uint32_t *)0xE000E018u)
 #define CPU_HZ 25000000u /* mps2-an385 */
 
 #define BYTES_PER_MS 46u /* 460800 baud, 10 bits a byte */
@@ -154,9 +152,7 @@ void board_init(void)
         exit(1);
     }
     uart_ring_init(&board_uart_rx);
-    SYST_RVR = CPU_HZ / 1000u - 1u;
-    SYST_CVR = 0u;
-    SYST_CSR = 7u; /* processor clock, interrupt, enable */
+    systick_start_1khz(CPU_HZ);
 }
 
 uint32_t board_millis(void)
@@ -207,7 +203,7 @@ bool board_should_stop(void)
     if (ticks < END_MS) {
         return false;
     }
-    SYST_CSR = 0u;
+    systick_stop();
     printf("published %lu samples (%lu after the silence), stale %lu, wrong SI %lu; "
            "sensor saw %lu stops, %lu starts, %lu product-info queries; ring overruns %lu\n",
            (unsigned long)seen.published, (unsigned long)seen.published_after_silence,
