@@ -151,14 +151,14 @@ static uint8_t fold(word_t acc)
 }
 
 /* Wrong arguments (kept out of the decoding path). */
-static size_t feed_bad_call(const lep_frame_decoder *d, const uint8_t *data, size_t len, lep_frame_event *ev)
+static size_t feed_bad_call(const lep_frame_decoder *d, size_t len, lep_frame_event *ev)
 {
     if (ev == NULL) {
         return 0;
     }
     ev->msg = NULL;
     ev->len = 0;
-    if (d != NULL && data == NULL && len == 0) {
+    if (d != NULL && len == 0) { /* only data was NULL, and there is nothing to read */
         ev->type = LEP_FRAME_NONE;
         ev->error = LEP_OK;
     } else {
@@ -505,7 +505,7 @@ size_t lep_frame_decoder_feed(lep_frame_decoder *d, const uint8_t *data, size_t 
                               lep_frame_event *ev)
 {
     if (d == NULL || ev == NULL || data == NULL) {
-        return feed_bad_call(d, data, len, ev);
+        return feed_bad_call(d, len, ev);
     }
     return decode(d, data, len, ev, NULL, NULL);
 }
