@@ -133,6 +133,10 @@ static void decoder(int use_cg, int runs, size_t frames)
                                 "instructions of the decode loop incl. the caller's event handling"
                               : "clock_gettime, median of runs");
     json_str("unit", use_cg ? "instructions_per_byte" : "ns_per_byte");
+    json_str("leptrino", "lep_frame_decoder_feed_all: one call per chunk, a handler per event");
+    json_str("leptrino_feed", "lep_frame_decoder_feed: one call per event (and per chunk end)");
+    json_str("plain", "baseline: a per-byte parse function called from the read loop (bench/plain_decoder.c)");
+    json_str("plain_loop", "the same state machine with the loop in its file (state in registers)");
     json_int("frames_per_stream", (long long)frames);
     json_int("runs", runs);
     json_open("streams");
@@ -151,16 +155,20 @@ static void decoder(int use_cg, int runs, size_t frames)
         for (c = 0; c < N_CHUNKS; c++) {
             char key[16];
             size_t m_lep = 0;
+            size_t m_feed = 0;
             size_t m_plain = 0;
             size_t m_loop = 0;
             double t_lep = timed_run(REGION_LEPTRINO, &s, k_chunks[c], runs, &m_lep);
+            double t_feed = timed_run(REGION_FEED, &s, k_chunks[c], runs, &m_feed);
             double t_plain = timed_run(REGION_PLAIN, &s, k_chunks[c], runs, &m_plain);
             double t_loop = timed_run(REGION_PLAIN_LOOP, &s, k_chunks[c], runs, &m_loop);
             double v_lep = t_lep * 1e9 / (double)s.len;
+            double v_feed = t_feed * 1e9 / (double)s.len;
             double v_plain = t_plain * 1e9 / (double)s.len;
             double v_loop = t_loop * 1e9 / (double)s.len;
             if (use_cg) {
                 v_lep = callgrind_ir(REGION_LEPTRINO, st, k_chunks[c], frames) / (double)s.len;
+                v_feed = callgrind_ir(REGION_FEED, st, k_chunks[c], frames) / (double)s.len;
                 v_plain = callgrind_ir(REGION_PLAIN, st, k_chunks[c], frames) / (double)s.len;
                 v_loop = callgrind_ir(REGION_PLAIN_LOOP, st, k_chunks[c], frames) / (double)s.len;
             }
@@ -171,10 +179,14 @@ static void decoder(int use_cg, int runs, size_t frames)
             json_num("ratio_plain_over_leptrino", v_plain / v_lep);
             json_num("plain_loop", v_loop);
             json_num("ratio_plain_loop_over_leptrino", v_loop / v_lep);
+            json_num("leptrino_feed", v_feed);
+            json_num("ratio_plain_over_leptrino_feed", v_plain / v_feed);
             json_int("leptrino_messages", (long long)m_lep);
+            json_int("leptrino_feed_messages", (long long)m_feed);
             json_int("plain_messages", (long long)m_plain);
             json_int("plain_loop_messages", (long long)m_loop);
             json_num("leptrino_msgs_per_s", (double)m_lep / t_lep);
+            json_num("leptrino_feed_msgs_per_s", (double)m_feed / t_feed);
             json_num("plain_msgs_per_s", (double)m_plain / t_plain);
             json_num("plain_loop_msgs_per_s", (double)m_loop / t_loop);
             json_num("leptrino_ns_per_byte", t_lep * 1e9 / (double)s.len);

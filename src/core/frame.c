@@ -168,6 +168,170 @@ static size_t feed_bad_call(const lep_frame_decoder *d, size_t len, lep_frame_ev
     return 0;
 }
 
+/* Count a rejected frame of `wire` wire bytes and make it the event. */
+static void reject(lep_frame_decoder *d, lep_frame_event *ev, int error, size_t wire)
+{
+    d->stats.bytes_discarded += (uint32_t)wire;
+    if (error == LEP_E_BCC) {
+        d->stats.bcc_errors++;
+    } else if (error == LEP_E_ESCAPE) {
+        d->stats.escape_errors++;
+    } else if (error == LEP_E_TOO_LONG) {
+        d->stats.overruns++;
+    }
+    ev->type = LEP_FRAME_ERROR;
+    ev->error = error;
+}
+
+/* One byte (the path of a caller fed byte by byte, e.g. from an ISR ring
+ * buffer): the same states and transitions as decode() below, written as a
+ * switch on the stored state, so a call costs a couple of dozen instructions.
+ * The tests hold both paths to the same events at every chunking. */
+static size_t feed_byte(lep_frame_decoder *d, uint8_t b, lep_frame_event *ev)
+{
+    size_t nx;
+    ev->type = LEP_FRAME_NONE;
+    ev->error = LEP_OK;
+    ev->msg = NULL;
+    ev->len = 0;
+    if (d->state == S_MSG && b != LEP_DLE && d->len < LEP_MAX_MESSAGE) {
+        d->buf[d->len++] = b; /* the usual byte: a message byte */
+        d->bcc ^= b;
+        return 1;
+    }
+    nx = (size_t)d->len + d->raw; /* wire bytes of the frame so far */
+    switch (d->state) {
+    case S_MSG:
+        if (b == LEP_DLE) {
+            d->state = S_MSG_DLE;
+        } else { /* the 129th message byte */
+            reject(d, ev, LEP_E_TOO_LONG, nx + 1u);
+            d->state = S_SKIP;
+        }
+        return 1;
+    case S_MSG_DLE:
+        if (b == LEP_ETX) {
+            d->raw = (uint16_t)(d->raw + 2u);
+            d->state = S_BCC;
+        } else if (b == LEP_DLE) {
+            if (d->len == LEP_MAX_MESSAGE) {
+                reject(d, ev, LEP_E_TOO_LONG, nx + 2u);
+                d->state = S_SKIP;
+                return 1;
+            }
+            d->buf[d->len++] = LEP_DLE;
+            d->bcc ^= LEP_DLE;
+            d->raw++;
+            d->state = S_MSG;
+        } else if (b == LEP_STX) {
+            d->stats.bytes_discarded += (uint32_t)nx;
+            d->stats.restarts++;
+            goto begin2;
+        } else if (b == LEP_NAK) {
+            d->stats.bytes_discarded += (uint32_t)nx;
+            d->stats.escape_errors++;
+            goto nak;
+        } else {
+            reject(d, ev, LEP_E_ESCAPE, nx + 2u);
+            d->state = S_IDLE;
+        }
+        return 1;
+    case S_BCC:
+        if (b == (uint8_t)(d->bcc ^ LEP_ETX)) {
+            if (d->len == 0) {
+                reject(d, ev, LEP_E_LENGTH, nx + 1u);
+                d->state = S_IDLE;
+                return 1;
+            }
+            d->state = b == LEP_DLE ? S_BCC_DLE : S_IDLE;
+            d->stats.messages++;
+            ev->type = LEP_FRAME_MESSAGE;
+            ev->msg = d->buf;
+            ev->len = d->len;
+        } else if (b == LEP_DLE) {
+            reject(d, ev, LEP_E_BCC, nx); /* this DLE may open the next frame */
+            d->state = S_IDLE_DLE;
+        } else {
+            reject(d, ev, LEP_E_BCC, nx + 1u);
+            d->state = S_IDLE;
+        }
+        return 1;
+    case S_IDLE_DLE:
+        if (b == LEP_STX) {
+            goto begin2;
+        }
+        if (b == LEP_NAK) {
+            goto nak;
+        }
+        if (b == LEP_DLE) {
+            d->stats.bytes_discarded++;
+        } else {
+            d->stats.bytes_discarded += 2u;
+            d->state = S_IDLE;
+        }
+        return 1;
+    case S_BCC_DLE:
+        if (b == LEP_STX) {
+            d->raw = 1; /* its DLE was counted with the frame before */
+            goto begin;
+        }
+        if (b == LEP_NAK) {
+            goto nak;
+        }
+        if (b == LEP_DLE) {
+            d->state = S_IDLE_DLE;
+        } else {
+            d->stats.bytes_discarded++;
+            d->state = S_IDLE;
+        }
+        return 1;
+    case S_SKIP:
+        if (b == LEP_DLE) {
+            d->state = S_SKIP_DLE;
+        } else {
+            d->stats.bytes_discarded++;
+        }
+        return 1;
+    case S_SKIP_DLE:
+        if (b == LEP_STX) {
+            goto begin2;
+        }
+        if (b == LEP_NAK) {
+            goto nak;
+        }
+        d->stats.bytes_discarded += 2u;
+        d->state = b == LEP_ETX ? S_SKIP_BCC : (b == LEP_DLE ? S_SKIP : S_IDLE);
+        return 1;
+    case S_SKIP_BCC:
+        if (b == LEP_DLE) {
+            d->state = S_IDLE_DLE;
+        } else {
+            d->stats.bytes_discarded++;
+            d->state = S_IDLE;
+        }
+        return 1;
+    default: /* S_IDLE */
+        if (b == LEP_DLE) {
+            d->state = S_IDLE_DLE;
+        } else {
+            d->stats.bytes_discarded++;
+        }
+        return 1;
+    }
+begin2:
+    d->raw = 2;
+begin:
+    d->len = 0;
+    d->bcc = 0;
+    d->state = S_MSG;
+    return 1;
+nak:
+    d->stats.naks++;
+    d->state = S_IDLE;
+    ev->type = LEP_FRAME_NAK;
+    return 1;
+}
+
 /* The decoder runs on local copies of its state and writes them back when it
  * returns. n is the message length so far, acc the XOR of its bytes (any byte
  * lanes; folded to d->bcc between calls), x the frame's wire bytes that are not
@@ -475,16 +639,7 @@ nak: /* DLE NAK completed: deliver it and hunt for the next frame */
     goto idle;
 
 fail: /* a frame rejected: wire is its count of wire bytes */
-    d->stats.bytes_discarded += (uint32_t)wire;
-    if (error == LEP_E_BCC) {
-        d->stats.bcc_errors++;
-    } else if (error == LEP_E_ESCAPE) {
-        d->stats.escape_errors++;
-    } else if (error == LEP_E_TOO_LONG) {
-        d->stats.overruns++;
-    }
-    ev->type = LEP_FRAME_ERROR;
-    ev->error = error;
+    reject(d, ev, error, wire);
     ev->msg = NULL;
     ev->len = 0;
     if (on_event == NULL) {
@@ -507,6 +662,9 @@ size_t lep_frame_decoder_feed(lep_frame_decoder *d, const uint8_t *data, size_t 
     if (d == NULL || ev == NULL || data == NULL) {
         return feed_bad_call(d, len, ev);
     }
+    if (len == 1) {
+        return feed_byte(d, data[0], ev);
+    }
     return decode(d, data, len, ev, NULL, NULL);
 }
 
@@ -517,7 +675,12 @@ int lep_frame_decoder_feed_all(lep_frame_decoder *d, const uint8_t *data, size_t
     if (d == NULL || on_event == NULL || (data == NULL && len > 0)) {
         return LEP_E_ARG;
     }
-    if (len > 0) {
+    if (len == 1) {
+        (void)feed_byte(d, data[0], &ev);
+        if (ev.type != LEP_FRAME_NONE) {
+            on_event(user, &ev);
+        }
+    } else if (len > 1) {
         (void)decode(d, data, len, &ev, on_event, user);
     }
     return LEP_OK;
