@@ -399,6 +399,8 @@ def frames_vectors() -> dict[str, Any]:
          [msg_ev(bcc10), msg_ev(bcc10), msg_ev(bcc10)]),
         ("lost BCC of an over-long frame", frame(over129)[:-1] + frame(pi),
          [err_ev("too_long"), msg_ev(pi)]),
+        ("illegal byte after DLE inside an over-long frame", frame(over129)[:-3] + unhex("10 41")
+         + frame(pi), [err_ev("too_long"), msg_ev(pi)]),
         ("every kind of event in one stream",
          unhex("FF") + frame(pi) + unhex("10 15") + partial + frame(rated, bad_bcc=True)
          + unhex("10 02 33 10 07") + frame(over129) + frame(bcc10) + frame(sample),
