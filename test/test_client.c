@@ -6,6 +6,7 @@
 
 static script_io sio;
 static lep_client client;
+static lep_client_rx rx;
 
 void setUp(void)
 {
@@ -13,6 +14,15 @@ void setUp(void)
     script_io_init(&sio);
     io = script_io_table(&sio);
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_init(&client, &io));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_rx(&client, &rx));
+}
+
+/* The decoded message of the last outcome of c (asserted to exist). */
+static lep_response last_response(const lep_client *c)
+{
+    lep_response r;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_response(c, &r));
+    return r;
 }
 
 void tearDown(void)
@@ -134,8 +144,13 @@ static void test_timeout(void)
     sio.silent = true;
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_timeout(&client, 250));
     TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, lep_client_product_info(&client, &info));
-    TEST_ASSERT_EQUAL_UINT32(250, sio.now);
+    /* The documented bound: (retries + 1) x timeout, every attempt the same frame. */
+    TEST_ASSERT_EQUAL_UINT32(4u * 250u, sio.now);
+    TEST_ASSERT_EQUAL_UINT(4, sio.writes);
+    TEST_ASSERT_EQUAL_MEMORY(sio.out, sio.out + 27, 9);
     TEST_ASSERT_EQUAL_UINT32(1, stats().timeouts);
+    TEST_ASSERT_EQUAL_UINT32(3, stats().resent_after_timeout);
+    TEST_ASSERT_EQUAL_UINT32(0, stats().retries);
     TEST_ASSERT_FALSE(lep_client_busy(&client));
 }
 
@@ -150,13 +165,15 @@ static void test_wrong_response_type_is_skipped(void)
     TEST_ASSERT_EQUAL_UINT32(1, stats().unexpected);
 }
 
-static void test_only_wrong_type_times_out(void)
+static void test_only_wrong_type_is_resent(void)
 {
     static const uint8_t filter_answer[] = {0x08, 0xFF, 0xB6, 0x00, 0x01, 0x00, 0x00, 0x00};
     lep_rated rated;
     force_reply(filter_answer, sizeof(filter_answer));
-    TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, lep_client_rated(&client, &rated));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_rated(&client, &rated));
     TEST_ASSERT_EQUAL_UINT32(1, stats().unexpected);
+    TEST_ASSERT_EQUAL_UINT32(1, stats().resent_after_timeout);
+    TEST_ASSERT_EQUAL_UINT32(LEP_CLIENT_DEFAULT_TIMEOUT_MS, sio.now);
 }
 
 static void test_sensor_error_codes(void)
@@ -179,8 +196,10 @@ static void test_invalid_answer_is_counted_not_taken(void)
     uint8_t msg[28] = {0x1C, 0xFF, 0x2B, 0x00, 0x00, 0x00, 0xC0, 0x7F};
     lep_rated rated;
     force_reply(msg, sizeof(msg));
-    TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, lep_client_rated(&client, &rated));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_rated(&client, &rated));
+    TEST_ASSERT_EQUAL_FLOAT(500.0f, rated.axis[LEP_FX]);
     TEST_ASSERT_EQUAL_UINT32(1, stats().invalid);
+    TEST_ASSERT_EQUAL_UINT32(1, stats().resent_after_timeout);
 }
 
 static void test_corrupt_answer_is_counted(void)
@@ -189,7 +208,8 @@ static void test_corrupt_answer_is_counted(void)
     lep_product_info info;
     memcpy(sio.forced, bad, sizeof(bad));
     sio.forced_len = sizeof(bad);
-    TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, lep_client_product_info(&client, &info));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_product_info(&client, &info));
+    TEST_ASSERT_EQUAL_UINT32(1, stats().resent_after_timeout);
     TEST_ASSERT_EQUAL_UINT32(1, stats().bcc_errors);
     TEST_ASSERT_EQUAL_UINT32(sizeof(bad), stats().bytes_discarded);
 }
@@ -247,8 +267,8 @@ static void test_sync_gives_up_on_endless_noise(void)
     (void)lep_device_feed(&sio.dev, start, sizeof(start), &ev, out, sizeof(out), &n);
     sio.silent = true;
     TEST_ASSERT_EQUAL_INT(LEP_E_NO_SYNC, lep_client_sync(&client, 20, NULL));
-    /* The stop's timeout, then at most 20 timeouts + the quiet time of draining. */
-    TEST_ASSERT_TRUE(sio.now <= LEP_CLIENT_DEFAULT_TIMEOUT_MS * 21u + 20u + 2u);
+    /* The stop's (retries + 1) attempts, then at most 20 timeouts + the quiet time of draining. */
+    TEST_ASSERT_TRUE(sio.now <= LEP_CLIENT_DEFAULT_TIMEOUT_MS * (4u + 20u) + 20u + 2u);
 }
 
 static void test_late_answer_is_skipped_by_the_next_query(void)
@@ -276,6 +296,7 @@ static void test_timeout_applies_to_each_attempt(void)
     lep_command cmd = {LEP_CMD_RATED, 0};
     size_t used;
     sio.silent = true;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_retries(&client, 1));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_send(&client, &cmd));
     sio.now += LEP_CLIENT_DEFAULT_TIMEOUT_MS - 1u;
     TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step(&client, nak, sizeof(nak), &used));
@@ -312,6 +333,62 @@ static void test_start_while_streaming_is_a_state_error(void)
     TEST_ASSERT_EQUAL_INT(LEP_E_SENSOR, lep_client_start(&client));
     TEST_ASSERT_EQUAL_UINT8(LEP_RESULT_STATE, lep_client_last_result(&client));
     TEST_ASSERT_TRUE(lep_client_streaming(&client));
+    TEST_ASSERT_EQUAL_UINT32(0, stats().recoveries);
+}
+
+static void test_start_refused_by_a_stale_stream_recovers_once(void)
+{
+    static const uint8_t stop_cmd[] = {0x10, 0x02, 0x04, 0xFF, 0x33, 0x00, 0x10, 0x03, 0xCB};
+    static const uint8_t start_cmd[] = {0x10, 0x02, 0x04, 0xFF, 0x32, 0x00, 0x10, 0x03, 0xCA};
+    lep_device_event ev;
+    uint8_t out[LEP_MAX_FRAME];
+    size_t n;
+    /* A stream left running by an earlier program. */
+    (void)lep_device_feed(&sio.dev, start_cmd, sizeof(start_cmd), &ev, out, sizeof(out), &n);
+    script_push_data(&sio);
+    sio.inflight = 2;
+    /* The sensor refuses (0x04: already streaming): stop, drain, start. */
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
+    TEST_ASSERT_TRUE(lep_client_streaming(&client));
+    TEST_ASSERT_TRUE(lep_device_streaming(&sio.dev));
+    TEST_ASSERT_EQUAL_UINT32(1, stats().recoveries);
+    TEST_ASSERT_EQUAL_UINT8(LEP_RESULT_OK, lep_client_last_result(&client));
+    TEST_ASSERT_EQUAL_size_t(27, sio.out_len);
+    TEST_ASSERT_EQUAL_MEMORY(start_cmd, sio.out, 9);
+    TEST_ASSERT_EQUAL_MEMORY(stop_cmd, sio.out + 9, 9);
+    TEST_ASSERT_EQUAL_MEMORY(start_cmd, sio.out + 18, 9);
+}
+
+static void test_start_refused_twice_is_a_sensor_error(void)
+{
+    static const uint8_t refused[] = {0x04, 0xFF, 0x32, 0x04};
+    lep_command start = {LEP_CMD_START, 0};
+    uint8_t frame[16];
+    size_t n;
+    size_t used;
+    int rc = LEP_STEP_NONE;
+    unsigned i;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_frame_encode(refused, sizeof(refused), frame, sizeof(frame), &n));
+    sio.silent = true;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_send(&client, &start));
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step(&client, frame, n, &used));
+    TEST_ASSERT_EQUAL_UINT(2, sio.writes); /* the stop */
+    TEST_ASSERT_TRUE(lep_client_busy(&client));
+    sio.now += LEP_CLIENT_DEFAULT_TIMEOUT_MS * 4u; /* the stop is never answered: drain anyway */
+    for (i = 0; i < 4 && sio.writes < 6; i++) {
+        TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step(&client, NULL, 0, &used));
+        sio.now += LEP_CLIENT_DEFAULT_TIMEOUT_MS;
+    }
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step(&client, NULL, 0, &used));
+    sio.now += LEP_CLIENT_DEFAULT_QUIET_MS;
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step(&client, NULL, 0, &used));
+    TEST_ASSERT_EQUAL_UINT8(LEP_CMD_START, sio.out[sio.out_len - 5]); /* started again */
+    rc = lep_client_step(&client, frame, n, &used);
+    TEST_ASSERT_EQUAL_INT(LEP_E_SENSOR, rc);
+    TEST_ASSERT_EQUAL_UINT8(LEP_RESULT_STATE, lep_client_last_result(&client));
+    TEST_ASSERT_FALSE(lep_client_streaming(&client));
+    TEST_ASSERT_FALSE(lep_client_busy(&client));
+    TEST_ASSERT_EQUAL_UINT32(0, stats().recoveries);
 }
 
 static void test_next_samples_batches_buffered_data(void)
@@ -397,7 +474,7 @@ static void test_step_api_without_read(void)
     }
     TEST_ASSERT_EQUAL_INT(LEP_STEP_RESPONSE, rc);
     TEST_ASSERT_EQUAL_size_t(sio.in_len - 1, i);
-    TEST_ASSERT_EQUAL_FLOAT(40.0f / 4.0f, lep_client_response(&c)->u.rated.axis[LEP_MY]);
+    TEST_ASSERT_EQUAL_FLOAT(40.0f / 4.0f, last_response(&c).u.rated.axis[LEP_MY]);
     TEST_ASSERT_FALSE(lep_client_busy(&c));
 }
 
@@ -405,11 +482,18 @@ static void test_step_api_deadline(void)
 {
     lep_command cmd = {LEP_CMD_STOP, 0};
     size_t used;
+    unsigned i;
     sio.silent = true;
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_send(&client, &cmd));
     TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step(&client, NULL, 0, &used));
+    for (i = 1; i <= LEP_CLIENT_DEFAULT_RETRIES; i++) {
+        sio.now += LEP_CLIENT_DEFAULT_TIMEOUT_MS;
+        TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step(&client, NULL, 0, &used));
+        TEST_ASSERT_EQUAL_UINT(1u + i, sio.writes); /* resent */
+    }
     sio.now += LEP_CLIENT_DEFAULT_TIMEOUT_MS;
     TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, lep_client_step(&client, NULL, 0, &used));
+    TEST_ASSERT_FALSE(lep_client_busy(&client));
 }
 
 static void test_step_api_stops_at_each_sample(void)
@@ -432,7 +516,7 @@ static void test_step_api_stops_at_each_sample(void)
         int rc = lep_client_step(&client, wire + pos, len - pos, &used);
         pos += used;
         if (rc == LEP_STEP_SAMPLE) {
-            TEST_ASSERT_EQUAL_UINT16(got, lep_client_response(&client)->u.sample.reserved);
+            TEST_ASSERT_EQUAL_UINT16(got, last_response(&client).u.sample.reserved);
             got++;
         }
     }
@@ -470,7 +554,7 @@ static void test_transaction_timeout_across_clock_wrap(void)
     sio.now = 0xFFFFFFFFu - 30u;
     sio.silent = true;
     TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, lep_client_product_info(&client, &info));
-    TEST_ASSERT_EQUAL_UINT32(0xFFFFFFFFu - 30u + LEP_CLIENT_DEFAULT_TIMEOUT_MS, sio.now);
+    TEST_ASSERT_EQUAL_UINT32(0xFFFFFFFFu - 30u + 4u * LEP_CLIENT_DEFAULT_TIMEOUT_MS, sio.now);
 }
 
 static void test_nak_retry_and_answer_across_clock_wrap(void)
@@ -499,6 +583,7 @@ static void test_step_api_deadline_across_clock_wrap(void)
     size_t used;
     sio.silent = true;
     sio.now = 0xFFFFFFFFu - 5u;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_retries(&client, 0));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_send(&client, &cmd));
     sio.now += LEP_CLIENT_DEFAULT_TIMEOUT_MS - 1u; /* wrapped, 1 ms before the deadline */
     TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step(&client, NULL, 0, &used));
@@ -576,8 +661,9 @@ static void test_transaction_times_out_on_endless_noise(void)
     sio.silent = true;
     sio.noise = true;
     TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, lep_client_rated(&client, &rated));
-    TEST_ASSERT_TRUE(sio.now - t0 >= LEP_CLIENT_DEFAULT_TIMEOUT_MS);
-    TEST_ASSERT_TRUE(sio.now - t0 <= LEP_CLIENT_DEFAULT_TIMEOUT_MS + 2u);
+    TEST_ASSERT_TRUE(sio.now - t0 >= 4u * LEP_CLIENT_DEFAULT_TIMEOUT_MS);
+    TEST_ASSERT_TRUE(sio.now - t0 <= 4u * (LEP_CLIENT_DEFAULT_TIMEOUT_MS + 2u));
+    TEST_ASSERT_EQUAL_UINT32(3, stats().resent_after_timeout);
     TEST_ASSERT_EQUAL_UINT32((uint32_t)sio.total_read, stats().bytes_discarded);
 }
 
@@ -727,7 +813,7 @@ static void test_step_api_from_a_ring_buffer(void)
     sio.naks_left = 1;
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_send(&c, &rated));
     TEST_ASSERT_EQUAL_INT(LEP_STEP_RESPONSE, run_until_outcome(&c, &r));
-    TEST_ASSERT_EQUAL_FLOAT(500.0f, lep_client_response(&c)->u.rated.axis[LEP_FZ]);
+    TEST_ASSERT_EQUAL_FLOAT(500.0f, last_response(&c).u.rated.axis[LEP_FZ]);
 
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_send(&c, &start));
     TEST_ASSERT_EQUAL_INT(LEP_STEP_RESPONSE, run_until_outcome(&c, &r));
@@ -737,7 +823,7 @@ static void test_step_api_from_a_ring_buffer(void)
     }
     for (i = 0; i < 20; i++) {
         TEST_ASSERT_EQUAL_INT(LEP_STEP_SAMPLE, run_until_outcome(&c, &r));
-        TEST_ASSERT_EQUAL_UINT16(i, lep_client_response(&c)->u.sample.reserved);
+        TEST_ASSERT_EQUAL_UINT16(i, last_response(&c).u.sample.reserved);
     }
     sio.inflight = 3;
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_send(&c, &stop));
@@ -768,7 +854,7 @@ int main(void)
     RUN_TEST(test_no_retries_when_disabled);
     RUN_TEST(test_timeout);
     RUN_TEST(test_wrong_response_type_is_skipped);
-    RUN_TEST(test_only_wrong_type_times_out);
+    RUN_TEST(test_only_wrong_type_is_resent);
     RUN_TEST(test_sensor_error_codes);
     RUN_TEST(test_invalid_answer_is_counted_not_taken);
     RUN_TEST(test_corrupt_answer_is_counted);
@@ -780,6 +866,8 @@ int main(void)
     RUN_TEST(test_timeout_applies_to_each_attempt);
     RUN_TEST(test_stream_start_next_stop);
     RUN_TEST(test_start_while_streaming_is_a_state_error);
+    RUN_TEST(test_start_refused_by_a_stale_stream_recovers_once);
+    RUN_TEST(test_start_refused_twice_is_a_sensor_error);
     RUN_TEST(test_next_samples_batches_buffered_data);
     RUN_TEST(test_next_sample_timeout_when_stream_stalls);
     RUN_TEST(test_byte_by_byte_reads);

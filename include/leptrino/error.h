@@ -37,7 +37,8 @@ enum lep_error {
     LEP_E_STATE = -19,        /* call not valid in the client's current state */
     LEP_E_NO_SYNC = -20,      /* the line never went quiet during recovery */
     LEP_E_UNSUPPORTED = -21,  /* not supported on this platform or port */
-    LEP_E_END = -22           /* a session reached its duration or count (not a failure) */
+    LEP_E_END = -22,          /* a session reached its duration or count (not a failure) */
+    LEP_E_STALLED = -23       /* streaming, but no sample within the watchdog time */
 };
 
 /* Sensor result codes (spec 3.2.1). */

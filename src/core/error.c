@@ -27,6 +27,7 @@ const char *lep_strerror(int err)
     case LEP_E_NO_SYNC: return "line never went quiet during recovery";
     case LEP_E_UNSUPPORTED: return "not supported";
     case LEP_E_END: return "end of the requested duration or count";
+    case LEP_E_STALLED: return "no stream data within the watchdog time";
     default: return "unknown error";
     }
 }
