@@ -8,6 +8,7 @@
 
 #include <stdint.h>
 
+#include "config.h"
 #include "export.h"
 
 #ifdef __cplusplus
@@ -50,10 +51,12 @@ enum lep_result {
     LEP_RESULT_STATE = 0x04      /* state error */
 };
 
-/* Static, never-NULL description of a LEP_E_* code (or "unknown error"). */
+/* Static, never-NULL description of a LEP_E_* code (or "unknown error");
+ * "" when built with LEP_CONFIG_NO_ERROR_STRINGS. */
 LEP_API const char *lep_strerror(int err);
 
-/* Static, never-NULL meaning of a sensor result code (or "unknown result code"). */
+/* Static, never-NULL meaning of a sensor result code (or "unknown result
+ * code"); "" when built with LEP_CONFIG_NO_ERROR_STRINGS. */
 LEP_API const char *lep_result_str(uint8_t result);
 
 #ifdef __cplusplus

@@ -722,12 +722,9 @@ int lep_client_sync(lep_client *c, int quiet_ms, lep_product_info *info)
     if (c == NULL || c->io.read == NULL) {
         return LEP_E_ARG;
     }
-    if (quiet_ms <= 0) {
-        quiet_ms = 0;
-    } else if ((uint32_t)quiet_ms > 0xFFFFu) {
-        quiet_ms = 0xFFFF;
-    }
-    rc = lep_client_recover(c, (uint16_t)quiet_ms);
+    rc = lep_client_recover(c, quiet_ms <= 0 ? (uint16_t)0u
+                               : (uint32_t)quiet_ms > 0xFFFFu ? (uint16_t)0xFFFFu
+                                                              : (uint16_t)quiet_ms);
     if (rc == LEP_OK) {
         rc = run(c);
     }
