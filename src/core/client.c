@@ -8,6 +8,7 @@
 #define ST_WAIT 0x01u   /* a transaction or a recovery waits */
 #define ST_STREAM 0x02u /* continuous output is on */
 #define ST_FRESH 0x04u  /* a sample arrived since the watchdog last looked */
+#define ST_WATCH 0x08u  /* a watchdog time is set (lep_client_set_watchdog) */
 
 enum {
     PH_NONE = 0,    /* a plain transaction (or nothing) */
@@ -17,6 +18,13 @@ enum {
     PH_DRAIN_START, /* start recovery: waiting for a quiet line, then start again */
     PH_RESTARTED    /* the start sent after a recovery (not recovered twice) */
 };
+
+/* Keep a slow path out of line, so the per-byte path saves few registers. */
+#if defined(__GNUC__)
+#define SLOW_PATH __attribute__((noinline))
+#else
+#define SLOW_PATH
+#endif
 
 /* Single-byte steps between two clock reads. */
 #define CHECK_EVERY 32u
@@ -77,7 +85,11 @@ int lep_client_set_watchdog(lep_client *c, uint16_t ms)
         return LEP_E_ARG;
     }
     c->watchdog_ms = ms;
-    c->state = (uint8_t)(c->state | ST_FRESH); /* the time runs from the next check */
+    if (ms != 0u) {
+        c->state = (uint8_t)(c->state | ST_FRESH | ST_WATCH); /* the time runs from the next check */
+    } else {
+        c->state = (uint8_t)(c->state & ~ST_WATCH);
+    }
     return LEP_OK;
 }
 
@@ -394,29 +406,9 @@ static int check_clock(lep_client *c, bool fed)
     return LEP_STEP_NONE;
 }
 
-int lep_client_step(lep_client *c, const uint8_t *data, size_t len, size_t *consumed)
+/* After the input data[0..len) is consumed without an outcome: watch the clock. */
+SLOW_PATH static int step_clock(lep_client *c, size_t len)
 {
-    size_t pos = 0;
-    if (c == NULL || consumed == NULL || (data == NULL && len > 0)) {
-        return LEP_E_ARG;
-    }
-    c->msg = NULL;
-    while (pos < len) {
-        lep_frame_event ev;
-        pos += lep_frame_decoder_feed(&c->dec, data + pos, len - pos, &ev);
-        if (ev.type != LEP_FRAME_NONE) {
-            int rc = on_event(c, &ev);
-            if (rc != LEP_STEP_NONE) {
-                if (rc > 0) { /* a response or a sample: keep where its message is */
-                    c->msg = ev.msg;
-                    c->msg_len = (uint8_t)ev.len;
-                }
-                *consumed = pos;
-                return rc;
-            }
-        }
-    }
-    *consumed = pos;
     if ((c->state & ST_WAIT) == 0u && ((c->state & ST_STREAM) == 0u || c->watchdog_ms == 0u)) {
         return LEP_STEP_NONE; /* no deadline to watch */
     }
@@ -425,6 +417,53 @@ int lep_client_step(lep_client *c, const uint8_t *data, size_t len, size_t *cons
     }
     c->unchecked = 0;
     return check_clock(c, len > 0u);
+}
+
+/* The rest of lep_client_step once the decoder reported an event: handle it
+ * and go on with the remaining input. Kept out of the per-byte path. */
+SLOW_PATH static int step_events(lep_client *c, const uint8_t *data, size_t len, size_t pos,
+                       lep_frame_event *ev, size_t *consumed)
+{
+    for (;;) {
+        if (ev->type != LEP_FRAME_NONE) {
+            int rc = on_event(c, ev);
+            if (rc != LEP_STEP_NONE) {
+                if (rc > 0) { /* a response or a sample: keep where its message is */
+                    c->msg = ev->msg;
+                    c->msg_len = (uint8_t)ev->len;
+                }
+                *consumed = pos;
+                return rc;
+            }
+        }
+        if (pos == len) {
+            *consumed = pos;
+            return step_clock(c, len);
+        }
+        pos += lep_frame_decoder_feed(&c->dec, data + pos, len - pos, ev);
+    }
+}
+
+/* The per-byte path is short on purpose (an ISR-fed firmware calls it once a
+ * byte): one feed (it consumes everything up to the first event), and
+ * everything else in step_events / step_clock. */
+int lep_client_step(lep_client *c, const uint8_t *data, size_t len, size_t *consumed)
+{
+    lep_frame_event ev;
+    size_t pos;
+    if (c == NULL || consumed == NULL || (data == NULL && len > 0)) {
+        return LEP_E_ARG;
+    }
+    c->msg = NULL;
+    pos = lep_frame_decoder_feed(&c->dec, data, len, &ev);
+    if (ev.type != LEP_FRAME_NONE) {
+        return step_events(c, data, len, pos, &ev, consumed);
+    }
+    *consumed = len;
+    if ((c->state & (ST_WAIT | ST_WATCH)) == 0u) {
+        return LEP_STEP_NONE;
+    }
+    return step_clock(c, len);
 }
 
 /* ---- Blocking calls ---- */
