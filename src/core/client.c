@@ -455,15 +455,15 @@ int lep_client_step(lep_client *c, const uint8_t *data, size_t len, size_t *cons
         return LEP_E_ARG;
     }
     c->msg = NULL;
+    *consumed = len; /* (few values live across the call: the slow paths read len back) */
     pos = lep_frame_decoder_feed(&c->dec, data, len, &ev);
     if (ev.type != LEP_FRAME_NONE) {
-        return step_events(c, data, len, pos, &ev, consumed);
+        return step_events(c, data, *consumed, pos, &ev, consumed);
     }
-    *consumed = len;
     if ((c->state & (ST_WAIT | ST_WATCH)) == 0u) {
         return LEP_STEP_NONE;
     }
-    return step_clock(c, len);
+    return step_clock(c, *consumed);
 }
 
 /* ---- Blocking calls ---- */
