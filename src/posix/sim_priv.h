@@ -12,6 +12,7 @@
 #include "leptrino/device.h"
 #include "leptrino/frame.h"
 #include "leptrino/sim.h"
+#include "sim_filter.h"
 #include "sim_signal.h"
 
 #define OUTQ_SIZE 32768u
@@ -40,10 +41,13 @@ struct lep_sim {
     lep_product_info info;
     lep_rated rated;
     lep_sim_signal sig;
+    lep_sim_fir fir[LEP_FILTER_MAX + 1]; /* the sensor's filter, per code */
     double period_ns;
 
     /* owned by the serving thread */
     lep_sim_stats st; /* working copy, published under lock */
+    lep_sim_fir_state fir_state; /* the stream's filter inputs */
+    uint8_t fir_code;            /* the code fir_state was filled for */
     lep_device dev;
     lep_frame_decoder shadow; /* sees frames first, so a NAK fault can withhold one */
     uint8_t pend[PEND_SIZE];

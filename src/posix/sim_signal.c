@@ -192,7 +192,7 @@ static double abs_d(double x)
 }
 
 /* sin(x) to ~1e-9 after reduction to [-pi/2, pi/2]. */
-static double sine(double x)
+double lep_priv_sine(double x)
 {
     double k, r, r2;
     const double pi = TWO_PI / 2.0;
@@ -218,11 +218,10 @@ static int16_t saturate(double counts)
     return (int16_t)(counts >= 0 ? (int)(counts + 0.5) : -(int)(-counts + 0.5));
 }
 
-void lep_priv_signal_sample(const lep_sim_signal *g, uint64_t n, lep_sample *out)
+int lep_priv_signal_counts(const lep_sim_signal *g, uint64_t n, double counts[LEP_AXES])
 {
     double t = (double)n / g->rate_hz;
-    double counts[LEP_AXES];
-    int i, given_status = -1, over = 0;
+    int i, given_status = -1;
     if (g->replay != NULL) {
         size_t row = (size_t)(n % g->replay_rows);
         for (i = 0; i < LEP_AXES; i++)
@@ -235,7 +234,7 @@ void lep_priv_signal_sample(const lep_sim_signal *g, uint64_t n, lep_sample *out
                 v = g->amplitude;
             } else {
                 uint64_t st = g->seed ^ (n * 0xD1B54A32D192ED03u) ^ ((uint64_t)i << 56);
-                v = g->amplitude * sine(TWO_PI * g->freq[i] * t + g->phase[i]) +
+                v = g->amplitude * lep_priv_sine(TWO_PI * g->freq[i] * t + g->phase[i]) +
                     g->noise * (2.0 * lep_priv_uniform(&st) - 1.0);
             }
             counts[i] = v * LEP_RAW_FULL_SCALE;
@@ -250,6 +249,12 @@ void lep_priv_signal_sample(const lep_sim_signal *g, uint64_t n, lep_sample *out
             counts[axis] = sign * OVERLOAD_LEVEL * LEP_RAW_FULL_SCALE;
         }
     }
+    return given_status;
+}
+
+void lep_priv_signal_finish(const double counts[LEP_AXES], int given_status, lep_sample *out)
+{
+    int i, over = 0;
     memset(out, 0, sizeof *out);
     for (i = 0; i < LEP_AXES; i++) {
         if (abs_d(counts[i]) > LEP_RAW_FULL_SCALE)
@@ -262,4 +267,13 @@ void lep_priv_signal_sample(const lep_sim_signal *g, uint64_t n, lep_sample *out
         out->status = over ? (uint8_t)LEP_STATUS_OVERLOAD : 0u;
     if (given_status >= 0 && over)
         out->status |= LEP_STATUS_OVERLOAD;
+}
+
+double lep_priv_signal_clip(double counts)
+{
+    if (counts > LEP_SATURATION_V113)
+        return LEP_SATURATION_V113;
+    if (counts < -LEP_SATURATION_V113)
+        return -LEP_SATURATION_V113;
+    return counts;
 }
