@@ -34,6 +34,12 @@ int lep_priv_signal_init(lep_sim_signal *g, const lep_sim_options *o, const lep_
                          char *err, size_t errlen);
 void lep_priv_signal_free(lep_sim_signal *g);
 
+/* sim_replay.c: read a replay file into g->replay (rows of raw counts and
+ * the status each gives, or -1). LEP_E_NOT_FOUND/LEP_E_IO/LEP_E_VALUE with a
+ * message naming the file and line. On failure g may hold rows already
+ * read: lep_priv_signal_free releases them. */
+int lep_priv_replay_load(lep_sim_signal *g, const char *file, char *err, size_t errlen);
+
 /* What the sensor measures at index n of the sample clock (t = n / rate_hz),
  * in counts before the ADC's limit (an overload may exceed it): a pure
  * function of the options, the seed and n. Returns the status byte given by a
