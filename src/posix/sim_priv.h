@@ -17,6 +17,8 @@
 
 #define OUTQ_SIZE 32768u
 #define PEND_SIZE 1024u
+/* Room for the largest message the sensor sends: a frame and its garbage. */
+#define LEP_SIM_FRAME_ROOM (LEP_MAX_FRAME + 16u)
 /* Beyond this lag behind schedule (the process was not scheduled), samples
  * are skipped instead of sent in a burst. A stall skips what it covered. */
 #define MAX_LAG_NS 500000000
@@ -71,6 +73,8 @@ int lep_priv_sim_open_pty(lep_sim *s, char *err, size_t errlen);
 void lep_priv_sim_close_pty(lep_sim *s);
 void lep_priv_sim_flush_out(lep_sim *s);
 bool lep_priv_sim_queue(lep_sim *s, const uint8_t *b, size_t n);
+/* True when the output queue cannot take another message. */
+bool lep_priv_sim_queue_full(const lep_sim *s);
 
 /* sim_link.c: ownership of the link path (see the file's comment) */
 /* Take the link's lock and check what is at the path: LEP_OK (nothing to

@@ -33,6 +33,11 @@ void lep_priv_sim_stream_due(lep_sim *s, int64_t now)
         lep_sample smp;
         uint8_t frame[LEP_MAX_FRAME];
         size_t len;
+        if (lep_priv_sim_queue_full(s)) { /* nobody reads: not even computed */
+            s->st.samples_blocked++;
+            s->k++;
+            continue;
+        }
         if (now - lep_priv_sim_deadline(s, s->k) > MAX_LAG_NS) {
             s->st.samples_skipped++;
             s->k++;

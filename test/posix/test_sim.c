@@ -321,6 +321,36 @@ static void test_stale_stream_recovery(void)
     TEST_ASSERT_EQUAL_UINT32(0, cs.bcc_errors);
 }
 
+/* A stream nobody reads fills the pty and the queue: the samples due then are
+ * counted as blocked (not computed, no wake-up each), every index accounted
+ * for; a client that comes later recovers. */
+static void test_nobody_reading_blocks(void)
+{
+    lep_sim_options o;
+    lep_sim_stats st;
+    int i;
+    lep_sim_options_init(&o);
+    o.start_streaming = true;
+    o.rate_hz = 10000;
+    start_sim(&o);
+    for (i = 0; i < 500; i++) {
+        st = stats_now();
+        if (st.samples_blocked > 1000)
+            break;
+        sleep_ms(10);
+    }
+    TEST_ASSERT_TRUE(st.samples_blocked > 1000);
+    TEST_ASSERT_TRUE(st.samples_sent > 100);
+    TEST_ASSERT_EQUAL_UINT64(0, st.samples_dropped);
+    /* every index of the stream is sent, blocked or skipped (the published
+     * sequence is the next index, mod 65536) */
+    TEST_ASSERT_EQUAL_UINT16(st.sequence, (uint16_t)(st.samples_sent + st.samples_blocked +
+                                                     st.samples_skipped));
+    open_client();
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_sync(&client, 30, &scratch_info));
+    TEST_ASSERT_FALSE(stats_now().streaming);
+}
+
 static void wait_power_cycles(uint64_t n)
 {
     int i;
@@ -991,6 +1021,7 @@ int main(void)
     RUN_TEST(test_stream_exact_accounting);
     RUN_TEST(test_nak_retries);
     RUN_TEST(test_stale_stream_recovery);
+    RUN_TEST(test_nobody_reading_blocks);
     RUN_TEST(test_filter_after_power_cycle);
     RUN_TEST(test_hangup_is_disconnected);
     RUN_TEST(test_hangup_after_and_reopen_at_link);
