@@ -280,19 +280,9 @@ static void test_latency_budget_delivers_the_same_samples(void)
 
 typedef struct poker {
     lep_session *s;
-    pthread_mutex_t mu; /* guards stop */
-    int stop;
+    st_flag stop;
     unsigned calls;
 } poker;
-
-static bool poker_stopped(poker *p)
-{
-    int stop;
-    pthread_mutex_lock(&p->mu);
-    stop = p->stop;
-    pthread_mutex_unlock(&p->mu);
-    return stop != 0;
-}
 
 /* Another thread changing and reading the settings while the stream runs. */
 static void *poke(void *arg)
@@ -304,7 +294,7 @@ static void *poke(void *arg)
     char json[4096];
     size_t len;
     lep_rotation_from_rpy(0.1, 0.2, 0.3, r);
-    while (!poker_stopped(p)) {
+    while (!st_flag_is_up(&p->stop)) {
         (void)lep_session_tare(p->s, 20, 0.0);
         (void)lep_session_set_lowpass(p->s, (p->calls % 2u) ? 50.0 : 0.0);
         (void)lep_session_set_rotation(p->s, r, NULL);
@@ -337,17 +327,14 @@ static void test_settings_from_another_thread(void)
     s = open_sim(&o, &o);
     st_batch_init(&b, 1200);
     memset(&p, 0, sizeof p);
-    pthread_mutex_init(&p.mu, NULL);
+    st_flag_init(&p.stop);
     p.s = s;
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
     TEST_ASSERT_EQUAL_INT(0, pthread_create(&th, NULL, poke, &p));
     while (lep_session_read(s, &b.b, 2000) == LEP_OK) {
     }
-    pthread_mutex_lock(&p.mu);
-    p.stop = 1;
-    pthread_mutex_unlock(&p.mu);
+    st_flag_raise(&p.stop);
     pthread_join(th, NULL);
-    pthread_mutex_destroy(&p.mu);
     TEST_ASSERT_EQUAL_size_t(1200, b.b.n);
     for (i = 1; i < b.b.n; i++) /* nothing lost, nothing stalled */
         TEST_ASSERT_EQUAL_UINT16((uint16_t)(b.seq[i - 1] + 1u), b.seq[i]);

@@ -127,25 +127,15 @@ static void test_dropped_samples_are_counted_exactly(void)
 
 typedef struct thief {
     int fd;
-    pthread_mutex_t mu; /* guards stop */
-    int stop;
+    st_flag stop;
     size_t stolen;
 } thief;
-
-static bool thief_stopped(thief *t)
-{
-    int stop;
-    pthread_mutex_lock(&t->mu);
-    stop = t->stop;
-    pthread_mutex_unlock(&t->mu);
-    return stop != 0;
-}
 
 static void *steal(void *arg)
 {
     thief *t = arg;
     uint8_t buf[256];
-    while (!thief_stopped(t)) {
+    while (!st_flag_is_up(&t->stop)) {
         struct pollfd p;
         p.fd = t->fd;
         p.events = POLLIN;
@@ -175,7 +165,7 @@ static void test_another_reader_stealing_bytes_is_reported(void)
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
     TEST_ASSERT_EQUAL_INT(LEP_OK, read_until(s, &b, 100));
     memset(&t, 0, sizeof t);
-    pthread_mutex_init(&t.mu, NULL);
+    st_flag_init(&t.stop);
     /* A second open of the pty works for root despite TIOCEXCL; otherwise
      * share the session's descriptor, as a forked program would. */
     t.fd = open(lep_sim_pty_path(lep_session_sim(s)), O_RDWR | O_NOCTTY | O_NONBLOCK);
@@ -184,11 +174,8 @@ static void test_another_reader_stealing_bytes_is_reported(void)
     TEST_ASSERT_TRUE(t.fd >= 0);
     TEST_ASSERT_EQUAL_INT(0, pthread_create(&th, NULL, steal, &t));
     TEST_ASSERT_EQUAL_INT(LEP_OK, read_until(s, &b, 700));
-    pthread_mutex_lock(&t.mu);
-    t.stop = 1;
-    pthread_mutex_unlock(&t.mu);
+    st_flag_raise(&t.stop);
     pthread_join(th, NULL);
-    pthread_mutex_destroy(&t.mu);
     close(t.fd);
     TEST_ASSERT_EQUAL_INT(LEP_OK, read_until(s, &b, 900));
     TEST_ASSERT_TRUE(t.stolen > 0);
