@@ -67,6 +67,13 @@ configure_file(${_lep_man_dir}/common.h2m.new ${_lep_man_dir}/common.h2m COPYONL
 
 foreach(_target _name _summary IN ZIP_LISTS _lep_man_targets _lep_man_names _lep_man_summaries)
   set(_page ${_lep_man_dir}/man1/${_name}.1)
+  # A COMMANDS section with each command's --help (for a program with commands).
+  set(_commands ${_lep_man_dir}/${_name}.commands.h2m)
+  add_custom_command(OUTPUT ${_commands}
+    COMMAND ${CMAKE_COMMAND} -DPROGRAM=$<TARGET_FILE:${_target}> -DOUTPUT=${_commands}
+            -P ${PROJECT_SOURCE_DIR}/packaging/man/commands.cmake
+    DEPENDS ${_target} ${PROJECT_SOURCE_DIR}/packaging/man/commands.cmake
+    VERBATIM)
   # --version-string: the version comes from project(); the program is run
   # only for --help (which must exit 0).
   add_custom_command(OUTPUT ${_page}
@@ -74,8 +81,9 @@ foreach(_target _name _summary IN ZIP_LISTS _lep_man_targets _lep_man_names _lep
     COMMAND ${LEPTRINO_HELP2MAN} --no-info --no-discard-stderr --section 1
             --name ${_summary} --source "leptrino ${PROJECT_VERSION}"
             --version-string "${_name} ${PROJECT_VERSION}"
-            --include ${_lep_man_dir}/common.h2m --output ${_page} $<TARGET_FILE:${_target}>
-    DEPENDS ${_target} ${_lep_man_dir}/common.h2m
+            --include ${_lep_man_dir}/common.h2m --include ${_commands}
+            --output ${_page} $<TARGET_FILE:${_target}>
+    DEPENDS ${_target} ${_lep_man_dir}/common.h2m ${_commands}
     COMMENT "Man page ${_name}(1) from ${_name} --help"
     VERBATIM)
   if(LEPTRINO_GZIP)
