@@ -23,7 +23,7 @@ configure_package_config_file(cmake/leptrinoConfig.cmake.in
   ${PROJECT_BINARY_DIR}/leptrinoConfig.cmake
   INSTALL_DESTINATION ${LEPTRINO_CMAKE_DIR})
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/leptrinoConfigVersion.cmake
-  COMPATIBILITY SameMajorVersion)
+  COMPATIBILITY ${LEPTRINO_PACKAGE_COMPATIBILITY}) # set beside the SONAME (src/CMakeLists.txt)
 install(FILES ${PROJECT_BINARY_DIR}/leptrinoConfig.cmake ${PROJECT_BINARY_DIR}/leptrinoConfigVersion.cmake
   DESTINATION ${LEPTRINO_CMAKE_DIR})
 
