@@ -3,12 +3,12 @@
 # second hand-kept copy. Optional: without help2man (or when the programs
 # cannot run on the build machine) there are no man pages, and configure says so.
 #
-# A program joins when its target exists (leptrino-soak once it is built).
-# Each entry: target|one-line summary for the NAME section.
-set(LEPTRINO_MAN_PROGRAMS
-  "leptrino_cli|read, record and configure Leptrino 6-axis force/torque sensors"
-  "leptrino_sim|a virtual Leptrino force/torque sensor on a pseudo-terminal"
-  "leptrino_soak|soak test of the leptrino client against a faulty virtual sensor")
+# Every program built in tools/*/ gets a page (leptrino-soak joins once its
+# directory is added). The NAME line's summary, by program name:
+set(LEPTRINO_MAN_SUMMARIES
+  "leptrino|read, record and configure Leptrino 6-axis force/torque sensors"
+  "leptrino-sim|a virtual Leptrino force/torque sensor on a pseudo-terminal"
+  "leptrino-soak|soak test of the leptrino client against a faulty virtual sensor")
 
 option(LEPTRINO_MAN "Generate and install man pages (needs help2man)" ON)
 set(LEPTRINO_MAN_PAGES "")
@@ -28,24 +28,35 @@ if(NOT LEPTRINO_HELP2MAN)
 endif()
 find_program(LEPTRINO_GZIP gzip)
 
-# The programs that exist in this build: target, program name, summary.
+# The programs of this build: the executables of the tools/ directories.
 set(_lep_man_targets "")
 set(_lep_man_names "")
 set(_lep_man_summaries "")
-foreach(entry IN LISTS LEPTRINO_MAN_PROGRAMS)
-  string(FIND "${entry}" "|" _sep)
-  string(SUBSTRING "${entry}" 0 ${_sep} _target)
-  math(EXPR _sep "${_sep} + 1")
-  string(SUBSTRING "${entry}" ${_sep} -1 _summary)
-  if(TARGET ${_target})
+get_property(_lep_subdirs DIRECTORY ${PROJECT_SOURCE_DIR} PROPERTY SUBDIRECTORIES)
+foreach(_dir IN LISTS _lep_subdirs)
+  if(NOT _dir MATCHES "^${PROJECT_SOURCE_DIR}/tools/")
+    continue()
+  endif()
+  get_property(_targets DIRECTORY ${_dir} PROPERTY BUILDSYSTEM_TARGETS)
+  foreach(_target IN LISTS _targets)
+    get_target_property(_type ${_target} TYPE)
+    if(NOT _type STREQUAL "EXECUTABLE")
+      continue()
+    endif()
     get_target_property(_name ${_target} OUTPUT_NAME)
     if(NOT _name)
       set(_name ${_target})
     endif()
+    set(_summary "part of leptrino, the Leptrino force/torque sensor tools")
+    foreach(_entry IN LISTS LEPTRINO_MAN_SUMMARIES)
+      if(_entry MATCHES "^${_name}\\|(.*)$")
+        set(_summary "${CMAKE_MATCH_1}")
+      endif()
+    endforeach()
     list(APPEND _lep_man_targets ${_target})
     list(APPEND _lep_man_names ${_name})
     list(APPEND _lep_man_summaries "${_summary}")
-  endif()
+  endforeach()
 endforeach()
 
 # SEE ALSO (every page) and COPYRIGHT, shared by all pages.
