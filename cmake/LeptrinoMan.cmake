@@ -20,6 +20,11 @@ if(CMAKE_CROSSCOMPILING)
   message(STATUS "Man pages: not generated when cross-compiling (help2man runs the programs)")
   return()
 endif()
+set(_lep_man_commands_script ${PROJECT_SOURCE_DIR}/packaging/man/commands.cmake)
+if(NOT EXISTS ${_lep_man_commands_script})
+  message(STATUS "Man pages: ${_lep_man_commands_script} is missing, so no man pages")
+  return()
+endif()
 find_program(LEPTRINO_HELP2MAN help2man)
 if(NOT LEPTRINO_HELP2MAN)
   message(STATUS "Man pages: help2man not found, so no man pages are built or installed "
@@ -82,8 +87,8 @@ foreach(_target _name _summary IN ZIP_LISTS _lep_man_targets _lep_man_names _lep
   set(_commands ${_lep_man_dir}/${_name}.commands.h2m)
   add_custom_command(OUTPUT ${_commands}
     COMMAND ${CMAKE_COMMAND} -DPROGRAM=$<TARGET_FILE:${_target}> -DOUTPUT=${_commands}
-            -P ${PROJECT_SOURCE_DIR}/packaging/man/commands.cmake
-    DEPENDS ${_target} ${PROJECT_SOURCE_DIR}/packaging/man/commands.cmake
+            -P ${_lep_man_commands_script}
+    DEPENDS ${_target} ${_lep_man_commands_script}
     VERBATIM)
   # --version-string: the version comes from project(); the program is run
   # only for --help (which must exit 0).
