@@ -14,7 +14,8 @@ static const cli_command COMMANDS[] = {
     {"list", cli_cmd_list, "list serial ports, marking likely sensors"},
     {"info", cli_cmd_info, "show model, serial, firmware, rated values, filter"},
     {"read", cli_cmd_read, "read N samples one by one (handshake mode)"},
-    {"stream", cli_cmd_stream, "record continuous data to CSV or JSON lines"},
+    {"stream", cli_cmd_stream, "record one or more sensors to CSV or JSON lines"},
+    {"watch", cli_cmd_watch, "live view in the terminal: bars, rate, errors; keys t, u, q"},
     {"filter", cli_cmd_filter, "show or set the digital filter"},
 };
 
@@ -53,6 +54,7 @@ static void usage(FILE *f)
           "  leptrino stream --sim --duration 3\n"
           "  leptrino info /dev/ttyACM0\n"
           "  leptrino stream /dev/ttyACM0 --tare 100 -o forces.csv\n"
+          "  leptrino watch --sim\n"
           "\n"
           "'leptrino COMMAND --help' shows the options of a command.\n"
           "\n",
