@@ -1,4 +1,4 @@
-"""`leptrino watch` in a real terminal: tmux runs it in a detached session,
+"""`leptrino watch` (and `stream`'s keys) in a real terminal: tmux runs it in a detached session,
 keys go in with send-keys, the screen comes back with capture-pane.
 
 Skipped only when tmux is not installed; CI installs it (.ci/checks/
@@ -16,10 +16,11 @@ import subprocess
 import time
 import uuid
 from collections.abc import Callable, Iterator
+from pathlib import Path
 
 import pytest
 
-from conftest import cli_path
+from conftest import Csv, cli_path
 
 if shutil.which("tmux") is None:
     if os.environ.get("LEPTRINO_REQUIRE_TMUX") == "1":
@@ -92,7 +93,7 @@ def shell_command(args: list[str], marker: str) -> str:
     terminal settings came back, then stays (so the pane can be read)."""
     cmd = " ".join(shlex.quote(a) for a in [cli_path(), *args])
     return ("sh -c " + shlex.quote(
-        f"before=$(stty -g); {cmd} 2>/tmp/{marker}.err; code=$?; "
+        f"trap : INT; before=$(stty -g); {cmd} 2>/tmp/{marker}.err; code=$?; "
         f"if [ \"$(stty -g)\" = \"$before\" ]; then t=restored; else t=changed; fi; "
         f"echo {marker} exit=$code tty=$t; sleep 60"))
 
@@ -183,3 +184,39 @@ def test_watch_sigusr1_tares(marker: str) -> None:
         assert f"{marker} exit=0 tty=restored" in t.wait_for(lambda s: marker in s)
     finally:
         t.close()
+
+
+def test_watch_lost_port_ends_with_exit_4_and_a_restored_terminal(marker: str) -> None:
+    t = Tmux(shell_command(["watch", "--sim", "--sim-hangup-after", "1"], marker))
+    try:
+        screen = t.wait_for(lambda s: marker in s)
+        assert f"{marker} exit=4 tty=restored" in screen
+        with open(f"/tmp/{marker}.err") as f:
+            assert "disconnected" in f.read()
+    finally:
+        t.close()
+
+
+def test_stream_keys_tare_and_untare_in_a_terminal(marker: str, tmp_path: Path) -> None:
+    out = tmp_path / "keys.csv"
+    t = Tmux(shell_command(["stream", "--sim", "--sim-constant", "--retare", "50",
+                            "-o", str(out)], marker))
+    try:
+        deadline = time.monotonic() + 20
+        while time.monotonic() < deadline and (not out.exists() or out.stat().st_size < 20000):
+            time.sleep(0.1)
+        time.sleep(0.3)
+        t.keys("t")
+        time.sleep(1.0)
+        t.keys("u")
+        time.sleep(0.5)
+        t.keys("C-c")
+        screen = t.wait_for(lambda s: marker in s)
+        assert f"{marker} exit=0 tty=restored" in screen
+    finally:
+        t.close()
+    csv = Csv(out.read_text())
+    assert len(csv.events("tare")) == 2, csv.comments
+    fx = csv.column("fx_N")
+    assert abs(fx[0] - 100.0) < 1.0 and abs(fx[-1] - 100.0) < 1.0
+    assert len([v for v in fx if abs(v) < 0.05]) > 400

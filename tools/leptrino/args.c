@@ -176,3 +176,11 @@ bool cli_args_doubles(cli_args *a, double *out, size_t n)
     }
     return true;
 }
+
+bool cli_args_help(cli_args *a)
+{
+    if (!cli_args_is(a, "-h", "--help"))
+        return false;
+    cli_args_flag(a);
+    return !a->failed;
+}

@@ -61,6 +61,8 @@ void cli_args_init(cli_args *a, int argc, char **argv, const char *cmd);
 bool cli_args_next(cli_args *a);
 /* Current element is the option -s / --long (either may be NULL). */
 bool cli_args_is(cli_args *a, const char *short_name, const char *long_name);
+/* The current element is -h / --help (without a value: --help=x fails). */
+bool cli_args_help(cli_args *a);
 /* The option takes no value: fails on --flag=value. Returns true. */
 bool cli_args_flag(cli_args *a);
 /* The option's value (inline or the next element); NULL and failed if absent. */
@@ -188,6 +190,9 @@ void cli_watch_draw(int fd, const cli_watch_view *v, int cols, int rows);
 
 /* ---- main.c ---- */
 void cli_print_exit_codes(FILE *f);
+/* The end of a command's help: the sensor options (sensors 1: one, 2:
+ * several, 0: none), then the exit codes. */
+void cli_print_help_end(FILE *f, int sensors);
 
 /* ---- commands ---- */
 int cli_cmd_list(int argc, char **argv);

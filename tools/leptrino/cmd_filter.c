@@ -17,9 +17,7 @@ static void help(void)
           "Options:\n"
           "  -h, --help              show this help\n",
           stdout);
-    cli_port_help(stdout, false);
-    fputc('\n', stdout);
-    cli_print_exit_codes(stdout);
+    cli_print_help_end(stdout, 1);
 }
 
 static bool parse_code(const char *s, uint8_t *code)
@@ -51,10 +49,7 @@ int cli_cmd_filter(int argc, char **argv)
     cli_args_init(&a, argc, argv, "filter");
     cli_port_opts_init(&po, false);
     while (cli_args_next(&a)) {
-        if (cli_args_is(&a, "-h", "--help")) {
-            cli_args_flag(&a);
-            if (a.failed)
-                break;
+        if (cli_args_help(&a)) {
             help();
             return CLI_OK;
         } else if (cli_args_is(&a, NULL, "--sim")) {

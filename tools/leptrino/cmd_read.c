@@ -22,9 +22,7 @@ static void help(void)
           "  -h, --help               show this help\n"
           "\n",
           stdout);
-    cli_port_help(stdout, false);
-    fputc('\n', stdout);
-    cli_print_exit_codes(stdout);
+    cli_print_help_end(stdout, 1);
 }
 
 int cli_cmd_read(int argc, char **argv)
@@ -47,10 +45,7 @@ int cli_cmd_read(int argc, char **argv)
     cli_port_opts_init(&po, false);
     lep_output_options_init(&oo);
     while (cli_args_next(&a)) {
-        if (cli_args_is(&a, "-h", "--help")) {
-            cli_args_flag(&a);
-            if (a.failed)
-                break;
+        if (cli_args_help(&a)) {
             help();
             return CLI_OK;
         } else if (cli_args_is(&a, "-n", "--count")) {

@@ -157,10 +157,7 @@ static int parse(int argc, char **argv, stream_opts *o)
     lep_session_options_init(&o->so);
     lep_output_options_init(&o->out);
     while (cli_args_next(&a)) {
-        if (cli_args_is(&a, "-h", "--help")) {
-            cli_args_flag(&a);
-            if (a.failed)
-                break;
+        if (cli_args_help(&a)) {
             help();
             return -1;
         } else if (cli_args_is(&a, "-d", "--duration")) {

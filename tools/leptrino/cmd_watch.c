@@ -44,9 +44,7 @@ static void help(void)
           "  -h, --help               show this help\n"
           "\n",
           stdout);
-    cli_port_help(stdout, false);
-    fputc('\n', stdout);
-    cli_print_exit_codes(stdout);
+    cli_print_help_end(stdout, 1);
 }
 
 static int parse(int argc, char **argv, watch_opts *o)
@@ -58,10 +56,7 @@ static int parse(int argc, char **argv, watch_opts *o)
     o->tare_n = 100;
     o->data_timeout = 2.0;
     while (cli_args_next(&a)) {
-        if (cli_args_is(&a, "-h", "--help")) {
-            cli_args_flag(&a);
-            if (a.failed)
-                break;
+        if (cli_args_help(&a)) {
             help();
             return -1;
         } else if (cli_args_is(&a, NULL, "--tare")) {
@@ -135,7 +130,7 @@ int cli_cmd_watch(int argc, char **argv)
     const char *port;
     int code, rc, cols, rows;
     double t0, next_frame = 0.0;
-    bool quit = false, keys;
+    bool quit = false, keys, lost = false;
 
     code = parse(argc, argv, &o);
     if (code != CLI_OK)
@@ -190,9 +185,14 @@ int cli_cmd_watch(int argc, char **argv)
             v.status = status[b.n - 1];
             v.have_sample = true;
         }
-        while (lep_session_next_event(s, &ev))
+        while (lep_session_next_event(s, &ev)) {
             note_event(&v, &ev, t0);
-        if (rc != LEP_OK && rc != LEP_E_TIMEOUT) {
+            if (ev.type == LEP_EV_DISCONNECTED && !o.reconnect) {
+                rc = ev.error; /* the stream is lost for good: say so and end */
+                lost = true;
+            }
+        }
+        if (rc != LEP_OK && (rc != LEP_E_TIMEOUT || lost)) {
             code = rc == LEP_E_END ? CLI_OK : cli_exit_code(rc);
             break;
         }

@@ -36,6 +36,15 @@ void cli_print_exit_codes(FILE *f)
           f);
 }
 
+void cli_print_help_end(FILE *f, int sensors)
+{
+    if (sensors > 0) {
+        cli_port_help(f, sensors > 1);
+        fputc('\n', f);
+    }
+    cli_print_exit_codes(f);
+}
+
 static void usage(FILE *f)
 {
     size_t i;
