@@ -2,11 +2,11 @@
 
 from __future__ import annotations
 
-import json
 import subprocess
 import time
 
 from conftest import SimProcess, cli_path, parse_csv, parse_jsonl, run
+from fake_sensor import FakeSensor
 
 
 def info_fields(text: str) -> dict[str, str]:
@@ -147,3 +147,28 @@ def test_sensor_refusing_every_command_exit_5() -> None:
 def test_nak_faults_are_retried() -> None:
     r = run(["info", "--sim", "--sim-nak", "0.2", "--sim-seed", "7"])
     assert r.returncode == 0, r.stderr
+
+
+def test_info_survives_a_refused_filter_query() -> None:
+    sensor = FakeSensor(filter_result=0x02)
+    try:
+        r = run(["info", sensor.port])
+    finally:
+        sensor.close()
+    assert r.returncode == 0, r.stderr
+    f = info_fields(r.stdout)
+    assert f["model"] == "PFS055YA501U6"
+    assert f["serial"] == "00000042"
+    assert f["rated"].startswith("Fx 500 N,")
+    assert f["filter"] == "not supported by this sensor"
+    assert 0xB6 in sensor.commands
+
+
+def test_filter_query_refused_is_said_plainly() -> None:
+    sensor = FakeSensor(filter_result=0x02)
+    try:
+        r = run(["filter", sensor.port])
+    finally:
+        sensor.close()
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.strip() == "filter: not supported by this sensor"

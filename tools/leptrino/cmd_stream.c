@@ -385,16 +385,22 @@ static void status_line(stream_state *st)
     double now = lep_monotonic_seconds();
     if (!st->st.enabled)
         return;
-    for (i = 0; i < st->n && used < sizeof text - 80; ++i) {
+    text[0] = '\0';
+    for (i = 0; i < st->n && used < sizeof text - 1; ++i) {
         lep_session_health h;
+        int len;
         lep_session_get_health(st->run[i].s, &h);
-        used += (size_t)snprintf(text + used, sizeof text - used,
-                                 "%s%s %llu samples %.1f Hz %llu err %llu gaps", i > 0 ? " | " : "",
-                                 st->n > 1 ? st->run[i].sensor->name : "",
-                                 (unsigned long long)h.delivered, h.recent_hz,
-                                 (unsigned long long)h.errors, (unsigned long long)h.gaps);
+        len = snprintf(text + used, sizeof text - used,
+                       "%s%s%s%llu samples %.1f Hz %llu err %llu gaps", i > 0 ? " | " : "",
+                       st->n > 1 ? st->run[i].sensor->name : "", st->n > 1 ? " " : "",
+                       (unsigned long long)h.delivered, h.recent_hz,
+                       (unsigned long long)h.errors, (unsigned long long)h.gaps);
+        used = len < 0 ? used : used + (size_t)len;
+        if (used > sizeof text - 1)
+            used = sizeof text - 1; /* truncated: the line is cut there */
     }
-    snprintf(text + used, sizeof text - used, "  %.1f s", now - st->t0);
+    if (used < sizeof text - 1)
+        snprintf(text + used, sizeof text - used, "  %.1f s", now - st->t0);
     cli_status_update(&st->st, now, text);
 }
 

@@ -49,7 +49,7 @@ static void usage(FILE *f)
 {
     size_t i;
     fputs("Usage: leptrino COMMAND [options]\n"
-          "       leptrino --version | --help | help COMMAND\n"
+          "  or:  leptrino --version | --help | help COMMAND\n"
           "\n"
           "Talk to Leptrino 6-axis force/torque sensors over a serial port, or to a\n"
           "built-in virtual sensor (--sim) when there is no hardware.\n"
