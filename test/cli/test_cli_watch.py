@@ -1,9 +1,9 @@
-"""`leptrino watch` (and `stream`'s keys) in a real terminal: tmux runs it in a detached session,
-keys go in with send-keys, the screen comes back with capture-pane.
+"""`leptrino watch` (and `stream`'s keys) in a real terminal: tmux runs the
+program in a detached session, keys go in with send-keys, the screen comes
+back with capture-pane.
 
-Skipped only when tmux is not installed; CI installs it (.ci/checks/
-40-cli-watch.sh sets LEPTRINO_REQUIRE_TMUX=1, which turns the skip into a
-failure)."""
+Skipped only when tmux is not installed; CI installs it: .ci/checks/40-cli.sh
+sets LEPTRINO_REQUIRE_TMUX=1, which turns the skip into a failure."""
 
 from __future__ import annotations
 

@@ -10,6 +10,7 @@
  *   tare state, the last event, the keys */
 #define _POSIX_C_SOURCE 200809L
 
+#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
@@ -69,7 +70,7 @@ static void line(screen *s, const char *fmt, ...)
     for (i = 0; i < n; ++i) {
         if (text[i] == '\033') {
             int j = i + 1;
-            while (j < n && !((text[j] >= 'A' && text[j] <= 'Z') || (text[j] >= 'a' && text[j] <= 'z')))
+            while (j < n && !isalpha((unsigned char)text[j]))
                 j++;
             put(s, text + i, (size_t)(j < n ? j + 1 - i : n - i));
             i = j;
