@@ -50,7 +50,10 @@ static void recover(gateway *g)
 
 static void on_response(gateway *g)
 {
-    const lep_response *r = lep_client_response(&g->client);
+    lep_response resp;
+    const lep_response *r = &resp;
+    if (lep_client_response(&g->client, &resp) != LEP_OK)
+        resp.code = 0;
     switch (g->state) {
     case GW_STOPPING:
         g->state = GW_DRAINING;
@@ -77,8 +80,11 @@ static void on_response(gateway *g)
 static void on_sample(gateway *g)
 {
     float si[LEP_AXES];
-    const lep_sample *s = &lep_client_response(&g->client)->u.sample;
+    lep_sample smp;
+    const lep_sample *s = &smp;
     size_t i;
+    if (lep_client_get_sample(&g->client, &smp) != LEP_OK)
+        return;
     for (i = 0; i < LEP_AXES; i++) {
         si[i] = (float)s->raw[i] * g->rated.axis[i] / (float)LEP_RAW_FULL_SCALE;
     }
