@@ -20,7 +20,6 @@ from dataclasses import dataclass, field
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
 from .. import _constants as K
-from ..codec import sample_to_si
 from ..errors import LeptrinoError
 from ..sensor import Sensor
 from . import cdr
@@ -144,9 +143,10 @@ class SensorNode:
             lowpass=opts.lowpass_hz, rotation=opts.rotation, reconnect=True,
             latency=opts.latency_s, data_timeout=opts.data_timeout_s)
         try:
-            # raw counts -> N, N·m is linear per axis: ask the library once
-            self._scale = tuple(v / 10000.0 for v in
-                                sample_to_si((10000,) * K.LEP_AXES, self.sensor.rated))
+            # wrench_raw: counts * rated / full scale, the operations of
+            # lep_sample_to_si in its order (bit-identical to the session's
+            # SI values when nothing is applied; the tests compare them)
+            self._rated = tuple(float(v) for v in self.sensor.rated)
             self._enc = cdr.WrenchStampedEncoder(spec.frame_id)
             ns = rz.normalize_namespace(opts.namespace)
             zid = str(session.zid()) if session is not None else "0"
@@ -231,9 +231,11 @@ class SensorNode:
         stream = self.sensor.stream()
         it = iter(stream)
         enc = self._enc.encode
-        sx, sy, sz, tx, ty, tz = self._scale
+        rx, ry, rz_, qx, qy, qz = self._rated
+        full = float(K.LEP_RAW_FULL_SCALE)
         wrench, wrench_raw, c = self.wrench, self.wrench_raw, self.counters
         failing = False
+        last_ns = 0
         while not self._stop.is_set():
             try:
                 s = next(it)
@@ -252,12 +254,19 @@ class SensorNode:
             if failing:
                 log.warning("%s: data again", self.spec.name)
                 failing = False
+            # The session's t_utc (a double: 238 ns steps today) can step back
+            # by a step or a few us when it re-reads the wall clock; a ROS
+            # stream's stamps should not: hold the previous one then.
             ns = int(round(s.t_utc * 1e9))
+            if ns < last_ns:
+                ns = last_ns
+            last_ns = ns
             sec, nsec = divmod(ns, 1_000_000_000)
             wrench.send(enc(sec, nsec, s.si), ns)
             r = s.raw
-            wrench_raw.send(enc(sec, nsec, (r[0] * sx, r[1] * sy, r[2] * sz,
-                                            r[3] * tx, r[4] * ty, r[5] * tz)), ns)
+            wrench_raw.send(enc(sec, nsec, (r[0] * rx / full, r[1] * ry / full,
+                                            r[2] * rz_ / full, r[3] * qx / full,
+                                            r[4] * qy / full, r[5] * qz / full)), ns)
             c.samples += 1
             c.last_sample_mono = s.t
             if stream.events:
