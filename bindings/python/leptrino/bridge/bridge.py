@@ -5,12 +5,13 @@ from __future__ import annotations
 import itertools
 import json
 import logging
+import os
 import threading
 import time
 from dataclasses import dataclass, field
 from typing import Any, List, Optional
 
-from .mcap_out import McapRecorder
+from .mcap_out import FileExistsRefused, McapRecorder
 from .node import NodeOptions, SensorNode, SensorSpec
 
 log = logging.getLogger("leptrino.bridge")
@@ -78,15 +79,19 @@ class Bridge:
         self.nodes: List[SensorNode] = []
         self._stop = threading.Event()
         self._diag: Optional[threading.Thread] = None
+        if mcap_path is not None and not force and os.path.lexists(mcap_path):
+            raise FileExistsRefused(f"{mcap_path}: already exists (give --force to replace it)")
         ids = itertools.count(100)
         try:
+            # the sensors first: a sensor that cannot be opened leaves no file
+            for spec in sensors:
+                self.nodes.append(SensorNode(spec, self.opts))
             if zenoh_opts is not None:
                 self.session = open_session(zenoh_opts)
             if mcap_path is not None:
                 self.mcap = McapRecorder(mcap_path, force)
-            for i, spec in enumerate(sensors):
-                self.nodes.append(SensorNode(spec, self.opts, i, lambda: next(ids),
-                                             self.session, self.mcap))
+            for i, node in enumerate(self.nodes):
+                node.declare(i, lambda: next(ids), self.session, self.mcap)
         except BaseException:
             self.close()
             raise

@@ -121,15 +121,13 @@ class Counters:
 class SensorNode:
     """A sensor, its ROS 2 node (liveliness), topics and services.
 
-    Construction opens the sensor (raises what leptrino.Sensor raises) and
-    declares everything; start() starts the reading thread; stop() ends it,
-    stops the stream, closes the sensor and undeclares. session: an open
-    zenoh.Session or None (MCAP only); mcap: a recorder or None.
+    Construction opens the sensor (raises what leptrino.Sensor raises);
+    declare() declares the node, topics and services on the outputs; start()
+    starts the stream and the reading thread; stop() ends the thread; close()
+    stops the stream, undeclares and closes the sensor.
     """
 
-    def __init__(self, spec: SensorSpec, opts: NodeOptions, node_id: int,
-                 next_entity_id: Callable[[], int], session: Any = None,
-                 mcap: Optional[McapRecorder] = None) -> None:
+    def __init__(self, spec: SensorSpec, opts: NodeOptions) -> None:
         self.spec = spec
         self.opts = opts
         self.counters = Counters()
@@ -138,53 +136,61 @@ class SensorNode:
         self._lock = threading.Lock()  # tare/untare from service threads
         self._tokens: List[Any] = []
         self._queryables: List[Any] = []
+        self.wrench: Optional[Topic] = None
+        self.wrench_raw: Optional[Topic] = None
+        self.diagnostics: Optional[Topic] = None
         self.sensor = Sensor(
             spec.port, opts.timeout_s, sim=spec.sim, tare=opts.tare_at_start,
             lowpass=opts.lowpass_hz, rotation=opts.rotation, reconnect=True,
             latency=opts.latency_s, data_timeout=opts.data_timeout_s)
+        # wrench_raw: counts * rated / full scale, the operations of
+        # lep_sample_to_si in its order (bit-identical to the session's SI
+        # values when nothing is applied; the tests compare them)
+        self._rated = tuple(float(v) for v in self.sensor.rated)
         try:
-            # wrench_raw: counts * rated / full scale, the operations of
-            # lep_sample_to_si in its order (bit-identical to the session's
-            # SI values when nothing is applied; the tests compare them)
-            self._rated = tuple(float(v) for v in self.sensor.rated)
             self._enc = cdr.WrenchStampedEncoder(spec.frame_id)
-            ns = rz.normalize_namespace(opts.namespace)
-            zid = str(session.zid()) if session is not None else "0"
-            qos = rz.qos_keyexpr(True, opts.qos_depth)
-
-            def entity(kind: str, topic: str = "", ros_type: str = "") -> rz.Entity:
-                eid = node_id if kind == rz.NODE else next_entity_id()
-                name = rz.fully_qualified(ns, spec.name, topic) if topic else ""
-                return rz.Entity(opts.domain, zid, node_id, eid, kind, ns, spec.name, name,
-                                 ros_type, rihs01(ros_type) if ros_type else "",
-                                 qos if ros_type else "")
-
-            self.node_entity = entity(rz.NODE)
-            self.wrench = Topic(entity(rz.PUBLISHER, "wrench", WRENCH), session, mcap)
-            self.wrench_raw = Topic(entity(rz.PUBLISHER, "wrench_raw", WRENCH), session, mcap)
-            self.diagnostics = Topic(entity(rz.PUBLISHER, "diagnostics", DIAGNOSTICS),
-                                     session, mcap)
-            self.services = {
-                "tare": entity(rz.SERVICE, "tare", TRIGGER),
-                "untare": entity(rz.SERVICE, "untare", TRIGGER),
-            }
-            if session is not None:
-                for svc, ent in self.services.items():
-                    self._queryables.append(session.declare_queryable(
-                        ent.key(), self._service_handler(svc), complete=True))
-                for ent in [self.node_entity, self.wrench.entity, self.wrench_raw.entity,
-                            self.diagnostics.entity, *self.services.values()]:
-                    self._tokens.append(session.liveliness().declare_token(ent.token()))
-        except BaseException:
-            self.close()
+        except ValueError:
+            self.sensor.close()
             raise
 
-    # -- life cycle ----------------------------------------------------------
-    @property
-    def topics(self) -> Tuple[Topic, Topic, Topic]:
-        return (self.wrench, self.wrench_raw, self.diagnostics)
+    def declare(self, node_id: int, next_entity_id: Callable[[], int], session: Any = None,
+                mcap: Optional[McapRecorder] = None) -> None:
+        """Declare the node, its topics and services on session (a
+        zenoh.Session, or None) and its channels in mcap (or None)."""
+        spec, opts = self.spec, self.opts
+        ns = rz.normalize_namespace(opts.namespace)
+        zid = str(session.zid()) if session is not None else "0"
+        qos = rz.qos_keyexpr(True, opts.qos_depth)
 
+        def entity(kind: str, topic: str = "", ros_type: str = "") -> rz.Entity:
+            eid = node_id if kind == rz.NODE else next_entity_id()
+            name = rz.fully_qualified(ns, spec.name, topic) if topic else ""
+            return rz.Entity(opts.domain, zid, node_id, eid, kind, ns, spec.name, name,
+                             ros_type, rihs01(ros_type) if ros_type else "",
+                             qos if ros_type else "")
+
+        self.node_entity = entity(rz.NODE)
+        self.wrench = Topic(entity(rz.PUBLISHER, "wrench", WRENCH), session, mcap)
+        self.wrench_raw = Topic(entity(rz.PUBLISHER, "wrench_raw", WRENCH), session, mcap)
+        self.diagnostics = Topic(entity(rz.PUBLISHER, "diagnostics", DIAGNOSTICS),
+                                 session, mcap)
+        self.services = {
+            "tare": entity(rz.SERVICE, "tare", TRIGGER),
+            "untare": entity(rz.SERVICE, "untare", TRIGGER),
+        }
+        if session is not None:
+            for svc, ent in self.services.items():
+                self._queryables.append(session.declare_queryable(
+                    ent.key(), self._service_handler(svc), complete=True))
+            for ent in [self.node_entity, self.wrench.entity, self.wrench_raw.entity,
+                        self.diagnostics.entity, *self.services.values()]:
+                self._tokens.append(session.liveliness().declare_token(ent.token()))
+
+    # -- life cycle ----------------------------------------------------------
     def start(self) -> None:
+        """Start the stream and the reading thread (after declare())."""
+        if self.wrench is None:
+            raise RuntimeError("declare() first")
         self.sensor.start()
         self._thread = threading.Thread(target=self._run, name=f"bridge-{self.spec.name}",
                                         daemon=True)
@@ -205,8 +211,7 @@ class SensorNode:
             except Exception:
                 pass
         self._queryables = []
-        for t in getattr(self, "wrench", None), getattr(self, "wrench_raw", None), \
-                getattr(self, "diagnostics", None):
+        for t in self.wrench, self.wrench_raw, self.diagnostics:
             if t is not None:
                 t.close()
         for tok in self._tokens:
@@ -234,6 +239,7 @@ class SensorNode:
         rx, ry, rz_, qx, qy, qz = self._rated
         full = float(K.LEP_RAW_FULL_SCALE)
         wrench, wrench_raw, c = self.wrench, self.wrench_raw, self.counters
+        assert wrench is not None and wrench_raw is not None
         failing = False
         last_ns = 0
         while not self._stop.is_set():
@@ -322,7 +328,8 @@ class SensorNode:
         sec, nsec = divmod(ns, 1_000_000_000)
         payload = cdr.encode_diagnostic_array(sec, nsec, self.spec.frame_id,
                                               [self.diagnostic_status()])
-        self.diagnostics.send(payload, ns)
+        if self.diagnostics is not None:
+            self.diagnostics.send(payload, ns)
 
     # -- services ------------------------------------------------------------
     def tare(self) -> Tuple[bool, str]:
