@@ -63,8 +63,13 @@ need=(
   /usr/share/doc/leptrino/copyright
 )
 if [ -f tools/leptrino-soak/CMakeLists.txt ]; then
-  need+=(/usr/bin/leptrino-soak /usr/share/man/man1/leptrino-soak.1.gz)
+  need+=(/usr/bin/leptrino-soak)
 fi
+# Every program of the package has its man page.
+programs=$(sed -n 's|^/usr/bin/\(.*\)|\1|p' "$work/paths.txt")
+for prog in $programs; do
+  need+=("/usr/share/man/man1/$prog.1.gz")
+done
 for p in "${need[@]}"; do
   grep -qxF "$p" "$work/paths.txt" || fail "the package lacks $p"
 done
@@ -138,12 +143,12 @@ if [ -x /usr/bin/leptrino-soak ]; then
   leptrino-soak --help >/dev/null || fail "leptrino-soak --help"
 fi
 
-for prog in leptrino leptrino-sim $( [ -x /usr/bin/leptrino-soak ] && echo leptrino-soak ); do
+for prog in $programs; do
   page=$(man -w "$prog") || fail "man -w $prog"
   [ "$page" = "/usr/share/man/man1/$prog.1.gz" ] || fail "man -w $prog gives $page"
   MANPAGER=cat MANWIDTH=80 man "$prog" 2>/dev/null | grep "^NAME" >/dev/null || fail "man $prog does not render"
 done
-echo "deb: man pages found by man -w"
+echo "deb: man pages of" $programs "found by man -w"
 
 # 5. C, against the installed files only (no build tree, no rpath).
 consumer=$root/test/package/consumer
