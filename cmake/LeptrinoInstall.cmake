@@ -33,6 +33,51 @@ if(LEPTRINO_CORE_ONLY)
 else()
   set(LEPTRINO_PC_LIBS_PRIVATE "-pthread")
 endif()
-file(RELATIVE_PATH LEPTRINO_PC_TO_PREFIX "/prefix/${CMAKE_INSTALL_LIBDIR}/pkgconfig" "/prefix")
+# A /usr install (the Debian package) says prefix=/usr: pkg-config then
+# recognises /usr/include and /usr/lib/<multiarch> as system directories and
+# prints no -I/-L for them.
+if(CMAKE_INSTALL_PREFIX STREQUAL "/usr")
+  set(LEPTRINO_PC_PREFIX "/usr")
+else()
+  file(RELATIVE_PATH _lep_pc_up "/prefix/${CMAKE_INSTALL_LIBDIR}/pkgconfig" "/prefix")
+  set(LEPTRINO_PC_PREFIX "\${pcfiledir}/${_lep_pc_up}")
+endif()
 configure_file(pkgconfig/leptrino.pc.in ${PROJECT_BINARY_DIR}/leptrino.pc @ONLY)
 install(FILES ${PROJECT_BINARY_DIR}/leptrino.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+
+# The license, as Debian wants it (share/doc/leptrino/copyright, machine-readable
+# format), made from LICENSE so that the text lives in one file.
+file(STRINGS ${PROJECT_SOURCE_DIR}/LICENSE _lep_license_lines)
+set(LEPTRINO_DEB_LICENSE_TEXT "")
+set(_lep_in_text OFF)
+foreach(_line IN LISTS _lep_license_lines)
+  if(_line MATCHES "^Permission is hereby granted")
+    set(_lep_in_text ON)
+  endif()
+  if(_lep_in_text)
+    if(_line STREQUAL "")
+      string(APPEND LEPTRINO_DEB_LICENSE_TEXT " .\n")
+    else()
+      string(APPEND LEPTRINO_DEB_LICENSE_TEXT " ${_line}\n")
+    endif()
+  endif()
+endforeach()
+string(STRIP "${LEPTRINO_DEB_LICENSE_TEXT}" LEPTRINO_DEB_LICENSE_TEXT)
+string(PREPEND LEPTRINO_DEB_LICENSE_TEXT " ")
+
+configure_file(packaging/debian/copyright.in ${PROJECT_BINARY_DIR}/copyright @ONLY)
+install(FILES ${PROJECT_BINARY_DIR}/copyright DESTINATION ${CMAKE_INSTALL_DOCDIR})
+
+if(NOT LEPTRINO_CORE_ONLY)
+  # The udev rule: where udev reads it for a /usr install (the Debian package),
+  # else beside the other data for an administrator to copy to /etc/udev/rules.d.
+  if(CMAKE_INSTALL_PREFIX STREQUAL "/usr")
+    set(LEPTRINO_UDEV_RULES_DIR lib/udev/rules.d CACHE STRING "Where the udev rule is installed (relative to the prefix)")
+  else()
+    set(LEPTRINO_UDEV_RULES_DIR ${CMAKE_INSTALL_DATADIR}/leptrino/udev CACHE STRING "Where the udev rule is installed (relative to the prefix)")
+  endif()
+  install(FILES packaging/udev/60-leptrino.rules DESTINATION ${LEPTRINO_UDEV_RULES_DIR})
+endif()
+
+# Man pages from the programs' --help (help2man), installed in share/man/man1.
+include(cmake/LeptrinoMan.cmake)

@@ -11,7 +11,7 @@
 #include "unity.h"
 #include "vectors.h"
 
-#define MAX_EVENTS 64u
+#define MAX_EVENTS 256u
 #define MAX_INPUT 4096u
 #define RANDOM_SPLIT_SEEDS 64u
 
@@ -394,6 +394,41 @@ static void test_decoder_busy_and_empty_feed(void)
     TEST_ASSERT_EQUAL_UINT32(0u, d.stats.messages);
 }
 
+/* Bad arguments consume nothing, return 0 and say LEP_E_ARG in the event;
+ * the decoder is left as it was. */
+static void test_decoder_feed_bad_arguments(void)
+{
+    static const uint8_t start[] = {0x10, 0x02, 0x04};
+    static const uint8_t rest[] = {0xFF, 0x2A, 0x00, 0x10, 0x03, 0xD2};
+    lep_frame_decoder d;
+    lep_frame_event ev;
+    lep_frame_decoder_init(&d);
+    TEST_ASSERT_EQUAL_size_t(sizeof(start), lep_frame_decoder_feed(&d, start, sizeof(start), &ev));
+    memset(&ev, 0x5A, sizeof(ev));
+    TEST_ASSERT_EQUAL_size_t(0u, lep_frame_decoder_feed(NULL, start, sizeof(start), &ev));
+    TEST_ASSERT_EQUAL_INT(LEP_FRAME_ERROR, ev.type);
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, ev.error);
+    TEST_ASSERT_NULL(ev.msg);
+    TEST_ASSERT_EQUAL_size_t(0u, ev.len);
+    memset(&ev, 0x5A, sizeof(ev));
+    TEST_ASSERT_EQUAL_size_t(0u, lep_frame_decoder_feed(NULL, NULL, 0, &ev));
+    TEST_ASSERT_EQUAL_INT(LEP_FRAME_ERROR, ev.type);
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, ev.error);
+    memset(&ev, 0x5A, sizeof(ev));
+    TEST_ASSERT_EQUAL_size_t(0u, lep_frame_decoder_feed(&d, NULL, 3, &ev));
+    TEST_ASSERT_EQUAL_INT(LEP_FRAME_ERROR, ev.type);
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, ev.error);
+    TEST_ASSERT_EQUAL_size_t(0u, lep_frame_decoder_feed(&d, rest, sizeof(rest), NULL));
+    TEST_ASSERT_EQUAL_size_t(0u, lep_frame_decoder_feed(NULL, NULL, 0, NULL));
+    /* None of it touched the frame in progress. */
+    TEST_ASSERT_TRUE(lep_frame_decoder_busy(&d));
+    TEST_ASSERT_EQUAL_UINT32(0u, d.stats.bytes_discarded);
+    TEST_ASSERT_EQUAL_size_t(sizeof(rest), lep_frame_decoder_feed(&d, rest, sizeof(rest), &ev));
+    TEST_ASSERT_EQUAL_INT(LEP_FRAME_MESSAGE, ev.type);
+    TEST_ASSERT_EQUAL_size_t(4u, ev.len);
+    TEST_ASSERT_EQUAL_HEX8(0x2A, ev.msg[2]);
+}
+
 /* The event for a frame is returned as soon as its last byte is consumed:
  * bytes after it are left to the next call. */
 static void test_decoder_stops_after_each_event(void)
@@ -513,6 +548,7 @@ int main(void)
     RUN_TEST(test_decode_streams_random_splits);
     RUN_TEST(test_decode_streams_concatenated);
     RUN_TEST(test_decoder_busy_and_empty_feed);
+    RUN_TEST(test_decoder_feed_bad_arguments);
     RUN_TEST(test_decoder_stops_after_each_event);
     RUN_TEST(test_empty_frame_is_not_delivered);
     RUN_TEST(test_random_messages_round_trip);

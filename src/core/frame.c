@@ -13,7 +13,9 @@ enum {
     S_BCC,       /* after DLE ETX: the next byte is the BCC */
     S_SKIP,      /* inside a rejected (over-long) frame: track escapes to its end */
     S_SKIP_DLE,  /* same, after a DLE */
-    S_SKIP_BCC   /* same, the BCC byte */
+    S_SKIP_BCC,  /* same, the BCC byte */
+    S_BCC_DLE    /* between frames, after a frame whose BCC was 0x10: that byte may
+                    also have been the DLE of a following DLE STX / DLE NAK */
 };
 
 uint8_t lep_bcc(const uint8_t *msg, size_t len)
@@ -83,7 +85,7 @@ void lep_frame_decoder_init(lep_frame_decoder *d)
 
 bool lep_frame_decoder_busy(const lep_frame_decoder *d)
 {
-    return d != NULL && d->state != S_IDLE && d->state != S_IDLE_DLE;
+    return d != NULL && d->state != S_IDLE && d->state != S_IDLE_DLE && d->state != S_BCC_DLE;
 }
 
 static void begin_frame(lep_frame_decoder *d)
@@ -186,9 +188,16 @@ static bool step(lep_frame_decoder *d, uint8_t b, lep_frame_event *ev)
         }
         reject(d, ev, LEP_E_ESCAPE, S_IDLE);
         return true;
-    case S_BCC:
+    case S_BCC: {
+        uint8_t want = (uint8_t)(d->bcc ^ LEP_ETX);
+        if (b == LEP_DLE && want != LEP_DLE) {
+            /* The BCC byte was lost (or hit): this DLE may open the next frame,
+             * so it is not counted with this one. */
+            reject(d, ev, LEP_E_BCC, S_IDLE_DLE);
+            return true;
+        }
         d->raw++;
-        if (b != (uint8_t)(d->bcc ^ LEP_ETX)) {
+        if (b != want) {
             reject(d, ev, LEP_E_BCC, S_IDLE);
             return true;
         }
@@ -201,13 +210,29 @@ static bool step(lep_frame_decoder *d, uint8_t b, lep_frame_event *ev)
             d->state = S_IDLE;
             return true;
         }
-        d->state = S_IDLE;
+        /* A BCC of 0x10 may also be the DLE of what follows: the true BCC was
+         * lost and happened to be 0x10, or the next frame's DLE was lost. */
+        d->state = b == LEP_DLE ? S_BCC_DLE : S_IDLE;
         d->raw = 0;
         d->stats.messages++;
         ev->type = LEP_FRAME_MESSAGE;
         ev->msg = d->buf;
         ev->len = d->len;
         return true;
+    }
+    case S_BCC_DLE:
+        if (b == LEP_DLE) {
+            d->state = S_IDLE_DLE;
+        } else if (b == LEP_STX) {
+            begin_frame(d);
+            d->raw = 1; /* its DLE was counted with the frame before */
+        } else if (b == LEP_NAK) {
+            return nak(d, ev);
+        } else {
+            d->stats.bytes_discarded++;
+            d->state = S_IDLE;
+        }
+        return false;
     case S_SKIP:
         if (b == LEP_DLE) {
             d->state = S_SKIP_DLE;
@@ -225,9 +250,13 @@ static bool step(lep_frame_decoder *d, uint8_t b, lep_frame_event *ev)
             d->state = b == LEP_ETX ? S_SKIP_BCC : (b == LEP_DLE ? S_SKIP : S_IDLE);
         }
         return false;
-    default: /* S_SKIP_BCC */
-        d->stats.bytes_discarded++;
-        d->state = S_IDLE;
+    default: /* S_SKIP_BCC: a DLE may be the BCC or the next frame's DLE (BCC lost) */
+        if (b == LEP_DLE) {
+            d->state = S_IDLE_DLE;
+        } else {
+            d->stats.bytes_discarded++;
+            d->state = S_IDLE;
+        }
         return false;
     }
 }
@@ -236,6 +265,16 @@ size_t lep_frame_decoder_feed(lep_frame_decoder *d, const uint8_t *data, size_t 
                               lep_frame_event *ev)
 {
     size_t i;
+    if (ev == NULL) {
+        return 0;
+    }
+    if (d == NULL || (data == NULL && len > 0)) {
+        ev->type = LEP_FRAME_ERROR;
+        ev->error = LEP_E_ARG;
+        ev->msg = NULL;
+        ev->len = 0;
+        return 0;
+    }
     ev->type = LEP_FRAME_NONE;
     ev->error = LEP_OK;
     ev->msg = NULL;

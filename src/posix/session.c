@@ -180,14 +180,14 @@ int lep_session_open(const lep_session_options *o, lep_session **out, char *err,
     s->sensor_filter = -1;
     if (o->use_sim) {
         lep_sim_options so = o->sim;
-        if (o->reconnect && so.reopen_after_ms >= 0 && so.link == NULL) {
+        if (o->reconnect && so.reopen_after_ms >= 0 && so.link[0] == '\0') {
             /* The port must come back under the same name: make up a link. */
             const char *dir = getenv("TMPDIR");
             if (dir == NULL || dir[0] == '\0' || strlen(dir) > 64)
                 dir = "/tmp";
             snprintf(s->link_buf, sizeof s->link_buf, "%s/leptrino-sim-%ld-%lx", dir,
                      (long)getpid(), (unsigned long)(uintptr_t)s);
-            so.link = s->link_buf;
+            snprintf(so.link, sizeof so.link, "%s", s->link_buf);
         }
         rc = lep_sim_start(&so, &s->sim, err, errlen);
         if (rc != LEP_OK) {
@@ -199,10 +199,9 @@ int lep_session_open(const lep_session_options *o, lep_session **out, char *err,
     } else {
         snprintf(s->port_buf, sizeof s->port_buf, "%s", o->port);
     }
-    /* The copy must not point into the caller's memory (copied at start). */
+    /* The copy must not point into the caller's memory (the sim options own
+     * their strings since they became arrays). */
     s->opt.port = s->port_buf;
-    s->opt.sim.model = s->opt.sim.serial = s->opt.sim.firmware = NULL;
-    s->opt.sim.replay_csv = s->opt.sim.link = NULL;
 
     rc = lep_priv_session_connect(s, err, errlen);
     if (rc == LEP_OK)

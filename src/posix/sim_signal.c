@@ -161,7 +161,7 @@ int lep_priv_signal_init(lep_sim_signal *g, const lep_sim_options *o, const lep_
         g->freq[i] = base_hz[i] * (0.9 + 0.2 * lep_priv_uniform(&st));
         g->phase[i] = TWO_PI * lep_priv_uniform(&st);
     }
-    if (o->replay_csv != NULL && o->replay_csv[0] != '\0') {
+    if (o->replay_csv[0] != '\0') {
         int rc = load_replay(g, o->replay_csv, err, errlen);
         if (rc != LEP_OK) {
             lep_priv_signal_free(g);

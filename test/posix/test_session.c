@@ -6,6 +6,7 @@
 
 #include <math.h>
 #include <pthread.h>
+#include <stdio.h>
 #include <time.h>
 #include <string.h>
 
@@ -147,8 +148,8 @@ static void test_metadata_and_json(void)
     char json[4096], small[16];
     size_t len = 0;
     lep_session_options_init(&o);
-    o.sim.serial = "4242";
-    o.sim.model = "CFS034CA301U";
+    snprintf(o.sim.serial, sizeof o.sim.serial, "%s", "4242");
+    snprintf(o.sim.model, sizeof o.sim.model, "%s", "CFS034CA301U");
     s = open_sim(&o, &o);
     lep_session_get_metadata(s, &m);
     TEST_ASSERT_EQUAL_STRING("CFS034CA301U", m.info.model);
@@ -218,7 +219,7 @@ static void test_two_sessions_at_once(void)
     o1.count = 300;
     o2.count = 300;
     o2.tare_samples = 10;
-    o2.sim.serial = "2";
+    snprintf(o2.sim.serial, sizeof o2.sim.serial, "%s", "2");
     a = open_sim(&o1, &o1);
     b = open_sim(&o2, &o2);
     st_batch_init(&ba, 400);

@@ -176,7 +176,7 @@ static void test_lowpass_step_response_is_a_butterworth(void)
         fprintf(f, "0,0,%d,0,0,0\n", row < 200 ? 0 : (int)level);
     fclose(f);
     lep_session_options_init(&o);
-    o.sim.replay_csv = replay;
+    snprintf(o.sim.replay_csv, sizeof o.sim.replay_csv, "%s", replay);
     o.lowpass_hz = fc;
     s = open_sim(&o, &o);
     lep_session_get_metadata(s, &m);

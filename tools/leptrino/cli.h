@@ -17,6 +17,9 @@
 #include <leptrino/serial.h>
 #include <leptrino/sim.h>
 
+/* poll() sizes: sensors one command may read at once. */
+#define CLI_MAX_SENSORS 8
+
 /* Exit codes (documented in `leptrino --help` and docs/cli.md). */
 enum cli_exit {
     CLI_OK = 0,           /* success (also after Ctrl-C / SIGTERM during stream) */
@@ -132,28 +135,55 @@ void cli_write_sample(cli_writer *w, double t, const lep_sample *s);
 /* A gap in the data: from = last t before, to = first t after (< 0: never resumed). */
 void cli_write_gap(cli_writer *w, double from, double to, const char *reason);
 
-/* ---- status.c: live status line on stderr (only if it is a terminal) ---- */
+/* ---- term.c: the user's terminal ---- */
+/* Single keys from stdin without echo (stdin a terminal); false otherwise. */
+bool cli_term_keys_begin(void);
+void cli_term_keys_end(void);
+/* A key pressed, or -1 (none waiting, or keys not begun). Never blocks. */
+int cli_term_read_key(void);
+/* Full-screen mode on fd (alternate screen, cursor hidden) and back. */
+void cli_term_screen_begin(int fd);
+void cli_term_screen_end(void);
+/* Undo keys and screen mode from a signal handler (async-signal-safe). */
+void cli_term_restore_from_signal(void);
+/* Both fds are the same terminal. */
+bool cli_term_same_tty(int fd_a, int fd_b);
+/* Window size of the terminal on fd (80x24 when unknown). */
+void cli_term_size(int fd, int *cols, int *rows);
+/* poll() for input on fds[0..n) (n <= CLI_MAX_SENSORS + 1; fd < 0 ignored);
+ * ready[i] says which. Returns how many, 0 on timeout or a signal, -1 on error. */
+int cli_wait_input(const int *fds, size_t n, bool *ready, int timeout_ms);
+/* Sensor text made safe for a terminal: printable ASCII kept, a backslash
+ * doubled, any other byte as \xNN. Returns the length written (truncated to
+ * fit out[0..cap), always NUL-terminated). */
+size_t cli_safe_text(const char *s, char *out, size_t cap);
+
+/* ---- status.c: live status line on stderr ---- */
 typedef struct cli_status {
     bool enabled;
     bool drawn;
     double last_draw;
-    double last_elapsed;
-    uint64_t last_samples;
-    double hz;
 } cli_status;
 
-void cli_status_init(cli_status *st);
-/* Redraw at most ~4 times per second. note may be NULL. */
-void cli_status_update(cli_status *st, double elapsed, uint64_t samples, uint64_t errors,
-                       uint64_t overloads, const char *note);
+/* Enabled when stderr is a terminal that the data does not go to (out_fd
+ * is the data's fd, -1 for a file that is not a terminal). */
+void cli_status_init(cli_status *st, int out_fd);
+/* Redraw at most ~4 times per second: text is one line. */
+void cli_status_update(cli_status *st, double now, const char *text);
 /* Erase the line so that a message can be printed. */
 void cli_status_clear(cli_status *st);
 
 /* ---- signals.c ---- */
-/* The first SIGINT/SIGTERM sets a flag (a second one ends the program);
- * SIGPIPE is ignored so a closed output is seen as a write error (EPIPE). */
+/* Stop on SIGINT/SIGTERM/SIGHUP (a second SIGINT/SIGTERM ends the program
+ * after restoring the terminal); SIGUSR1 / SIGUSR2 request tare / untare;
+ * SIGWINCH notes a resize; SIGPIPE is ignored so a closed output is a write
+ * error (EPIPE). */
 void cli_signals_install(void);
 bool cli_stop_requested(void);
+/* Requests received since the last call. */
+unsigned cli_take_tare_requests(void);
+unsigned cli_take_untare_requests(void);
+bool cli_take_resize(void);
 /* Sleep ms milliseconds, returning early when a stop is requested. */
 void cli_sleep_ms(int ms);
 

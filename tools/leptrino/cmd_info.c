@@ -25,6 +25,7 @@ int cli_cmd_info(int argc, char **argv)
     lep_rated rated;
     lep_serial_info si;
     uint8_t filter = 0;
+    char text[4 * LEP_MODEL_LEN + 1];
     int rc, code;
 
     cli_args_init(&a, argc, argv, "info");
@@ -57,8 +58,10 @@ int cli_cmd_info(int argc, char **argv)
         cli_conn_close(&c);
         return code;
     }
+    /* Some sensors refuse the filter query (result 0x02) or do not answer
+     * it: the rest of the information stands. */
     rc = lep_client_filter_get(&c.client, &filter);
-    if (rc != LEP_OK) {
+    if (rc != LEP_OK && rc != LEP_E_SENSOR && rc != LEP_E_TIMEOUT && rc != LEP_E_NAK) {
         code = cli_conn_fail(&c, "filter query", rc);
         cli_conn_close(&c);
         return code;
@@ -66,14 +69,21 @@ int cli_cmd_info(int argc, char **argv)
     lep_serial_get_info(c.serial, &si);
 
     printf("port:         %s%s\n", c.path, po.sim ? " (virtual sensor)" : "");
-    printf("model:        %s\n", c.info.model);
-    printf("serial:       %s\n", c.info.serial);
-    printf("firmware:     %s\n", c.info.firmware);
+    /* Text from the sensor never reaches the terminal with a control byte. */
+    cli_safe_text(c.info.model, text, sizeof text);
+    printf("model:        %s\n", text);
+    cli_safe_text(c.info.serial, text, sizeof text);
+    printf("serial:       %s\n", text);
+    cli_safe_text(c.info.firmware, text, sizeof text);
+    printf("firmware:     %s\n", text);
     if (c.info.has_output_rate) {
         if (c.info.output_rate_hz != 0)
             printf("output rate:  %lu Hz\n", (unsigned long)c.info.output_rate_hz);
         else
-            printf("output rate:  %s\n", c.info.output_rate);
+        {
+            cli_safe_text(c.info.output_rate, text, sizeof text);
+            printf("output rate:  %s\n", text);
+        }
         printf("protocol:     38-byte product info (with output rate)\n");
     } else {
         printf("output rate:  not reported\n");
@@ -82,7 +92,10 @@ int cli_cmd_info(int argc, char **argv)
     printf("rated:        Fx %g N, Fy %g N, Fz %g N, Mx %g N m, My %g N m, Mz %g N m\n",
            (double)rated.axis[LEP_FX], (double)rated.axis[LEP_FY], (double)rated.axis[LEP_FZ],
            (double)rated.axis[LEP_MX], (double)rated.axis[LEP_MY], (double)rated.axis[LEP_MZ]);
-    printf("filter:       %u (%s)\n", (unsigned)filter, lep_filter_label(filter));
+    if (rc == LEP_OK)
+        printf("filter:       %u (%s)\n", (unsigned)filter, lep_filter_label(filter));
+    else
+        printf("filter:       not supported by this sensor\n");
     printf("latency:      low-latency flag %s", si.low_latency ? "set" : "not set");
     if (si.ftdi_latency_ms >= 0)
         printf(", FTDI latency timer %d ms%s", si.ftdi_latency_ms,

@@ -154,6 +154,15 @@ static uint64_t total_errors(const stream_state *s)
     return s->errors_before + client_errors(&s->c);
 }
 
+static void show_status(stream_state *s, double t, const char *note)
+{
+    char text[200];
+    snprintf(text, sizeof text, "%llu samples  %7.1f Hz  %llu errors  %llu overloads  %.1f s%s",
+             (unsigned long long)s->written, t > 0.0 ? (double)s->received / t : 0.0,
+             (unsigned long long)total_errors(s), (unsigned long long)s->overloads, t, note);
+    cli_status_update(&s->st, t, text);
+}
+
 /* Take one sample: tare, gap mark, output. False when the output failed. */
 static bool take(stream_state *s, const stream_opts *o, double t, const lep_sample *smp)
 {
@@ -238,7 +247,7 @@ static int reconnect(stream_state *s, const stream_opts *o, const char *reason)
                     s->c.path, t - lost_at, attempts, lep_strerror(rc));
             next_note = t + CLI_NOTE_PERIOD_S;
         }
-        cli_status_update(&s->st, t, s->written, total_errors(s), s->overloads, "reconnecting");
+        show_status(s, t, "  reconnecting");
         delay = delay * 2 > CLI_BACKOFF_MAX_MS ? CLI_BACKOFF_MAX_MS : delay * 2;
     }
 }
@@ -280,7 +289,7 @@ static int loop(stream_state *s, const stream_opts *o, bool *stopped)
             if (s->out_tty)
                 fflush(s->out);
         }
-        cli_status_update(&s->st, t, s->written, total_errors(s), s->overloads, NULL);
+        show_status(s, t, "");
 
         if (rc == LEP_OK || (rc == LEP_E_TIMEOUT && n > 0))
             continue;
@@ -370,7 +379,6 @@ int cli_cmd_stream(int argc, char **argv)
 
     memset(&s, 0, sizeof s);
     cli_signals_install();
-    cli_status_init(&s.st);
     /* The sensor first: a run that cannot reach it leaves FILE alone. */
     code = cli_conn_open(&s.c, &o.po, "stream");
     if (code != CLI_OK)
@@ -386,6 +394,7 @@ int cli_cmd_stream(int argc, char **argv)
         cli_conn_close(&s.c);
         return CLI_FAIL;
     }
+    cli_status_init(&s.st, s.out_tty ? fileno(s.out) : -1);
     s.w.f = s.out;
     s.w.format = o.format_value;
     s.w.si = o.si;

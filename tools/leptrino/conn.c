@@ -140,7 +140,7 @@ static void apply_sim_option(cli_port_opts *po, cli_args *a, const sim_opt *o)
     if (po->sim_option == NULL)
         po->sim_option = n;
 
-    if (strcmp(n, "--sim-model") == 0) so->model = s;
+    if (strcmp(n, "--sim-model") == 0) snprintf(so->model, sizeof so->model, "%s", s);
     else if (strcmp(n, "--sim-rate") == 0) so->rate_hz = d;
     else if (strcmp(n, "--sim-seed") == 0) so->seed = u;
     else if (strcmp(n, "--sim-serial") == 0) {
@@ -150,17 +150,17 @@ static void apply_sim_option(cli_port_opts *po, cli_args *a, const sim_opt *o)
             ok = s[i] >= '0' && s[i] <= '9';
         if (!ok)
             cli_args_error(a, "option %s: '%s' is not 1 to 8 digits", n, s);
-        so->serial = s;
+        snprintf(so->serial, sizeof so->serial, "%s", s);
     } else if (strcmp(n, "--sim-firmware") == 0) {
         if (strlen(s) > LEP_FIRMWARE_LEN)
             cli_args_error(a, "option %s: '%s' is longer than 4 characters", n, s);
-        so->firmware = s;
+        snprintf(so->firmware, sizeof so->firmware, "%s", s);
     } else if (strcmp(n, "--sim-output-rate-field") == 0) so->output_rate_field = true;
     else if (strcmp(n, "--sim-filter") == 0) so->filter = (uint8_t)u;
     else if (strcmp(n, "--sim-amplitude") == 0) so->amplitude = d;
     else if (strcmp(n, "--sim-noise") == 0) so->noise = d;
     else if (strcmp(n, "--sim-constant") == 0) so->constant = true;
-    else if (strcmp(n, "--sim-replay") == 0) so->replay_csv = s;
+    else if (strcmp(n, "--sim-replay") == 0) snprintf(so->replay_csv, sizeof so->replay_csv, "%s", s);
     else if (strcmp(n, "--sim-overload-every") == 0) so->overload_every_s = d;
     else if (strcmp(n, "--sim-overload-duration") == 0) so->overload_duration_s = d;
     else if (strcmp(n, "--sim-nak") == 0) so->p_nak = d;
@@ -175,7 +175,7 @@ static void apply_sim_option(cli_port_opts *po, cli_args *a, const sim_opt *o)
         po->sim_reopen = true;
     }
     else if (strcmp(n, "--sim-start-streaming") == 0) so->start_streaming = true;
-    else if (strcmp(n, "--sim-link") == 0) so->link = s;
+    else if (strcmp(n, "--sim-link") == 0) snprintf(so->link, sizeof so->link, "%s", s);
 }
 
 bool cli_port_option(cli_port_opts *po, cli_args *a)
@@ -219,13 +219,13 @@ bool cli_port_check(cli_port_opts *po, cli_args *a)
         cli_args_error(a, "option %s needs --sim", po->sim_option);
         return false;
     }
-    if (po->sim && po->sim_reopen && po->sim_opts.link == NULL) {
+    if (po->sim && po->sim_reopen && po->sim_opts.link[0] == '\0') {
         /* The port must come back under the same name: make up a link. */
         const char *dir = getenv("TMPDIR");
         if (dir == NULL || dir[0] == '\0' || strlen(dir) > 64)
             dir = "/tmp";
         snprintf(po->link_buf, sizeof po->link_buf, "%s/leptrino-sim-%ld", dir, (long)getpid());
-        po->sim_opts.link = po->link_buf;
+        snprintf(po->sim_opts.link, sizeof po->sim_opts.link, "%s", po->link_buf);
         po->reopen_link_auto = true;
     }
     return true;

@@ -325,13 +325,20 @@ _SCALARS: Dict[str, Any] = {
 }
 
 
+def _ctypes_version(lib: Any) -> str:
+    fn = lib.lep_version  # AttributeError: not a libleptrino
+    fn.restype = c_char_p
+    fn.argtypes = []
+    return bytes(fn() or b"").decode("utf-8", "replace")
+
+
 class CtypesBackend:
     """libleptrino through ctypes (nothing to compile)."""
 
     name = "ctypes"
 
     def __init__(self, path: Optional[str] = None) -> None:
-        self.lib, self.path = _loader.load(ctypes.CDLL, path)
+        self.lib, self.path = _loader.load(ctypes.CDLL, _ctypes_version, path)
         missing = []
         for fname, (restype, argtypes) in FUNCTIONS.items():
             try:
