@@ -362,7 +362,7 @@ static void test_a_stall_on_a_port_is_found_from_arrival_times(void)
     TEST_ASSERT_EQUAL_INT(LEP_OK, read_until(s, &b, 1000));
     lep_session_get_health(s, &h);
     TEST_ASSERT_TRUE(h.gaps >= 1);
-    TEST_ASSERT_UINT64_WITHIN(150, 1200, h.lost);
+    TEST_ASSERT_UINT64_WITHIN(400, 1200, h.lost); /* estimated from arrival times */
     while (lep_session_next_event(s, &ev))
         if (ev.type == LEP_EV_GAP && ev.lost > 600) {
             seen = true;
