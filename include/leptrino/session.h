@@ -53,7 +53,8 @@ typedef struct lep_session_options {
     int data_timeout_ms;     /* no sample for this long while streaming: a disconnect
                                 (reconnect) or LEP_E_TIMEOUT, default 2000 */
     double gap_periods;      /* a hole longer than this many nominal periods is a gap, default 3 */
-    double nominal_hz;       /* 0 (default): the sensor's output-rate field, else 1200 */
+    double nominal_hz;       /* 0 (default): the sensor's output-rate field, else the virtual
+                                sensor's rate_hz with use_sim, else 1200 */
     bool reconnect;          /* after a disconnect or data timeout, reopen with backoff,
                                 re-sync and restart the stream (default false) */
     int reconnect_min_ms;    /* backoff from ... (default 100) */

@@ -144,6 +144,8 @@ static int read_identity(lep_session *s, char *err, size_t errlen)
         s->nominal_hz = s->opt.nominal_hz;
     else if (s->info.has_output_rate && s->info.output_rate_hz > 0)
         s->nominal_hz = (double)s->info.output_rate_hz;
+    else if (s->sim != NULL)
+        s->nominal_hz = s->opt.sim.rate_hz; /* the virtual sensor's rate is known */
     else
         s->nominal_hz = LEP_SESSION_NOMINAL_HZ;
     s->period_s = 1.0 / s->nominal_hz;
@@ -273,6 +275,7 @@ int lep_session_start(lep_session *s)
     s->ended = false;
     s->pend_head = s->pend_len = 0;
     s->held = 0;
+    s->backlog = false;
     s->tm_started = false;
     s->have_sample = false;
     s->have_seq = false;

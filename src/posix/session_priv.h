@@ -17,6 +17,10 @@
 /* Bytes taken from the port per read: 16 KiB is 0.55 s of a 1.2 kHz stream,
  * so a latency budget of up to half a second needs one read per wake-up. */
 #define SESSION_RBUF 16384u
+/* What a latency budget may leave in the kernel between reads: half of the
+ * 64 KiB a Linux tty buffers before the sender blocks (1.1 s at 1.2 kHz,
+ * 131 ms at 10 kHz). */
+#define SESSION_KERNEL_BYTES 32768.0
 /* Smallest wire size of a data frame (DLE STX, 20 bytes, DLE ETX, BCC). */
 #define SESSION_MIN_FRAME 25u
 /* Samples one read can complete: every byte in whole frames, plus the frame
@@ -77,6 +81,7 @@ struct lep_session {
     uint8_t rbuf[SESSION_RBUF];
     session_row pending[SESSION_PENDING];
     size_t pend_head, pend_len;
+    bool backlog;             /* more may be waiting: read again before sleeping */
     double last_read_t;       /* when the last read returned */
     double last_data_read_t;  /* when the last read that completed a sample returned */
     double last_sample_t;     /* reconstructed arrival of the last sample */

@@ -418,7 +418,7 @@ static void deliver(lep_session *s, lep_session_batch *b, double *first)
 
 int lep_session_read(lep_session *s, lep_session_batch *b, int timeout_ms)
 {
-    const double budget = s != NULL ? (double)s->opt.latency_ms / 1000.0 : 0.0;
+    double budget = s != NULL ? (double)s->opt.latency_ms / 1000.0 : 0.0;
     double deadline, first = -1.0;
     bool budget_read = false; /* a read after sleeping out the budget was made */
     size_t n0;
@@ -428,6 +428,9 @@ int lep_session_read(lep_session *s, lep_session_batch *b, int timeout_ms)
         return LEP_E_ARG;
     if (!s->streaming)
         return LEP_E_STATE;
+    /* Never sleep longer than the kernel can buffer for us. */
+    if (budget > SESSION_KERNEL_BYTES / (s->nominal_hz * SESSION_MIN_FRAME))
+        budget = SESSION_KERNEL_BYTES / (s->nominal_hz * SESSION_MIN_FRAME);
     n0 = b->n;
     ev0 = events_pushed(s);
     deadline = timeout_ms < 0 ? INFINITY : lep_monotonic_seconds() + (double)timeout_ms / 1000.0;
@@ -449,7 +452,8 @@ int lep_session_read(lep_session *s, lep_session_batch *b, int timeout_ms)
         if (s->failed != 0)
             return got ? LEP_OK : s->failed;
         now = lep_monotonic_seconds();
-        if (got && (budget <= 0.0 || b->n == n0 || budget_read || now >= first + budget))
+        if (got && !s->backlog &&
+            (budget <= 0.0 || b->n == n0 || budget_read || now >= first + budget))
             return LEP_OK;
 
         if (s->conn == CONN_DOWN) {
@@ -470,7 +474,10 @@ int lep_session_read(lep_session *s, lep_session_batch *b, int timeout_ms)
         }
 
         data_deadline = s->last_data_read_t + (double)s->opt.data_timeout_ms / 1000.0;
-        if (budget > 0.0) {
+        if (s->backlog) {
+            /* the last read filled the buffer: more is waiting, take it now */
+            wait = 0;
+        } else if (budget > 0.0) {
             /* Save wake-ups: sleep until the budget is spent, then take
              * everything in one read that does not wait. */
             wake = got ? first + budget : s->last_read_t + budget;
@@ -488,6 +495,10 @@ int lep_session_read(lep_session *s, lep_session_batch *b, int timeout_ms)
         }
         rc = s->client.io.read(s->client.io.user, s->rbuf, sizeof s->rbuf, wait);
         now = lep_monotonic_seconds();
+        /* More may be waiting: a read returns at most what the tty layer
+         * holds (4 KiB on Linux), so with a budget, read until one comes back
+         * empty; without, only after a read that filled the buffer. */
+        s->backlog = rc == (int)sizeof s->rbuf || (budget > 0.0 && rc > 0);
         if (rc > 0) {
             lep_priv_session_feed(s, s->rbuf, (size_t)rc, now);
             continue;
