@@ -97,6 +97,7 @@ static int16_t saturation_for(const char *firmware)
  * on the first connection only (the metadata keeps them). */
 int lep_priv_session_connect(lep_session *s, char *err, size_t errlen)
 {
+    lep_product_info info;
     int rc = lep_serial_open(s->opt.port, &s->serial, err, errlen);
     if (rc != LEP_OK) {
         s->serial = NULL;
@@ -107,13 +108,16 @@ int lep_priv_session_connect(lep_session *s, char *err, size_t errlen)
         rc = lep_client_set_timeout(&s->client, s->opt.timeout_ms);
     if (rc == LEP_OK)
         rc = lep_client_sync(&s->client, s->opt.sync_quiet_ms > 0 ? s->opt.sync_quiet_ms : 1,
-                             &s->info);
+                             &info);
     if (rc != LEP_OK) {
         lep_priv_set_err(err, errlen, "%s: start-up recovery (stop, drain, product info): %s",
                          s->opt.port, lep_strerror(rc));
         lep_priv_session_disconnect(s);
         return rc;
     }
+    pthread_mutex_lock(&s->mu); /* the metadata may be read from another thread */
+    s->info = info;
+    pthread_mutex_unlock(&s->mu);
     s->conn = CONN_UP;
     return LEP_OK;
 }
