@@ -235,8 +235,9 @@ void lep_priv_session_feed(lep_session *s, const uint8_t *data, size_t len, doub
         size_t used = 0;
         int rc = lep_client_step(&s->client, data + off, len - off, &used);
         off += used;
-        if (rc == LEP_STEP_SAMPLE && n < SESSION_PENDING)
-            got[n++] = lep_client_response(&s->client)->u.sample;
+        if (rc == LEP_STEP_SAMPLE && n < SESSION_PENDING &&
+            lep_client_get_sample(&s->client, &got[n]) == LEP_OK)
+            ++n;
         if (used == 0)
             break;
     }
@@ -300,16 +301,17 @@ void lep_priv_session_feed(lep_session *s, const uint8_t *data, size_t len, doub
 void lep_priv_session_stream_reset(lep_session *s, double now)
 {
     uint8_t left[LEP_CLIENT_RX_SIZE];
+    lep_client_rx *rx = s->client.rx; /* the serial port's, attached by lep_serial_client_init */
     size_t n = 0;
     s->last_read_t = now;
     s->last_data_read_t = now;
     if (s->last_sample_t > now)
         s->last_sample_t = now;
     /* Bytes the client read past the start command's answer are stream data. */
-    if (s->client.rx_pos < s->client.rx_len) {
-        n = (size_t)(s->client.rx_len - s->client.rx_pos);
-        memcpy(left, s->client.rx + s->client.rx_pos, n);
-        s->client.rx_pos = s->client.rx_len;
+    if (rx != NULL && rx->pos < rx->len) {
+        n = (size_t)(rx->len - rx->pos);
+        memcpy(left, rx->buf + rx->pos, n);
+        rx->pos = rx->len;
     }
     if (n > 0)
         lep_priv_session_feed(s, left, n, now);
