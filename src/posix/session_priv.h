@@ -28,6 +28,8 @@
 #define SESSION_PENDING (SESSION_RBUF / SESSION_MIN_FRAME + 2u)
 /* How soon a read judges a suspected hole when a latency budget would wait longer. */
 #define SESSION_CONFIRM_S 0.02
+/* How often a vanished port is looked for while reconnecting. */
+#define SESSION_WATCH_S 0.02
 /* Events kept until lep_session_next_event takes them; beyond, the oldest go. */
 #define SESSION_EVENTS 1024u
 
@@ -94,6 +96,7 @@ struct lep_session {
     int gap_error;            /* what caused the disconnect before a reconnect */
     double down_since;
     double next_attempt;
+    bool port_missing;        /* the last reconnect attempt found no port */
     int backoff_ms;
     uint32_t dec_phase;
     double first_delivered_t;

@@ -11,6 +11,7 @@
 #include <math.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "leptrino/error.h"
 #include "posix_clock.h"
@@ -345,6 +346,7 @@ static void stream_lost(lep_session *s, int error, double now)
     }
     lep_priv_session_disconnect(s);
     s->down_since = now;
+    s->port_missing = access(s->opt.port, F_OK) != 0;
     s->backoff_ms = s->opt.reconnect_min_ms;
     s->next_attempt = now + (double)s->backoff_ms / 1000.0;
     s->gap_from = s->last_sample_t;
@@ -352,13 +354,15 @@ static void stream_lost(lep_session *s, int error, double now)
 }
 
 /* One reconnection attempt: open, recover, restart the stream. */
-static int reconnect_once(lep_session *s, double now)
+static int reconnect_once(lep_session *s)
 {
     char err[256];
     int rc = lep_priv_session_connect(s, err, sizeof err);
     if (rc == LEP_OK)
         rc = lep_client_start(&s->client);
     if (rc != LEP_OK) {
+        /* a port that is not there: watch for it to come back (a replug) */
+        s->port_missing = rc == LEP_E_NOT_FOUND;
         lep_priv_session_disconnect(s);
         s->backoff_ms = s->backoff_ms * 2 > s->opt.reconnect_max_ms ? s->opt.reconnect_max_ms
                                                                       : s->backoff_ms * 2;
@@ -373,7 +377,8 @@ static int reconnect_once(lep_session *s, double now)
     s->have_seq = false;
     s->gap_next = true;
     s->tm_started = false;
-    lep_priv_session_stream_reset(s, now);
+    s->port_missing = false;
+    lep_priv_session_stream_reset(s, lep_monotonic_seconds());
     return LEP_OK;
 }
 
@@ -464,14 +469,19 @@ int lep_session_read(lep_session *s, lep_session_batch *b, int timeout_ms)
                 s->failed = LEP_E_DISCONNECTED;
                 continue;
             }
-            if (now < s->next_attempt) {
+            /* Attempt when the backoff is over, or at once when a port that
+             * had vanished is back (checked every SESSION_WATCH_S). */
+            if (now < s->next_attempt &&
+                !(s->port_missing && access(s->opt.port, F_OK) == 0)) {
                 wake = s->next_attempt < deadline ? s->next_attempt : deadline;
+                if (s->port_missing && wake > now + SESSION_WATCH_S)
+                    wake = now + SESSION_WATCH_S;
                 sleep_until(wake);
-                if (s->next_attempt > deadline)
+                if (lep_monotonic_seconds() >= deadline)
                     return got ? LEP_OK : LEP_E_TIMEOUT;
                 continue;
             }
-            (void)reconnect_once(s, now);
+            (void)reconnect_once(s);
             continue;
         }
 
