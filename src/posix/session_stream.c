@@ -146,6 +146,7 @@ static void gap_event(lep_session *s, int type, uint64_t sample, double from, do
     ev.lost = lost;
     ev.error = error;
     lep_priv_session_push_event(s, &ev);
+    s->lp.settle = s->lp.settle_n; /* the filter's output after a hole is a transient */
     s->h.gaps++;
     s->h.lost += lost;
     if (to - from > s->h.max_gap_s)

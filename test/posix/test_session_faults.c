@@ -101,11 +101,12 @@ static void test_dropped_samples_are_counted_exactly(void)
     st_batch b;
     lep_session_health h;
     lep_session_event ev;
-    size_t holes, events = 0;
+    size_t holes, events = 0, i;
     uint64_t lost_in_events = 0;
     lep_session_options_init(&o);
     o.sim.p_drop = 0.02;
     o.sim.seed = 7;
+    o.lowpass_hz = 100.0; /* settles again after every hole */
     s = open_sim(&o, &o);
     st_batch_init(&b, 2400);
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
@@ -121,6 +122,9 @@ static void test_dropped_samples_are_counted_exactly(void)
         }
     TEST_ASSERT_EQUAL_size_t(holes, events);
     TEST_ASSERT_EQUAL_UINT64(h.lost, lost_in_events);
+    for (i = 0; i < b.b.n; i++)
+        if (b.flags[i] & LEP_SF_GAP)
+            TEST_ASSERT_TRUE(b.flags[i] & LEP_SF_SETTLING);
     lep_session_close(s);
     st_batch_free(&b);
 }
