@@ -204,7 +204,9 @@ LEP_API int lep_session_stop(lep_session *s);
  * queued for the next call. With reconnect the session reconnects inside this
  * call and reports it as events. */
 LEP_API int lep_session_read(lep_session *s, lep_session_batch *b, int timeout_ms);
-/* Whatever it returns, b->n counts the samples appended (LEP_E_END and the
+/* With reconnect, a port that comes back with another sensor (model or
+ * serial number differ) is not streamed from: LEP_E_UNEXPECTED, then and on
+ * later calls. Whatever it returns, b->n counts the samples appended (LEP_E_END and the
  * errors may come with samples: write them). A b already full returns LEP_OK
  * at once. t_mono of samples that one read brought together is reconstructed
  * (docs/session.md): the last at the read's time, earlier ones a nominal

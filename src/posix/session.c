@@ -212,6 +212,7 @@ int lep_session_open(const lep_session_options *o, lep_session **out, char *err,
     rc = lep_priv_session_connect(s, err, errlen);
     if (rc == LEP_OK)
         rc = read_identity(s, err, errlen);
+    s->first_info = s->info;
     if (rc != LEP_OK) {
         lep_session_close(s);
         return rc;

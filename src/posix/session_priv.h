@@ -66,7 +66,8 @@ struct lep_session {
     lep_sim *sim;
     lep_serial *serial;       /* NULL while disconnected */
     lep_client client;
-    lep_product_info info;
+    lep_product_info info;    /* [mu] of the current connection */
+    lep_product_info first_info; /* of the connection at open (a reconnect must find the same) */
     lep_rated rated;
     int sensor_filter;        /* -1: refused or unanswered */
     double nominal_hz;

@@ -354,11 +354,29 @@ static void stream_lost(lep_session *s, int error, double now)
     s->gap_error = error;
 }
 
+/* The sensor that answered a reconnect is the one the session opened. */
+static bool same_sensor(lep_session *s)
+{
+    bool same;
+    pthread_mutex_lock(&s->mu);
+    same = strcmp(s->info.model, s->first_info.model) == 0 &&
+           strcmp(s->info.serial, s->first_info.serial) == 0;
+    pthread_mutex_unlock(&s->mu);
+    return same;
+}
+
 /* One reconnection attempt: open, recover, restart the stream. */
 static int reconnect_once(lep_session *s)
 {
     char err[256];
     int rc = lep_priv_session_connect(s, err, sizeof err);
+    if (rc == LEP_OK && !same_sensor(s)) {
+        /* Another sensor on the port: its data is not this recording's
+         * (other rated values, other frame). Stop here, clearly. */
+        lep_priv_session_disconnect(s);
+        s->failed = LEP_E_UNEXPECTED;
+        return LEP_E_UNEXPECTED;
+    }
     if (rc == LEP_OK)
         rc = lep_client_start(&s->client);
     if (rc != LEP_OK) {

@@ -7,6 +7,7 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <pthread.h>
+#include <stdio.h>
 #include <string.h>
 #include <unistd.h>
 
@@ -412,6 +413,41 @@ static void test_a_stall_on_a_port_is_found_from_arrival_times(void)
     st_batch_free(&b);
 }
 
+/* The port comes back with another sensor (another serial number): the
+ * session does not take its data as the same recording. */
+static void test_another_sensor_after_a_reconnect_is_refused(void)
+{
+    lep_sim_options so;
+    lep_sim *sim = NULL;
+    lep_session_options o;
+    lep_session *s = NULL;
+    st_batch b;
+    char err[256] = "", link[96];
+    int rc = LEP_OK, i;
+
+    snprintf(link, sizeof link, "/tmp/lep-test-replug-%ld", (long)getpid());
+    lep_sim_options_init(&so);
+    snprintf(so.link, sizeof so.link, "%s", link);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_sim_start(&so, &sim, err, sizeof err), err);
+    lep_session_options_init(&o);
+    o.port = link;
+    o.reconnect = true;
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_session_open(&o, &s, err, sizeof err), err);
+    st_batch_init(&b, 4000);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, read_until(s, &b, 100));
+    lep_sim_stop(sim); /* unplugged ... */
+    snprintf(so.serial, sizeof so.serial, "%s", "77");
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_sim_start(&so, &sim, err, sizeof err), err);
+    for (i = 0; i < 100 && (rc == LEP_OK || rc == LEP_E_TIMEOUT); i++) /* ... another plugged in */
+        rc = lep_session_read(s, &b.b, 100);
+    TEST_ASSERT_EQUAL_INT(LEP_E_UNEXPECTED, rc);
+    TEST_ASSERT_EQUAL_INT(LEP_E_UNEXPECTED, lep_session_read(s, &b.b, 10));
+    lep_session_close(s);
+    lep_sim_stop(sim);
+    st_batch_free(&b);
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -424,5 +460,6 @@ int main(void)
     RUN_TEST(test_overload_episodes_are_events);
     RUN_TEST(test_a_stall_on_a_port_is_found_from_arrival_times);
     RUN_TEST(test_another_reader_on_a_port_is_reported);
+    RUN_TEST(test_another_sensor_after_a_reconnect_is_refused);
     return UNITY_END();
 }
