@@ -168,15 +168,10 @@ static void steal_from(bool on_port)
     thief t;
     pthread_t th;
     size_t holes;
-    char err[256] = "";
 
     if (on_port) {
-        lep_sim_options so;
-        lep_sim_options_init(&so);
-        TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_sim_start(&so, &sim, err, sizeof err), err);
         lep_session_options_init(&o);
-        o.port = lep_sim_port(sim);
-        TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_session_open(&o, &s, err, sizeof err), err);
+        s = open_on_port(&sim, NULL, &o);
     } else {
         s = open_sim(&o, NULL);
         sim = lep_session_sim(s);
@@ -372,22 +367,17 @@ static void test_overload_episodes_are_events(void)
  * estimated from the elapsed time. */
 static void test_a_stall_on_a_port_is_found_from_arrival_times(void)
 {
-    lep_sim_options so;
     lep_sim *sim = NULL;
     lep_session_options o;
     lep_session *s = NULL;
     st_batch b;
     lep_session_health h;
     lep_session_event ev;
-    char err[256] = "";
     bool seen = false;
     size_t i, flagged = 0;
 
-    lep_sim_options_init(&so);
-    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_sim_start(&so, &sim, err, sizeof err), err);
     lep_session_options_init(&o);
-    o.port = lep_sim_port(sim);
-    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_session_open(&o, &s, err, sizeof err), err);
+    s = open_on_port(&sim, NULL, &o);
     TEST_ASSERT_NULL(lep_session_sim(s));
     st_batch_init(&b, 4000);
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
@@ -428,11 +418,9 @@ static void test_another_sensor_after_a_reconnect_is_refused(void)
     snprintf(link, sizeof link, "/tmp/lep-test-replug-%ld", (long)getpid());
     lep_sim_options_init(&so);
     snprintf(so.link, sizeof so.link, "%s", link);
-    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_sim_start(&so, &sim, err, sizeof err), err);
     lep_session_options_init(&o);
-    o.port = link;
     o.reconnect = true;
-    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_session_open(&o, &s, err, sizeof err), err);
+    s = open_on_port(&sim, &so, &o); /* the port is the link */
     st_batch_init(&b, 4000);
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
     TEST_ASSERT_EQUAL_INT(LEP_OK, read_until(s, &b, 100));
