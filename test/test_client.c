@@ -1135,6 +1135,21 @@ static void test_watchdog_checked_every_32_single_bytes(void)
     TEST_ASSERT_TRUE(i <= 32u);
 }
 
+/* Found by fuzz_client: a watchdog stall while a blocking query waits used
+ * to end the query with LEP_E_STALLED and leave the transaction pending. */
+static void test_watchdog_stall_does_not_end_a_blocking_query(void)
+{
+    lep_rated rated;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_watchdog(&client, 4));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
+    sio.endless_stream = false;
+    sio.lose_answers = 1; /* the query waits one timeout: the watchdog expires meanwhile */
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_rated(&client, &rated));
+    TEST_ASSERT_FALSE(lep_client_busy(&client));
+    TEST_ASSERT_TRUE(stats().stalls >= 1u);
+    TEST_ASSERT_EQUAL_FLOAT(500.0f, rated.axis[LEP_FX]);
+}
+
 /* ---- firmware variants and impossible values through the client ---- */
 
 static void test_reserved_byte_variants_are_counted_and_delivered(void)
@@ -1272,6 +1287,7 @@ int main(void)
     RUN_TEST(test_watchdog_reports_a_stalled_stream);
     RUN_TEST(test_watchdog_in_blocking_next_sample);
     RUN_TEST(test_watchdog_checked_every_32_single_bytes);
+    RUN_TEST(test_watchdog_stall_does_not_end_a_blocking_query);
     RUN_TEST(test_reserved_byte_variants_are_counted_and_delivered);
     RUN_TEST(test_impossible_samples_are_invalid_never_delivered);
     RUN_TEST(test_handshake_reserved_variant_is_counted);

@@ -6,6 +6,10 @@
 
 #include "leptrino/leptrino.h"
 
+#ifndef FUZZ_SMOKE_ITERATIONS
+#define FUZZ_SMOKE_ITERATIONS 20000u
+#endif
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
 static uint64_t state = 0x9E3779B97F4A7C15u;
@@ -23,7 +27,7 @@ int main(void)
     static uint8_t buf[4096];
     unsigned iter;
     unsigned long bytes = 0;
-    for (iter = 0; iter < 20000u; iter++) {
+    for (iter = 0; iter < (unsigned)FUZZ_SMOKE_ITERATIONS; iter++) {
         size_t len = 0;
         size_t target = next() % sizeof(buf);
         /* Mostly valid frames with a few flipped, dropped or inserted bytes. */
@@ -52,6 +56,6 @@ int main(void)
         LLVMFuzzerTestOneInput(buf, len);
         bytes += (unsigned long)len;
     }
-    printf("fuzz smoke: 20000 inputs, %lu bytes, invariants held\n", bytes);
+    printf("fuzz smoke: %u inputs, %lu bytes, invariants held\n", (unsigned)FUZZ_SMOKE_ITERATIONS, bytes);
     return 0;
 }
