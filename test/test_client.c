@@ -17,6 +17,17 @@ void setUp(void)
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_rx(&client, &rx));
 }
 
+/* A stream left running by an earlier program: the device streams before any command. */
+static void leave_stream_running(void)
+{
+    static const uint8_t start[] = {0x10, 0x02, 0x04, 0xFF, 0x32, 0x00, 0x10, 0x03, 0xCA};
+    lep_device_event ev;
+    uint8_t out[LEP_MAX_FRAME];
+    size_t n;
+    (void)lep_device_feed(&sio.dev, start, sizeof(start), &ev, out, sizeof(out), &n);
+    TEST_ASSERT_TRUE(lep_device_streaming(&sio.dev));
+}
+
 /* The decoded message of the last outcome of c (asserted to exist). */
 static lep_response last_response(const lep_client *c)
 {
@@ -217,12 +228,8 @@ static void test_corrupt_answer_is_counted(void)
 static void test_stale_stream_does_not_answer_queries(void)
 {
     lep_rated rated;
-    lep_device_event ev;
-    uint8_t out[LEP_MAX_FRAME];
-    size_t n;
-    static const uint8_t start[] = {0x10, 0x02, 0x04, 0xFF, 0x32, 0x00, 0x10, 0x03, 0xCA};
     /* A stream left running by an earlier program. */
-    (void)lep_device_feed(&sio.dev, start, sizeof(start), &ev, out, sizeof(out), &n);
+    leave_stream_running();
     TEST_ASSERT_TRUE(lep_device_streaming(&sio.dev));
     script_push_data(&sio);
     script_push_data(&sio);
@@ -235,11 +242,8 @@ static void test_stale_stream_does_not_answer_queries(void)
 static void test_sync_recovers_stale_stream(void)
 {
     lep_product_info info;
-    lep_device_event ev;
-    uint8_t out[LEP_MAX_FRAME];
-    size_t n;
     static const uint8_t start[] = {0x10, 0x02, 0x04, 0xFF, 0x32, 0x00, 0x10, 0x03, 0xCA};
-    (void)lep_device_feed(&sio.dev, start, sizeof(start), &ev, out, sizeof(out), &n);
+    leave_stream_running();
     script_push_data(&sio);
     /* Half a frame on the line when the program starts. */
     script_push(&sio, start + 3, 4);
@@ -260,11 +264,7 @@ static void test_sync_on_a_silent_line_times_out(void)
 static void test_sync_gives_up_on_endless_noise(void)
 {
     /* A device that answers nothing but streams forever: the line never goes quiet. */
-    lep_device_event ev;
-    uint8_t out[LEP_MAX_FRAME];
-    size_t n;
-    static const uint8_t start[] = {0x10, 0x02, 0x04, 0xFF, 0x32, 0x00, 0x10, 0x03, 0xCA};
-    (void)lep_device_feed(&sio.dev, start, sizeof(start), &ev, out, sizeof(out), &n);
+    leave_stream_running();
     sio.silent = true;
     TEST_ASSERT_EQUAL_INT(LEP_E_NO_SYNC, lep_client_sync(&client, 20, NULL));
     /* The stop's (retries + 1) attempts, then at most 20 timeouts + the quiet time of draining. */
@@ -340,11 +340,8 @@ static void test_start_refused_by_a_stale_stream_recovers_once(void)
 {
     static const uint8_t stop_cmd[] = {0x10, 0x02, 0x04, 0xFF, 0x33, 0x00, 0x10, 0x03, 0xCB};
     static const uint8_t start_cmd[] = {0x10, 0x02, 0x04, 0xFF, 0x32, 0x00, 0x10, 0x03, 0xCA};
-    lep_device_event ev;
-    uint8_t out[LEP_MAX_FRAME];
-    size_t n;
     /* A stream left running by an earlier program. */
-    (void)lep_device_feed(&sio.dev, start_cmd, sizeof(start_cmd), &ev, out, sizeof(out), &n);
+    leave_stream_running();
     script_push_data(&sio);
     sio.inflight = 2;
     /* The sensor refuses (0x04: already streaming): stop, drain, start. */
@@ -693,14 +690,11 @@ static void test_sync_accounts_for_every_stale_byte(void)
     /* A stale stream: two data frames in flight before the stop answer, one
      * more right after it, and the reads split that last frame. */
     static const uint8_t stop_answer[] = {0x10, 0x02, 0x04, 0xFF, 0x33, 0x00, 0x10, 0x03, 0xCB};
-    static const uint8_t start[] = {0x10, 0x02, 0x04, 0xFF, 0x32, 0x00, 0x10, 0x03, 0xCA};
     lep_product_info info;
-    lep_device_event ev;
     lep_sample smp;
-    uint8_t out[LEP_MAX_FRAME];
     size_t n;
     lep_client_stats st;
-    (void)lep_device_feed(&sio.dev, start, sizeof(start), &ev, out, sizeof(out), &n);
+    leave_stream_running();
     memset(&smp, 0, sizeof(smp));
     memcpy(sio.forced, stop_answer, sizeof(stop_answer));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_device_stream_frame(&smp, sio.forced + sizeof(stop_answer),
@@ -988,13 +982,10 @@ static void test_step_recovery_stops_drains_and_identifies(void)
     static const uint8_t start_cmd[] = {0x10, 0x02, 0x04, 0xFF, 0x32, 0x00, 0x10, 0x03, 0xCA};
     lep_io io = script_io_table(&sio);
     lep_client c;
-    lep_device_event ev;
     lep_response r;
-    uint8_t out[LEP_MAX_FRAME];
-    size_t n;
     io.read = NULL;
     sio.endless_stream = false;
-    (void)lep_device_feed(&sio.dev, start_cmd, sizeof(start_cmd), &ev, out, sizeof(out), &n);
+    leave_stream_running();
     script_push_data(&sio);
     script_push(&sio, start_cmd, 4); /* half a frame */
     sio.inflight = 3;
@@ -1344,11 +1335,7 @@ static void test_messages_and_naks_during_a_start_recovery_drain(void)
 static void test_blocking_sync_drain_limit_after_a_clock_jump(void)
 {
     /* A stale stream that never stops, and the clock jumps forward mid-drain. */
-    static const uint8_t start_cmd[] = {0x10, 0x02, 0x04, 0xFF, 0x32, 0x00, 0x10, 0x03, 0xCA};
-    lep_device_event ev;
-    uint8_t out[LEP_MAX_FRAME];
-    size_t n;
-    (void)lep_device_feed(&sio.dev, start_cmd, sizeof(start_cmd), &ev, out, sizeof(out), &n);
+    leave_stream_running();
     sio.silent = true;
     sio.max_chunk = 1;
     TEST_ASSERT_EQUAL_INT(LEP_E_NO_SYNC, lep_client_sync(&client, 30, NULL));
@@ -1388,12 +1375,8 @@ static void test_blocking_calls_with_a_clock_that_never_stands_still(void)
     lep_product_info info;
     lep_rated rated;
     lep_sample s;
-    static const uint8_t start_cmd[] = {0x10, 0x02, 0x04, 0xFF, 0x32, 0x00, 0x10, 0x03, 0xCA};
-    lep_device_event ev;
-    uint8_t out[LEP_MAX_FRAME];
-    size_t n;
     unsigned i;
-    (void)lep_device_feed(&sio.dev, start_cmd, sizeof(start_cmd), &ev, out, sizeof(out), &n);
+    leave_stream_running();
     sio.tick = 7;
     sio.max_chunk = 3;
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_timeout(&client, 200));

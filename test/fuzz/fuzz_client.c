@@ -15,16 +15,11 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "fuzz_check.h"
 #include "leptrino/leptrino.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
-static void check(int ok)
-{
-    if (!ok) {
-        __builtin_trap();
-    }
-}
 
 typedef struct line {
     const uint8_t *data;

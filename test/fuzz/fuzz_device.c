@@ -6,16 +6,11 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "fuzz_check.h"
 #include "leptrino/leptrino.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
-static void check(int ok)
-{
-    if (!ok) {
-        __builtin_trap();
-    }
-}
 
 static void answer_is_valid(const lep_device_event *ev, const uint8_t *out, size_t len)
 {

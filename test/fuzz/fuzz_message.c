@@ -8,16 +8,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "fuzz_check.h"
 #include "leptrino/leptrino.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
-static void check(int ok)
-{
-    if (!ok) {
-        __builtin_trap();
-    }
-}
 
 static void check_text(const char *s, size_t cap)
 {

@@ -8,6 +8,7 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "fuzz_check.h"
 #include "leptrino/leptrino.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
@@ -26,12 +27,6 @@ static int sink_write(void *user, const uint8_t *d, size_t n)
     return 0;
 }
 
-static void check(int ok)
-{
-    if (!ok) {
-        __builtin_trap();
-    }
-}
 
 /* A port serving the input in uneven chunks, 1 ms per chunk, then silence;
  * its clock starts just before the 32-bit wrap. */
