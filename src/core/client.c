@@ -175,7 +175,7 @@ static void end_wait(lep_client *c)
 /* Write the pending command (again) and restart the attempt's clock. */
 static int write_pending(lep_client *c)
 {
-    uint8_t frame[LEP_MAX_FRAME];
+    uint8_t frame[2u * LEP_LEN_FILTER_SET_CMD + 5u]; /* the longest command, every byte stuffed */
     lep_command cmd;
     size_t n;
     int rc;
