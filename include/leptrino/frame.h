@@ -1,7 +1,12 @@
 /* Frame codec (spec 2.3): DLE STX | stuffed message | DLE ETX | BCC.
  *
  * Sans-I/O: pure functions and a push decoder. No allocation, no clock.
- * The decoder gives identical events for any chunking of the same input. */
+ * The decoder gives identical events for any chunking of the same input.
+ * Its rules where the spec is silent (restart at DLE STX, NAK inside a frame,
+ * over-long frames, resync after a lost BCC byte) are listed with the shared
+ * vectors in test/vectors/README.md. In short, a lost BCC never costs the next
+ * frame: a DLE where the BCC should be (and the BCC is not 0x10) rejects the
+ * frame and may itself start the next one. */
 #ifndef LEPTRINO_FRAME_H
 #define LEPTRINO_FRAME_H
 
@@ -47,8 +52,9 @@ enum lep_frame_event_type {
 
 typedef struct lep_frame_event {
     int type;           /* enum lep_frame_event_type */
-    int error;          /* with LEP_FRAME_ERROR: LEP_E_BCC, LEP_E_ESCAPE, LEP_E_TOO_LONG, or
-                           LEP_E_LENGTH for an empty frame (counted in bytes_discarded only) */
+    int error;          /* with LEP_FRAME_ERROR: LEP_E_BCC, LEP_E_ESCAPE, LEP_E_TOO_LONG,
+                           LEP_E_LENGTH for an empty frame (counted in bytes_discarded only),
+                           or LEP_E_ARG for a bad argument to lep_frame_decoder_feed */
     const uint8_t *msg; /* with LEP_FRAME_MESSAGE: the unstuffed message, valid until the next feed */
     size_t len;         /* its length (1..128) */
 } lep_frame_event;
@@ -80,10 +86,30 @@ LEP_API void lep_frame_decoder_init(lep_frame_decoder *d);
 /* Consume bytes of data[0..len) up to and including the first one that
  * completes an event, and return how many were consumed (at least 1 when
  * len > 0). Call again with the rest. ev->type is LEP_FRAME_NONE when all
- * input was consumed without an event. Never fails; d, ev must not be NULL
- * (data may be NULL when len is 0). */
+ * input was consumed without an event. Costs O(len), allocates nothing,
+ * keeps no pointer to data; ev->msg points into d.
+ *
+ * Bad arguments: when d or ev is NULL, or data is NULL with len > 0, nothing
+ * is consumed, 0 is returned and ev (when not NULL) is an LEP_FRAME_ERROR event
+ * with error LEP_E_ARG; d is left unchanged. So 0 with len > 0 means "stop":
+ * a caller looping on the return value never spins. data may be NULL when
+ * len is 0 (returns 0 with LEP_FRAME_NONE). */
 LEP_API size_t lep_frame_decoder_feed(lep_frame_decoder *d, const uint8_t *data, size_t len,
                                       lep_frame_event *ev);
+
+/* Called by lep_frame_decoder_feed_all for each event, in input order. ev and
+ * ev->msg are valid only during the call. The handler must not feed the same
+ * decoder (it may feed others). */
+typedef void (*lep_frame_handler)(void *user, const lep_frame_event *ev);
+
+/* Consume all of data[0..len), calling on_event(user, ev) for every event it
+ * completes. Gives exactly the events and counters of lep_frame_decoder_feed
+ * on the same input, for any chunking and mixed with it, at a lower cost
+ * per byte (one call per chunk instead of one per event). Allocates nothing;
+ * runs in O(len) plus the handler's time. Returns LEP_OK, or LEP_E_ARG (d or
+ * on_event NULL, or data NULL with len > 0: nothing consumed, d unchanged). */
+LEP_API int lep_frame_decoder_feed_all(lep_frame_decoder *d, const uint8_t *data, size_t len,
+                                       lep_frame_handler on_event, void *user);
 
 /* True when the decoder is inside a frame (between DLE STX and its BCC). */
 LEP_API bool lep_frame_decoder_busy(const lep_frame_decoder *d);

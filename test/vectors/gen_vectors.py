@@ -65,6 +65,7 @@ class RefDecoder:
         self.state = "idle"
         self.buf = bytearray()
         self.raw = 0
+        self.shared = 0  # 0x10 BCC bytes that also served as the DLE of a DLE STX/NAK
 
     def _reject(self, error: str, counter: str, next_state: str) -> None:
         self.events.append({"type": "error", "error": error})
@@ -136,13 +137,33 @@ class RefDecoder:
             else:
                 self._reject("escape", "escape_errors", "idle")
         elif s == "bcc":
+            want = bcc(bytes(self.buf))
+            if b == DLE and want != DLE:
+                # The BCC byte was lost (or hit): this DLE may open the next frame.
+                self._reject("bcc", "bcc_errors", "idle_dle")
+                return
             self.raw += 1
-            if b != bcc(bytes(self.buf)):
+            if b != want:
                 self._reject("bcc", "bcc_errors", "idle")
             else:
                 self.events.append({"type": "message", "message": hx(bytes(self.buf))})
                 st["messages"] += 1
                 self.raw = 0
+                # A BCC of 0x10 may also be the DLE of a following STX or NAK
+                # (the real BCC was lost and happened to be 0x10, or the next DLE was lost).
+                self.state = "bcc_dle" if b == DLE else "idle"
+        elif s == "bcc_dle":
+            if b == DLE:
+                self.state = "idle_dle"
+            elif b == STX:
+                self.shared += 1
+                self._begin()
+                self.raw = 1  # the DLE belongs to the frame delivered before
+            elif b == NAK:
+                self.shared += 1
+                self._nak()
+            else:
+                st["bytes_discarded"] += 1
                 self.state = "idle"
         elif s == "skip":
             if b == DLE:
@@ -157,6 +178,8 @@ class RefDecoder:
             else:
                 st["bytes_discarded"] += 2
                 self.state = {ETX: "skip_bcc", DLE: "skip"}.get(b, "idle")
+        elif b == DLE:  # skip_bcc: a DLE may be the BCC or the next frame's DLE (BCC lost)
+            self.state = "idle_dle"
         else:  # skip_bcc
             st["bytes_discarded"] += 1
             self.state = "idle"
@@ -364,6 +387,30 @@ def frames_vectors() -> dict[str, Any]:
          [msg_ev(bcc10), msg_ev(bcc10)]),
         ("longest frame (128 x 0x10) then NAK", frame(max_all10) + unhex("10 15"),
          [msg_ev(max_all10), nak_ev]),
+        # Resync after a lost BCC byte (issue 8): the following frame is never lost.
+        ("lost BCC: the next frame's DLE STX still starts it",
+         frame(sample)[:-1] + frame(pi), [err_ev("bcc"), msg_ev(pi)]),
+        ("lost BCC that would have been 0x10: both frames delivered",
+         frame(bcc10)[:-1] + frame(pi), [msg_ev(bcc10), msg_ev(pi)]),
+        ("lost BCC before a NAK", frame(sample)[:-1] + unhex("10 15") + frame(pi),
+         [err_ev("bcc"), nak_ev, msg_ev(pi)]),
+        ("lost BCC that would have been 0x10 before a NAK", frame(bcc10)[:-1] + unhex("10 15"),
+         [msg_ev(bcc10), nak_ev]),
+        ("BCC 0x10 then the next frame's DLE lost", frame(bcc10) + frame(pi)[1:],
+         [msg_ev(bcc10), msg_ev(pi)]),
+        ("BCC 0x10 then a stray byte", frame(bcc10) + unhex("41") + frame(pi),
+         [msg_ev(bcc10), msg_ev(pi)]),
+        ("BCC 0x10 then a stray DLE pair", frame(bcc10) + unhex("10 41") + frame(pi),
+         [msg_ev(bcc10), msg_ev(pi)]),
+        ("two lost BCCs in a row", frame(stream_a)[:-1] + frame(stream_b)[:-1] + frame(stream_a),
+         [err_ev("bcc"), err_ev("bcc"), msg_ev(stream_a)]),
+        ("lost BCC between frames whose BCC is 0x10",
+         frame(bcc10) + frame(bcc10)[:-1] + frame(bcc10),
+         [msg_ev(bcc10), msg_ev(bcc10), msg_ev(bcc10)]),
+        ("lost BCC of an over-long frame", frame(over129)[:-1] + frame(pi),
+         [err_ev("too_long"), msg_ev(pi)]),
+        ("illegal byte after DLE inside an over-long frame", frame(over129)[:-3] + unhex("10 41")
+         + frame(pi), [err_ev("too_long"), msg_ev(pi)]),
         ("every kind of event in one stream",
          unhex("FF") + frame(pi) + unhex("10 15") + partial + frame(rated, bad_bcc=True)
          + unhex("10 02 33 10 07") + frame(over129) + frame(bcc10) + frame(sample),
@@ -376,13 +423,21 @@ def frames_vectors() -> dict[str, Any]:
         ref.feed(data)
         if ref.events != events:
             raise AssertionError(f"{name}: reference decoder gave {ref.events}, expected {events}")
-        if ref.state != "idle":
+        if ref.state not in ("idle", "bcc_dle"):
             raise AssertionError(f"{name}: stream must end between frames")
-        accounted = ref.stats["bytes_discarded"] + 2 * ref.stats["naks"] + sum(
+        accounted = ref.stats["bytes_discarded"] + 2 * ref.stats["naks"] - ref.shared + sum(
             len(frame(unhex(e["message"]))) for e in events if e["type"] == "message")
         if accounted != len(data):
             raise AssertionError(f"{name}: {accounted} bytes accounted of {len(data)}")
         decode.append({"name": name, "input": hx(data), "events": events, "stats": ref.stats})
+    # The C tests feed all streams in a row to one decoder: that must give the
+    # concatenated events and the summed counters.
+    ref = RefDecoder()
+    ref.feed(b"".join(data for _, data, _ in streams))
+    if ref.events != [e for _, _, events in streams for e in events]:
+        raise AssertionError("the streams in a row give other events than one by one")
+    if ref.stats != {k: sum(v["stats"][k] for v in decode) for k in ref.stats}:
+        raise AssertionError("the streams in a row give other counters than one by one")
     # Each encode vector is also a one-frame stream.
     return {
         "description": "Frame codec vectors (spec 2.3); schema in README.md",
