@@ -483,6 +483,13 @@ msg_dle: /* inside a frame, after a DLE */
         buf[n++] = LEP_DLE;
         acc ^= LEP_DLE;
         x++;
+        /* Runs of stuffed DLEs (payloads full of 0x10) pair by pair. */
+        while ((size_t)(end - p) >= 2u && p[0] == LEP_DLE && p[1] == LEP_DLE && n < LEP_MAX_MESSAGE) {
+            buf[n++] = LEP_DLE;
+            acc ^= LEP_DLE;
+            x++;
+            p += 2;
+        }
         goto msg;
     }
     if (b == LEP_STX) {
