@@ -340,6 +340,9 @@ nak:
  * that runs out of input stores its number and returns. With no handler it
  * returns at the first event (lep_frame_decoder_feed); with one it hands each
  * event over and goes on in the next state (lep_frame_decoder_feed_all). */
+#if defined(__GNUC__) && defined(__OPTIMIZE__) && !defined(__OPTIMIZE_SIZE__)
+__attribute__((always_inline)) inline /* a copy per entry point, not at -O0/-Os */
+#endif
 static size_t decode(lep_frame_decoder *d, const uint8_t *data, size_t len, lep_frame_event *ev,
                      lep_frame_handler on_event, void *user)
 {
@@ -416,14 +419,11 @@ begin:
     n = 0;
     acc = 0;
 msg: /* inside a frame */
-    if (n <= LEP_MAX_MESSAGE - W_SIZE && (size_t)(end - p) >= W_SIZE) {
-        /* Whole words while they hold no DLE; p and dst advance together, and
-         * the last word starts at most at `last` (input and buf both fit). */
-        size_t room = LEP_MAX_MESSAGE - W_SIZE - n;
-        size_t avail = (size_t)(end - p) - W_SIZE;
-        const uint8_t *last = p + (room < avail ? room : avail);
+    {
+        /* Whole words while they hold no DLE and fit in the input and in buf. */
         uint8_t *dst = buf + n;
-        for (;;) {
+        uint8_t *const dst_last = buf + (LEP_MAX_MESSAGE - W_SIZE);
+        while ((size_t)(end - p) >= W_SIZE && dst <= dst_last) {
             word_t w;
             word_t m;
             memcpy(&w, p, W_SIZE);
@@ -439,9 +439,6 @@ msg: /* inside a frame */
             acc ^= w;
             p += W_SIZE;
             dst += W_SIZE;
-            if (p > last) {
-                break;
-            }
         }
         n = (size_t)(dst - buf);
     }
@@ -663,6 +660,26 @@ fail: /* a frame rejected: wire is its count of wire bytes */
     goto idle;
 }
 
+/* decode() specialised for each entry point (the handler a constant), kept
+ * out of line so the one-byte path stays a small function. */
+#if defined(__GNUC__)
+#define LEP_NOINLINE __attribute__((noinline))
+#else
+#define LEP_NOINLINE
+#endif
+LEP_NOINLINE static size_t decode_one_event(lep_frame_decoder *d, const uint8_t *data, size_t len,
+                                            lep_frame_event *ev)
+{
+    return decode(d, data, len, ev, NULL, NULL);
+}
+
+LEP_NOINLINE static void decode_all(lep_frame_decoder *d, const uint8_t *data, size_t len,
+                                    lep_frame_handler on_event, void *user)
+{
+    lep_frame_event ev;
+    (void)decode(d, data, len, &ev, on_event, user);
+}
+
 size_t lep_frame_decoder_feed(lep_frame_decoder *d, const uint8_t *data, size_t len,
                               lep_frame_event *ev)
 {
@@ -672,7 +689,7 @@ size_t lep_frame_decoder_feed(lep_frame_decoder *d, const uint8_t *data, size_t 
     if (len == 1) {
         return feed_byte(d, data[0], ev);
     }
-    return decode(d, data, len, ev, NULL, NULL);
+    return decode_one_event(d, data, len, ev);
 }
 
 int lep_frame_decoder_feed_all(lep_frame_decoder *d, const uint8_t *data, size_t len,
@@ -688,7 +705,7 @@ int lep_frame_decoder_feed_all(lep_frame_decoder *d, const uint8_t *data, size_t
             on_event(user, &ev);
         }
     } else if (len > 1) {
-        (void)decode(d, data, len, &ev, on_event, user);
+        decode_all(d, data, len, on_event, user);
     }
     return LEP_OK;
 }
