@@ -427,8 +427,8 @@ void e2e_report(const e2e_options *o)
     json_num("sim_cpu_s_whole_life", sim_cpu);
     json_null("session_latency_budget");
     json_str("session_latency_budget_reason",
-             "lep_session is not implemented in this tree yet (include/leptrino/session.h only); the "
-             "recording figures are those of lep_record_fill, which wakes for every read");
+             "lep_session is not in this build (its header only); the recording figures are those of "
+             "lep_record_fill, which wakes for every read");
     max_rate(o);
     json_close();
     python_costs(o);

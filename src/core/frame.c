@@ -181,6 +181,8 @@ static void reject(lep_frame_decoder *d, lep_frame_event *ev, int error, size_t 
     }
     ev->type = LEP_FRAME_ERROR;
     ev->error = error;
+    ev->msg = NULL;
+    ev->len = 0;
 }
 
 /* One byte (the path of a caller fed byte by byte, e.g. from an ISR ring
@@ -190,10 +192,7 @@ static void reject(lep_frame_decoder *d, lep_frame_event *ev, int error, size_t 
 static size_t feed_byte(lep_frame_decoder *d, uint8_t b, lep_frame_event *ev)
 {
     size_t nx;
-    ev->type = LEP_FRAME_NONE;
-    ev->error = LEP_OK;
-    ev->msg = NULL;
-    ev->len = 0;
+    ev->type = LEP_FRAME_NONE; /* the other fields only with the events that use them */
     if (d->state == S_MSG && b != LEP_DLE && d->len < LEP_MAX_MESSAGE) {
         d->buf[d->len++] = b; /* the usual byte: a message byte */
         d->bcc ^= b;
@@ -246,6 +245,7 @@ static size_t feed_byte(lep_frame_decoder *d, uint8_t b, lep_frame_event *ev)
             d->state = b == LEP_DLE ? S_BCC_DLE : S_IDLE;
             d->stats.messages++;
             ev->type = LEP_FRAME_MESSAGE;
+            ev->error = LEP_OK;
             ev->msg = d->buf;
             ev->len = d->len;
         } else if (b == LEP_DLE) {
@@ -329,6 +329,9 @@ nak:
     d->stats.naks++;
     d->state = S_IDLE;
     ev->type = LEP_FRAME_NAK;
+    ev->error = LEP_OK;
+    ev->msg = NULL;
+    ev->len = 0;
     return 1;
 }
 
@@ -613,9 +616,6 @@ skip_bcc: /* the BCC of a rejected frame; a DLE may be it or the next frame's DL
 suspend_between: /* all input consumed between frames, no event */
     d->state = (uint8_t)st;
     ev->type = LEP_FRAME_NONE;
-    ev->error = LEP_OK;
-    ev->msg = NULL;
-    ev->len = 0;
     return len;
 
 suspend: /* all input consumed inside a frame, no event */
@@ -624,9 +624,6 @@ suspend: /* all input consumed inside a frame, no event */
     d->raw = (uint16_t)x;
     d->bcc = fold(acc);
     ev->type = LEP_FRAME_NONE;
-    ev->error = LEP_OK;
-    ev->msg = NULL;
-    ev->len = 0;
     return len;
 
 nak: /* DLE NAK completed: deliver it and hunt for the next frame */
@@ -644,8 +641,6 @@ nak: /* DLE NAK completed: deliver it and hunt for the next frame */
 
 fail: /* a frame rejected: wire is its count of wire bytes */
     reject(d, ev, error, wire);
-    ev->msg = NULL;
-    ev->len = 0;
     if (on_event == NULL) {
         d->state = (uint8_t)st;
         return (size_t)(p - data);
