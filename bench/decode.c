@@ -133,7 +133,9 @@ NOINLINE static size_t region_client_step(lep_client *c, const uint8_t *in, size
             p += used;
             n -= used;
             if (rc == LEP_STEP_SAMPLE) {
-                *sink += (uint32_t)(uint16_t)lep_client_response(c)->u.sample.raw[0];
+                lep_sample smp;
+                if (lep_client_get_sample(c, &smp) == LEP_OK)
+                    *sink += (uint32_t)(uint16_t)smp.raw[0];
                 samples++;
             }
             if (used == 0) {

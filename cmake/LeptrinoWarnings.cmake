@@ -2,7 +2,7 @@
 function(leptrino_warnings target)
   if(CMAKE_C_COMPILER_ID MATCHES "GNU|Clang")
     target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wconversion -Wshadow
-      -Wstrict-prototypes -Wmissing-prototypes -Wundef)
+      -Wstrict-prototypes -Wmissing-prototypes -Wundef -Wcast-align)
     if(LEPTRINO_WERROR)
       target_compile_options(${target} PRIVATE -Werror)
     endif()

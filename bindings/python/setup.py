@@ -1,10 +1,18 @@
 """Build step of the leptrino Python package.
 
-build_py runs CMake on the repository root (two levels up, or
-LEPTRINO_SOURCE_DIR) with the tests off, builds only the shared library, and
-copies it into the package as leptrino/_lib/libleptrino.so.<ABI major>, so
-the wheel carries the same .so that C programs link. The version comes from
-project(VERSION) in the top CMakeLists.txt, the project's single source.
+build_py runs CMake on the C sources (with the tests off), builds the shared
+library and the two programs, and puts them in the package:
+  leptrino/_lib/libleptrino.so      the same library C programs link
+  leptrino/_bin/leptrino            the command-line tool
+  leptrino/_bin/leptrino-sim        the virtual sensor
+  leptrino/_version.py              the version, from project(VERSION) in the
+                                    top CMakeLists.txt (its single source)
+The console scripts `leptrino` and `leptrino-sim` (leptrino._tools) run the
+bundled programs.
+
+Where the C sources are, in this order: LEPTRINO_SOURCE_DIR; csrc/ beside this
+file (an sdist carries its copy of the tree there); the checkout two levels up.
+The sdist command copies the part of the tree the build needs into csrc/.
 """
 
 from __future__ import annotations
@@ -16,9 +24,11 @@ import shutil
 import subprocess
 import sys
 from pathlib import Path
+from typing import List
 
-from setuptools import setup
+from setuptools import Distribution, setup
 from setuptools.command.build_py import build_py as _build_py
+from setuptools.command.sdist import sdist as _sdist
 
 try:
     from setuptools.command.bdist_wheel import bdist_wheel as _bdist_wheel
@@ -26,22 +36,48 @@ except ImportError:  # setuptools < 70.1
     from wheel.bdist_wheel import bdist_wheel as _bdist_wheel  # type: ignore[no-redef]
 
 HERE = Path(__file__).resolve().parent
+SDIST_SOURCES = "csrc"
+
+#: What the sdist copies from the top of the tree: (path, required).
+#: examples/, bench/ and test/ are left out (the top CMakeLists.txt skips
+#: what is absent); LICENSE and the packaging files are taken when present.
+TREE = [
+    ("CMakeLists.txt", True),
+    ("LICENSE", False),
+    ("cmake", True),
+    ("include", True),
+    ("src", True),
+    ("pkgconfig", False),
+    ("tools/leptrino", True),
+    ("tools/leptrino-sim", True),
+    ("packaging", False),
+    ("man", False),
+]
+
+#: Programs bundled in leptrino/_bin: (CMake target, file name).
+TOOLS = [("leptrino_cli", "leptrino"), ("leptrino_sim", "leptrino-sim")]
+
+
+def _is_tree(cand: Path) -> bool:
+    return (cand / "CMakeLists.txt").is_file() and (cand / "include/leptrino/leptrino.h").is_file()
 
 
 def source_dir() -> Path:
-    """The repository root holding the C sources."""
+    """The top of the C source tree."""
     tried = []
     env = os.environ.get("LEPTRINO_SOURCE_DIR")
-    for cand in ([Path(env)] if env else []) + [HERE.parent.parent]:
+    for cand in ([Path(env)] if env else []) + [HERE / SDIST_SOURCES, HERE.parent.parent]:
         cand = cand.resolve()
-        if (cand / "CMakeLists.txt").is_file() and (cand / "include/leptrino/leptrino.h").is_file():
+        if _is_tree(cand):
             return cand
         tried.append(str(cand))
     raise SystemExit(
         "leptrino: cannot find the C sources of libleptrino (looked in "
         + ", ".join(tried)
-        + "). Install from a checkout of the repository (pip install ./bindings/python) "
-        "or set LEPTRINO_SOURCE_DIR to its root."
+        + "). This directory alone is not enough: install the sdist "
+        "(pip install leptrino-<version>.tar.gz, made by `python -m build` in bindings/python "
+        "of a checkout), install from a whole checkout (pip install ./bindings/python), or set "
+        "LEPTRINO_SOURCE_DIR to the top of a leptrino checkout."
     )
 
 
@@ -61,30 +97,44 @@ def cmake_exe() -> str:
 
             exe = os.path.join(cmake.CMAKE_BIN_DIR, "cmake")
         except ImportError:
-            raise SystemExit("leptrino: CMake >= 3.20 is needed to build libleptrino")
+            raise SystemExit("leptrino: CMake >= 3.20 is needed to build libleptrino "
+                             "(apt install cmake, or pip install cmake)")
     return exe
 
 
 class build_py(_build_py):
-    """Also build libleptrino with CMake and put it in the package."""
+    """Also build libleptrino and the programs with CMake and put them in the package."""
 
     def run(self) -> None:
         super().run()
         src = source_dir()
+        version = project_version(src)
         build_temp = Path(self.get_finalized_command("build").build_temp).resolve() / "cmake"
-        major = project_version(src).split(".")[0]
-        lib = self.build_native(src, build_temp, major)
         if getattr(self, "editable_mode", False):
-            dest_dir = HERE / "leptrino" / "_lib"
+            pkg = HERE / "leptrino"
         else:
-            dest_dir = Path(self.build_lib) / "leptrino" / "_lib"
-        dest_dir.mkdir(parents=True, exist_ok=True)
-        name = f"libleptrino.{major}.dylib" if sys.platform == "darwin" else f"libleptrino.so.{major}"
-        shutil.copyfile(lib, dest_dir / name)
-        os.chmod(dest_dir / name, 0o755)
-        print(f"leptrino: bundled {lib} as {dest_dir / name}")
+            pkg = Path(self.build_lib) / "leptrino"
+        (pkg / "_version.py").write_text(
+            '"""Generated by setup.py from project(VERSION) in CMakeLists.txt."""\n'
+            f'VERSION = "{version}"\n', encoding="utf-8")
+        lib, tools = self.build_native(src, build_temp)
+        lib_dir, bin_dir = pkg / "_lib", pkg / "_bin"
+        for d in (lib_dir, bin_dir):
+            if d.exists():
+                shutil.rmtree(d)
+            d.mkdir(parents=True)
+        name = "libleptrino.dylib" if sys.platform == "darwin" else "libleptrino.so"
+        self._install(lib, lib_dir / name)
+        for path in tools:
+            self._install(path, bin_dir / path.name)
 
-    def build_native(self, src: Path, build: Path, major: str) -> Path:
+    @staticmethod
+    def _install(src: Path, dest: Path) -> None:
+        shutil.copyfile(src, dest)
+        os.chmod(dest, 0o755)
+        print(f"leptrino: bundled {src} as {dest}")
+
+    def build_native(self, src: Path, build: Path) -> "tuple[Path, List[Path]]":
         cmake = cmake_exe()
         cache = build / "CMakeCache.txt"
         if cache.is_file():  # a build directory left by a checkout elsewhere: start afresh
@@ -98,7 +148,7 @@ class build_py(_build_py):
             "-B", str(build),
             "-DCMAKE_BUILD_TYPE=Release",
             "-DLEPTRINO_BUILD_TESTS=OFF",
-            "-DLEPTRINO_BUILD_STATIC=OFF",
+            "-DLEPTRINO_BUILD_STATIC=ON",  # the programs link it statically
             "-DLEPTRINO_BUILD_SHARED=ON",
             # a user's compiler may warn where ours does not: never fail the install on that
             "-DLEPTRINO_WERROR=OFF",
@@ -116,22 +166,59 @@ class build_py(_build_py):
                     pass
         subprocess.check_call(configure)
         jobs = os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL", "2")
-        subprocess.check_call([cmake, "--build", str(build), "--target", "leptrino",
-                               "--parallel", jobs])
+        targets = ["leptrino"] + [t for t, _ in TOOLS]
+        subprocess.check_call([cmake, "--build", str(build), "--parallel", jobs, "--target",
+                               *targets])
         pattern = "libleptrino.*.dylib" if sys.platform == "darwin" else "libleptrino.so*"
         libs = [Path(p) for p in glob.glob(str(build / "**" / pattern), recursive=True)]
         libs = [p for p in libs if p.is_file() and not p.is_symlink()]
         if not libs:
             raise SystemExit(f"leptrino: the CMake build produced no {pattern} under {build}")
-        return libs[0]
+        tools = []
+        for target, fname in TOOLS:
+            found = [Path(p) for p in glob.glob(str(build / "**" / fname), recursive=True)]
+            found = [p for p in found if p.is_file() and os.access(p, os.X_OK)]
+            if not found:
+                raise SystemExit(f"leptrino: the CMake build produced no {fname} "
+                                 f"(target {target}) under {build}")
+            tools.append(found[0])
+        return libs[0], tools
+
+
+class sdist(_sdist):
+    """Carry the C sources the build needs in csrc/, so the sdist builds anywhere."""
+
+    def make_release_tree(self, base_dir: str, files: List[str]) -> None:
+        super().make_release_tree(base_dir, files)
+        src = source_dir()
+        dest = Path(base_dir) / SDIST_SOURCES
+        if dest.exists():
+            shutil.rmtree(dest)
+        ignore = shutil.ignore_patterns("__pycache__", "*.pyc", "build", ".git*")
+        for rel, required in TREE:
+            p = src / rel
+            if not p.exists():
+                if required:
+                    raise SystemExit(f"leptrino: {p} is missing; cannot make the sdist")
+                continue
+            target = dest / rel
+            target.parent.mkdir(parents=True, exist_ok=True)
+            if p.is_dir():
+                shutil.copytree(p, target, ignore=ignore)
+            else:
+                shutil.copy2(p, target)
+        print(f"leptrino: copied the C sources of {src} into {dest}")
+
+
+class BinaryDistribution(Distribution):
+    """Native code inside: the wheel is platform-specific and installs to platlib."""
+
+    def has_ext_modules(self) -> bool:
+        return True
 
 
 class bdist_wheel(_bdist_wheel):
-    """The wheel carries a native library, but no CPython extension: py3-none-<platform>."""
-
-    def finalize_options(self) -> None:
-        super().finalize_options()
-        self.root_is_pure = False
+    """The wheel carries native code, but no CPython extension: py3-none-<platform>."""
 
     def get_tag(self):  # type: ignore[no-untyped-def]
         _, _, plat = super().get_tag()
@@ -140,5 +227,6 @@ class bdist_wheel(_bdist_wheel):
 
 setup(
     version=project_version(source_dir()),
-    cmdclass={"build_py": build_py, "bdist_wheel": bdist_wheel},
+    cmdclass={"build_py": build_py, "bdist_wheel": bdist_wheel, "sdist": sdist},
+    distclass=BinaryDistribution,
 )

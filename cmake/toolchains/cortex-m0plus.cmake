@@ -1,9 +1,7 @@
-# Cross-compile the portable core for a Cortex-M0+ (Debian: gcc-arm-none-eabi).
-#   cmake -S . -B build/m0 -DCMAKE_TOOLCHAIN_FILE=cmake/toolchains/cortex-m0plus.cmake \
-#         -DLEPTRINO_CORE_ONLY=ON -DLEPTRINO_BUILD_SHARED=OFF -DLEPTRINO_BUILD_TESTS=OFF
-set(CMAKE_SYSTEM_NAME Generic)
-set(CMAKE_SYSTEM_PROCESSOR arm)
-set(CMAKE_C_COMPILER arm-none-eabi-gcc)
-set(CMAKE_TRY_COMPILE_TARGET_TYPE STATIC_LIBRARY)
-set(CMAKE_C_FLAGS_INIT "-mcpu=cortex-m0plus -mthumb -ffunction-sections -fdata-sections")
-set(CMAKE_C_FLAGS_MINSIZEREL_INIT "-Os -DNDEBUG")
+# Cross-compile the portable core for a Cortex-M0+ (ARMv6-M, no FPU).
+#   cmake --preset cortex-m0plus && cmake --build --preset cortex-m0plus
+# or by hand:
+#   cmake -S . -B build/cortex-m0plus -G Ninja -DCMAKE_BUILD_TYPE=MinSizeRel \
+#         -DCMAKE_TOOLCHAIN_FILE=cmake/toolchains/cortex-m0plus.cmake
+set(LEP_ARM_CPU_FLAGS "-mcpu=cortex-m0plus -mthumb -mfloat-abi=soft")
+include(${CMAKE_CURRENT_LIST_DIR}/arm-none-eabi.cmake)

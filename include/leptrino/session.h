@@ -142,10 +142,10 @@ typedef struct lep_session_health {
 /* What a recording says about itself. Strings are NUL-terminated. */
 typedef struct lep_session_metadata {
     lep_product_info info;       /* model, serial, firmware, output-rate field */
-    char protocol[24];           /* "v1.13 (32-byte info)" or "output-rate field (38-byte info)" */
+    char protocol[24];           /* "v1.13 (32-byte info)" or "rate field (38-byte)" */
     lep_rated rated;
     int sensor_filter;           /* the sensor's filter code, -1 when it refused or did not answer */
-    char sensor_filter_label[24]; /* lep_filter_label, or "not supported by this sensor" */
+    char sensor_filter_label[24]; /* lep_filter_label, or "not supported by sensor" */
     double nominal_hz;
     double lowpass_hz;           /* host low-pass cut-off, 0 off */
     char lowpass_name[48];       /* the filter's name, "" when off */

@@ -134,9 +134,11 @@ static size_t first_dle(const uint8_t *p)
 /* The first k bytes of a word (k < W_SIZE), in memory order on any machine. */
 static word_t first_bytes(word_t w, size_t k)
 {
-    static const uint8_t keep[2u * sizeof(word_t)] = {0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF};
+    /* Eight 0xFF then zeros: W_SIZE bytes from keep + 8 - k are k 0xFF bytes
+     * then zeros, for any word of up to 8 bytes (4 on a 32-bit target). */
+    static const uint8_t keep[16] = {0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF};
     word_t m;
-    memcpy(&m, keep + (W_SIZE - k), W_SIZE);
+    memcpy(&m, keep + (8u - k), W_SIZE);
     return w & m;
 }
 

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "leptrino/leptrino.h"
@@ -31,8 +32,14 @@ void tearDown(void)
 {
     lep_serial_close(port);
     lep_sim_stop(sim);
-    if (tmpdir[0] != '\0')
+    if (tmpdir[0] != '\0') {
+        char lock[96];
+        snprintf(lock, sizeof lock, "%s/port.lock", tmpdir);
+        (void)unlink(lock); /* a test that failed midway */
+        snprintf(lock, sizeof lock, "%s/port", tmpdir);
+        (void)unlink(lock);
         (void)rmdir(tmpdir);
+    }
 }
 
 static void sleep_ms(long ms)
@@ -131,9 +138,9 @@ static void test_every_command(void)
     lep_sample smp;
     uint8_t code = 0xFF;
     lep_sim_options_init(&o);
-    o.model = "PFS080YS102U6";
-    o.serial = "12345678";
-    o.firmware = "1.31";
+    snprintf(o.model, sizeof o.model, "%s", "PFS080YS102U6");
+    snprintf(o.serial, sizeof o.serial, "%s", "12345678");
+    snprintf(o.firmware, sizeof o.firmware, "%s", "1.31");
     o.filter = 2;
     start_sim(&o);
     open_client();
@@ -314,6 +321,36 @@ static void test_stale_stream_recovery(void)
     TEST_ASSERT_EQUAL_UINT32(0, cs.bcc_errors);
 }
 
+/* A stream nobody reads fills the pty and the queue: the samples due then are
+ * counted as blocked (not computed, no wake-up each), every index accounted
+ * for; a client that comes later recovers. */
+static void test_nobody_reading_blocks(void)
+{
+    lep_sim_options o;
+    lep_sim_stats st;
+    int i;
+    lep_sim_options_init(&o);
+    o.start_streaming = true;
+    o.rate_hz = 10000;
+    start_sim(&o);
+    for (i = 0; i < 500; i++) {
+        st = stats_now();
+        if (st.samples_blocked > 1000)
+            break;
+        sleep_ms(10);
+    }
+    TEST_ASSERT_TRUE(st.samples_blocked > 1000);
+    TEST_ASSERT_TRUE(st.samples_sent > 100);
+    TEST_ASSERT_EQUAL_UINT64(0, st.samples_dropped);
+    /* every index of the stream is sent, blocked or skipped (the published
+     * sequence is the next index, mod 65536) */
+    TEST_ASSERT_EQUAL_UINT16(st.sequence, (uint16_t)(st.samples_sent + st.samples_blocked +
+                                                     st.samples_skipped));
+    open_client();
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_sync(&client, 30, &scratch_info));
+    TEST_ASSERT_FALSE(stats_now().streaming);
+}
+
 static void wait_power_cycles(uint64_t n)
 {
     int i;
@@ -376,7 +413,7 @@ static void test_hangup_after_and_reopen_at_link(void)
     lep_sim_options_init(&o);
     o.hangup_after_s = 0.3;
     o.reopen_after_ms = 200;
-    o.link = link;
+    snprintf(o.link, sizeof o.link, "%s", link);
     start_sim(&o);
     TEST_ASSERT_EQUAL_STRING(link, lep_sim_port(sim));
     open_client();
@@ -404,6 +441,157 @@ static void test_hangup_after_and_reopen_at_link(void)
     sim = NULL;
     TEST_ASSERT_NOT_EQUAL(0, access(link, F_OK)); /* link removed at stop */
     (void)unlink(link);
+}
+
+static void make_tmpdir(void)
+{
+    snprintf(tmpdir, sizeof tmpdir, "/tmp/lep-sim-XXXXXX");
+    TEST_ASSERT_NOT_NULL(mkdtemp(tmpdir));
+}
+
+static void write_file(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "w");
+    TEST_ASSERT_NOT_NULL(f);
+    fputs(text, f);
+    fclose(f);
+}
+
+static bool file_is(const char *path, const char *text)
+{
+    char buf[256];
+    size_t n;
+    FILE *f = fopen(path, "r");
+    if (f == NULL)
+        return false;
+    n = fread(buf, 1, sizeof buf - 1, f);
+    fclose(f);
+    buf[n] = '\0';
+    return strcmp(buf, text) == 0;
+}
+
+/* The start is refused with LEP_E_BUSY, one line naming the path and needle. */
+static void expect_link_refused(const char *link, const char *needle)
+{
+    lep_sim_options o;
+    lep_sim *other = NULL;
+    lep_sim_options_init(&o);
+    snprintf(o.link, sizeof o.link, "%s", link);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_E_BUSY, lep_sim_start(&o, &other, err, sizeof err), err);
+    TEST_ASSERT_NULL(other);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err, link), err);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err, needle), err);
+    TEST_ASSERT_NULL_MESSAGE(strchr(err, '\n'), err);
+}
+
+/* --link never deletes what is not a stale link to a pty (issue 8, item 8). */
+static void test_link_keeps_what_is_not_a_stale_pty_link(void)
+{
+    char path[160], target[160], lock[176];
+    make_tmpdir();
+    /* a recording */
+    snprintf(path, sizeof path, "%s/forces.csv", tmpdir);
+    write_file(path, "t_s,fx_N\n0.1,2.0\n");
+    expect_link_refused(path, "regular file");
+    TEST_ASSERT_TRUE(file_is(path, "t_s,fx_N\n0.1,2.0\n"));
+    (void)unlink(path);
+    /* a directory */
+    snprintf(path, sizeof path, "%s/dir", tmpdir);
+    TEST_ASSERT_EQUAL_INT(0, mkdir(path, 0700));
+    expect_link_refused(path, "directory");
+    TEST_ASSERT_EQUAL_INT(0, rmdir(path));
+    /* a FIFO (a special file like a device node) */
+    snprintf(path, sizeof path, "%s/fifo", tmpdir);
+    TEST_ASSERT_EQUAL_INT(0, mkfifo(path, 0600));
+    expect_link_refused(path, "FIFO");
+    TEST_ASSERT_EQUAL_INT(0, unlink(path));
+    /* a symlink to a device that is not a pty, and one to a file */
+    snprintf(path, sizeof path, "%s/ttyUSB", tmpdir);
+    TEST_ASSERT_EQUAL_INT(0, symlink("/dev/null", path));
+    expect_link_refused(path, "not to a pseudo-terminal");
+    TEST_ASSERT_EQUAL_INT(0, unlink(path)); /* still a symlink: it survived */
+    snprintf(target, sizeof target, "%s/data.csv", tmpdir);
+    write_file(target, "1,2,3,4,5,6\n");
+    TEST_ASSERT_EQUAL_INT(0, symlink(target, path));
+    expect_link_refused(path, "not to a pseudo-terminal");
+    TEST_ASSERT_TRUE(file_is(path, "1,2,3,4,5,6\n"));
+    TEST_ASSERT_EQUAL_INT(0, unlink(path));
+    /* someone's own file where the lock would go */
+    snprintf(lock, sizeof lock, "%s.lock", path);
+    write_file(lock, "my notes\n");
+    expect_link_refused(path, "not a leptrino-sim lock file");
+    TEST_ASSERT_NOT_EQUAL(0, access(path, F_OK));
+    TEST_ASSERT_TRUE(file_is(lock, "my notes\n"));
+    TEST_ASSERT_EQUAL_INT(0, unlink(lock));
+    TEST_ASSERT_EQUAL_INT(0, unlink(target));
+}
+
+/* A link left by a sensor that is gone (dangling, or to a pty nobody owns)
+ * is replaced; the lock file of a dead sensor is reused. */
+static void test_link_replaces_a_stale_pty_link(void)
+{
+    lep_sim_options o;
+    char path[160], lock[176], target[512];
+    ssize_t n;
+    make_tmpdir();
+    snprintf(path, sizeof path, "%s/port", tmpdir);
+    snprintf(lock, sizeof lock, "%s.lock", path);
+    TEST_ASSERT_EQUAL_INT(0, symlink("/dev/pts/987654", path));
+    write_file(lock, "leptrino-sim link lock\npid 999999\n"); /* its owner died */
+    lep_sim_options_init(&o);
+    snprintf(o.link, sizeof o.link, "%s", path);
+    start_sim(&o);
+    n = readlink(path, target, sizeof target - 1);
+    TEST_ASSERT_TRUE(n > 0);
+    target[n] = '\0';
+    TEST_ASSERT_EQUAL_STRING(lep_sim_pty_path(sim), target);
+    open_client();
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_product_info(&client, &scratch_info));
+    lep_serial_close(port);
+    port = NULL;
+    lep_sim_stop(sim);
+    sim = NULL;
+    /* gone at stop, lock file too */
+    TEST_ASSERT_NOT_EQUAL(0, access(path, F_OK));
+    TEST_ASSERT_NOT_EQUAL(0, access(lock, F_OK));
+}
+
+/* Another running sensor's link is refused, also while it is hung up. */
+static void test_link_of_a_running_sensor_is_refused(void)
+{
+    lep_sim_options o;
+    char path[160], target[512], msg[64];
+    ssize_t n;
+    int i;
+    make_tmpdir();
+    snprintf(path, sizeof path, "%s/port", tmpdir);
+    lep_sim_options_init(&o);
+    snprintf(o.link, sizeof o.link, "%s", path);
+    o.reopen_after_ms = 60000;
+    start_sim(&o);
+    snprintf(msg, sizeof msg, "pid %ld", (long)getpid());
+    expect_link_refused(path, "running virtual sensor");
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err, msg), err);
+    n = readlink(path, target, sizeof target - 1);
+    TEST_ASSERT_TRUE(n > 0);
+    target[n] = '\0';
+    TEST_ASSERT_EQUAL_STRING(lep_sim_pty_path(sim), target); /* untouched */
+    open_client();
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_product_info(&client, &scratch_info));
+    /* hung up, the link is gone, but the name is still the sensor's */
+    lep_sim_hangup(sim);
+    for (i = 0; i < 300 && !stats_now().hung_up; i++)
+        sleep_ms(10);
+    TEST_ASSERT_TRUE(stats_now().hung_up);
+    TEST_ASSERT_NOT_EQUAL(0, access(path, F_OK));
+    expect_link_refused(path, "running virtual sensor");
+    lep_serial_close(port);
+    port = NULL;
+    lep_sim_stop(sim);
+    sim = NULL;
+    /* now it is free */
+    start_sim(&o);
+    TEST_ASSERT_EQUAL_STRING(path, lep_sim_port(sim));
 }
 
 static void test_exclusive_open(void)
@@ -440,6 +628,7 @@ static void test_timeouts_honoured(void)
     lep_sim_stall(sim, 3000);
     sleep_ms(20);
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_timeout(&client, 300));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_retries(&client, 0)); /* one attempt: 300 ms */
     t = lep_monotonic_seconds();
     rc = lep_client_product_info(&client, &scratch_info);
     dt = lep_monotonic_seconds() - t;
@@ -481,46 +670,95 @@ static void test_stall_option_skips_samples(void)
     TEST_ASSERT_TRUE(stats_now().samples_skipped > 100);
 }
 
-/* Drops and garbage: the gaps in the sequence are exactly the drops. */
+/* Start a stream by the protocol, read stop_after data frames, stop it,
+ * and read on until the answer to the stop: everything sent before it.
+ * Timing-free: the stop's answer is queued behind every sample sent before
+ * it, and nothing is sent after it. Sequence gaps (from 0, the first sample
+ * of a stream) go to *gaps; returns the number of data frames. */
+static unsigned stream_and_stop(unsigned stop_after, uint16_t *expect, uint64_t *gaps,
+                                unsigned *bad_frames)
+{
+    static const uint8_t start[] = {0x04, 0xFF, LEP_CMD_START, 0x00};
+    static const uint8_t stop[] = {0x04, 0xFF, LEP_CMD_STOP, 0x00};
+    lep_frame_decoder d;
+    lep_io io;
+    uint8_t buf[512];
+    unsigned frames = 0;
+    int idle = 0;
+    bool stopping = false;
+    lep_frame_decoder_init(&d);
+    lep_serial_get_io(port, &io);
+    send_message(start, sizeof start, false);
+    while (idle < 20) { /* 20 silent seconds: something is lost, fail */
+        int n = io.read(io.user, buf, sizeof buf, 1000);
+        size_t off = 0;
+        TEST_ASSERT_TRUE(n >= 0);
+        idle = n == 0 ? idle + 1 : 0;
+        while (off < (size_t)n) {
+            lep_frame_event ev;
+            lep_response r;
+            off += lep_frame_decoder_feed(&d, buf + off, (size_t)n - off, &ev);
+            if (ev.type != LEP_FRAME_MESSAGE) {
+                if (ev.type != LEP_FRAME_NONE)
+                    (*bad_frames)++;
+                continue;
+            }
+            TEST_ASSERT_EQUAL_INT(LEP_OK, lep_response_decode(ev.msg, ev.len, &r));
+            if (r.code == LEP_CMD_STOP)
+                return frames;
+            if (!r.stream)
+                continue; /* the answer to start */
+            *gaps += (uint16_t)(r.u.sample.reserved - *expect);
+            *expect = (uint16_t)(r.u.sample.reserved + 1u);
+            if (++frames == stop_after && !stopping) {
+                send_message(stop, sizeof stop, false);
+                stopping = true;
+            }
+        }
+    }
+    TEST_FAIL_MESSAGE("no answer to stop");
+    return frames;
+}
+
+/* Drops and garbage: every sequence number the sensor generated is either
+ * delivered or accounted for by a fault counter, exactly, however slow the
+ * machine (valgrind included): no tolerance. */
 static void test_drop_and_garbage_accounting(void)
 {
     lep_sim_options o;
-    lep_sample smp;
-    lep_client_stats cs;
     lep_sim_stats st;
     uint16_t expect = 0;
     uint64_t gaps = 0;
-    unsigned got = 0;
+    unsigned got, bad = 0;
     lep_sim_options_init(&o);
     o.p_drop = 0.05;
     o.p_garbage = 0.2;
     o.seed = 42;
     start_sim(&o);
     open_client();
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_timeout(&client, 500));
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
-    while (got < 1200) {
-        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_next_sample(&client, &smp, 500));
-        gaps += (uint16_t)(smp.reserved - expect);
-        expect = (uint16_t)(smp.reserved + 1u);
-        got++;
-    }
-    /* stop the stream at the sim side first so that nothing more is sent */
-    lep_sim_power_cycle(sim);
-    wait_power_cycles(1);
+    got = stream_and_stop(1200, &expect, &gaps, &bad);
     st = stats_now();
-    lep_client_get_stats(&client, &cs);
+    TEST_ASSERT_FALSE(st.streaming);
+    /* samples generated after the last one delivered, never sent */
+    gaps += (uint16_t)(st.sequence - expect);
     {
-        char msg[160];
-        snprintf(msg, sizeof msg, "gaps %llu, sim dropped %llu, garbage %llu, discarded %u",
-                 (unsigned long long)gaps, (unsigned long long)st.samples_dropped,
-                 (unsigned long long)st.garbage_bytes, cs.bytes_discarded);
+        char msg[200];
+        snprintf(msg, sizeof msg,
+                 "delivered %u, gaps %llu; sim sent %llu, dropped %llu, skipped %llu, "
+                 "blocked %llu, garbage bytes %llu, bad frames %u",
+                 got, (unsigned long long)gaps, (unsigned long long)st.samples_sent,
+                 (unsigned long long)st.samples_dropped, (unsigned long long)st.samples_skipped,
+                 (unsigned long long)st.samples_blocked, (unsigned long long)st.garbage_bytes,
+                 bad);
         TEST_MESSAGE(msg);
-        /* drops after the last sample read are not gaps yet: allow a short tail */
-        TEST_ASSERT_TRUE_MESSAGE(gaps <= st.samples_dropped && gaps + 5 >= st.samples_dropped, msg);
+        TEST_ASSERT_TRUE_MESSAGE(got >= 1200, msg);
+        TEST_ASSERT_EQUAL_UINT64_MESSAGE(st.samples_sent, got, msg);
+        TEST_ASSERT_EQUAL_UINT64_MESSAGE(st.samples_dropped + st.samples_skipped +
+                                             st.samples_blocked,
+                                         gaps, msg);
         TEST_ASSERT_TRUE_MESSAGE(st.samples_dropped > 20, msg);
-        TEST_ASSERT_TRUE_MESSAGE(cs.bytes_discarded > 0, msg);
-        TEST_ASSERT_EQUAL_UINT32_MESSAGE(0, cs.bcc_errors, msg);
+        TEST_ASSERT_TRUE_MESSAGE(st.garbage_bytes > 0, msg);
+        TEST_ASSERT_EQUAL_UINT_MESSAGE(0, bad, msg); /* garbage never breaks a frame */
     }
 }
 
@@ -586,7 +824,7 @@ static void test_replay_and_determinism(void)
           f);
     fclose(f);
     lep_sim_options_init(&o);
-    o.replay_csv = file;
+    snprintf(o.replay_csv, sizeof o.replay_csv, "%s", file);
     start_sim(&o);
     open_client();
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
@@ -611,7 +849,7 @@ static void test_replay_and_determinism(void)
     (void)unlink(file);
 
     /* a missing replay file is a clear error */
-    o.replay_csv = "/nonexistent/replay.csv";
+    snprintf(o.replay_csv, sizeof o.replay_csv, "%s", "/nonexistent/replay.csv");
     TEST_ASSERT_EQUAL_INT(LEP_E_NOT_FOUND, lep_sim_start(&o, &sim, err, sizeof err));
     TEST_ASSERT_NOT_NULL(strstr(err, "/nonexistent/replay.csv"));
 
@@ -636,11 +874,103 @@ static void test_replay_and_determinism(void)
     }
 }
 
+static void replay_file(char *file, size_t cap, const char *text)
+{
+    FILE *f;
+    snprintf(file, cap, "/tmp/lep-replay2-%ld.csv", (long)getpid());
+    f = fopen(file, "w");
+    TEST_ASSERT_NOT_NULL(f);
+    fputs(text, f);
+    fclose(f);
+}
+
+static int start_replay(const char *file)
+{
+    lep_sim_options o;
+    lep_sim_options_init(&o);
+    snprintf(o.replay_csv, sizeof o.replay_csv, "%s", file);
+    return lep_sim_start(&o, &sim, err, sizeof err);
+}
+
+/* The leptrino tool's own raw recordings replay: comments skipped, columns
+ * picked by name wherever they stand, the first sensor of several. */
+static void test_replay_of_a_raw_recording(void)
+{
+    char file[64];
+    lep_sample smp;
+    static const int16_t want[3][6] = {
+        {1, 2, 3, 4, 5, 6}, {-10, -20, -30, -40, -50, -60}, {32000, 0, -32000, 7, 8, 9}};
+    static const uint8_t want_status[3] = {0, 0x01, LEP_STATUS_OVERLOAD};
+    unsigned i;
+    int a;
+    replay_file(file, sizeof file,
+                "# leptrino-metadata: {\"model\":\"PFS055YA501U6\",\"serial\":\"00000001\"}\r\n"
+                "# leptrino-metadata: {\"model\":\"CFS018CA201U\"}\n"
+                "t_s,sensor,fx_N,fy_N,fz_N,mx_Nm,my_Nm,mz_Nm,mz_counts,my_counts,mx_counts,"
+                "fz_counts,fy_counts,fx_counts,status,seq\r\n"
+                "0.000833,left,0.1,0.2,0.3,0.004,0.005,0.006,6,5,4,3,2,1,0,0\r\n"
+                "0.000833,right,9,9,9,9,9,9,99,99,99,99,99,99,0,0\n"
+                "# gap from=0.001 to=0.002 lost=1 reason=gap\n"
+                "0.002500,left,-0.5,-1,-1.5,-0.04,-0.05,-0.06,-60,-50,-40,-30,-20,-10,1,2\n"
+                "\n"
+                "0.003333, left ,1600,0,-1600,0.07,0.08,0.09, 9 , 8,7,-32000,0,32000,0,3\n");
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, start_replay(file), err);
+    for (i = 0; i < 6; i++) {
+        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_sim_stream_sample(sim, i, 0, &smp));
+        for (a = 0; a < 6; a++)
+            TEST_ASSERT_EQUAL_INT16(want[i % 3][a], smp.raw[a]);
+        TEST_ASSERT_EQUAL_HEX8(want_status[i % 3], smp.status);
+    }
+    /* and on the wire */
+    open_client();
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
+    for (i = 0; i < 3; i++) {
+        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_next_sample(&client, &smp, 2000));
+        TEST_ASSERT_EQUAL_INT16(want[i][0], smp.raw[0]);
+    }
+    lep_serial_close(port);
+    port = NULL;
+    lep_sim_stop(sim);
+    sim = NULL;
+
+    /* the old headerless form with a status column, and CRLF */
+    replay_file(file, sizeof file, "1,2,3,4,5,6,4\r\n-1,-2,-3,-4,-5,-6\r\n");
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, start_replay(file), err);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_sim_stream_sample(sim, 0, 0, &smp));
+    TEST_ASSERT_EQUAL_HEX8(LEP_STATUS_OVERLOAD, smp.status);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_sim_stream_sample(sim, 1, 0, &smp));
+    TEST_ASSERT_EQUAL_INT16(-6, smp.raw[5]);
+    lep_sim_stop(sim);
+    sim = NULL;
+
+    /* an SI recording cannot be replayed: say what is missing */
+    replay_file(file, sizeof file, "# x\nt_s,fx_N,fy_N,fz_N,mx_Nm,my_Nm,mz_Nm,status\n0.1,1,2,3,4,5,6,0\n");
+    TEST_ASSERT_EQUAL_INT(LEP_E_VALUE, start_replay(file));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err, ":2: the header has no fx_counts column"), err);
+    TEST_ASSERT_NULL(sim);
+    /* a value that is not a count names its line and column */
+    replay_file(file, sizeof file, "fx_counts,fy_counts,fz_counts,mx_counts,my_counts,mz_counts\n"
+                                   "1,2,3,4,5,6\n1,2,3.5,4,5,6\n");
+    TEST_ASSERT_EQUAL_INT(LEP_E_VALUE, start_replay(file));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err, ":3: column fz_counts: '3.5'"), err);
+    replay_file(file, sizeof file, "fx_counts,fy_counts,fz_counts,mx_counts,my_counts,mz_counts\n"
+                                   "1,2,3,4,5,40000\n");
+    TEST_ASSERT_EQUAL_INT(LEP_E_VALUE, start_replay(file));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err, "mz_counts: '40000'"), err);
+    replay_file(file, sizeof file, "fx_counts,fy_counts,fz_counts,mx_counts,my_counts,mz_counts\n");
+    TEST_ASSERT_EQUAL_INT(LEP_E_VALUE, start_replay(file));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err, "no samples"), err);
+    replay_file(file, sizeof file, "1,2,3,4,5\n");
+    TEST_ASSERT_EQUAL_INT(LEP_E_VALUE, start_replay(file));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err, ":1: expected 6 or 7 integers"), err);
+    (void)unlink(file);
+}
+
 static void test_bad_options(void)
 {
     lep_sim_options o;
     lep_sim_options_init(&o);
-    o.model = "XYZ";
+    snprintf(o.model, sizeof o.model, "%s", "XYZ");
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_sim_start(&o, &sim, err, sizeof err));
     TEST_ASSERT_NOT_NULL(strstr(err, "XYZ"));
     lep_sim_options_init(&o);
@@ -650,7 +980,7 @@ static void test_bad_options(void)
     o.filter = 4;
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_sim_start(&o, &sim, err, sizeof err));
     lep_sim_options_init(&o);
-    o.serial = "12a";
+    snprintf(o.serial, sizeof o.serial, "%s", "12a");
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_sim_start(&o, &sim, err, sizeof err));
     lep_sim_options_init(&o);
     o.p_nak = 1.5;
@@ -692,9 +1022,13 @@ int main(void)
     RUN_TEST(test_stream_exact_accounting);
     RUN_TEST(test_nak_retries);
     RUN_TEST(test_stale_stream_recovery);
+    RUN_TEST(test_nobody_reading_blocks);
     RUN_TEST(test_filter_after_power_cycle);
     RUN_TEST(test_hangup_is_disconnected);
     RUN_TEST(test_hangup_after_and_reopen_at_link);
+    RUN_TEST(test_link_keeps_what_is_not_a_stale_pty_link);
+    RUN_TEST(test_link_replaces_a_stale_pty_link);
+    RUN_TEST(test_link_of_a_running_sensor_is_refused);
     RUN_TEST(test_exclusive_open);
     RUN_TEST(test_timeouts_honoured);
     RUN_TEST(test_stall_option_skips_samples);
@@ -702,5 +1036,6 @@ int main(void)
     RUN_TEST(test_corruption_is_caught);
     RUN_TEST(test_overload_saturates);
     RUN_TEST(test_replay_and_determinism);
+    RUN_TEST(test_replay_of_a_raw_recording);
     return UNITY_END();
 }

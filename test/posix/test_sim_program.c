@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
@@ -155,6 +156,50 @@ static void test_session_and_clean_exit(void)
     close(efd);
 }
 
+/* The link of a running leptrino-sim is refused (nothing changed); after it
+ * is killed (SIGKILL: no clean-up), its stale link and lock are taken over. */
+static void test_link_ownership_across_processes(void)
+{
+    char link[64], lock[80], line[256], target[256];
+    lep_sim_options o;
+    lep_sim *sim = NULL;
+    int ofd, efd;
+    ssize_t n;
+    snprintf(link, sizeof link, "/tmp/lep-simown-%ld", (long)getpid());
+    snprintf(lock, sizeof lock, "%s.lock", link);
+    {
+        const char *args[] = {"--link", link, NULL};
+        spawn(args, line, sizeof line, &ofd, &efd);
+    }
+    TEST_ASSERT_EQUAL_STRING(link, line);
+    n = readlink(link, target, sizeof target - 1);
+    TEST_ASSERT_TRUE(n > 0);
+    target[n] = '\0';
+    lep_sim_options_init(&o);
+    snprintf(o.link, sizeof o.link, "%s", link);
+    TEST_ASSERT_EQUAL_INT(LEP_E_BUSY, lep_sim_start(&o, &sim, err, sizeof err));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err, "running virtual sensor"), err);
+    {
+        char pid[32], now[256];
+        snprintf(pid, sizeof pid, "pid %ld", (long)child);
+        TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err, pid), err);
+        n = readlink(link, now, sizeof now - 1);
+        TEST_ASSERT_TRUE(n > 0);
+        now[n] = '\0';
+        TEST_ASSERT_EQUAL_STRING(target, now); /* untouched */
+    }
+    kill(child, SIGKILL);
+    TEST_ASSERT_EQUAL_INT(128 + SIGKILL, wait_exit(3000));
+    close(ofd);
+    close(efd);
+    TEST_ASSERT_EQUAL_INT(0, access(lock, F_OK)); /* left behind, unlocked */
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_sim_start(&o, &sim, err, sizeof err), err);
+    TEST_ASSERT_EQUAL_STRING(link, lep_sim_port(sim));
+    lep_sim_stop(sim);
+    TEST_ASSERT_NOT_EQUAL(0, access(link, F_OK));
+    TEST_ASSERT_NOT_EQUAL(0, access(lock, F_OK));
+}
+
 static void test_sigint_exits_zero(void)
 {
     char line[256];
@@ -185,6 +230,24 @@ static void expect_usage_error(const char *const *args, const char *needle)
     close(efd);
 }
 
+/* A link path that is not ours to replace: exit 1, one line, nothing changed. */
+static void expect_link_error(const char *const *args, const char *needle)
+{
+    char line[256], msg[512];
+    int ofd, efd;
+    ssize_t n;
+    spawn(args, line, sizeof line, &ofd, &efd);
+    TEST_ASSERT_EQUAL_STRING("", line);
+    TEST_ASSERT_EQUAL_INT(1, wait_exit(3000));
+    n = read(efd, msg, sizeof msg - 1);
+    TEST_ASSERT_TRUE(n > 0);
+    msg[n] = '\0';
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg, needle), msg);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg, "nothing was changed"), msg);
+    close(ofd);
+    close(efd);
+}
+
 static void test_bad_arguments(void)
 {
     const char *a1[] = {"--model", "NOPE", NULL};
@@ -194,13 +257,30 @@ static void test_bad_arguments(void)
     const char *a5[] = {"--reopen-after", "100", NULL};
     const char *a6[] = {"--filter", NULL};
     const char *a7[] = {"--serial", "12ab", NULL};
+    const char *a8[] = {"--hangup-after", "inf", NULL};
+    char recording[64];
+    const char *a9[] = {"--link", recording, NULL};
+    FILE *f;
     expect_usage_error(a1, "NOPE");
     expect_usage_error(a2, "fast");
     expect_usage_error(a3, "--bogus");
     expect_usage_error(a4, "--nak");
-    expect_usage_error(a5, "--link");
+    expect_usage_error(a5, "needs link");
     expect_usage_error(a6, "--filter");
     expect_usage_error(a7, "12ab");
+    expect_usage_error(a8, "0 to 1000000");
+    snprintf(recording, sizeof recording, "/tmp/lep-simexe-rec-%ld.csv", (long)getpid());
+    f = fopen(recording, "w");
+    TEST_ASSERT_NOT_NULL(f);
+    fputs("t_s,fx_N\n", f);
+    fclose(f);
+    expect_link_error(a9, "regular file");
+    {
+        struct stat st;
+        TEST_ASSERT_EQUAL_INT(0, stat(recording, &st));
+        TEST_ASSERT_EQUAL_INT(9, (int)st.st_size); /* the recording survived */
+    }
+    (void)unlink(recording);
 }
 
 static void test_help_version_models(void)
@@ -232,6 +312,7 @@ int main(void)
     signal(SIGPIPE, SIG_IGN);
     UNITY_BEGIN();
     RUN_TEST(test_session_and_clean_exit);
+    RUN_TEST(test_link_ownership_across_processes);
     RUN_TEST(test_sigint_exits_zero);
     RUN_TEST(test_bad_arguments);
     RUN_TEST(test_help_version_models);

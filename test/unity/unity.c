@@ -1,7 +1,6 @@
 /* Engine of leptrino's Unity-compatible test harness (see unity.h). */
 #include "unity.h"
 
-#include <inttypes.h>
 #include <math.h>
 #include <setjmp.h>
 #include <stdio.h>
@@ -39,32 +38,95 @@ static void tail(const char *msg)
     fflush(stdout);
 }
 
-static void print_number(uint64_t bits, int is_signed, UNITY_DISPLAY_STYLE_T style)
+/* Digits of v in base 10 or 16 (upper case), at least min_digits of them,
+ * into out (which has room for 20 digits and a NUL); returns out. Done by
+ * hand: newlib-nano's printf has no long long (%lld, PRId64 print "ld"). */
+static char *format_u64(uint64_t v, unsigned base, unsigned min_digits, char *out)
 {
+    char rev[24];
+    unsigned n = 0, i;
+    do {
+        unsigned d = (unsigned)(v % base);
+        rev[n++] = (char)(d < 10u ? '0' + d : 'A' + (d - 10u));
+        v /= base;
+    } while (v != 0u && n < sizeof rev);
+    while (n < min_digits && n < sizeof rev) {
+        rev[n++] = '0';
+    }
+    for (i = 0; i < n; i++) {
+        out[i] = rev[n - 1u - i];
+    }
+    out[n] = '\0';
+    return out;
+}
+
+size_t UnityFormatNumber(char *out, size_t cap, uint64_t bits, int is_signed,
+                         UNITY_DISPLAY_STYLE_T style)
+{
+    char digits[24];
+    char text[32];
+    size_t len;
+    text[0] = '\0';
     switch (style) {
-    case UNITY_DISPLAY_STYLE_HEX8: printf("0x%02" PRIX64, bits & 0xFFu); break;
-    case UNITY_DISPLAY_STYLE_HEX16: printf("0x%04" PRIX64, bits & 0xFFFFu); break;
-    case UNITY_DISPLAY_STYLE_HEX32: printf("0x%08" PRIX64, bits & 0xFFFFFFFFu); break;
-    case UNITY_DISPLAY_STYLE_HEX64: printf("0x%016" PRIX64, bits); break;
+    case UNITY_DISPLAY_STYLE_HEX8:
+        strcpy(text, "0x");
+        strcat(text, format_u64(bits & 0xFFu, 16u, 2u, digits));
+        break;
+    case UNITY_DISPLAY_STYLE_HEX16:
+        strcpy(text, "0x");
+        strcat(text, format_u64(bits & 0xFFFFu, 16u, 4u, digits));
+        break;
+    case UNITY_DISPLAY_STYLE_HEX32:
+        strcpy(text, "0x");
+        strcat(text, format_u64(bits & 0xFFFFFFFFu, 16u, 8u, digits));
+        break;
+    case UNITY_DISPLAY_STYLE_HEX64:
+        strcpy(text, "0x");
+        strcat(text, format_u64(bits, 16u, 16u, digits));
+        break;
     case UNITY_DISPLAY_STYLE_CHAR:
         if (bits >= 0x20u && bits < 0x7Fu) {
-            printf("'%c'", (char)bits);
+            text[0] = '\'';
+            text[1] = (char)bits;
+            text[2] = '\'';
+            text[3] = '\0';
         } else {
-            printf("'\\x%02" PRIX64 "'", bits & 0xFFu);
+            strcpy(text, "'\\x");
+            strcat(text, format_u64(bits & 0xFFu, 16u, 2u, digits));
+            strcat(text, "'");
         }
         break;
     case UNITY_DISPLAY_STYLE_INT:
     case UNITY_DISPLAY_STYLE_UINT:
     default:
-        if (is_signed) {
-            int64_t v;
-            memcpy(&v, &bits, sizeof v);
-            printf("%" PRId64, v);
+        if (is_signed && (bits >> 63) != 0u) {
+            /* Two's complement magnitude, well defined for INT64_MIN too. */
+            strcpy(text, "-");
+            strcat(text, format_u64(~bits + 1u, 10u, 1u, digits));
         } else {
-            printf("%" PRIu64, bits);
+            strcpy(text, format_u64(bits, 10u, 1u, digits));
         }
         break;
     }
+    len = strlen(text);
+    if (cap > 0u) {
+        size_t n = len < cap ? len : cap - 1u;
+        memcpy(out, text, n);
+        out[n] = '\0';
+    }
+    return len;
+}
+
+static void print_number(uint64_t bits, int is_signed, UNITY_DISPLAY_STYLE_T style)
+{
+    char text[32];
+    UnityFormatNumber(text, sizeof text, bits, is_signed, style);
+    fputs(text, stdout);
+}
+
+static void print_unsigned(uint64_t v)
+{
+    print_number(v, 0, UNITY_DISPLAY_STYLE_UINT);
 }
 
 static void print_signed(int64_t v)
@@ -299,7 +361,9 @@ void UnityAssertSignedWithin(uint64_t delta, int64_t expected, int64_t actual, c
         return;
     }
     fail_begin(line);
-    printf("Values Not Within Delta %" PRIu64 " Expected ", delta);
+    printf("Values Not Within Delta ");
+    print_unsigned(delta);
+    printf(" Expected ");
     print_signed(expected);
     printf(" Was ");
     print_signed(actual);
@@ -316,7 +380,9 @@ void UnityAssertUnsignedWithin(uint64_t delta, uint64_t expected, uint64_t actua
         return;
     }
     fail_begin(line);
-    printf("Values Not Within Delta %" PRIu64 " ", delta);
+    printf("Values Not Within Delta ");
+    print_unsigned(delta);
+    printf(" ");
     expected_was(expected, actual, 0, style);
     tail(msg);
     bail();
@@ -412,7 +478,9 @@ void UnityAssertEqualMemory(const void *expected, const void *actual, size_t len
     for (i = 0; i < len; i++) {
         if (e[i] != a[i]) {
             fail_begin(line);
-            printf("Memory Mismatch. Byte %zu ", i);
+            printf("Memory Mismatch. Byte ");
+            print_unsigned(i);
+            printf(" ");
             expected_was(e[i], a[i], 0, UNITY_DISPLAY_STYLE_HEX8);
             tail(msg);
             bail();
@@ -465,7 +533,9 @@ void UnityAssertEqualArray(const void *expected, const void *actual, size_t coun
         uint64_t a = element(actual, i, type, &is_signed, &style);
         if (e != a) {
             fail_begin(line);
-            printf("Element %zu ", i);
+            printf("Element ");
+            print_unsigned(i);
+            printf(" ");
             expected_was(e, a, is_signed, style);
             tail(msg);
             bail();

@@ -78,6 +78,13 @@ void UnityDefaultTestRun(UnityTestFunction func, const char *name, int line);
 
 typedef unsigned int UNITY_LINE_TYPE;
 
+/* Bundled harness only (not in upstream Unity): the text a failure message
+ * shows for a number, written into out[0..cap) (NUL-terminated, truncated to
+ * fit); returns the full length. Formatted without printf's 64-bit
+ * conversions, which newlib-nano lacks. */
+size_t UnityFormatNumber(char *out, size_t cap, uint64_t bits, int is_signed,
+                         UNITY_DISPLAY_STYLE_T style);
+
 void UnityFail(const char *msg, UNITY_LINE_TYPE line);
 void UnityIgnore(const char *msg, UNITY_LINE_TYPE line);
 void UnityPass(void);

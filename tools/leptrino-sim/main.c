@@ -10,11 +10,11 @@
 #endif
 
 #include <errno.h>
-#include <limits.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/time.h>
 #include <pthread.h>
 
@@ -23,43 +23,43 @@
 
 #define EXIT_USAGE 2
 
-static const char usage[] =
+static const char usage_head[] =
     "usage: leptrino-sim [options]\n"
     "A virtual Leptrino force/torque sensor on a pseudo-terminal. Prints the port\n"
     "path as the first line of stdout, then serves until SIGINT/SIGTERM/SIGHUP.\n"
     "SIGUSR1 power-cycles the sensor (a filter setting takes effect then).\n"
     "\n"
-    "identity:\n"
-    "  --model NAME          CFS018CA201U, CFS034CA301U, PFS055YA501U6 (default), PFS080YS102U6\n"
-    "  --serial DIGITS       1..8 digits (default 00000001)\n"
-    "  --firmware VER        1..4 characters (default 1.13)\n"
-    "  --output-rate-field   answer product info in the 38-byte form with the output rate\n"
-    "  --filter CODE         filter code in effect at power-on, 0..3 (default 0)\n"
-    "signal:\n"
-    "  --rate HZ             continuous output rate, 1..10000 (default 1200)\n"
-    "  --seed N              waveform and fault randomness (default 1)\n"
-    "  --amplitude F         sine amplitude, fraction of rated (default 0.2)\n"
-    "  --noise F             noise amplitude, fraction of rated (default 0.005)\n"
-    "  --constant            constant load (amplitude as the level), no noise\n"
-    "  --replay FILE         replay raw counts fx,fy,fz,mx,my,mz[,status] per line, looping\n"
-    "  --overload-every S    an overload episode every S seconds of a stream\n"
-    "  --overload-duration S length of an episode (default 0.1)\n"
-    "faults:\n"
-    "  --nak P               probability of NAKing a valid command\n"
-    "  --corrupt P           probability of flipping a bit of an outgoing message\n"
-    "  --garbage P           probability of garbage bytes before an outgoing message\n"
-    "  --drop P              probability of dropping a data message\n"
-    "  --stall MS            stall (send nothing, answer nothing) for MS milliseconds ...\n"
-    "  --stall-after S       ... S seconds after start (default 0)\n"
-    "  --hangup-after S      hang up (close the port) S seconds after start\n"
-    "  --reopen-after MS     after a hang-up, reopen after MS ms at the --link path\n"
-    "  --start-streaming     power up already streaming (a stream left by an earlier program)\n"
-    "other:\n"
-    "  --link PATH           also make a symlink to the port at PATH; the first line shows it\n"
-    "  --exit-after S        exit by itself after S seconds (0: never)\n"
-    "  --stats               print the simulator's counters on stderr at exit\n"
-    "  --list-models         print the model presets with their rated values, then exit\n"
+    "virtual sensor (--NAME VALUE or --NAME=VALUE):\n";
+
+static const char usage_tail[] =
+    "program:\n"
+    "  --exit-after S          exit by itself after S seconds (0: never)\n"
+    "  --stats                 print the simulator's counters on stderr at exit\n"
+    "  --list-models           print the model presets with their rated values, then exit\n"
     "  --help, --version\n";
+
+/* One help line per row of the library's option table. */
+static void print_usage(void)
+{
+    size_t i;
+    fputs(usage_head, stdout);
+    for (i = 0; i < lep_sim_option_count(); i++) {
+        const lep_sim_option_info *in = lep_sim_option_at(i);
+        char left[64];
+        snprintf(left, sizeof left, "--%s%s%s", in->name, in->arg ? " " : "",
+                 in->arg ? in->arg : "");
+        printf("  %-22s %s", left, in->help);
+        if (in->type == LEP_SIM_OPT_DOUBLE || in->type == LEP_SIM_OPT_INT ||
+            (in->type == LEP_SIM_OPT_UINT && in->max < 1e18))
+            printf(", %s%.15g..%.15g", in->min_exclusive ? ">" : "", in->min, in->max);
+        if (in->default_text != NULL && in->type != LEP_SIM_OPT_CHOICE)
+            printf(" (default %s)", in->default_text);
+        else if (in->default_text != NULL)
+            printf("\n  %-22s (default %s)", "", in->default_text);
+        putchar('\n');
+    }
+    fputs(usage_tail, stdout);
+}
 
 static int bad(const char *msg, const char *opt, const char *val)
 {
@@ -68,30 +68,6 @@ static int bad(const char *msg, const char *opt, const char *val)
     else
         fprintf(stderr, "leptrino-sim: %s: %s (see --help)\n", opt, msg);
     return EXIT_USAGE;
-}
-
-static int parse_double(const char *s, double lo, double hi, double *out)
-{
-    char *end;
-    double v;
-    errno = 0;
-    v = strtod(s, &end);
-    if (end == s || *end != '\0' || errno != 0 || !(v >= lo && v <= hi))
-        return -1;
-    *out = v;
-    return 0;
-}
-
-static int parse_long(const char *s, long lo, long hi, long *out)
-{
-    char *end;
-    long v;
-    errno = 0;
-    v = strtol(s, &end, 10);
-    if (end == s || *end != '\0' || errno != 0 || v < lo || v > hi)
-        return -1;
-    *out = v;
-    return 0;
 }
 
 static int list_models(void)
@@ -115,183 +91,112 @@ struct cli {
     int stats;
 };
 
-/* True when name is opt; its value is then in *val (from "=VALUE" or the
- * next argument), or *missing is set when there is none. */
-static int takes(const char *name, const char *opt, const char **val, int argc, char **argv,
-                 int *i, int *missing)
-{
-    if (strcmp(name, opt) != 0)
-        return 0;
-    if (*val != NULL)
-        return 1;
-    if (*i + 1 < argc) {
-        *val = argv[++*i];
-        return 1;
-    }
-    *missing = 1;
-    return 0;
-}
-
 /* Parse argv into c. Returns -1 to go on, else an exit code. */
 static int parse(int argc, char **argv, struct cli *c)
 {
     int i;
     for (i = 1; i < argc; i++) {
         const char *a = argv[i];
-        const char *val = NULL;
-        char name[40];
-        const char *eq;
-        double d;
-        long l;
+        const char *val = NULL, *eq;
+        const lep_sim_option_info *in;
+        char name[40], err[256];
         if (strncmp(a, "--", 2) != 0)
             return bad("unexpected argument", a, NULL);
         eq = strchr(a, '=');
-        if (eq != NULL) {
-            size_t n = (size_t)(eq - a);
+        {
+            size_t n = eq != NULL ? (size_t)(eq - a) : strlen(a);
             if (n >= sizeof name)
                 return bad("unknown option", a, NULL);
             memcpy(name, a, n);
             name[n] = '\0';
-            val = eq + 1;
-        } else {
-            if (strlen(a) >= sizeof name)
-                return bad("unknown option", a, NULL);
-            strcpy(name, a);
         }
-#define FLAG(opt) (strcmp(name, opt) == 0 && val == NULL)
-#define TAKES(opt) takes(name, opt, &val, argc, argv, &i, &missing)
-        {
-            int missing = 0;
-            if (FLAG("--help")) {
-                fputs(usage, stdout);
+        if (eq != NULL)
+            val = eq + 1;
+        if (strcmp(name, "--help") == 0 || strcmp(name, "--version") == 0 ||
+            strcmp(name, "--list-models") == 0 || strcmp(name, "--stats") == 0) {
+            if (val != NULL)
+                return bad("takes no value", name, NULL);
+            if (strcmp(name, "--help") == 0) {
+                print_usage();
                 return 0;
-            } else if (FLAG("--version")) {
+            }
+            if (strcmp(name, "--version") == 0) {
                 printf("leptrino-sim %s\n", lep_version());
                 return 0;
-            } else if (FLAG("--list-models")) {
-                return list_models();
-            } else if (FLAG("--output-rate-field")) {
-                c->o.output_rate_field = true;
-            } else if (FLAG("--constant")) {
-                c->o.constant = true;
-            } else if (FLAG("--start-streaming")) {
-                c->o.start_streaming = true;
-            } else if (FLAG("--stats")) {
-                c->stats = 1;
-            } else if (TAKES("--model")) {
-                lep_rated r;
-                if (lep_sim_model_rated(val, &r) != LEP_OK)
-                    return bad("unknown model (see --list-models)", name, val);
-                c->o.model = val;
-            } else if (TAKES("--serial")) {
-                c->o.serial = val;
-            } else if (TAKES("--firmware")) {
-                c->o.firmware = val;
-            } else if (TAKES("--filter")) {
-                if (parse_long(val, 0, 3, &l) != 0)
-                    return bad("expected a filter code 0..3", name, val);
-                c->o.filter = (uint8_t)l;
-            } else if (TAKES("--rate")) {
-                if (parse_double(val, 1.0, 10000.0, &d) != 0)
-                    return bad("expected a rate in Hz, 1..10000", name, val);
-                c->o.rate_hz = d;
-            } else if (TAKES("--seed")) {
-                char *end;
-                errno = 0;
-                c->o.seed = strtoull(val, &end, 0);
-                if (end == val || *end != '\0' || errno != 0 || val[0] == '-')
-                    return bad("expected a non-negative integer", name, val);
-            } else if (TAKES("--amplitude")) {
-                if (parse_double(val, 0.0, 4.0, &d) != 0)
-                    return bad("expected a fraction of rated, 0..4", name, val);
-                c->o.amplitude = d;
-            } else if (TAKES("--noise")) {
-                if (parse_double(val, 0.0, 1.0, &d) != 0)
-                    return bad("expected a fraction of rated, 0..1", name, val);
-                c->o.noise = d;
-            } else if (TAKES("--replay")) {
-                c->o.replay_csv = val;
-            } else if (TAKES("--overload-every")) {
-                if (parse_double(val, 0.0, 1e6, &d) != 0)
-                    return bad("expected seconds >= 0", name, val);
-                c->o.overload_every_s = d;
-            } else if (TAKES("--overload-duration")) {
-                if (parse_double(val, 1e-6, 1e6, &d) != 0)
-                    return bad("expected seconds > 0", name, val);
-                c->o.overload_duration_s = d;
-            } else if (TAKES("--nak") || TAKES("--corrupt") || TAKES("--garbage") ||
-                       TAKES("--drop")) {
-                if (parse_double(val, 0.0, 1.0, &d) != 0)
-                    return bad("expected a probability 0..1", name, val);
-                if (strcmp(name, "--nak") == 0)
-                    c->o.p_nak = d;
-                else if (strcmp(name, "--corrupt") == 0)
-                    c->o.p_corrupt = d;
-                else if (strcmp(name, "--garbage") == 0)
-                    c->o.p_garbage = d;
-                else
-                    c->o.p_drop = d;
-            } else if (TAKES("--stall")) {
-                if (parse_long(val, 0, INT_MAX, &l) != 0)
-                    return bad("expected milliseconds >= 0", name, val);
-                c->o.stall_ms = (int)l;
-            } else if (TAKES("--stall-after")) {
-                if (parse_double(val, 0.0, 1e6, &d) != 0)
-                    return bad("expected seconds >= 0", name, val);
-                c->o.stall_after_s = d;
-            } else if (TAKES("--hangup-after")) {
-                if (parse_double(val, 0.0, 1e6, &d) != 0)
-                    return bad("expected seconds >= 0", name, val);
-                c->o.hangup_after_s = d;
-            } else if (TAKES("--reopen-after")) {
-                if (parse_long(val, 0, INT_MAX, &l) != 0)
-                    return bad("expected milliseconds >= 0", name, val);
-                c->o.reopen_after_ms = (int)l;
-            } else if (TAKES("--link")) {
-                if (val[0] == '\0')
-                    return bad("expected a path", name, NULL);
-                c->o.link = val;
-            } else if (TAKES("--exit-after")) {
-                if (parse_double(val, 0.0, 1e9, &d) != 0)
-                    return bad("expected seconds >= 0", name, val);
-                c->exit_after = d;
-            } else if (missing) {
-                return bad("needs a value", name, NULL);
-            } else if (val != NULL && (strcmp(name, "--help") == 0 || strcmp(name, "--version") == 0 ||
-                                       strcmp(name, "--constant") == 0 ||
-                                       strcmp(name, "--stats") == 0 ||
-                                       strcmp(name, "--list-models") == 0 ||
-                                       strcmp(name, "--output-rate-field") == 0 ||
-                                       strcmp(name, "--start-streaming") == 0)) {
-                return bad("takes no value", name, NULL);
-            } else {
-                return bad("unknown option", name, NULL);
             }
+            if (strcmp(name, "--list-models") == 0)
+                return list_models();
+            c->stats = 1;
+            continue;
         }
-#undef FLAG
-#undef TAKES
+        if (strcmp(name, "--exit-after") == 0) {
+            char *end;
+            if (val == NULL && i + 1 < argc)
+                val = argv[++i];
+            if (val == NULL)
+                return bad("needs a value", name, NULL);
+            errno = 0;
+            c->exit_after = strtod(val, &end);
+            if (end == val || *end != '\0' || errno != 0 ||
+                !(c->exit_after >= 0.0 && c->exit_after <= 1e9))
+                return bad("expected seconds, 0..1e9", name, val);
+            continue;
+        }
+        /* The virtual sensor's own options: the library's table. Only the
+         * dash-separated names here (no underscore or field aliases). */
+        in = lep_sim_option_find(name + 2);
+        if (in == NULL || strcmp(in->name, name + 2) != 0)
+            return bad("unknown option", name, NULL);
+        if (in->type == LEP_SIM_OPT_FLAG) {
+            if (val != NULL)
+                return bad("takes no value", name, NULL);
+        } else if (val == NULL) {
+            if (i + 1 >= argc)
+                return bad("needs a value", name, NULL);
+            val = argv[++i];
+        }
+        if (lep_sim_option_set(&c->o, in->name, val, err, sizeof err) != LEP_OK) {
+            fprintf(stderr, "leptrino-sim: --%s (see --help)\n", err);
+            return EXIT_USAGE;
+        }
     }
-    if (c->o.reopen_after_ms >= 0 && c->o.link == NULL)
-        return bad("needs --link PATH (the path that survives the reopen)", "--reopen-after", NULL);
-    if (c->o.stall_after_s > 0 && c->o.stall_ms == 0)
-        return bad("needs --stall MS", "--stall-after", NULL);
+    {
+        char err[256];
+        if (lep_sim_options_check(&c->o, err, sizeof err) != LEP_OK) {
+            fprintf(stderr, "leptrino-sim: --%s (see --help)\n", err);
+            return EXIT_USAGE;
+        }
+    }
     return -1;
+}
+
+/* CPU time of this process (user + system), in seconds. */
+static double cpu_seconds(void)
+{
+    struct rusage ru;
+    if (getrusage(RUSAGE_SELF, &ru) != 0)
+        return 0.0;
+    return (double)ru.ru_utime.tv_sec + (double)ru.ru_utime.tv_usec * 1e-6 +
+           (double)ru.ru_stime.tv_sec + (double)ru.ru_stime.tv_usec * 1e-6;
 }
 
 static void print_stats(lep_sim *s)
 {
     lep_sim_stats st;
+    double cpu = cpu_seconds();
     lep_sim_get_stats(s, &st);
     fprintf(stderr,
             "leptrino-sim: %llu samples sent, %llu dropped, %llu skipped, %llu blocked; "
             "%llu commands, %llu NAKs (%llu faked), %llu corrupted, %llu garbage bytes, "
-            "%llu hang-ups, %llu reopens, %llu power cycles\n",
+            "%llu hang-ups, %llu reopens, %llu power cycles; "
+            "CPU %.3f s (%.2f us per sample sent)\n",
             (unsigned long long)st.samples_sent, (unsigned long long)st.samples_dropped,
             (unsigned long long)st.samples_skipped, (unsigned long long)st.samples_blocked,
             (unsigned long long)st.commands, (unsigned long long)st.naks,
             (unsigned long long)st.faked_naks, (unsigned long long)st.bytes_corrupted,
             (unsigned long long)st.garbage_bytes, (unsigned long long)st.hangups,
-            (unsigned long long)st.reopens, (unsigned long long)st.power_cycles);
+            (unsigned long long)st.reopens, (unsigned long long)st.power_cycles, cpu,
+            st.samples_sent > 0 ? cpu * 1e6 / (double)st.samples_sent : 0.0);
 }
 
 int main(int argc, char **argv)

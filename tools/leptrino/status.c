@@ -1,5 +1,10 @@
-/* Live status line of `leptrino stream` on stderr: drawn only when stderr is
- * a terminal, redrawn at most about four times per second. */
+/* Live status line of `leptrino stream` on stderr, redrawn in place at most
+ * about four times per second.
+ *
+ * It is drawn only when stderr is a terminal that the data does not go to:
+ * when stdout and stderr are the same terminal (`make demo`), a line
+ * rewritten with \r would land in the middle of the data rows, so there is
+ * none, and only the summary is printed after the last row. */
 #define _POSIX_C_SOURCE 200809L
 
 #include <unistd.h>
@@ -8,33 +13,23 @@
 
 #define CLI_STATUS_PERIOD_S 0.25
 
-void cli_status_init(cli_status *st)
+void cli_status_init(cli_status *st, int out_fd)
 {
-    st->enabled = isatty(STDERR_FILENO) == 1;
+    st->enabled = isatty(STDERR_FILENO) == 1 &&
+                  (out_fd < 0 || !cli_term_same_tty(out_fd, STDERR_FILENO));
     st->drawn = false;
     st->last_draw = -1.0;
-    st->last_elapsed = 0.0;
-    st->last_samples = 0;
-    st->hz = 0.0;
 }
 
-void cli_status_update(cli_status *st, double elapsed, uint64_t samples, uint64_t errors,
-                       uint64_t overloads, const char *note)
+void cli_status_update(cli_status *st, double now, const char *text)
 {
     if (!st->enabled)
         return;
-    if (st->last_draw >= 0.0 && elapsed - st->last_draw < CLI_STATUS_PERIOD_S)
+    if (st->last_draw >= 0.0 && now - st->last_draw < CLI_STATUS_PERIOD_S)
         return;
-    if (elapsed > st->last_elapsed && st->last_draw >= 0.0)
-        st->hz = (double)(samples - st->last_samples) / (elapsed - st->last_elapsed);
-    st->last_elapsed = elapsed;
-    st->last_samples = samples;
-    st->last_draw = elapsed;
+    st->last_draw = now;
     /* \r then erase to end of line: the line is rewritten in place. */
-    fprintf(stderr, "\r\033[K%llu samples  %7.1f Hz  %llu errors  %llu overloads  %.1f s%s%s",
-            (unsigned long long)samples, st->hz, (unsigned long long)errors,
-            (unsigned long long)overloads, elapsed, note != NULL ? "  " : "",
-            note != NULL ? note : "");
+    fprintf(stderr, "\r\033[K%s", text);
     fflush(stderr);
     st->drawn = true;
 }

@@ -16,6 +16,7 @@ listing what was tried, when it cannot be found.
 from __future__ import annotations
 
 from ._backend import BACKENDS, get_backend
+from ._loader import package_version as _package_version
 from .codec import (
     Decoder,
     Event,
@@ -104,12 +105,6 @@ def library_version(backend: str | None = None) -> str:
 # Load the default backend now: a missing library is an ImportError at import.
 get_backend()
 
-try:
-    from importlib.metadata import PackageNotFoundError, version as _pkg_version
-
-    try:
-        __version__ = _pkg_version("leptrino")
-    except PackageNotFoundError:  # running from the source tree
-        __version__ = library_version()
-except ImportError:  # pragma: no cover - Python < 3.8
-    __version__ = library_version()
+#: This package's version, from project(VERSION) in the top CMakeLists.txt;
+#: the loaded library is checked to be the same.
+__version__: str = _package_version()

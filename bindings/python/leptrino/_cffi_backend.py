@@ -6,6 +6,7 @@ them against include/leptrino/*.h.
 
 from __future__ import annotations
 
+import re
 from typing import Any, List, Optional
 
 from . import _loader
@@ -28,7 +29,7 @@ class CffiBackend:
     def __init__(self, path: Optional[str] = None) -> None:
         self.ffi = cffi.FFI()
         self.ffi.cdef(CDEF)
-        self.lib, self.path = _loader.load(self.ffi.dlopen, path)
+        self.lib, self.path = _loader.load(self.ffi.dlopen, self._version_of, path)
         # Resolve every declared function now, so a mismatched library fails
         # at load time rather than at first use.
         missing = []
@@ -43,9 +44,14 @@ class CffiBackend:
                 "it is not a matching libleptrino"
             )
 
+    def _version_of(self, lib: Any) -> str:
+        p = lib.lep_version()  # AttributeError: not a libleptrino
+        return "" if p == self.ffi.NULL else bytes(self.ffi.string(p)).decode("utf-8", "replace")
+
     def function_names(self) -> List[str]:
-        return [n for n in dir(self.lib) if n.startswith("lep_")
-                and self.ffi.typeof(getattr(self.lib, n)).kind == "function"]
+        """The functions CDEF declares (whether or not the library has them)."""
+        code = re.sub(r"/\*.*?\*/", " ", CDEF, flags=re.S)
+        return sorted(set(re.findall(r"\b(lep_\w+)\s*\(", code)))
 
     # -- allocation --------------------------------------------------------
     def new(self, ctype: str) -> Any:
@@ -66,6 +72,14 @@ class CffiBackend:
     def handle(self, out: Any) -> Any:
         h = out[0]
         return None if h == self.ffi.NULL else h
+
+    def field_ptr(self, struct: Any, name: str) -> Any:
+        """Pointer to a struct-typed field of the struct struct points to."""
+        return self.ffi.addressof(struct, name)
+
+    def deref(self, ptr: Any) -> Any:
+        """The struct a returned pointer points to."""
+        return ptr[0]
 
     def new_client(self) -> Any:
         size = int(self.lib.lep_client_size())

@@ -19,7 +19,7 @@ def plot_recording(rec: Recording, path: Optional[str] = None, *, title: str = "
         import matplotlib.pyplot as plt
     except ImportError as exc:
         raise ImportError(
-            "plotting needs matplotlib: pip install 'leptrino[plot]' (or pip install matplotlib)"
+            "plotting needs matplotlib: pip install matplotlib"
         ) from exc
     t = rec.elapsed
     fig, (ax_f, ax_m) = plt.subplots(2, 1, sharex=True, figsize=(10, 6), constrained_layout=True)

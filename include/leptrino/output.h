@@ -1,0 +1,123 @@
+/* Recording writer (OS layer): the one writer of CSV and JSON-lines
+ * recordings that every front end uses, so that the same samples give the
+ * same bytes from the C tool and from Python.
+ *
+ * A writer owns a file descriptor (a path it opened, or one it was given,
+ * e.g. 1 for standard output) and a buffer; it uses no FILE*, so FFI callers
+ * pass paths, fds and lep_session_batch structs only. Rows come from
+ * lep_session_batch arrays; several sensors can share one file (a sensor
+ * column) on one time base.
+ *
+ * The bytes (docs/session.md has the reference):
+ *  - CSV: one `# leptrino-metadata: {json}` comment line per sensor, then a
+ *    header line, then one line per sample. Events are comment lines:
+ *      # gap from=T to=T lost=N reason=gap|disconnected|no-data
+ *      # disconnected at=T reason=disconnected|no-data
+ *      # tare at=T fx=C fy=C fz=C mx=C my=C mz=C
+ *      # overload begin at=T axes=A status=S  /  # overload end at=T
+ *    (with a sensor column, `sensor=NAME` follows the event word).
+ *  - JSON lines: a first {"metadata": {...}} object per sensor, then one
+ *    object per sample with the same keys as the CSV header, and events as
+ *    {"event":"gap","from":T,"to":T,"lost":N,"reason":"..."} and so on.
+ *  - Columns, in this order: time (t_s | t_mono_s | t_utc_s), sensor,
+ *    fx_counts..mz_counts, fx_zeroed_counts..mz_zeroed_counts,
+ *    fx_N,fy_N,fz_N,mx_Nm,my_Nm,mz_Nm, status, flags, seq.
+ *  - Numbers: times %.6f (s), raw counts as integers, zeroed counts %.3f,
+ *    SI values %.6f, status/flags/seq as unsigned integers; C locale.
+ *
+ * Not thread-safe: one thread uses a writer. Errors are LEP_E_* codes. */
+#ifndef LEPTRINO_OUTPUT_H
+#define LEPTRINO_OUTPUT_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "export.h"
+#include "session.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Column bits (lep_output_options.columns). */
+#define LEP_COL_RAW 0x01u    /* fx_counts..mz_counts */
+#define LEP_COL_ZEROED 0x02u /* fx_zeroed_counts..mz_zeroed_counts */
+#define LEP_COL_SI 0x04u     /* fx_N..mz_Nm */
+#define LEP_COL_STATUS 0x08u /* status */
+#define LEP_COL_FLAGS 0x10u  /* flags (LEP_SF_*) */
+#define LEP_COL_SEQ 0x20u    /* seq (the reserved bytes) */
+#define LEP_COL_SENSOR 0x40u /* sensor (the name given to lep_output_add_*) */
+#define LEP_COL_DEFAULT (LEP_COL_SI | LEP_COL_STATUS)
+
+enum lep_output_format { LEP_OUTPUT_CSV = 0, LEP_OUTPUT_JSONL = 1 };
+
+enum lep_output_time {
+    LEP_TIME_REL = 0,  /* t_s: seconds since t0_mono (default: the first sensor's start) */
+    LEP_TIME_MONO = 1, /* t_mono_s: the monotonic clock */
+    LEP_TIME_UTC = 2   /* t_utc_s: seconds since 1970-01-01 UTC */
+};
+
+typedef struct lep_output_options {
+    int format;       /* enum lep_output_format, default CSV */
+    int time;         /* enum lep_output_time, default REL */
+    unsigned columns; /* LEP_COL_* bits, default LEP_COL_DEFAULT; the time column is always there */
+    double t0_mono;   /* origin of t_s; 0 (default): start_mono of the first sensor added */
+    bool overwrite;   /* lep_output_open may replace an existing file (default false) */
+} lep_output_options;
+
+typedef struct lep_output lep_output;
+
+/* Defaults as documented on each field. */
+LEP_API void lep_output_options_init(lep_output_options *o);
+
+/* Create path for writing. An existing file is refused (LEP_E_ARG, "PATH:
+ * already exists ...", the file untouched) unless o->overwrite. NULL or "-"
+ * is standard output. Other failures: LEP_E_NOT_FOUND (no such directory),
+ * LEP_E_PERMISSION, LEP_E_IO; err gets a one-line message naming the path. */
+LEP_API int lep_output_open(const char *path, const lep_output_options *o, lep_output **out,
+                            char *err, size_t errlen);
+
+/* Write to fd (not closed by lep_output_close). LEP_E_ARG for fd < 0. */
+LEP_API int lep_output_open_fd(int fd, const lep_output_options *o, lep_output **out, char *err,
+                               size_t errlen);
+
+/* Add a sensor before the first write; returns its index (>= 0) for
+ * lep_output_write, or LEP_E_ARG / LEP_E_STATE (after the first write).
+ * name: the sensor column's value (copied; NULL = "sensor<index>").
+ * _add_session reads the session's metadata when the header is written (at
+ * the first lep_output_write or at close): the session must stay open until
+ * then. _add_sensor takes the metadata JSON object (copied) and the
+ * session's start_mono, for writing a recording after its session closed. */
+LEP_API int lep_output_add_session(lep_output *w, lep_session *s, const char *name);
+LEP_API int lep_output_add_sensor(lep_output *w, const char *name, const char *metadata_json,
+                                  double start_mono);
+
+/* Write rows b[from..b->n) of sensor `sensor`, and the events ev[0..nev)
+ * where they belong: an event whose .sample is k comes just before that
+ * sensor's row k (rows are numbered per sensor from 0 as they are written),
+ * events beyond the last row after it. Writes the header first if not yet
+ * done. The batch needs t_mono, and t_utc for LEP_TIME_UTC, and the arrays of
+ * the chosen columns (LEP_E_ARG otherwise). Buffered: bytes reach the fd
+ * when the buffer fills, at lep_output_flush and at close (and after every
+ * call when the fd is a terminal). LEP_E_IO when a write failed
+ * (lep_output_errno says why; later calls fail the same way). */
+LEP_API int lep_output_write(lep_output *w, int sensor, const lep_session_batch *b, size_t from,
+                             const lep_session_event *ev, size_t nev);
+
+/* Write buffered bytes now. */
+LEP_API int lep_output_flush(lep_output *w);
+
+/* errno of the first failed write (EPIPE when a pipe's reader went away), 0 if none. */
+LEP_API int lep_output_errno(const lep_output *w);
+
+/* Write the header if nothing was written yet, flush, close the file when
+ * lep_output_open opened it, free. Returns LEP_OK or the first write error.
+ * NULL is fine. */
+LEP_API int lep_output_close(lep_output *w);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

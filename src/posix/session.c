@@ -1,0 +1,333 @@
+/* Host session: options, open (port or virtual sensor, start-up recovery,
+ * identity, rated values, filter), start, stop, close, and the accessors. */
+#if defined(__APPLE__)
+#define _DARWIN_C_SOURCE
+#else
+#define _DEFAULT_SOURCE
+#endif
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "errmsg.h"
+#include "leptrino/error.h"
+#include "session_priv.h"
+
+void lep_session_options_init(lep_session_options *o)
+{
+    if (o == NULL)
+        return;
+    memset(o, 0, sizeof *o);
+    lep_sim_options_init(&o->sim);
+    o->timeout_ms = 500;
+    o->sync_quiet_ms = 30;
+    o->data_timeout_ms = 2000;
+    o->gap_periods = 3.0;
+    o->nominal_hz = 0.0;
+    o->reconnect_min_ms = 100;
+    o->reconnect_max_ms = 1000;
+    o->reconnect_give_up_ms = -1;
+    o->decimate = 1;
+    o->rotation[0] = o->rotation[4] = o->rotation[8] = 1.0;
+}
+
+static bool finite_nonneg(double v)
+{
+    return isfinite(v) && v >= 0.0;
+}
+
+/* Options that make no sense are refused before anything is opened. */
+static int check_options(const lep_session_options *o, char *err, size_t errlen)
+{
+    if (!o->use_sim && (o->port == NULL || o->port[0] == '\0')) {
+        lep_priv_set_err(err, errlen, "session: no port given (a serial device, or use_sim)");
+        return LEP_E_ARG;
+    }
+    if (!o->use_sim && strlen(o->port) >= sizeof(((lep_session *)0)->port_buf)) {
+        lep_priv_set_err(err, errlen, "session: port path longer than 255 bytes");
+        return LEP_E_ARG;
+    }
+    if (o->timeout_ms <= 0 || o->data_timeout_ms <= 0 || o->sync_quiet_ms < 0) {
+        lep_priv_set_err(err, errlen,
+                         "session: timeout_ms and data_timeout_ms must be > 0, sync_quiet_ms >= 0");
+        return LEP_E_ARG;
+    }
+    if (!isfinite(o->gap_periods) || o->gap_periods < 1.0) {
+        lep_priv_set_err(err, errlen, "session: gap_periods must be >= 1 (got %g)", o->gap_periods);
+        return LEP_E_ARG;
+    }
+    if (!finite_nonneg(o->nominal_hz) || o->nominal_hz > 100000.0) {
+        lep_priv_set_err(err, errlen, "session: nominal_hz must be 0 (auto) or a rate in Hz");
+        return LEP_E_ARG;
+    }
+    if (o->reconnect_min_ms <= 0 || o->reconnect_max_ms < o->reconnect_min_ms) {
+        lep_priv_set_err(err, errlen,
+                         "session: reconnect backoff needs 0 < reconnect_min_ms <= reconnect_max_ms");
+        return LEP_E_ARG;
+    }
+    if (o->latency_ms < 0 || o->latency_ms > 10000) {
+        lep_priv_set_err(err, errlen, "session: latency_ms must be 0..10000 (got %d)", o->latency_ms);
+        return LEP_E_ARG;
+    }
+    if (o->decimate == 0) {
+        lep_priv_set_err(err, errlen, "session: decimate must be >= 1");
+        return LEP_E_ARG;
+    }
+    if (!finite_nonneg(o->lowpass_hz) || !finite_nonneg(o->duration_s)) {
+        lep_priv_set_err(err, errlen, "session: lowpass_hz and duration_s must be finite and >= 0");
+        return LEP_E_ARG;
+    }
+    return LEP_OK;
+}
+
+/* Saturation magnitude: v1.13 firmware (and earlier) clips at 32000, later
+ * firmware is reported to clip at 15000 (spec 6.1). */
+static int16_t saturation_for(const char *firmware)
+{
+    int major = 0, minor = 0;
+    if (sscanf(firmware, "%d.%d", &major, &minor) == 2 && (major > 1 || (major == 1 && minor > 13)))
+        return LEP_SATURATION_LATER;
+    return LEP_SATURATION_V113;
+}
+
+/* Open the port, start-up recovery, identify. Rated values and the filter
+ * on the first connection only (the metadata keeps them). */
+int lep_priv_session_connect(lep_session *s, char *err, size_t errlen)
+{
+    int rc = lep_serial_open(s->opt.port, &s->serial, err, errlen);
+    if (rc != LEP_OK) {
+        s->serial = NULL;
+        return rc;
+    }
+    rc = lep_serial_client_init(&s->client, s->serial);
+    if (rc == LEP_OK)
+        rc = lep_client_set_timeout(&s->client, s->opt.timeout_ms);
+    if (rc == LEP_OK)
+        rc = lep_client_sync(&s->client, s->opt.sync_quiet_ms > 0 ? s->opt.sync_quiet_ms : 1,
+                             &s->info);
+    if (rc != LEP_OK) {
+        lep_priv_set_err(err, errlen, "%s: start-up recovery (stop, drain, product info): %s",
+                         s->opt.port, lep_strerror(rc));
+        lep_priv_session_disconnect(s);
+        return rc;
+    }
+    s->conn = CONN_UP;
+    return LEP_OK;
+}
+
+void lep_priv_session_disconnect(lep_session *s)
+{
+    lep_serial_close(s->serial);
+    s->serial = NULL;
+    s->conn = CONN_DOWN;
+}
+
+static int read_identity(lep_session *s, char *err, size_t errlen)
+{
+    uint8_t code = 0;
+    int rc = lep_client_rated(&s->client, &s->rated);
+    if (rc != LEP_OK) {
+        lep_priv_set_err(err, errlen, "%s: rated values: %s", s->opt.port, lep_strerror(rc));
+        return rc;
+    }
+    /* Some sensors refuse the filter query, or never answer it: not an error. */
+    rc = lep_client_filter_get(&s->client, &code);
+    s->sensor_filter = rc == LEP_OK ? (int)code : -1;
+    if (rc == LEP_E_DISCONNECTED) {
+        lep_priv_set_err(err, errlen, "%s: filter query: %s", s->opt.port, lep_strerror(rc));
+        return rc;
+    }
+    if (s->opt.nominal_hz > 0.0)
+        s->nominal_hz = s->opt.nominal_hz;
+    else if (s->info.has_output_rate && s->info.output_rate_hz > 0)
+        s->nominal_hz = (double)s->info.output_rate_hz;
+    else
+        s->nominal_hz = LEP_SESSION_NOMINAL_HZ;
+    s->period_s = 1.0 / s->nominal_hz;
+    s->saturation = saturation_for(s->info.firmware);
+    return LEP_OK;
+}
+
+int lep_session_open(const lep_session_options *o, lep_session **out, char *err, size_t errlen)
+{
+    lep_session *s;
+    int rc;
+
+    if (out != NULL)
+        *out = NULL;
+    if (o == NULL || out == NULL) {
+        lep_priv_set_err(err, errlen, "session: NULL options or result pointer");
+        return LEP_E_ARG;
+    }
+    rc = check_options(o, err, errlen);
+    if (rc != LEP_OK)
+        return rc;
+    s = calloc(1, sizeof *s);
+    if (s == NULL) {
+        lep_priv_set_err(err, errlen, "session: out of memory");
+        return LEP_E_IO;
+    }
+    if (pthread_mutex_init(&s->mu, NULL) != 0) {
+        free(s);
+        lep_priv_set_err(err, errlen, "session: cannot create a mutex");
+        return LEP_E_IO;
+    }
+    s->opt = *o;
+    s->conn = CONN_DOWN;
+    s->sensor_filter = -1;
+    if (o->use_sim) {
+        lep_sim_options so = o->sim;
+        if (o->reconnect && so.reopen_after_ms >= 0 && so.link[0] == '\0') {
+            /* The port must come back under the same name: make up a link. */
+            const char *dir = getenv("TMPDIR");
+            if (dir == NULL || dir[0] == '\0' || strlen(dir) > 64)
+                dir = "/tmp";
+            snprintf(s->link_buf, sizeof s->link_buf, "%s/leptrino-sim-%ld-%lx", dir,
+                     (long)getpid(), (unsigned long)(uintptr_t)s);
+            snprintf(so.link, sizeof so.link, "%s", s->link_buf);
+        }
+        rc = lep_sim_start(&so, &s->sim, err, errlen);
+        if (rc != LEP_OK) {
+            s->sim = NULL;
+            lep_session_close(s);
+            return rc;
+        }
+        snprintf(s->port_buf, sizeof s->port_buf, "%s", lep_sim_port(s->sim));
+    } else {
+        snprintf(s->port_buf, sizeof s->port_buf, "%s", o->port);
+    }
+    /* The copy must not point into the caller's memory (the sim options own
+     * their strings since they became arrays). */
+    s->opt.port = s->port_buf;
+
+    rc = lep_priv_session_connect(s, err, errlen);
+    if (rc == LEP_OK)
+        rc = read_identity(s, err, errlen);
+    if (rc != LEP_OK) {
+        lep_session_close(s);
+        return rc;
+    }
+    memcpy(s->rot, o->rotation, sizeof s->rot);
+    memcpy(s->shift, o->shift_m, sizeof s->shift);
+    s->decimate = o->decimate;
+    rc = lep_session_set_rotation(s, o->rotation, o->shift_m);
+    if (rc != LEP_OK) {
+        lep_priv_set_err(err, errlen, "session: rotation is not a rotation matrix (R R^T != I)");
+        lep_session_close(s);
+        return LEP_E_ARG;
+    }
+    rc = lep_session_set_lowpass(s, o->lowpass_hz);
+    if (rc != LEP_OK) {
+        lep_priv_set_err(err, errlen, "session: lowpass_hz %g is above 0.45 x the %g Hz output rate",
+                         o->lowpass_hz, s->nominal_hz);
+        lep_session_close(s);
+        return LEP_E_ARG;
+    }
+    *out = s;
+    return LEP_OK;
+}
+
+void lep_session_close(lep_session *s)
+{
+    if (s == NULL)
+        return;
+    if (s->streaming)
+        (void)lep_session_stop(s);
+    lep_priv_session_disconnect(s);
+    lep_sim_stop(s->sim);
+    pthread_mutex_destroy(&s->mu);
+    free(s);
+}
+
+int lep_session_start(lep_session *s)
+{
+    int rc;
+    double now;
+    if (s == NULL)
+        return LEP_E_ARG;
+    if (s->streaming)
+        return LEP_E_STATE;
+    if (s->conn != CONN_UP)
+        return LEP_E_DISCONNECTED;
+    rc = lep_client_start(&s->client);
+    if (rc != LEP_OK)
+        return rc;
+    now = lep_monotonic_seconds();
+    pthread_mutex_lock(&s->mu);
+    memset(&s->h, 0, sizeof s->h);
+    s->h.nominal_hz = s->nominal_hz;
+    s->errors_before = 0;
+    s->data_timeouts = 0;
+    s->start_mono = now;
+    s->start_utc = now + lep_priv_utc_offset();
+    if (s->opt.tare_samples > 0)
+        lep_priv_session_begin_tare(s, s->opt.tare_samples, 0.0, true);
+    lep_priv_lowpass_restart(&s->lp);
+    pthread_mutex_unlock(&s->mu);
+    lep_client_get_stats(&s->client, &s->base_stats);
+    s->streaming = true;
+    s->failed = 0;
+    s->ended = false;
+    s->pend_head = s->pend_len = 0;
+    s->held = 0;
+    s->tm_started = false;
+    s->have_sample = false;
+    s->have_seq = false;
+    s->carry_flags = 0;
+    s->gap_next = false;
+    s->dec_phase = 0;
+    s->first_delivered_t = 0.0;
+    s->overloaded = false;
+    lep_priv_session_stream_reset(s, now);
+    return LEP_OK;
+}
+
+int lep_session_stop(lep_session *s)
+{
+    int rc = LEP_OK;
+    if (s == NULL)
+        return LEP_E_ARG;
+    if (!s->streaming)
+        return LEP_E_STATE;
+    s->streaming = false;
+    s->pend_head = s->pend_len = 0;
+    s->held = 0;
+    if (s->conn == CONN_UP && lep_client_streaming(&s->client)) {
+        rc = lep_client_stop(&s->client);
+        if (rc != LEP_OK && rc != LEP_E_DISCONNECTED)
+            rc = lep_client_stop(&s->client); /* one more try, e.g. after a lost answer */
+    }
+    pthread_mutex_lock(&s->mu);
+    s->taring = false;
+    s->tare_hold = false;
+    pthread_mutex_unlock(&s->mu);
+    return rc == LEP_E_DISCONNECTED ? LEP_OK : rc;
+}
+
+lep_client *lep_session_client(lep_session *s)
+{
+    return s != NULL && s->conn == CONN_UP ? &s->client : NULL;
+}
+
+lep_sim *lep_session_sim(lep_session *s)
+{
+    return s != NULL ? s->sim : NULL;
+}
+
+const char *lep_session_port(const lep_session *s)
+{
+    return s != NULL ? s->port_buf : "";
+}
+
+int lep_session_fd(const lep_session *s)
+{
+    return s != NULL && s->conn == CONN_UP ? lep_serial_fd(s->serial) : -1;
+}
+
+bool lep_session_streaming(const lep_session *s)
+{
+    return s != NULL && s->streaming;
+}

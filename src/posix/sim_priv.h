@@ -1,0 +1,112 @@
+/* Private: the virtual sensor's state and the functions its files share
+ * (pty, link, faults, device, schedule, serving thread, API). */
+#ifndef LEPTRINO_SIM_PRIV_H
+#define LEPTRINO_SIM_PRIV_H
+
+#include <limits.h>
+#include <pthread.h>
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "leptrino/device.h"
+#include "leptrino/frame.h"
+#include "leptrino/sim.h"
+#include "sim_filter.h"
+#include "sim_signal.h"
+
+#define OUTQ_SIZE 32768u
+#define PEND_SIZE 1024u
+/* Room for the largest message the sensor sends: a frame and its garbage. */
+#define LEP_SIM_FRAME_ROOM (LEP_MAX_FRAME + 16u)
+/* Beyond this lag behind schedule (the process was not scheduled), samples
+ * are skipped instead of sent in a burst. A stall skips what it covered. */
+#define MAX_LAG_NS 500000000
+#define NS_PER_S 1000000000.0
+
+struct lep_sim {
+    /* shared with callers, under lock */
+    pthread_mutex_t lock;
+    bool req_stop, req_power_cycle, req_hangup;
+    int req_stall_ms; /* -1: none */
+    lep_sim_stats stats;
+    int wake[2];
+    pthread_t thread;
+    bool thread_started;
+
+    /* set at start, read-only afterwards */
+    lep_sim_options opt;
+    const char *link; /* opt.link, "" for none */
+    int lock_fd;      /* flock held on lock_path while we own the link, or -1 */
+    char lock_path[PATH_MAX];
+    char port[PATH_MAX]; /* what lep_sim_port returns: the link, or the pty */
+    lep_product_info info;
+    lep_rated rated;
+    lep_sim_signal sig;
+    lep_sim_fir fir[LEP_FILTER_MAX + 1]; /* the sensor's filter, per code */
+    double period_ns;
+
+    /* owned by the serving thread */
+    lep_sim_stats st; /* working copy, published under lock */
+    lep_sim_fir_state fir_state; /* the stream's filter inputs */
+    uint8_t fir_code;            /* the code fir_state was filled for */
+    lep_device dev;
+    lep_frame_decoder shadow; /* sees frames first, so a NAK fault can withhold one */
+    uint8_t pend[PEND_SIZE];
+    size_t pend_len;
+    int master, slave;
+    char pty[PATH_MAX];
+    uint64_t rng;
+    uint8_t out[OUTQ_SIZE];
+    size_t out_len;
+    bool streaming;
+    int64_t t0;  /* stream start */
+    uint64_t k;  /* index of the next stream sample */
+    int64_t power_on;
+    int64_t stall_until, stall_at, hangup_at, reopen_at; /* 0: none */
+    bool hung;
+};
+
+/* sim_pty.c */
+int lep_priv_sim_set_flags(int fd); /* non-blocking, close-on-exec */
+int lep_priv_sim_open_pty(lep_sim *s, char *err, size_t errlen);
+void lep_priv_sim_close_pty(lep_sim *s);
+void lep_priv_sim_flush_out(lep_sim *s);
+bool lep_priv_sim_queue(lep_sim *s, const uint8_t *b, size_t n);
+/* True when the output queue cannot take another message. */
+bool lep_priv_sim_queue_full(const lep_sim *s);
+
+/* sim_link.c: ownership of the link path (see the file's comment) */
+/* Take the link's lock and check what is at the path: LEP_OK (nothing to
+ * do without a link), LEP_E_BUSY (owned by a running sensor, or holding
+ * something that is not a stale pty link), LEP_E_IO, with a message. */
+int lep_priv_sim_link_claim(lep_sim *s, char *err, size_t errlen);
+/* Point the link at s->pty, if what is at the path may be replaced. */
+int lep_priv_sim_relink(const lep_sim *s, char *err, size_t errlen);
+/* Remove the link while it points at our pty. */
+void lep_priv_sim_remove_link(const lep_sim *s);
+/* Remove the lock file and drop the lock (after remove_link). */
+void lep_priv_sim_link_release(lep_sim *s);
+
+/* sim_faults.c */
+void lep_priv_sim_emit(lep_sim *s, const uint8_t *frame, size_t len, bool data);
+void lep_priv_sim_send_nak(lep_sim *s);
+void lep_priv_sim_handle_input(lep_sim *s, const uint8_t *p, size_t len);
+
+/* sim_device.c */
+void lep_priv_sim_feed_device(lep_sim *s, const uint8_t *p, size_t len);
+void lep_priv_sim_handshake_sample(lep_sim *s);
+void lep_priv_sim_power_cycle(lep_sim *s);
+int lep_priv_sim_init_device(lep_sim *s, char *err, size_t errlen);
+
+/* sim_schedule.c */
+void lep_priv_sim_stream_begins(lep_sim *s, int64_t now);
+int64_t lep_priv_sim_deadline(const lep_sim *s, uint64_t k);
+void lep_priv_sim_stream_due(lep_sim *s, int64_t now);
+void lep_priv_sim_skip_due(lep_sim *s, int64_t now);
+
+/* sim_serve.c */
+void lep_priv_sim_publish(lep_sim *s);
+void *lep_priv_sim_serve(void *arg);
+
+#endif

@@ -1,0 +1,204 @@
+/* Virtual sensor: the serving thread (wait for input, deadlines and requests;
+ * hang-up and reopen) and publishing counters to callers. */
+#if defined(__APPLE__)
+#define _DARWIN_C_SOURCE
+#else
+#define _GNU_SOURCE /* ppoll, ptsname_r */
+#endif
+
+#include <errno.h>
+#include <poll.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "leptrino/error.h"
+#include "posix_clock.h"
+#include "sim_priv.h"
+
+void lep_priv_sim_publish(lep_sim *s)
+{
+    s->st.streaming = s->streaming;
+    s->st.filter = lep_device_filter(&s->dev);
+    s->st.filter_pending = lep_device_filter_pending(&s->dev);
+    s->st.hung_up = s->hung;
+    s->st.sequence = (uint16_t)(s->k & 0xFFFFu);
+    pthread_mutex_lock(&s->lock);
+    s->stats = s->st;
+    pthread_mutex_unlock(&s->lock);
+}
+
+static void hang_up(lep_sim *s, int64_t now)
+{
+    lep_device_power_cycle(&s->dev); /* unplugged: a USB sensor loses power */
+    lep_frame_decoder_init(&s->shadow);
+    s->pend_len = 0;
+    s->streaming = false;
+    s->out_len = 0;
+    s->hung = true;
+    s->st.hangups++;
+    s->reopen_at = s->opt.reopen_after_ms >= 0
+                       ? now + (int64_t)s->opt.reopen_after_ms * 1000000 + 1
+                       : 0;
+    lep_priv_sim_publish(s); /* before the client can notice */
+    /* Like udev's by-id link on unplug: the name goes away with the device,
+     * so nobody reaches a stranger's pty that reuses the number meanwhile. */
+    lep_priv_sim_remove_link(s);
+    lep_priv_sim_close_pty(s);
+}
+
+static void reopen(lep_sim *s)
+{
+    char err[160];
+    s->reopen_at = 0;
+    if (lep_priv_sim_open_pty(s, err, sizeof err) == LEP_OK) {
+        s->hung = false;
+        s->power_on = lep_priv_monotonic_ns();
+        s->st.reopens++;
+        lep_priv_sim_publish(s);
+    }
+}
+
+static int64_t earliest(int64_t a, int64_t b)
+{
+    if (a == 0)
+        return b;
+    if (b == 0)
+        return a;
+    return a < b ? a : b;
+}
+
+static int wait_events(lep_sim *s, struct pollfd *p, nfds_t n, int64_t until)
+{
+#if defined(__linux__)
+    struct timespec ts, *tp = NULL;
+    if (until != 0) {
+        int64_t left = until - lep_priv_monotonic_ns();
+        if (left < 0)
+            left = 0;
+        ts.tv_sec = (time_t)(left / 1000000000);
+        ts.tv_nsec = (long)(left % 1000000000);
+        tp = &ts;
+    }
+    (void)s;
+    return ppoll(p, n, tp, NULL);
+#else
+    int ms = -1;
+    (void)s;
+    if (until != 0) {
+        int64_t left = until - lep_priv_monotonic_ns();
+        ms = left <= 0 ? 0 : (int)((left + 999999) / 1000000);
+    }
+    return poll(p, n, ms);
+#endif
+}
+
+#define BLOCKED_WAKE_NS 100000000 /* 100 ms */
+
+void *lep_priv_sim_serve(void *arg)
+{
+    lep_sim *s = arg;
+    for (;;) {
+        struct pollfd p[2];
+        nfds_t n = 1;
+        int64_t now = lep_priv_monotonic_ns(), until = 0;
+        bool stalled = s->stall_until != 0 && now < s->stall_until;
+        bool stop, cycle, hangup;
+        int stall_ms;
+
+        if (s->stall_until != 0 && !stalled) {
+            s->stall_until = 0;
+            lep_priv_sim_skip_due(s, now);
+        }
+        if (s->stall_at != 0 && now >= s->stall_at) {
+            s->stall_at = 0;
+            s->stall_until = now + (int64_t)s->opt.stall_ms * 1000000;
+            s->st.stalls++;
+            stalled = true;
+        }
+        if (s->hangup_at != 0 && now >= s->hangup_at) {
+            s->hangup_at = 0;
+            if (!s->hung)
+                hang_up(s, now);
+        }
+        if (s->hung && s->reopen_at != 0 && now >= s->reopen_at)
+            reopen(s);
+        if (!s->hung && !stalled)
+            lep_priv_sim_stream_due(s, now);
+        lep_priv_sim_publish(s); /* counters first: a host that got an answer sees them */
+        if (!s->hung && !stalled)
+            lep_priv_sim_flush_out(s);
+
+        p[0].fd = s->wake[0];
+        p[0].events = POLLIN;
+        p[0].revents = 0;
+        if (!s->hung && !stalled) {
+            p[1].fd = s->master;
+            p[1].events = (short)(POLLIN | (s->out_len > 0 ? POLLOUT : 0));
+            p[1].revents = 0;
+            n = 2;
+            /* The next sample's deadline, unless the queue is full (nobody
+             * reads): then wait for room (POLLOUT), waking every
+             * BLOCKED_WAKE_NS instead of each sample to count the samples
+             * due meanwhile as blocked. */
+            if (s->streaming && !lep_priv_sim_queue_full(s))
+                until = lep_priv_sim_deadline(s, s->k);
+            else if (s->streaming)
+                until = now + BLOCKED_WAKE_NS;
+        }
+        if (stalled)
+            until = earliest(until, s->stall_until);
+        until = earliest(until, s->stall_at);
+        until = earliest(until, s->hangup_at);
+        if (s->hung)
+            until = earliest(until, s->reopen_at);
+
+        if (wait_events(s, p, n, until) < 0 && errno != EINTR)
+            break;
+
+        stop = cycle = hangup = false;
+        stall_ms = -1;
+        if (p[0].revents & POLLIN) {
+            /* a request: callers set it under the lock, then write the pipe */
+            uint8_t junk[64];
+            while (read(s->wake[0], junk, sizeof junk) > 0) {
+            }
+            pthread_mutex_lock(&s->lock);
+            stop = s->req_stop;
+            cycle = s->req_power_cycle;
+            hangup = s->req_hangup;
+            stall_ms = s->req_stall_ms;
+            s->req_power_cycle = s->req_hangup = false;
+            s->req_stall_ms = -1;
+            pthread_mutex_unlock(&s->lock);
+        }
+        if (stop)
+            break;
+        now = lep_priv_monotonic_ns();
+        if (cycle && !s->hung)
+            lep_priv_sim_power_cycle(s);
+        if (hangup && !s->hung)
+            hang_up(s, now);
+        if (stall_ms >= 0) {
+            if (s->stall_until != 0 && stall_ms == 0)
+                lep_priv_sim_skip_due(s, now);
+            s->stall_until = stall_ms > 0 ? now + (int64_t)stall_ms * 1000000 : 0;
+            if (stall_ms > 0)
+                s->st.stalls++;
+            continue;
+        }
+        if (n == 2 && !s->hung && (p[1].revents & (POLLIN | POLLHUP | POLLERR))) {
+            uint8_t buf[1024];
+            ssize_t r = read(s->master, buf, sizeof buf);
+            if (r > 0) {
+                s->st.bytes_received += (uint64_t)r;
+                lep_priv_sim_handle_input(s, buf, (size_t)r);
+            } else if (r < 0 && errno == EIO) {
+                /* no slave open (cannot happen while we hold one): wait a little */
+                struct timespec ts = {0, 10000000};
+                nanosleep(&ts, NULL);
+            }
+        }
+    }
+    lep_priv_sim_publish(s);
+    return NULL;
+}

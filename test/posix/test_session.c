@@ -1,0 +1,362 @@
+/* The host session against the in-process virtual sensor: open, start, read,
+ * stop; counts and durations; the start-up tare; metadata; bad arguments;
+ * several sessions at once; the latency budget. No timing asserts: the
+ * machine may be loaded. */
+#define _POSIX_C_SOURCE 200809L
+
+#include <math.h>
+#include <stdio.h>
+#include <pthread.h>
+#include <time.h>
+#include <string.h>
+
+#include "leptrino/error.h"
+#include "leptrino/leptrino.h"
+#include "leptrino/serial.h"
+#include "leptrino/session.h"
+#include "session_test.h"
+#include "unity.h"
+
+void setUp(void)
+{
+}
+
+void tearDown(void)
+{
+}
+
+static void test_open_start_read_stop(void)
+{
+    lep_session_options o;
+    lep_session *s = open_sim(&o, NULL);
+    st_batch b;
+    lep_session_health h;
+    size_t i;
+    int rc = LEP_OK;
+
+    st_batch_init(&b, 600);
+    TEST_ASSERT_FALSE(lep_session_streaming(s));
+    TEST_ASSERT_EQUAL_INT(LEP_E_STATE, lep_session_read(s, &b.b, 10));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
+    TEST_ASSERT_EQUAL_INT(LEP_E_STATE, lep_session_start(s));
+    TEST_ASSERT_TRUE(lep_session_streaming(s));
+    TEST_ASSERT_TRUE(lep_session_fd(s) >= 0);
+    TEST_ASSERT_NOT_NULL(lep_session_client(s));
+    TEST_ASSERT_NOT_NULL(lep_session_sim(s));
+    while (b.b.n < 600 && (rc = lep_session_read(s, &b.b, 2000)) == LEP_OK) {
+    }
+    TEST_ASSERT_EQUAL_INT(LEP_OK, rc);
+    TEST_ASSERT_EQUAL_size_t(600, b.b.n);
+    /* every sample, in order, none lost: sequence numbers 0, 1, 2, ... */
+    for (i = 0; i < b.b.n; i++) {
+        TEST_ASSERT_EQUAL_UINT16((uint16_t)i, b.seq[i]);
+        TEST_ASSERT_EQUAL_UINT8(0, b.flags[i] & LEP_SF_GAP);
+        if (i > 0)
+            TEST_ASSERT_TRUE(b.t_mono[i] >= b.t_mono[i - 1]);
+        TEST_ASSERT_DOUBLE_WITHIN(1e-3, b.t_utc[i] - b.t_mono[i], b.t_utc[0] - b.t_mono[0]);
+    }
+    lep_session_get_health(s, &h);
+    TEST_ASSERT_EQUAL_UINT64(0, h.lost);
+    TEST_ASSERT_EQUAL_UINT64(0, h.gaps);
+    TEST_ASSERT_EQUAL_UINT64(0, h.errors);
+    TEST_ASSERT_TRUE(h.received >= 600);
+    TEST_ASSERT_EQUAL_DOUBLE(1200.0, h.nominal_hz);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_stop(s));
+    TEST_ASSERT_FALSE(lep_session_streaming(s));
+    TEST_ASSERT_EQUAL_INT(LEP_E_STATE, lep_session_read(s, &b.b, 10));
+    /* the client answers single commands again once the stream is stopped */
+    {
+        lep_sample one;
+        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_sample(lep_session_client(s), &one));
+    }
+    lep_session_close(s);
+    st_batch_free(&b);
+}
+
+static void test_count_and_start_tare_are_exact(void)
+{
+    lep_session_options o;
+    lep_session *s;
+    st_batch b;
+    lep_session_event ev;
+    double off[LEP_AXES], sum[LEP_AXES] = {0};
+    int k, rc;
+    lep_session_options_init(&o);
+    o.count = 250;
+    o.tare_samples = 40;
+    s = open_sim(&o, &o);
+    st_batch_init(&b, 1000);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
+    while ((rc = lep_session_read(s, &b.b, 2000)) == LEP_OK) {
+    }
+    TEST_ASSERT_EQUAL_INT(LEP_E_END, rc);
+    TEST_ASSERT_EQUAL_INT(LEP_E_END, lep_session_read(s, &b.b, 10)); /* and stays there */
+    TEST_ASSERT_EQUAL_size_t(250, b.b.n);
+    /* the tare samples (sequence 0..39) are not delivered */
+    TEST_ASSERT_EQUAL_UINT16(40, b.seq[0]);
+    TEST_ASSERT_EQUAL_UINT16(289, b.seq[249]);
+    TEST_ASSERT_TRUE(lep_session_get_tare(s, off));
+    TEST_ASSERT_TRUE(lep_session_next_event(s, &ev));
+    TEST_ASSERT_EQUAL_INT(LEP_EV_TARE, ev.type);
+    TEST_ASSERT_EQUAL_UINT64(0, ev.sample);
+    for (k = 0; k < LEP_AXES; k++)
+        TEST_ASSERT_EQUAL_DOUBLE(off[k], ev.tare[k]);
+    /* zeroed = raw - offset, exactly; the offset is a double mean, not rounded */
+    for (k = 0; k < LEP_AXES; k++) {
+        size_t i;
+        for (i = 0; i < b.b.n; i++)
+            TEST_ASSERT_EQUAL_DOUBLE((double)b.raw[i * 6 + (size_t)k] - off[k],
+                                     b.zeroed[i * 6 + (size_t)k]);
+        sum[k] = off[k] * 40.0;
+        TEST_ASSERT_DOUBLE_WITHIN(1e-6, floor(sum[k] + 0.5), sum[k]); /* a sum of counts / 40 */
+    }
+    lep_session_close(s);
+    st_batch_free(&b);
+}
+
+static void test_duration_counts_from_the_first_delivered_sample(void)
+{
+    lep_session_options o;
+    lep_session *s;
+    st_batch b;
+    int rc;
+    size_t i;
+    lep_session_options_init(&o);
+    o.duration_s = 0.5;
+    o.tare_samples = 120;
+    s = open_sim(&o, &o);
+    st_batch_init(&b, 2000);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
+    while ((rc = lep_session_read(s, &b.b, 2000)) == LEP_OK) {
+    }
+    TEST_ASSERT_EQUAL_INT(LEP_E_END, rc);
+    /* arrival times are reconstructed per period, so half a second of a
+     * steady stream is 600 samples give or take the timing of reads */
+    TEST_ASSERT_UINT_WITHIN(30, 600, b.b.n);
+    TEST_ASSERT_EQUAL_UINT16(120, b.seq[0]);
+    for (i = 0; i < b.b.n; i++)
+        TEST_ASSERT_TRUE(b.t_mono[i] - b.t_mono[0] < 0.5);
+    lep_session_close(s);
+    st_batch_free(&b);
+}
+
+static void test_metadata_and_json(void)
+{
+    lep_session_options o;
+    lep_session *s;
+    lep_session_metadata m;
+    char json[4096], small[16];
+    size_t len = 0;
+    lep_session_options_init(&o);
+    snprintf(o.sim.serial, sizeof o.sim.serial, "%s", "4242");
+    snprintf(o.sim.model, sizeof o.sim.model, "%s", "CFS034CA301U");
+    s = open_sim(&o, &o);
+    lep_session_get_metadata(s, &m);
+    TEST_ASSERT_EQUAL_STRING("CFS034CA301U", m.info.model);
+    TEST_ASSERT_EQUAL_STRING("4242", m.info.serial);
+    TEST_ASSERT_EQUAL_STRING("v1.13 (32-byte info)", m.protocol);
+    TEST_ASSERT_EQUAL_INT(0, m.sensor_filter);
+    TEST_ASSERT_EQUAL_STRING("off", m.sensor_filter_label);
+    TEST_ASSERT_EQUAL_STRING(lep_version(), m.library_version);
+    TEST_ASSERT_TRUE(m.sim);
+    TEST_ASSERT_EQUAL_DOUBLE(0.0, m.start_utc);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
+    lep_session_get_metadata(s, &m);
+    TEST_ASSERT_TRUE(m.start_utc > 1.6e9);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_metadata_json(s, json, sizeof json, &len));
+    TEST_ASSERT_EQUAL_size_t(strlen(json), len);
+    TEST_ASSERT_EQUAL_CHAR('{', json[0]);
+    TEST_ASSERT_EQUAL_CHAR('}', json[len - 1]);
+    TEST_ASSERT_NOT_NULL(strstr(json, "\"model\":\"CFS034CA301U\""));
+    TEST_ASSERT_NOT_NULL(strstr(json, "\"serial\":\"4242\""));
+    TEST_ASSERT_NOT_NULL(strstr(json, "\"sensor_filter\":0,\"sensor_filter_label\":\"off\""));
+    TEST_ASSERT_NOT_NULL(strstr(json, "\"start_utc_iso\":\"20"));
+    TEST_ASSERT_NOT_NULL(strstr(json, "\"sim\":true"));
+    TEST_ASSERT_NOT_NULL(strstr(json, "\"tared\":false"));
+    TEST_ASSERT_EQUAL_INT(LEP_E_BUFFER, lep_session_metadata_json(s, small, sizeof small, &len));
+    TEST_ASSERT_EQUAL_size_t(0, len);
+    lep_session_close(s);
+}
+
+static void test_bad_options_are_refused_with_a_message(void)
+{
+    lep_session_options o;
+    lep_session *s = (lep_session *)&o;
+    char err[256];
+    lep_session_options_init(&o);
+    err[0] = '\0';
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_session_open(&o, &s, err, sizeof err));
+    TEST_ASSERT_NULL(s);
+    TEST_ASSERT_NOT_NULL(strstr(err, "no port"));
+    o.use_sim = true;
+    o.decimate = 0;
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_session_open(&o, &s, err, sizeof err));
+    TEST_ASSERT_NOT_NULL(strstr(err, "decimate"));
+    o.decimate = 1;
+    o.lowpass_hz = 1000.0; /* above 0.45 x 1200 Hz */
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_session_open(&o, &s, err, sizeof err));
+    TEST_ASSERT_NOT_NULL(strstr(err, "lowpass"));
+    o.lowpass_hz = 0.0;
+    o.rotation[0] = 2.0;
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_session_open(&o, &s, err, sizeof err));
+    TEST_ASSERT_NOT_NULL(strstr(err, "rotation"));
+    lep_session_options_init(&o);
+    o.port = "/dev/leptrino-no-such-port";
+    TEST_ASSERT_EQUAL_INT(LEP_E_NOT_FOUND, lep_session_open(&o, &s, err, sizeof err));
+    TEST_ASSERT_NOT_NULL(strstr(err, "/dev/leptrino-no-such-port"));
+    TEST_ASSERT_NULL(s);
+    lep_session_close(NULL);
+}
+
+static void test_two_sessions_at_once(void)
+{
+    lep_session_options o1, o2;
+    lep_session *a, *b;
+    st_batch ba, bb;
+    lep_session_health ha, hb;
+    lep_session_options_init(&o1);
+    lep_session_options_init(&o2);
+    o1.count = 300;
+    o2.count = 300;
+    o2.tare_samples = 10;
+    snprintf(o2.sim.serial, sizeof o2.sim.serial, "%s", "2");
+    a = open_sim(&o1, &o1);
+    b = open_sim(&o2, &o2);
+    st_batch_init(&ba, 400);
+    st_batch_init(&bb, 400);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(a));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(b));
+    while (ba.b.n < 300 || bb.b.n < 300) {
+        if (ba.b.n < 300)
+            TEST_ASSERT_TRUE(lep_session_read(a, &ba.b, 2000) >= LEP_E_END);
+        if (bb.b.n < 300)
+            TEST_ASSERT_TRUE(lep_session_read(b, &bb.b, 2000) >= LEP_E_END);
+    }
+    TEST_ASSERT_EQUAL_UINT16(299, ba.seq[299]);
+    TEST_ASSERT_EQUAL_UINT16(309, bb.seq[299]);
+    TEST_ASSERT_FALSE(lep_session_get_tare(a, NULL));
+    TEST_ASSERT_TRUE(lep_session_get_tare(b, NULL));
+    lep_session_get_health(a, &ha);
+    lep_session_get_health(b, &hb);
+    TEST_ASSERT_EQUAL_UINT64(0, ha.lost + hb.lost);
+    TEST_ASSERT_TRUE(strcmp(lep_session_port(a), lep_session_port(b)) != 0);
+    lep_session_close(a);
+    lep_session_close(b);
+    st_batch_free(&ba);
+    st_batch_free(&bb);
+}
+
+/* The same samples, whatever the latency budget: only the wake-ups differ. */
+static void test_latency_budget_delivers_the_same_samples(void)
+{
+    int budgets[2] = {0, 100};
+    int j;
+    for (j = 0; j < 2; j++) {
+        lep_session_options o;
+        lep_session *s;
+        st_batch b;
+        int rc, calls = 0;
+        size_t i;
+        lep_session_options_init(&o);
+        o.latency_ms = budgets[j];
+        o.count = 700;
+        s = open_sim(&o, &o);
+        st_batch_init(&b, 700);
+        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
+        while ((rc = lep_session_read(s, &b.b, 2000)) == LEP_OK)
+            calls++;
+        TEST_ASSERT_EQUAL_INT(LEP_E_END, rc);
+        TEST_ASSERT_EQUAL_size_t(700, b.b.n);
+        for (i = 0; i < b.b.n; i++) {
+            TEST_ASSERT_EQUAL_UINT16((uint16_t)i, b.seq[i]);
+            if (i > 0)
+                TEST_ASSERT_TRUE(b.t_mono[i] >= b.t_mono[i - 1]);
+        }
+        if (budgets[j] > 0) /* about 0.58 s of data at 100 ms per call */
+            TEST_ASSERT_TRUE_MESSAGE(calls < 60, "the budget should batch many samples per call");
+        lep_session_close(s);
+        st_batch_free(&b);
+    }
+}
+
+typedef struct poker {
+    lep_session *s;
+    st_flag stop;
+    unsigned calls;
+} poker;
+
+/* Another thread changing and reading the settings while the stream runs. */
+static void *poke(void *arg)
+{
+    poker *p = arg;
+    double r[9], off[LEP_AXES];
+    lep_session_health h;
+    lep_session_metadata m;
+    char json[4096];
+    size_t len;
+    lep_rotation_from_rpy(0.1, 0.2, 0.3, r);
+    while (!st_flag_is_up(&p->stop)) {
+        (void)lep_session_tare(p->s, 20, 0.0);
+        (void)lep_session_set_lowpass(p->s, (p->calls % 2u) ? 50.0 : 0.0);
+        (void)lep_session_set_rotation(p->s, r, NULL);
+        lep_session_get_health(p->s, &h);
+        lep_session_get_metadata(p->s, &m);
+        (void)lep_session_metadata_json(p->s, json, sizeof json, &len);
+        (void)lep_session_get_tare(p->s, off);
+        if (p->calls % 7u == 0u)
+            (void)lep_session_untare(p->s);
+        p->calls++;
+        {
+            struct timespec ts = {0, 2000000};
+            nanosleep(&ts, NULL);
+        }
+    }
+    return NULL;
+}
+
+static void test_settings_from_another_thread(void)
+{
+    lep_session_options o;
+    lep_session *s;
+    st_batch b;
+    poker p;
+    pthread_t th;
+    lep_session_event ev;
+    size_t i, tares = 0;
+    lep_session_options_init(&o);
+    o.count = 1200;
+    s = open_sim(&o, &o);
+    st_batch_init(&b, 1200);
+    memset(&p, 0, sizeof p);
+    st_flag_init(&p.stop);
+    p.s = s;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
+    TEST_ASSERT_EQUAL_INT(0, pthread_create(&th, NULL, poke, &p));
+    while (lep_session_read(s, &b.b, 2000) == LEP_OK) {
+    }
+    st_flag_raise(&p.stop);
+    pthread_join(th, NULL);
+    TEST_ASSERT_EQUAL_size_t(1200, b.b.n);
+    for (i = 1; i < b.b.n; i++) /* nothing lost, nothing stalled */
+        TEST_ASSERT_EQUAL_UINT16((uint16_t)(b.seq[i - 1] + 1u), b.seq[i]);
+    while (lep_session_next_event(s, &ev))
+        tares += ev.type == LEP_EV_TARE;
+    TEST_ASSERT_TRUE(p.calls > 10);
+    TEST_ASSERT_TRUE(tares > 0);
+    lep_session_close(s);
+    st_batch_free(&b);
+}
+
+int main(void)
+{
+    UNITY_BEGIN();
+    RUN_TEST(test_open_start_read_stop);
+    RUN_TEST(test_count_and_start_tare_are_exact);
+    RUN_TEST(test_duration_counts_from_the_first_delivered_sample);
+    RUN_TEST(test_metadata_and_json);
+    RUN_TEST(test_bad_options_are_refused_with_a_message);
+    RUN_TEST(test_two_sessions_at_once);
+    RUN_TEST(test_latency_budget_delivers_the_same_samples);
+    RUN_TEST(test_settings_from_another_thread);
+    return UNITY_END();
+}
