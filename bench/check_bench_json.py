@@ -21,7 +21,7 @@ CHUNK_KEYS = [
     "plain_loop_ns_per_byte",
 ]
 MODE_KEYS = [
-    "path", "rc", "samples", "lost", "latency_us", "wall_s", "cpu_s", "cpu_percent_of_one_core",
+    "path", "latency_budget_ms", "rc", "samples", "lost", "latency_us", "wall_s", "cpu_s", "cpu_percent_of_one_core",
     "cpu_us_per_sample", "read_write_syscalls_per_sample_proc", "syscalls_per_s", "syscalls_per_sample",
     "syscalls_method",
 ]
@@ -54,9 +54,9 @@ def main() -> int:
     errs += need(d.get("client_step"), "client_step", ["leptrino", "plain_same_input", "samples"])
     errs += need(d.get("encoder"), "encoder", ["frame_encode_msgs_per_s", "sample_to_frame_msgs_per_s"])
     e2e = d.get("end_to_end", {})
-    errs += need(e2e, "end_to_end", ["sim", "low_latency", "recording", "session_latency_budget",
-                                     "session_latency_budget_reason", "rates", "max_rate_without_loss_hz"])
-    for mode in ("low_latency", "recording"):
+    errs += need(e2e, "end_to_end", ["sim", "low_latency", "recording", "client", "session_latency_budget_ms",
+                                     "rates", "max_rate_without_loss_hz"])
+    for mode in ("low_latency", "recording", "client"):
         m = e2e.get(mode)
         errs += need(m, f"end_to_end.{mode}", MODE_KEYS)
         errs += need((m or {}).get("latency_us"), f"end_to_end.{mode}.latency_us", ["p50", "p99", "max"])
