@@ -425,7 +425,7 @@ void e2e_report(const e2e_options *o)
 {
     sim_proc sp;
     double sim_cpu;
-    size_t samples = o->smoke ? 600u : 12000u;
+    size_t samples = o->smoke ? 400u : 12000u;
     json_open("end_to_end");
     json_str("sim", o->sim);
     if (sim_start(o, 1200.0, &sp) != 0) {
