@@ -49,7 +49,8 @@ static const char usage[] =
     "  --check-filter C  check samples against filter code C instead of the sensor's (a\n"
     "                    test of the check itself: a wrong code must fail the run)\n"
     "  --bit-errors N    instead: flip two random bits in N random valid frames of each\n"
-    "                    kind and count those the BCC and the message checks accept\n";
+    "                    kind and count those the BCC and the message checks accept\n"
+    "  --help, --version\n";
 
 typedef struct soak {
     lep_sim_options opt;
@@ -364,6 +365,10 @@ static int parse(int argc, char **argv, soak *k)
         int rc = -1;
         if (strcmp(name, "--help") == 0) {
             fputs(usage, stdout);
+            return 0;
+        }
+        if (strcmp(name, "--version") == 0) {
+            printf("leptrino-soak %s\n", lep_version());
             return 0;
         }
         if (strcmp(name, "--duration") == 0)
