@@ -628,6 +628,7 @@ static void test_timeouts_honoured(void)
     lep_sim_stall(sim, 3000);
     sleep_ms(20);
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_timeout(&client, 300));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_retries(&client, 0)); /* one attempt: 300 ms */
     t = lep_monotonic_seconds();
     rc = lep_client_product_info(&client, &scratch_info);
     dt = lep_monotonic_seconds() - t;
