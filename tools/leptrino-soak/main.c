@@ -359,8 +359,10 @@ static int parse(int argc, char **argv, soak *k)
     k->check_filter = -1;
     k->stall_every_s = 3;
     k->hangup_every_s = 15;
-    for (a = 1; a < argc; a++) {
+    a = 1;
+    while (a < argc) {
         const char *name = argv[a], *val = a + 1 < argc ? argv[a + 1] : NULL;
+        int used = 2; /* the option and its value */
         const lep_sim_option_info *in;
         int rc = -1;
         if (strcmp(name, "--help") == 0) {
@@ -393,7 +395,7 @@ static int parse(int argc, char **argv, soak *k)
                  strcmp(in->name, name + 2) == 0) {
             if (in->type == LEP_SIM_OPT_FLAG) {
                 val = NULL;
-                a--;
+                used = 1;
             }
             if (lep_sim_option_set(&k->opt, in->name, val, err, sizeof err) != LEP_OK) {
                 fprintf(stderr, "leptrino-soak: --%s (see --help)\n", err);
@@ -404,7 +406,7 @@ static int parse(int argc, char **argv, soak *k)
         }
         if (rc >= 0)
             return rc;
-        a++;
+        a += used;
     }
     if (k->duration_s <= 0)
         return bad("--duration", "expected more than 0 s");
