@@ -220,3 +220,20 @@ def test_stream_keys_tare_and_untare_in_a_terminal(marker: str, tmp_path: Path) 
     fx = csv.column("fx_N")
     assert abs(fx[0] - 100.0) < 1.0 and abs(fx[-1] - 100.0) < 1.0
     assert len([v for v in fx if abs(v) < 0.05]) > 400
+
+
+def test_stream_as_a_background_job_is_not_stopped(tmp_path: Path) -> None:
+    # An interactive shell with job control: a background job that touched
+    # the terminal would be stopped (SIGTTOU) instead of finishing.
+    out = tmp_path / "bg.csv"
+    t = Tmux("bash --norc --noprofile -i")
+    try:
+        t.keys(" ".join(shlex.quote(a) for a in [cli_path(), "stream", "--sim", "--duration",
+                                                 "1", "-o", str(out)]) + " &", "Enter")
+        t.keys("sleep 3; jobs; echo BG-DONE", "Enter")
+        screen = t.wait_for(lambda s: "BG-DONE\n" in s + "\n" and s.count("BG-DONE") >= 2)
+        assert "Stopped" not in screen, screen
+        assert "samples in" in screen  # the summary, on the terminal
+    finally:
+        t.close()
+    assert len(Csv(out.read_text()).rows) > 500
