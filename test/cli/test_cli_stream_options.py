@@ -9,7 +9,7 @@ import subprocess
 import time
 from pathlib import Path
 
-from conftest import AXES, RAW, Csv, cli_path, parse_jsonl, run
+from conftest import AXES, RAW, Csv, SimProcess, cli_path, parse_jsonl, run
 
 
 def mean(values: list[float]) -> float:
@@ -189,3 +189,22 @@ def test_sim_option_ranges_come_from_the_simulator() -> None:
     help_text = run(["stream", "--help"]).stdout
     for name in ("--sim-amplitude", "--sim-output-rate-field", "--sim-replay", "--sim-link"):
         assert name in help_text
+
+
+def test_two_ports_and_a_virtual_sensor_split_by_name(tmp_path: Path) -> None:
+    a, b = SimProcess(), SimProcess()
+    try:
+        pattern = str(tmp_path / "{sensor}.csv")
+        r = run(["stream", a.port, b.port, "--sim", "--count", "200", "--split", pattern])
+        assert r.returncode == 0, r.stderr
+        # Ports are named by their path ('/' as '_', no leading '_'), virtual ones sim1...
+        for name in (a.port, b.port, "sim1"):
+            path = tmp_path / (name.strip("/").replace("/", "_") + ".csv")
+            csv = Csv(path.read_text())
+            assert len(csv.rows) == 200 and csv.header[0] == "t_s"
+            assert f"leptrino: stream: {name}: 200 samples" in r.stderr
+        # The sensors were left quiet.
+        assert a.stats()["streaming"] == 0 and b.stats()["streaming"] == 0
+    finally:
+        a.close()
+        b.close()
