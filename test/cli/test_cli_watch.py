@@ -152,6 +152,10 @@ def test_watch_tare_untare_resize_quit(marker: str) -> None:
         t.resize(70, 24)
         screen = t.wait_for(lambda s: has_all_axes(s) and bar_width(s) < wide)
         assert all(len(line) <= 70 for line in screen.splitlines())
+        t.resize(30, 10)
+        t.wait_for(lambda s: "too small" in s)
+        t.resize(100, 30)
+        t.wait_for(lambda s: has_all_axes(s) and bar_width(s) == wide)
 
         t.keys("q")
         screen = t.wait_for(lambda s: marker in s)
