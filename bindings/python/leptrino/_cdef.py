@@ -111,6 +111,11 @@ typedef struct lep_client_stats {
     uint32_t invalid;
     uint32_t timeouts;
     uint32_t samples;
+    uint32_t resent_after_timeout;
+    uint32_t resent_confirmed;
+    uint32_t recoveries;
+    uint32_t reserved_nonzero;
+    uint32_t stalls;
 } lep_client_stats;
 
 size_t lep_client_size(void);
@@ -159,9 +164,9 @@ int lep_serial_list(lep_port_info *out, size_t max, size_t *n);
 typedef struct lep_sim lep_sim;
 
 typedef struct lep_sim_options {
-    const char *model;
-    const char *serial;
-    const char *firmware;
+    char model[32];
+    char serial[16];
+    char firmware[8];
     bool output_rate_field;
     double rate_hz;
     uint8_t filter;
@@ -169,7 +174,7 @@ typedef struct lep_sim_options {
     double amplitude;
     double noise;
     bool constant;
-    const char *replay_csv;
+    char replay_csv[512];
     double overload_every_s;
     double overload_duration_s;
     double p_nak;
@@ -181,8 +186,18 @@ typedef struct lep_sim_options {
     double hangup_after_s;
     int reopen_after_ms;
     bool start_streaming;
-    const char *link;
+    char link[512];
 } lep_sim_options;
+
+typedef struct lep_sim_option_info {
+    const char *name;
+    int type;
+    const char *arg;
+    const char *help;
+    const char *default_text;
+    double min, max;
+    bool min_exclusive;
+} lep_sim_option_info;
 
 typedef struct lep_sim_stats {
     uint64_t samples_sent;
@@ -218,6 +233,13 @@ void lep_sim_stall(lep_sim *s, int ms);
 void lep_sim_get_stats(lep_sim *s, lep_sim_stats *out);
 void lep_sim_stop(lep_sim *s);
 const char *lep_sim_pty_path(const lep_sim *s);
+size_t lep_sim_option_count(void);
+const lep_sim_option_info *lep_sim_option_at(size_t i);
+const lep_sim_option_info *lep_sim_option_find(const char *name);
+int lep_sim_option_set(lep_sim_options *o, const char *name, const char *value, char *err,
+                       size_t errlen);
+int lep_sim_option_get(const lep_sim_options *o, const char *name, char *buf, size_t buflen);
+int lep_sim_options_check(const lep_sim_options *o, char *err, size_t errlen);
 
 /* record.h */
 typedef struct lep_record_batch {
@@ -232,4 +254,146 @@ typedef struct lep_record_batch {
 
 int lep_record_fill(lep_client *c, const lep_rated *rated, lep_record_batch *b, double until_s,
                     int timeout_ms);
+
+/* session.h */
+typedef struct lep_session lep_session;
+
+typedef struct lep_session_options {
+    const char *port;
+    bool use_sim;
+    lep_sim_options sim;
+    int timeout_ms;
+    int sync_quiet_ms;
+    int data_timeout_ms;
+    double gap_periods;
+    double nominal_hz;
+    bool reconnect;
+    int reconnect_min_ms;
+    int reconnect_max_ms;
+    int reconnect_give_up_ms;
+    int latency_ms;
+    unsigned tare_samples;
+    double lowpass_hz;
+    unsigned decimate;
+    double rotation[9];
+    double shift_m[3];
+    double duration_s;
+    uint64_t count;
+} lep_session_options;
+
+typedef struct lep_session_batch {
+    size_t cap;
+    size_t n;
+    double *t_mono;
+    double *t_utc;
+    int16_t *raw;
+    double *zeroed;
+    double *si;
+    uint8_t *status;
+    uint8_t *flags;
+    uint16_t *seq;
+} lep_session_batch;
+
+typedef struct lep_session_event {
+    int type;
+    uint64_t sample;
+    double t_mono;
+    double t_utc;
+    double gap_from;
+    double gap_to;
+    uint32_t lost;
+    int error;
+    uint8_t axes;
+    uint8_t status;
+    double tare[6];
+} lep_session_event;
+
+typedef struct lep_session_health {
+    double elapsed_s;
+    double nominal_hz;
+    double measured_hz;
+    double recent_hz;
+    bool shortfall;
+    uint64_t received;
+    uint64_t delivered;
+    uint64_t lost;
+    uint64_t gaps;
+    uint64_t errors;
+    uint64_t overloads;
+    uint64_t disconnects;
+    uint64_t reconnects;
+    double max_gap_s;
+    lep_client_stats client;
+} lep_session_health;
+
+typedef struct lep_session_metadata {
+    lep_product_info info;
+    char protocol[24];
+    lep_rated rated;
+    int sensor_filter;
+    char sensor_filter_label[24];
+    double nominal_hz;
+    double lowpass_hz;
+    char lowpass_name[48];
+    double lowpass_delay_s;
+    unsigned decimate;
+    double rotation[9];
+    double shift_m[3];
+    bool tared;
+    double tare[6];
+    double start_utc;
+    double start_mono;
+    char port[256];
+    bool sim;
+    char library_version[16];
+} lep_session_metadata;
+
+void lep_session_options_init(lep_session_options *o);
+void lep_rotation_from_rpy(double roll, double pitch, double yaw, double *r);
+int lep_session_open(const lep_session_options *o, lep_session **out, char *err, size_t errlen);
+void lep_session_close(lep_session *s);
+int lep_session_start(lep_session *s);
+int lep_session_stop(lep_session *s);
+int lep_session_read(lep_session *s, lep_session_batch *b, int timeout_ms);
+bool lep_session_next_event(lep_session *s, lep_session_event *ev);
+int lep_session_tare(lep_session *s, unsigned n, double duration_s);
+int lep_session_untare(lep_session *s);
+int lep_session_set_tare(lep_session *s, const double *offset);
+bool lep_session_get_tare(lep_session *s, double *offset);
+bool lep_session_taring(lep_session *s);
+int lep_session_set_lowpass(lep_session *s, double cutoff_hz);
+int lep_session_set_rotation(lep_session *s, const double *rotation, const double *shift_m);
+void lep_session_get_health(lep_session *s, lep_session_health *out);
+void lep_session_get_metadata(lep_session *s, lep_session_metadata *out);
+int lep_session_metadata_json(lep_session *s, char *buf, size_t cap, size_t *len);
+lep_client *lep_session_client(lep_session *s);
+lep_sim *lep_session_sim(lep_session *s);
+const char *lep_session_port(const lep_session *s);
+int lep_session_fd(const lep_session *s);
+bool lep_session_streaming(const lep_session *s);
+
+/* output.h */
+typedef struct lep_output_options {
+    int format;
+    int time;
+    unsigned columns;
+    double t0_mono;
+    bool overwrite;
+} lep_output_options;
+
+typedef struct lep_output lep_output;
+
+void lep_output_options_init(lep_output_options *o);
+int lep_output_open(const char *path, const lep_output_options *o, lep_output **out, char *err,
+                    size_t errlen);
+int lep_output_open_fd(int fd, const lep_output_options *o, lep_output **out, char *err,
+                       size_t errlen);
+int lep_output_add_session(lep_output *w, lep_session *s, const char *name);
+int lep_output_add_sensor(lep_output *w, const char *name, const char *metadata_json,
+                          double start_mono);
+int lep_output_write(lep_output *w, int sensor, const lep_session_batch *b, size_t from,
+                     const lep_session_event *ev, size_t nev);
+int lep_output_flush(lep_output *w);
+int lep_output_errno(const lep_output *w);
+int lep_output_close(lep_output *w);
 """

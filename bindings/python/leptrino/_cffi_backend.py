@@ -73,6 +73,14 @@ class CffiBackend:
         h = out[0]
         return None if h == self.ffi.NULL else h
 
+    def field_ptr(self, struct: Any, name: str) -> Any:
+        """Pointer to a struct-typed field of the struct struct points to."""
+        return self.ffi.addressof(struct, name)
+
+    def deref(self, ptr: Any) -> Any:
+        """The struct a returned pointer points to."""
+        return ptr[0]
+
     def new_client(self) -> Any:
         size = int(self.lib.lep_client_size())
         words = self.ffi.new("uint64_t[]", (size + 7) // 8)

@@ -124,6 +124,11 @@ class lep_client_stats(Structure):
         ("invalid", c_uint32),
         ("timeouts", c_uint32),
         ("samples", c_uint32),
+        ("resent_after_timeout", c_uint32),
+        ("resent_confirmed", c_uint32),
+        ("recoveries", c_uint32),
+        ("reserved_nonzero", c_uint32),
+        ("stalls", c_uint32),
     ]
 
 
@@ -156,9 +161,9 @@ class lep_sim(Structure):
 
 class lep_sim_options(Structure):
     _fields_ = [
-        ("model", c_char_p),
-        ("serial", c_char_p),
-        ("firmware", c_char_p),
+        ("model", c_char * 32),
+        ("serial", c_char * 16),
+        ("firmware", c_char * 8),
         ("output_rate_field", c_bool),
         ("rate_hz", c_double),
         ("filter", c_uint8),
@@ -166,7 +171,7 @@ class lep_sim_options(Structure):
         ("amplitude", c_double),
         ("noise", c_double),
         ("constant", c_bool),
-        ("replay_csv", c_char_p),
+        ("replay_csv", c_char * 512),
         ("overload_every_s", c_double),
         ("overload_duration_s", c_double),
         ("p_nak", c_double),
@@ -178,7 +183,20 @@ class lep_sim_options(Structure):
         ("hangup_after_s", c_double),
         ("reopen_after_ms", c_int),
         ("start_streaming", c_bool),
-        ("link", c_char_p),
+        ("link", c_char * 512),
+    ]
+
+
+class lep_sim_option_info(Structure):
+    _fields_ = [
+        ("name", c_char_p),
+        ("type", c_int),
+        ("arg", c_char_p),
+        ("help", c_char_p),
+        ("default_text", c_char_p),
+        ("min", c_double),
+        ("max", c_double),
+        ("min_exclusive", c_bool),
     ]
 
 
@@ -219,6 +237,124 @@ class lep_record_batch(Structure):
     ]
 
 
+class lep_session(Structure):
+    """Opaque (session.h)."""
+
+
+class lep_session_options(Structure):
+    _fields_ = [
+        ("port", c_char_p),
+        ("use_sim", c_bool),
+        ("sim", lep_sim_options),
+        ("timeout_ms", c_int),
+        ("sync_quiet_ms", c_int),
+        ("data_timeout_ms", c_int),
+        ("gap_periods", c_double),
+        ("nominal_hz", c_double),
+        ("reconnect", c_bool),
+        ("reconnect_min_ms", c_int),
+        ("reconnect_max_ms", c_int),
+        ("reconnect_give_up_ms", c_int),
+        ("latency_ms", c_int),
+        ("tare_samples", c_uint),
+        ("lowpass_hz", c_double),
+        ("decimate", c_uint),
+        ("rotation", c_double * 9),
+        ("shift_m", c_double * 3),
+        ("duration_s", c_double),
+        ("count", c_uint64),
+    ]
+
+
+class lep_session_batch(Structure):
+    _fields_ = [
+        ("cap", c_size_t),
+        ("n", c_size_t),
+        ("t_mono", POINTER(c_double)),
+        ("t_utc", POINTER(c_double)),
+        ("raw", POINTER(c_int16)),
+        ("zeroed", POINTER(c_double)),
+        ("si", POINTER(c_double)),
+        ("status", POINTER(c_uint8)),
+        ("flags", POINTER(c_uint8)),
+        ("seq", POINTER(c_uint16)),
+    ]
+
+
+class lep_session_event(Structure):
+    _fields_ = [
+        ("type", c_int),
+        ("sample", c_uint64),
+        ("t_mono", c_double),
+        ("t_utc", c_double),
+        ("gap_from", c_double),
+        ("gap_to", c_double),
+        ("lost", c_uint32),
+        ("error", c_int),
+        ("axes", c_uint8),
+        ("status", c_uint8),
+        ("tare", c_double * 6),
+    ]
+
+
+class lep_session_health(Structure):
+    _fields_ = [
+        ("elapsed_s", c_double),
+        ("nominal_hz", c_double),
+        ("measured_hz", c_double),
+        ("recent_hz", c_double),
+        ("shortfall", c_bool),
+        ("received", c_uint64),
+        ("delivered", c_uint64),
+        ("lost", c_uint64),
+        ("gaps", c_uint64),
+        ("errors", c_uint64),
+        ("overloads", c_uint64),
+        ("disconnects", c_uint64),
+        ("reconnects", c_uint64),
+        ("max_gap_s", c_double),
+        ("client", lep_client_stats),
+    ]
+
+
+class lep_session_metadata(Structure):
+    _fields_ = [
+        ("info", lep_product_info),
+        ("protocol", c_char * 24),
+        ("rated", lep_rated),
+        ("sensor_filter", c_int),
+        ("sensor_filter_label", c_char * 24),
+        ("nominal_hz", c_double),
+        ("lowpass_hz", c_double),
+        ("lowpass_name", c_char * 48),
+        ("lowpass_delay_s", c_double),
+        ("decimate", c_uint),
+        ("rotation", c_double * 9),
+        ("shift_m", c_double * 3),
+        ("tared", c_bool),
+        ("tare", c_double * 6),
+        ("start_utc", c_double),
+        ("start_mono", c_double),
+        ("port", c_char * 256),
+        ("sim", c_bool),
+        ("library_version", c_char * 16),
+    ]
+
+
+class lep_output_options(Structure):
+    _fields_ = [
+        ("format", c_int),
+        ("time", c_int),
+        ("columns", c_uint),
+        ("t0_mono", c_double),
+        ("overwrite", c_bool),
+    ]
+
+
+class lep_output(Structure):
+    """Opaque (output.h)."""
+
+
 #: C struct name -> ctypes class (for allocation and the declaration check).
 STRUCTS: Dict[str, Any] = {
     cls.__name__: cls
@@ -238,13 +374,22 @@ STRUCTS: Dict[str, Any] = {
         lep_port_info,
         lep_sim,
         lep_sim_options,
+        lep_sim_option_info,
         lep_sim_stats,
         lep_record_batch,
+        lep_session,
+        lep_session_options,
+        lep_session_batch,
+        lep_session_event,
+        lep_session_health,
+        lep_session_metadata,
+        lep_output_options,
+        lep_output,
     )
 }
 
 #: Types allocated by the library (or as bytes): no fields declared here.
-OPAQUE = ("lep_client", "lep_serial", "lep_sim")
+OPAQUE = ("lep_client", "lep_serial", "lep_sim", "lep_session", "lep_output")
 
 _u8p = POINTER(c_uint8)
 _P = POINTER
@@ -309,11 +454,67 @@ FUNCTIONS: Dict[str, Tuple[Any, List[Any]]] = {
     "lep_sim_get_stats": (None, [_P(lep_sim), _P(lep_sim_stats)]),
     "lep_sim_stop": (None, [_P(lep_sim)]),
     "lep_sim_pty_path": (c_char_p, [_P(lep_sim)]),
+    "lep_sim_option_count": (c_size_t, []),
+    "lep_sim_option_at": (_P(lep_sim_option_info), [c_size_t]),
+    "lep_sim_option_find": (_P(lep_sim_option_info), [c_char_p]),
+    "lep_sim_option_set": (c_int, [_P(lep_sim_options), c_char_p, c_char_p, _P(c_char), c_size_t]),
+    "lep_sim_option_get": (c_int, [_P(lep_sim_options), c_char_p, _P(c_char), c_size_t]),
+    "lep_sim_options_check": (c_int, [_P(lep_sim_options), _P(c_char), c_size_t]),
     # record.h
     "lep_record_fill": (
         c_int,
         [_P(lep_client), _P(lep_rated), _P(lep_record_batch), c_double, c_int],
     ),
+    # session.h
+    "lep_session_options_init": (None, [_P(lep_session_options)]),
+    "lep_rotation_from_rpy": (None, [c_double, c_double, c_double, _P(c_double)]),
+    "lep_session_open": (
+        c_int,
+        [_P(lep_session_options), _P(_P(lep_session)), _P(c_char), c_size_t],
+    ),
+    "lep_session_close": (None, [_P(lep_session)]),
+    "lep_session_start": (c_int, [_P(lep_session)]),
+    "lep_session_stop": (c_int, [_P(lep_session)]),
+    "lep_session_read": (c_int, [_P(lep_session), _P(lep_session_batch), c_int]),
+    "lep_session_next_event": (c_bool, [_P(lep_session), _P(lep_session_event)]),
+    "lep_session_tare": (c_int, [_P(lep_session), c_uint, c_double]),
+    "lep_session_untare": (c_int, [_P(lep_session)]),
+    "lep_session_set_tare": (c_int, [_P(lep_session), _P(c_double)]),
+    "lep_session_get_tare": (c_bool, [_P(lep_session), _P(c_double)]),
+    "lep_session_taring": (c_bool, [_P(lep_session)]),
+    "lep_session_set_lowpass": (c_int, [_P(lep_session), c_double]),
+    "lep_session_set_rotation": (c_int, [_P(lep_session), _P(c_double), _P(c_double)]),
+    "lep_session_get_health": (None, [_P(lep_session), _P(lep_session_health)]),
+    "lep_session_get_metadata": (None, [_P(lep_session), _P(lep_session_metadata)]),
+    "lep_session_metadata_json": (
+        c_int,
+        [_P(lep_session), _P(c_char), c_size_t, _P(c_size_t)],
+    ),
+    "lep_session_client": (_P(lep_client), [_P(lep_session)]),
+    "lep_session_sim": (_P(lep_sim), [_P(lep_session)]),
+    "lep_session_port": (c_char_p, [_P(lep_session)]),
+    "lep_session_fd": (c_int, [_P(lep_session)]),
+    "lep_session_streaming": (c_bool, [_P(lep_session)]),
+    # output.h
+    "lep_output_options_init": (None, [_P(lep_output_options)]),
+    "lep_output_open": (
+        c_int,
+        [c_char_p, _P(lep_output_options), _P(_P(lep_output)), _P(c_char), c_size_t],
+    ),
+    "lep_output_open_fd": (
+        c_int,
+        [c_int, _P(lep_output_options), _P(_P(lep_output)), _P(c_char), c_size_t],
+    ),
+    "lep_output_add_session": (c_int, [_P(lep_output), _P(lep_session), c_char_p]),
+    "lep_output_add_sensor": (c_int, [_P(lep_output), c_char_p, c_char_p, c_double]),
+    "lep_output_write": (
+        c_int,
+        [_P(lep_output), c_int, _P(lep_session_batch), c_size_t, _P(lep_session_event),
+         c_size_t],
+    ),
+    "lep_output_flush": (c_int, [_P(lep_output)]),
+    "lep_output_errno": (c_int, [_P(lep_output)]),
+    "lep_output_close": (c_int, [_P(lep_output)]),
 }
 
 _SCALARS: Dict[str, Any] = {
@@ -374,6 +575,14 @@ class CtypesBackend:
 
     def handle(self, out: Any) -> Any:
         return out if out else None
+
+    def field_ptr(self, struct: Any, name: str) -> Any:
+        """Pointer to a struct-typed field of struct (ctypes passes it by reference)."""
+        return getattr(struct, name)
+
+    def deref(self, ptr: Any) -> Any:
+        """The struct a returned pointer points to."""
+        return ptr.contents
 
     def new_client(self) -> Any:
         size = int(self.lib.lep_client_size())

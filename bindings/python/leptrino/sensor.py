@@ -1,13 +1,20 @@
-"""A sensor on a serial port: leptrino.Sensor.
+"""A sensor through the library's host session: leptrino.Sensor.
 
-Not thread-safe: one Sensor per port, used from one thread at a time.
+Everything a session does (start-up recovery, tare, host low-pass,
+decimation, rotation, gap detection, reconnect, health, metadata) runs in C
+(leptrino/session.h); this module moves its batches into numpy arrays and
+turns its structs into Python values. Not thread-safe: one thread drives a
+Sensor (tare, untare, the tare offsets, the low-pass, the rotation, health
+and metadata may also be used from other threads, as the session allows).
 """
 
 from __future__ import annotations
 
+import json
 import math
+import time
 import warnings
-from typing import Any, Iterator, List, Optional, Tuple
+from typing import Any, Dict, Iterator, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -15,16 +22,21 @@ from . import _constants as K
 from ._backend import get_backend
 from .errors import LeptrinoError, error_for
 from .values import (
+    EVENT_NAMES,
     ClientStats,
+    Health,
     ProductInfo,
     Rated,
     Recording,
     Sample,
+    SessionEvent,
     copy_fields,
-    make_sample,
+    handshake_sample,
 )
 
-#: Seconds per call of lep_record_fill in record(): bounds how long Ctrl-C waits.
+#: Samples per lep_session_read in the sample iterator.
+_ITER_BATCH = 256
+#: Longest wait of one lep_session_read in record(): bounds how long Ctrl-C waits.
 _RECORD_SLICE_S = 0.25
 
 
@@ -43,62 +55,132 @@ def product_info_from(be: Any, c: Any) -> ProductInfo:
     )
 
 
+def _ms(seconds: float, what: str) -> int:
+    if not seconds >= 0 or math.isinf(seconds):
+        raise ValueError(f"{what} must be a finite number of seconds >= 0, not {seconds!r}")
+    return int(math.ceil(seconds * 1000))
+
+
 class Sensor:
-    """A Leptrino sensor on a serial port.
+    """A Leptrino sensor, through the library's session (leptrino/session.h).
 
-    Opening (the constructor) takes the port exclusively, then recovers from
-    whatever state the sensor was left in: stops a running stream, drains the
-    line until it is quiet, and checks that the sensor answers. Use it as a
-    context manager; closing stops any stream and releases the port.
+        with leptrino.Sensor("/dev/ttyACM0") as sensor: ...
+        with leptrino.Sensor(sim={"model": "CFS034CA301U"}) as sensor: ...
 
-    timeout: seconds to wait for each answer (and for each stream sample).
+    port: a serial port path, or a running Simulator (its port). Or sim=:
+    True or a dict of virtual sensor options (as Simulator takes) for a
+    virtual sensor the session runs itself.
+
+    Opening takes the port exclusively and recovers from whatever state the
+    sensor was left in (stops a running stream, drains, identifies), then
+    reads the rated values and the filter. A context manager; close() stops
+    any stream and releases the port.
+
+    timeout: seconds to wait for each answer (per attempt) and for stream data.
     retries: times a command the sensor NAKs is sent again.
-    backend: "ctypes" or "cffi" (default: LEPTRINO_BACKEND, else ctypes).
+    latency: how long the library may hold samples back to save wake-ups
+      (record() and the iterator then cost a fraction of the CPU); 0 delivers
+      each sample as soon as it is read (a control loop).
+    tare: tare over the first N samples after the stream starts.
+    lowpass: host low-pass cut-off in Hz (0 off); decimate: keep every Nth.
+    rotation: (roll, pitch, yaw) in radians or a 3x3 matrix; shift: the moment
+      reference point (x, y, z) in metres, in the output frame.
+    reconnect: reopen the port after a disconnect (with backoff) and go on.
+    data_timeout: no data for this long while streaming is a disconnect.
     """
 
     def __init__(
         self,
-        port: str,
-        timeout: float = 0.1,
+        port: Union[str, Any, None] = None,
+        timeout: float = 0.5,
         *,
+        sim: Union[bool, Mapping[str, Any], None] = None,
         retries: int = K.LEP_CLIENT_DEFAULT_RETRIES,
-        quiet: float = 0.05,
+        quiet: float = 0.03,
+        latency: float = 0.02,
+        tare: int = 0,
+        lowpass: float = 0.0,
+        decimate: int = 1,
+        rotation: Optional[Sequence[Any]] = None,
+        shift: Optional[Sequence[float]] = None,
+        reconnect: bool = False,
+        data_timeout: float = 2.0,
+        gap_periods: float = 3.0,
+        nominal_hz: float = 0.0,
         backend: Optional[str] = None,
     ) -> None:
         self._be = be = get_backend(backend)
-        self._serial: Any = None
-        self.port = str(port)
+        lib = be.lib
+        self._s: Any = None
         if not timeout > 0:
             raise ValueError("timeout must be > 0 seconds")
-        self._timeout_ms = max(1, int(math.ceil(timeout * 1000)))
-        self._rated: Optional[Rated] = None
-        self._rated_c: Any = None
-        self._offset = np.zeros(K.LEP_AXES)
-        self._si = be.doubles(K.LEP_AXES)
-        self._sample_c = be.new("lep_sample")
+        if not 0 <= retries <= 255:
+            raise ValueError("retries must be 0..255")
+        if int(decimate) < 1:
+            raise ValueError("decimate must be >= 1")
+        if int(tare) < 0:
+            raise ValueError("tare must be >= 0 samples")
+        self._timeout_ms = max(1, _ms(timeout, "timeout"))
+        o = be.new("lep_session_options")
+        lib.lep_session_options_init(o)
+        keep: List[Any] = []
+        if port is not None and not isinstance(port, str):
+            port = getattr(port, "port", port)  # a Simulator
+        if (port is None) == (sim is None or sim is False):
+            raise ValueError("give a port, or sim=True / sim={options}, not both")
+        if port is not None:
+            o.port = be.cstr(str(port), keep)
+        else:
+            from .simulator import fill_options
 
-        out = be.new_handle("lep_serial")
+            o.use_sim = True
+            fill_options(be, be.field_ptr(o, "sim"), dict(sim) if isinstance(sim, Mapping)
+                         else {})
+        o.timeout_ms = self._timeout_ms
+        o.sync_quiet_ms = max(1, _ms(quiet, "quiet"))
+        o.latency_ms = _ms(latency, "latency")
+        o.tare_samples = int(tare)
+        o.lowpass_hz = float(lowpass)
+        o.decimate = int(decimate)
+        o.reconnect = bool(reconnect)
+        o.data_timeout_ms = max(1, _ms(data_timeout, "data_timeout"))
+        o.gap_periods = float(gap_periods)
+        o.nominal_hz = float(nominal_hz)
+        if rotation is not None:
+            for i, v in enumerate(self._matrix(rotation)):
+                o.rotation[i] = v
+        if shift is not None:
+            for i, v in enumerate(self._vec3(shift)):
+                o.shift_m[i] = v
+        out = be.new_handle("lep_session")
         err = be.new_text(512)
-        rc = be.lib.lep_serial_open(self.port.encode(), out, err, 512)
+        rc = lib.lep_session_open(o, out, err, 512)
         if rc < 0:
             msg = be.text(err)
-            raise error_for(be, rc, msg or self.port, complete=bool(msg))
-        self._serial = be.handle(out)
+            if rc == K.LEP_E_ARG:
+                raise ValueError(msg or "bad session options")
+            raise error_for(be, rc, msg or str(port or "virtual sensor"), complete=bool(msg))
+        self._s = be.handle(out)
+        self.port: str = be.text(lib.lep_session_port(self._s))
         try:
-            self._client, self._client_mem = be.new_client()
-            self._check(be.lib.lep_serial_client_init(self._client, self._serial))
-            self._check(be.lib.lep_client_set_timeout(self._client, self._timeout_ms))
-            if not 0 <= retries <= 255:
-                raise ValueError("retries must be 0..255")
-            self._check(be.lib.lep_client_set_retries(self._client, retries))
-            info = be.new("lep_product_info")
-            quiet_ms = max(1, int(quiet * 1000))
-            self._check(be.lib.lep_client_sync(self._client, quiet_ms, info), K.LEP_CMD_STOP,
-                        f"{self.port}: start-up recovery")
-            self._info = product_info_from(be, info)
+            client = lib.lep_session_client(self._s)
+            self._check(lib.lep_client_set_retries(client, retries))
+            meta = self._metadata_struct()
+            self._info = product_info_from(be, meta.info)
+            self._rated_c = be.new("lep_rated")
+            for i in range(K.LEP_AXES):
+                self._rated_c.axis[i] = meta.rated.axis[i]
+            self._rated = Rated(*(float(v) for v in meta.rated.axis))
+            self._nominal_hz = float(meta.nominal_hz) or 1200.0
         except BaseException:
-            self._close_port()
+            self.close()
             raise
+        self._sample_c = be.new("lep_sample")
+        self._si = be.doubles(K.LEP_AXES)
+        self._ev = be.new("lep_session_event")
+        self._offsets = be.doubles(K.LEP_AXES)
+        self.events: List[SessionEvent] = []  # events not yet handed out with data
+        self._decimate = int(decimate)
 
     # -- life cycle ----------------------------------------------------------
     def __enter__(self) -> "Sensor":
@@ -119,56 +201,77 @@ class Sensor:
 
     @property
     def closed(self) -> bool:
-        return self._serial is None
+        return self._s is None
 
     @property
     def backend(self) -> str:
         return str(self._be.name)
 
     def close(self) -> None:
-        """Stop a running stream (best effort) and release the port. Idempotent."""
-        if self._serial is None:
-            return
-        try:
-            if self._be.lib.lep_client_streaming(self._client):
-                self._be.lib.lep_client_stop(self._client)
-        finally:
-            self._close_port()
-
-    def _close_port(self) -> None:
-        if self._serial is not None:
-            self._be.lib.lep_serial_close(self._serial)
-            self._serial = None
+        """Stop a running stream (best effort), release the port, stop the
+        session's virtual sensor. Idempotent."""
+        if self._s is not None:
+            s, self._s = self._s, None
+            self._be.lib.lep_session_close(s)
 
     # -- helpers -------------------------------------------------------------
     def _live(self) -> Any:
-        if self._serial is None:
+        if self._s is None:
             raise LeptrinoError(f"{self.port}: the sensor is closed", K.LEP_E_STATE)
-        return self._client
+        return self._s
+
+    def _client(self) -> Any:
+        c = self._be.lib.lep_session_client(self._live())
+        if not c:
+            raise error_for(self._be, K.LEP_E_DISCONNECTED, f"{self.port}: disconnected")
+        return c
 
     def _check(self, rc: int, command: Optional[int] = None, what: str = "") -> int:
         if rc < 0:
             result = None
-            if rc == K.LEP_E_SENSOR:
-                result = int(self._be.lib.lep_client_last_result(self._client))
+            if rc == K.LEP_E_SENSOR and self._s is not None:
+                c = self._be.lib.lep_session_client(self._s)
+                if c:
+                    result = int(self._be.lib.lep_client_last_result(c))
             raise error_for(self._be, rc, what or self.port, result=result, command=command)
         return rc
 
-    def _sample(self, t: float) -> Sample:
-        be, s = self._be, self._sample_c
-        be.lib.lep_sample_to_si(s, self._rated_struct(), self._si)
-        si = [self._si[i] - self._offset[i] for i in range(K.LEP_AXES)]
-        return make_sample(t, si, list(s.raw), s.status, s.reserved)
+    def _metadata_struct(self) -> Any:
+        m = self._be.new("lep_session_metadata")
+        self._be.lib.lep_session_get_metadata(self._live(), m)
+        return m
 
-    def _rated_struct(self) -> Any:
-        if self._rated_c is None:
-            c = self._be.new("lep_rated")
-            self._check(self._be.lib.lep_client_rated(self._live(), c), K.LEP_CMD_RATED)
-            self._rated_c = c
-            self._rated = Rated(*(float(v) for v in c.axis))
-        return self._rated_c
+    def _matrix(self, rotation: Any) -> List[float]:
+        r = np.asarray(rotation, dtype=np.float64)
+        if r.shape == (3,):
+            out = self._be.doubles(9)
+            self._be.lib.lep_rotation_from_rpy(float(r[0]), float(r[1]), float(r[2]), out)
+            return [float(out[i]) for i in range(9)]
+        if r.shape == (3, 3):
+            return [float(v) for v in r.reshape(9)]
+        raise ValueError("rotation is (roll, pitch, yaw) in radians or a 3x3 matrix")
 
-    # -- queries -------------------------------------------------------------
+    @staticmethod
+    def _vec3(v: Sequence[float]) -> List[float]:
+        a = np.asarray(v, dtype=np.float64)
+        if a.shape != (3,):
+            raise ValueError("shift is (x, y, z) in metres")
+        return [float(x) for x in a]
+
+    def _drain_events(self, base: int = 0) -> List[SessionEvent]:
+        be, ev, s = self._be, self._ev, self._s
+        out: List[SessionEvent] = []
+        while s is not None and be.lib.lep_session_next_event(s, ev):
+            out.append(SessionEvent(
+                type=EVENT_NAMES.get(int(ev.type), str(int(ev.type))),
+                sample=int(ev.sample), t=float(ev.t_mono), t_utc=float(ev.t_utc),
+                gap_from=float(ev.gap_from), gap_to=float(ev.gap_to), lost=int(ev.lost),
+                error=int(ev.error), axes=int(ev.axes), status=int(ev.status),
+                tare=tuple(float(ev.tare[i]) for i in range(K.LEP_AXES)),  # type: ignore[arg-type]
+            ))
+        return out
+
+    # -- what the sensor is --------------------------------------------------
     @property
     def product_info(self) -> ProductInfo:
         """Model, serial, firmware, output rate (read when the sensor was opened)."""
@@ -176,23 +279,71 @@ class Sensor:
 
     @property
     def rated(self) -> Rated:
-        """Rated (full-scale) values, N and N·m (asked once, then cached)."""
-        self._rated_struct()
-        assert self._rated is not None
+        """Rated (full-scale) values, N and N·m (read when the sensor was opened)."""
         return self._rated
 
     @property
+    def metadata(self) -> Dict[str, Any]:
+        """What a recording says about itself: model, serial, firmware, protocol,
+        rated values, filters, tare, frame, start time (UTC), library version.
+        The library's own JSON object (lep_session_metadata_json), as a dict."""
+        return dict(json.loads(self.metadata_json()))
+
+    def metadata_json(self) -> str:
+        """The metadata as the library writes it (one JSON object)."""
+        be = self._be
+        cap = 4096
+        while True:
+            buf = be.new_text(cap)
+            n = be.new_scalar("size_t")
+            rc = be.lib.lep_session_metadata_json(self._live(), buf, cap, n)
+            if rc == K.LEP_E_BUFFER and cap < 1 << 20:
+                cap *= 4
+                continue
+            self._check(rc, None, f"{self.port}: metadata")
+            return str(be.bytes_at(buf, int(be.value(n))).decode("utf-8"))
+
+    @property
+    def health(self) -> Health:
+        """Measured against nominal rate, samples lost, gaps, errors, overloads,
+        reconnects, since the stream started."""
+        be = self._be
+        h = be.new("lep_session_health")
+        be.lib.lep_session_get_health(self._live(), h)
+        return Health(
+            elapsed_s=float(h.elapsed_s), nominal_hz=float(h.nominal_hz),
+            measured_hz=float(h.measured_hz), recent_hz=float(h.recent_hz),
+            shortfall=bool(h.shortfall), received=int(h.received), delivered=int(h.delivered),
+            lost=int(h.lost), gaps=int(h.gaps), errors=int(h.errors),
+            overloads=int(h.overloads), disconnects=int(h.disconnects),
+            reconnects=int(h.reconnects), max_gap_s=float(h.max_gap_s),
+            client=copy_fields(ClientStats, h.client),
+        )
+
+    @property
+    def stats(self) -> ClientStats:
+        """The current connection's client counters (messages, BCC errors, NAKs, ...)."""
+        st = self._be.new("lep_client_stats")
+        self._be.lib.lep_client_get_stats(self._client(), st)
+        return copy_fields(ClientStats, st)  # type: ignore[no-any-return]
+
+    @property
+    def streaming(self) -> bool:
+        return bool(self._be.lib.lep_session_streaming(self._live()))
+
+    @property
     def filter(self) -> int:
-        """Digital filter code in effect (0 off, 1..3; see filter_label)."""
+        """The sensor's digital filter code in effect (0 off, 1..3; see filter_label)."""
         code = self._be.new_scalar("uint8_t")
-        self._check(self._be.lib.lep_client_filter_get(self._live(), code), K.LEP_CMD_FILTER_GET)
+        self._check(self._be.lib.lep_client_filter_get(self._client(), code),
+                    K.LEP_CMD_FILTER_GET)
         return int(self._be.value(code))
 
     @filter.setter
     def filter(self, code: int) -> None:
         if not 0 <= int(code) <= K.LEP_FILTER_MAX:
             raise ValueError(f"filter code must be 0..{K.LEP_FILTER_MAX}, not {code}")
-        self._check(self._be.lib.lep_client_filter_set(self._live(), int(code)),
+        self._check(self._be.lib.lep_client_filter_set(self._client(), int(code)),
                     K.LEP_CMD_FILTER_SET)
         warnings.warn(
             f"filter {int(code)} stored; it takes effect only after the sensor is "
@@ -207,249 +358,397 @@ class Sensor:
             code = self.filter
         return str(self._be.text(self._be.lib.lep_filter_label(int(code) & 0xFF)))
 
-    @property
-    def stats(self) -> ClientStats:
-        """The client's counters (messages, BCC errors, NAKs, retries, ...)."""
-        st = self._be.new("lep_client_stats")
-        self._be.lib.lep_client_get_stats(self._live(), st)
-        return copy_fields(ClientStats, st)  # type: ignore[no-any-return]
+    # -- processing ----------------------------------------------------------
+    def tare(self, n: int = 100, seconds: Optional[float] = None,
+             wait: Optional[bool] = None) -> Optional[Tuple[float, ...]]:
+        """Zero on the mean raw counts of the next n samples (or of seconds).
+
+        While streaming the tare runs beside the stream (nothing stalls; the
+        samples it averages carry the taring flag) and this returns None at
+        once. Otherwise (or with wait=True) it starts the stream, waits for the
+        tare to finish, stops the stream again and returns the offsets in
+        counts. n=0 with no seconds removes the tare (as untare())."""
+        s = self._live()
+        if seconds is None and int(n) <= 0:
+            self.untare()
+            return self.tare_offsets
+        lib = self._be.lib
+        self._check(lib.lep_session_tare(s, 0 if seconds is not None else int(n),
+                                         float(seconds or 0.0)), None, f"{self.port}: tare")
+        streaming = bool(lib.lep_session_streaming(s))
+        if wait is None:
+            wait = not streaming
+        if not wait:
+            return None
+        started = False
+        if not streaming:
+            self._check(lib.lep_session_start(s), K.LEP_CMD_START)
+            started = True
+        try:
+            arrays = _Arrays(self._be, _ITER_BATCH)
+            while lib.lep_session_taring(s):
+                arrays.c.n = 0
+                rc = lib.lep_session_read(s, arrays.c, self._timeout_ms)
+                if rc < 0 and rc != K.LEP_E_END:
+                    self._check(rc, None, f"{self.port}: tare")
+                self.events += self._drain_events()
+        finally:
+            if started and self._s is not None:
+                lib.lep_session_stop(self._s)
+        return self.tare_offsets
+
+    def untare(self) -> None:
+        """Remove the tare (offsets zero); cancels a tare in progress."""
+        self._check(self._be.lib.lep_session_untare(self._live()))
 
     @property
-    def streaming(self) -> bool:
-        return bool(self._be.lib.lep_client_streaming(self._live()))
+    def tare_offsets(self) -> Tuple[float, ...]:
+        """The tare offsets in raw counts (zeros when not tared); settable."""
+        self._be.lib.lep_session_get_tare(self._live(), self._offsets)
+        return tuple(float(self._offsets[i]) for i in range(K.LEP_AXES))
+
+    @tare_offsets.setter
+    def tare_offsets(self, counts: Sequence[float]) -> None:
+        a = np.asarray(counts, dtype=np.float64)
+        if a.shape != (K.LEP_AXES,):
+            raise ValueError("tare offsets are six numbers (counts)")
+        buf = self._be.doubles(K.LEP_AXES)
+        for i in range(K.LEP_AXES):
+            buf[i] = float(a[i])
+        self._check(self._be.lib.lep_session_set_tare(self._live(), buf))
+
+    @property
+    def tared(self) -> bool:
+        return bool(self._be.lib.lep_session_get_tare(self._live(), self._offsets))
+
+    @property
+    def taring(self) -> bool:
+        """True while a tare is averaging."""
+        return bool(self._be.lib.lep_session_taring(self._live()))
+
+    @property
+    def lowpass(self) -> float:
+        """Host low-pass cut-off in Hz (0 off); settable at any time."""
+        return float(self._metadata_struct().lowpass_hz)
+
+    @lowpass.setter
+    def lowpass(self, cutoff_hz: float) -> None:
+        rc = self._be.lib.lep_session_set_lowpass(self._live(), float(cutoff_hz))
+        if rc == K.LEP_E_VALUE:
+            raise ValueError(f"low-pass cut-off {cutoff_hz!r} Hz: must be >= 0 and at most "
+                             f"0.45 x the rate ({0.45 * self._nominal_hz:g} Hz)")
+        self._check(rc)
+
+    @property
+    def rotation(self) -> np.ndarray:
+        """The output frame's rotation matrix (3x3)."""
+        m = self._metadata_struct()
+        return np.array([float(m.rotation[i]) for i in range(9)]).reshape(3, 3)
+
+    @property
+    def shift(self) -> Tuple[float, float, float]:
+        """The moment reference point (x, y, z), metres, in the output frame."""
+        m = self._metadata_struct()
+        return (float(m.shift_m[0]), float(m.shift_m[1]), float(m.shift_m[2]))
+
+    def set_frame(self, rotation: Optional[Sequence[Any]] = None,
+                  shift: Optional[Sequence[float]] = None) -> None:
+        """Output in another frame: rotation as (roll, pitch, yaw) radians or a
+        3x3 matrix (None: identity), shift the moment reference point (metres,
+        None: origin). Takes effect from the next sample."""
+        be = self._be
+        r = be.doubles(9)
+        for i, v in enumerate(self._matrix(rotation if rotation is not None else np.eye(3))):
+            r[i] = v
+        sh = be.doubles(3)
+        for i, v in enumerate(self._vec3(shift if shift is not None else (0.0, 0.0, 0.0))):
+            sh[i] = v
+        self._check(be.lib.lep_session_set_rotation(self._live(), r, sh))
 
     # -- data ----------------------------------------------------------------
     def read(self) -> Sample:
-        """One sample in handshake mode (command 0x30). StateError while streaming."""
-        self._rated_struct()
-        rc = self._be.lib.lep_client_sample(self._live(), self._sample_c)
-        t = float(self._be.lib.lep_monotonic_seconds())
+        """One sample in handshake mode (command 0x30), outside the stream:
+        raw counts and SI values as the sensor gave them (no tare, filter or
+        frame: those apply to the stream). StateError while streaming."""
+        lib = self._be.lib
+        rc = lib.lep_client_sample(self._client(), self._sample_c)
+        t = float(lib.lep_monotonic_seconds())
         self._check(rc, K.LEP_CMD_SAMPLE)
-        return self._sample(t)
+        lib.lep_sample_to_si(self._sample_c, self._rated_c, self._si)
+        return handshake_sample(t, time.time(), [self._si[i] for i in range(K.LEP_AXES)],
+                                list(self._sample_c.raw), self._sample_c.status,
+                                self._sample_c.reserved)
 
     def start(self) -> None:
-        """Start continuous output (prefer stream() or record())."""
-        self._rated_struct()
-        self._check(self._be.lib.lep_client_start(self._live()), K.LEP_CMD_START)
+        """Start the stream (stream(), record() and tare() do it themselves)."""
+        self._check(self._be.lib.lep_session_start(self._live()), K.LEP_CMD_START)
 
     def stop(self) -> None:
-        """Stop continuous output; data already on the line is discarded."""
-        self._check(self._be.lib.lep_client_stop(self._live()), K.LEP_CMD_STOP)
-
-    def next_sample(self, timeout: Optional[float] = None) -> Sample:
-        """The next stream sample (the stream must be running).
-
-        timeout: seconds (default: the sensor's timeout). TimeoutError if none came."""
-        ms = self._timeout_ms if timeout is None else max(0, int(math.ceil(timeout * 1000)))
-        rc = self._be.lib.lep_client_next_sample(self._live(), self._sample_c, ms)
-        t = float(self._be.lib.lep_monotonic_seconds())
-        self._check(rc, None, f"{self.port}: waiting for a stream sample")
-        return self._sample(t)
+        """Stop the stream; samples received and not yet read are dropped."""
+        self._check(self._be.lib.lep_session_stop(self._live()), K.LEP_CMD_STOP)
 
     def stream(self, count: Optional[int] = None, seconds: Optional[float] = None) -> "Stream":
-        """Continuous output as a context manager and iterator of Samples.
+        """The stream as a context manager and iterator of Samples (read in
+        batches underneath). Starts the stream if needed and stops it on exit
+        (or when count samples / seconds are done) when it started it.
 
             with sensor.stream() as samples:
                 for s in samples: ...
-
-        The stream starts on entry (or on the first iteration) and stops on exit.
-        count / seconds end the iteration after that many samples / seconds."""
+        """
         return Stream(self, count, seconds)
 
     def record(self, seconds: Optional[float] = None, count: Optional[int] = None) -> Recording:
         """Record seconds of the stream, or count samples, into numpy arrays.
 
-        The C library fills the arrays (one call per batch, no per-sample Python
-        work). Starts the stream if it is not running and stops it again after.
-        On an error (TimeoutError, DisconnectedError...) and on an interruption
-        (KeyboardInterrupt, an exception raised by a signal handler) the
-        exception's .recording holds what was recorded until then."""
+        The session fills the arrays in C (no per-sample Python work). Starts
+        the stream if it is not running and stops it again after. The result
+        carries the events (gaps, tare, overload...) and the metadata. On an
+        error (TimeoutError, DisconnectedError...) and on an interruption
+        (KeyboardInterrupt, an exception from a signal handler) the exception's
+        .recording holds what was recorded until then."""
         if (seconds is None) == (count is None):
             raise ValueError("give exactly one of seconds= or count=")
-        if seconds is not None and not seconds > 0:
+        if seconds is not None and not (seconds > 0 and math.isfinite(seconds)):
             raise ValueError("seconds must be > 0")
         if count is not None and int(count) <= 0:
             raise ValueError("count must be > 0")
         be, lib = self._be, self._be.lib
-        rated = self._rated_struct()
+        s = self._live()
+        rate = self._nominal_hz / self._decimate
         if count is not None:
             cap = int(count)
         else:
             assert seconds is not None
-            rate = self._info.output_rate_hz or 1200
             cap = int(seconds * rate * 1.05) + 64
-        arrays = _Batch(be, cap)
+        arrays = _Arrays(be, cap)
+        events, self.events = self.events, []
         started = False
-        client = self._live()
-        if not lib.lep_client_streaming(client):
-            self._check(lib.lep_client_start(client), K.LEP_CMD_START)
+        if not lib.lep_session_streaming(s):
+            self._check(lib.lep_session_start(s), K.LEP_CMD_START)
             started = True
         try:
-            end = float(lib.lep_monotonic_seconds()) + seconds if seconds is not None else 0.0
+            now = float(lib.lep_monotonic_seconds())
+            end = now + seconds if seconds is not None else math.inf
+            last_data = now
             while True:
+                n = arrays.n
+                if count is not None:
+                    room = int(count) - n
+                    if room <= 0:
+                        break
+                    wait_s = min(_RECORD_SLICE_S, self._timeout_ms / 1000)
+                else:
+                    left = end - now
+                    if left <= 0:
+                        break
+                    room = max(1, int(math.ceil(left * rate)))
+                    wait_s = min(_RECORD_SLICE_S, left, self._timeout_ms / 1000)
+                arrays.reserve(n + room)
+                arrays.c.cap = n + room
+                rc = lib.lep_session_read(s, arrays.c, max(1, int(wait_s * 1000)))
+                events += self._drain_events()
                 now = float(lib.lep_monotonic_seconds())
-                if seconds is not None and now >= end:
+                if arrays.n > n:
+                    last_data = now
+                if rc == K.LEP_E_END:
                     break
-                until = now + _RECORD_SLICE_S
-                if seconds is not None:
-                    until = min(until, end)
-                rc = lib.lep_record_fill(client, rated, arrays.c, until, self._timeout_ms)
+                if rc == K.LEP_E_TIMEOUT and now - last_data < self._timeout_ms / 1000:
+                    continue  # a slice of the wait, not the timeout
                 if rc < 0:
                     exc = error_for(be, rc, f"{self.port}: recording")
-                    exc.recording = arrays.result(self._offset)  # type: ignore[attr-defined]
+                    exc.recording = arrays.result(events, self)  # type: ignore[attr-defined]
                     raise exc
-                if arrays.full():
-                    if count is not None:
-                        break
-                    arrays.grow()
         except BaseException as exc:
-            # Ctrl-C lands between two batches: keep what was received.
-            if not isinstance(exc, LeptrinoError) and not hasattr(exc, "recording"):
+            # Ctrl-C lands between two reads: keep what was received.
+            if not hasattr(exc, "recording"):
                 try:
-                    exc.recording = arrays.result(self._offset)  # type: ignore[attr-defined]
+                    exc.recording = arrays.result(events, self)  # type: ignore[attr-defined]
                 except Exception:
                     pass
             raise
         finally:
-            if started and self._serial is not None:
+            if started and self._s is not None:
                 try:
-                    lib.lep_client_stop(client)
+                    lib.lep_session_stop(self._s)
                 except Exception:
                     pass
-        return arrays.result(self._offset)
-
-    def tare(self, n: int = 100) -> Tuple[float, ...]:
-        """Measure the mean of n samples and subtract it from every later
-        sample (read, stream, record). Returns the offset (N, N·m).
-        n=0 removes the offset."""
-        if n <= 0:
-            self._offset = np.zeros(K.LEP_AXES)
-            return tuple(self._offset.tolist())
-        saved = self._offset
-        self._offset = np.zeros(K.LEP_AXES)
-        try:
-            rec = self.record(count=int(n))
-        except BaseException:
-            self._offset = saved
-            raise
-        self._offset = rec.si.mean(axis=0)
-        return tuple(float(v) for v in self._offset)
-
-    @property
-    def offset(self) -> Tuple[float, ...]:
-        """The tare offset subtracted from SI values (zeros when not tared)."""
-        return tuple(float(v) for v in self._offset)
+        return arrays.result(events, self)
 
 
-class _Batch:
-    """numpy arrays and the lep_record_batch that points into them."""
+class _Arrays:
+    """numpy arrays and the lep_session_batch that points into them."""
 
-    t: np.ndarray
-    si: np.ndarray
+    t_mono: np.ndarray
+    t_utc: np.ndarray
     raw: np.ndarray
+    zeroed: np.ndarray
+    si: np.ndarray
     status: np.ndarray
+    flags: np.ndarray
     seq: np.ndarray
 
     def __init__(self, be: Any, cap: int) -> None:
         self.be = be
-        self.c = be.new("lep_record_batch")
-        self._alloc(cap, 0)
+        self.c = be.new("lep_session_batch")
+        self.cap = 0
+        self._alloc(max(1, cap), 0)
+
+    @property
+    def n(self) -> int:
+        return int(self.c.n)
 
     def _alloc(self, cap: int, keep: int) -> None:
-        t = np.empty(cap, dtype=np.float64)
-        si = np.empty((cap, K.LEP_AXES), dtype=np.float64)
-        raw = np.empty((cap, K.LEP_AXES), dtype=np.int16)
-        status = np.empty(cap, dtype=np.uint8)
-        seq = np.empty(cap, dtype=np.uint16)
+        new: Dict[str, np.ndarray] = {
+            "t_mono": np.empty(cap, np.float64),
+            "t_utc": np.empty(cap, np.float64),
+            "raw": np.empty((cap, K.LEP_AXES), np.int16),
+            "zeroed": np.empty((cap, K.LEP_AXES), np.float64),
+            "si": np.empty((cap, K.LEP_AXES), np.float64),
+            "status": np.empty(cap, np.uint8),
+            "flags": np.empty(cap, np.uint8),
+            "seq": np.empty(cap, np.uint16),
+        }
         if keep:
-            t[:keep] = self.t[:keep]
-            si[:keep] = self.si[:keep]
-            raw[:keep] = self.raw[:keep]
-            status[:keep] = self.status[:keep]
-            seq[:keep] = self.seq[:keep]
-        self.t, self.si, self.raw, self.status, self.seq = t, si, raw, status, seq
+            for k, a in new.items():
+                a[:keep] = getattr(self, k)[:keep]
+        ctypes_of = {"t_mono": "double", "t_utc": "double", "raw": "int16_t",
+                     "zeroed": "double", "si": "double", "status": "uint8_t",
+                     "flags": "uint8_t", "seq": "uint16_t"}
         be, c = self.be, self.c
-        c.cap = cap
+        for k, a in new.items():
+            setattr(self, k, a)
+            setattr(c, k, be.array_ptr(a, ctypes_of[k]))
+        self.cap = cap
         c.n = keep
-        c.t = be.array_ptr(t, "double")
-        c.si = be.array_ptr(si, "double")
-        c.raw = be.array_ptr(raw, "int16_t")
-        c.status = be.array_ptr(status, "uint8_t")
-        c.seq = be.array_ptr(seq, "uint16_t")
+        c.cap = cap
 
-    def full(self) -> bool:
-        return int(self.c.n) >= int(self.c.cap)
+    def reserve(self, cap: int) -> None:
+        if cap > self.cap:
+            self._alloc(max(cap, 2 * self.cap), self.n)
 
-    def grow(self) -> None:
-        self._alloc(2 * int(self.c.cap), int(self.c.n))
-
-    def result(self, offset: np.ndarray) -> Recording:
-        n = int(self.c.n)
-        si = self.si[:n].copy()
-        if np.any(offset):
-            si -= offset
+    def result(self, events: List[SessionEvent], sensor: Optional[Sensor]) -> Recording:
+        n = self.n
+        meta, start = "{}", 0.0
+        if sensor is not None and not sensor.closed:
+            try:
+                meta = sensor.metadata_json()
+                start = float(sensor._metadata_struct().start_mono)
+            except LeptrinoError:
+                pass
         return Recording(
-            t=self.t[:n].copy(),
-            si=si,
-            raw=self.raw[:n].copy(),
-            status=self.status[:n].copy(),
-            seq=self.seq[:n].copy(),
+            t=self.t_mono[:n].copy(), si=self.si[:n].copy(), raw=self.raw[:n].copy(),
+            status=self.status[:n].copy(), seq=self.seq[:n].copy(),
+            t_utc=self.t_utc[:n].copy(), zeroed=self.zeroed[:n].copy(),
+            flags=self.flags[:n].copy(), events=list(events), metadata_json=meta,
+            start_mono=start,
         )
 
 
 class Stream:
-    """Iterator of stream samples; a context manager that stops the stream on exit."""
+    """Iterator of stream samples, read from the session in batches; a
+    context manager that stops the stream on exit when it started it.
+    .events collects the session's events (gaps, tare, overload...)."""
 
     def __init__(self, sensor: Sensor, count: Optional[int], seconds: Optional[float]) -> None:
+        if count is not None and int(count) < 0:
+            raise ValueError("count must be >= 0")
         self._sensor = sensor
         self._count = count
         self._seconds = seconds
+        self._open = False
         self._started = False
         self._n = 0
         self._end: Optional[float] = None
+        self._arrays = _Arrays(sensor._be, _ITER_BATCH)
+        self._pending: Iterator[Sample] = iter(())
+        self.events: List[SessionEvent] = []
 
     def __enter__(self) -> "Stream":
-        self._start()
+        self._begin()
         return self
 
     def __exit__(self, *exc: Any) -> None:
         self.close()
 
-    def _start(self) -> None:
-        if not self._started:
-            s = self._sensor
-            if not s.streaming:
-                s.start()
+    def _begin(self) -> None:
+        if self._open:
+            return
+        s = self._sensor
+        lib = s._be.lib
+        if not lib.lep_session_streaming(s._live()):
+            s.start()
             self._started = True
-            if self._seconds is not None:
-                self._end = float(s._be.lib.lep_monotonic_seconds()) + self._seconds
+        self._open = True
+        if self._seconds is not None:
+            self._end = float(lib.lep_monotonic_seconds()) + self._seconds
 
     def close(self) -> None:
-        """Stop the stream (best effort when the port is gone)."""
-        if self._started:
-            self._started = False
+        """Stop the stream if this iterator started it (best effort when the port is gone)."""
+        if self._open:
+            self._open = False
             s = self._sensor
-            if not s.closed and s.streaming:
+            if self._started and not s.closed and s.streaming:
+                self._started = False
                 s.stop()
 
     def __iter__(self) -> Iterator[Sample]:
-        self._start()
+        self._begin()
         return self
 
     def __next__(self) -> Sample:
-        if not self._started:
+        if not self._open:
             raise StopIteration
         if self._count is not None and self._n >= self._count:
             self.close()  # done: do not leave the sensor streaming until collected
             raise StopIteration
-        if self._end is not None:
-            left = self._end - float(self._sensor._be.lib.lep_monotonic_seconds())
-            if left <= 0:
-                self.close()
-                raise StopIteration
-        sample = self._sensor.next_sample()
+        try:
+            sample = next(self._pending)
+        except StopIteration:
+            sample = self._fill()
+        if self._end is not None and sample.t > self._end:
+            self.close()
+            raise StopIteration
         self._n += 1
         return sample
+
+    def _fill(self) -> Sample:
+        s = self._sensor
+        lib = s._be.lib
+        a = self._arrays
+        room = _ITER_BATCH
+        if self._count is not None:
+            room = max(1, min(room, self._count - self._n))
+        while True:
+            a.c.n = 0
+            a.c.cap = room
+            wait = s._timeout_ms
+            if self._end is not None:
+                left = self._end - float(lib.lep_monotonic_seconds())
+                if left <= 0:
+                    self.close()
+                    raise StopIteration
+                wait = max(1, min(wait, int(math.ceil(left * 1000))))
+            rc = lib.lep_session_read(s._live(), a.c, wait)
+            self.events += s._drain_events()
+            n = a.n
+            if n:
+                break
+            if rc == K.LEP_E_END:
+                self.close()
+                raise StopIteration
+            if rc == K.LEP_E_TIMEOUT and wait < s._timeout_ms:
+                continue  # the seconds ran out, checked above
+            if rc < 0:
+                s._check(rc, None, f"{s.port}: waiting for stream data")
+        t = a.t_mono[:n].tolist()
+        tu = a.t_utc[:n].tolist()
+        si = list(map(tuple, a.si[:n].tolist()))
+        raw = list(map(tuple, a.raw[:n].tolist()))
+        zeroed = list(map(tuple, a.zeroed[:n].tolist()))
+        samples = list(map(Sample, t, tu, si, raw, zeroed, a.status[:n].tolist(),
+                           a.flags[:n].tolist(), a.seq[:n].tolist()))
+        self._pending = iter(samples)
+        return next(self._pending)
 
     def __del__(self) -> None:
         # Best effort when the iteration was abandoned; close() is the contract.
@@ -471,7 +770,7 @@ def list_ports(backend: Optional[str] = None) -> List[Any]:
     total = int(be.value(n))
     if total == 0:
         return []
-    arr = (be.new_array("lep_port_info", total))
+    arr = be.new_array("lep_port_info", total)
     rc = be.lib.lep_serial_list(arr, total, n)
     if rc < 0:
         raise error_for(be, rc, "listing serial ports")
@@ -482,3 +781,4 @@ def list_ports(backend: Optional[str] = None) -> List[Any]:
                             description=be.text(p.description), vid=int(p.vid),
                             pid=int(p.pid), likely_sensor=bool(p.likely_sensor)))
     return out
+

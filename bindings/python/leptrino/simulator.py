@@ -2,81 +2,141 @@
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import Any, Dict, List, Optional
 
+from . import _constants as K
 from ._backend import get_backend
 from .errors import LeptrinoError, error_for
 from .values import Rated, SimStats, copy_fields
 
-#: Options of lep_sim_options, by kind (names as in leptrino/sim.h).
-_STR_OPTIONS = ("model", "serial", "firmware", "replay_csv", "link")
-_BOOL_OPTIONS = ("output_rate_field", "constant", "start_streaming")
-_INT_OPTIONS = ("filter", "seed", "stall_ms", "reopen_after_ms")
-_FLOAT_OPTIONS = (
-    "rate_hz",
-    "amplitude",
-    "noise",
-    "overload_every_s",
-    "overload_duration_s",
-    "p_nak",
-    "p_corrupt",
-    "p_garbage",
-    "p_drop",
-    "stall_after_s",
-    "hangup_after_s",
-)
-OPTIONS = _STR_OPTIONS + _BOOL_OPTIONS + _INT_OPTIONS + _FLOAT_OPTIONS
+_TYPES = {
+    K.LEP_SIM_OPT_FLAG: "flag",
+    K.LEP_SIM_OPT_INT: "int",
+    K.LEP_SIM_OPT_UINT: "uint",
+    K.LEP_SIM_OPT_DOUBLE: "float",
+    K.LEP_SIM_OPT_STRING: "str",
+    K.LEP_SIM_OPT_CHOICE: "choice",
+}
+
+
+@dataclass(frozen=True)
+class SimOption:
+    """One row of the C table of the virtual sensor's options (lep_sim_option_at)."""
+
+    name: str  # as a Python keyword: "output_rate_field"
+    flag: str  # as on a command line, without the prefix: "output-rate-field"
+    type: str  # "flag", "int", "uint", "float", "str" or "choice"
+    arg: Optional[str]  # the argument's name for help ("HZ"); None for flags
+    help: str
+    default: Optional[str]  # the default as text; None when off or empty
+    min: float  # numbers: the range; str: the length in bytes
+    max: float
+    min_exclusive: bool
+
+    def describe(self) -> str:
+        """help, range and default in one line, as leptrino-sim prints them."""
+        text = self.help
+        if self.type in ("int", "uint", "float"):
+            lo = "(" if self.min_exclusive else "["
+            text += f" {lo}{self.min:g}, {self.max:g}]"
+        if self.default is not None:
+            text += f" (default {self.default})"
+        return text
+
+
+def _row(be: Any, info: Any) -> SimOption:
+    flag = be.text(info.name)
+    return SimOption(
+        name=flag.replace("-", "_"),
+        flag=flag,
+        type=_TYPES.get(int(info.type), str(int(info.type))),
+        arg=be.text(info.arg) or None,
+        help=be.text(info.help),
+        default=be.text(info.default_text) if be.text(info.default_text) else None,
+        min=float(info.min),
+        max=float(info.max),
+        min_exclusive=bool(info.min_exclusive),
+    )
+
+
+def sim_options(backend: Optional[str] = None) -> List[SimOption]:
+    """The virtual sensor's options, read from the C table every program uses."""
+    be = get_backend(backend)
+    lib = be.lib
+    return [_row(be, be.deref(lib.lep_sim_option_at(i)))
+            for i in range(int(lib.lep_sim_option_count()))]
+
+
+def _text(value: Any, is_flag: bool) -> str:
+    """A Python value as the text lep_sim_option_set parses. True/False are
+    "1"/"0" for a flag only; elsewhere they stay "True"/"False" (refused)."""
+    if is_flag and isinstance(value, bool):
+        return "1" if value else "0"
+    if isinstance(value, float):
+        return repr(value)
+    return str(value)
+
+
+def fill_options(be: Any, opts: Any, options: Dict[str, Any]) -> None:
+    """Set options (name -> value) in the lep_sim_options opts through the C
+    table: TypeError for an unknown name (listing the known ones), ValueError
+    with the library's message for a value leptrino-sim would refuse. A value
+    of None leaves the default."""
+    lib = be.lib
+    err = be.new_text(256)
+    for name, value in options.items():
+        if value is None:
+            continue
+        key = str(name).encode()
+        info = lib.lep_sim_option_find(key)
+        if not info:
+            known = ", ".join(o.name for o in sim_options(be))
+            raise TypeError(f"unknown virtual sensor option {name!r}; known: {known}")
+        is_flag = int(be.deref(info).type) == K.LEP_SIM_OPT_FLAG
+        rc = lib.lep_sim_option_set(opts, key, _text(value, is_flag).encode(), err, 256)
+        if rc < 0:
+            raise ValueError(be.text(err) or f"{name}={value!r}: not accepted")
 
 
 class Simulator:
     """A virtual Leptrino sensor on a pseudo-terminal, served by a C thread.
 
-        with leptrino.Simulator(model="CFS034CA301U", p_nak=0.1) as port:
+        with leptrino.Simulator(model="CFS034CA301U", nak=0.1) as port:
             with leptrino.Sensor(port) as sensor: ...
 
-    Options (see leptrino/sim.h; defaults are the library's):
-      model, serial, firmware, output_rate_field (38-byte product info),
-      rate_hz (1200), filter, seed, amplitude, noise, constant, replay_csv,
-      overload_every_s, overload_duration_s,
-      faults: p_nak, p_corrupt, p_garbage, p_drop (probabilities 0..1),
-      stall_ms with stall_after_s, hangup_after_s, reopen_after_ms (needs link),
-      start_streaming (a stream left running by an earlier program), link.
-    The virtual sensor starts in the constructor; stop() (or leaving the
-    with block) ends it.
+    Options are those of `leptrino-sim` (and the `--sim-*` options of the
+    `leptrino` tool), from the same C table: the name with underscores for
+    dashes (output_rate_field, overload_every, stall_after, ...; the C field
+    names rate_hz, p_nak, replay_csv... are accepted too), values checked by
+    the library exactly as leptrino-sim checks them. Simulator.options()
+    lists them with help, range and default. An unknown name is a
+    TypeError, a bad value a ValueError. The virtual sensor starts in the
+    constructor; stop() (or leaving the with block) ends it.
     """
 
     def __init__(self, *, backend: Optional[str] = None, **options: Any) -> None:
         self._be = be = get_backend(backend)
         self._sim: Any = None
-        unknown = sorted(set(options) - set(OPTIONS))
-        if unknown:
-            raise TypeError(
-                f"unknown Simulator option(s) {', '.join(unknown)}; "
-                f"known: {', '.join(OPTIONS)}"
-            )
         opts = be.new("lep_sim_options")
         be.lib.lep_sim_options_init(opts)
-        keep: List[Any] = []
-        for name, value in options.items():
-            if value is None:
-                continue
-            if name in _STR_OPTIONS:
-                setattr(opts, name, be.cstr(str(value), keep))
-            elif name in _BOOL_OPTIONS:
-                setattr(opts, name, bool(value))
-            elif name in _INT_OPTIONS:
-                setattr(opts, name, int(value))
-            else:
-                setattr(opts, name, float(value))
+        fill_options(be, opts, options)
         self.options: Dict[str, Any] = dict(options)
         out = be.new_handle("lep_sim")
         err = be.new_text(512)
         rc = be.lib.lep_sim_start(opts, out, err, 512)
         if rc < 0:
             msg = be.text(err)
+            if rc == K.LEP_E_ARG:
+                raise ValueError(msg or "bad virtual sensor options")
             raise error_for(be, rc, msg or "starting the virtual sensor", complete=bool(msg))
         self._sim = be.handle(out)
         self.port: str = be.text(be.lib.lep_sim_port(self._sim))
+
+    @staticmethod
+    def option_table(backend: Optional[str] = None) -> List[SimOption]:
+        """The options Simulator accepts, from the C table (see SimOption)."""
+        return sim_options(backend)
 
     def __enter__(self) -> str:
         return self.port

@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass, fields
-from typing import Any, NamedTuple, Optional, Tuple
+import json
+import os
+from dataclasses import dataclass, field, fields
+from typing import Any, Dict, List, NamedTuple, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -48,57 +50,145 @@ class ProductInfo:
         return "38-byte with output rate" if self.has_output_rate else "v1.13 (32-byte)"
 
 
-@dataclass(frozen=True)
-class Sample:
-    """One sample: host time, SI values (offset by the tare, if any), raw counts, status."""
+Six = Tuple[float, float, float, float, float, float]
 
-    t: float  # host arrival time, seconds of the monotonic clock
-    force: Vec3  # Fx, Fy, Fz [N]
-    torque: Vec3  # Mx, My, Mz [N·m]
-    raw: Raw6  # counts: ±10000 = ± rated
-    status: int  # status byte (LEP_STATUS_* bits)
-    calibration_error: bool  # status bit 0: calibration data in ROM corrupt
-    sensor_fault: bool  # status bit 1
-    overload: bool  # status bit 2: load beyond rating detected
-    seq: int  # the two reserved bytes; leptrino-sim puts a sequence number here
+
+class Sample:
+    """One sample, as the session delivered it.
+
+    t      arrival time, s of the monotonic clock (lep_monotonic_seconds)
+    t_utc  the same instant on the wall clock, s since 1970-01-01 UTC
+    si     Fx Fy Fz [N], Mx My Mz [N·m]: tare, low-pass, rotation applied
+    raw    counts as received (±10000 = ± rated)
+    zeroed raw minus the tare offsets, counts
+    status the sensor's status bits (LEP_STATUS_*)
+    flags  the session's flags (LEP_SF_*: gap before it, overload, taring, settling)
+    seq    the two reserved bytes (leptrino-sim's sequence number)
+    """
+
+    __slots__ = ("t", "t_utc", "si", "raw", "zeroed", "status", "flags", "seq")
+
+    def __init__(self, t: float, t_utc: float, si: Six, raw: Raw6, zeroed: Six, status: int,
+                 flags: int, seq: int) -> None:
+        self.t = t
+        self.t_utc = t_utc
+        self.si = si
+        self.raw = raw
+        self.zeroed = zeroed
+        self.status = status
+        self.flags = flags
+        self.seq = seq
 
     @property
-    def si(self) -> Tuple[float, float, float, float, float, float]:
-        f, m = self.force, self.torque
-        return (f[0], f[1], f[2], m[0], m[1], m[2])
+    def force(self) -> Vec3:
+        return self.si[:3]  # type: ignore[return-value,unused-ignore]
+
+    @property
+    def torque(self) -> Vec3:
+        return self.si[3:]  # type: ignore[return-value,unused-ignore]
+
+    @property
+    def calibration_error(self) -> bool:
+        """Status bit 0: calibration data in ROM corrupt."""
+        return bool(self.status & K.LEP_STATUS_CALIBRATION)
+
+    @property
+    def sensor_fault(self) -> bool:
+        """Status bit 1."""
+        return bool(self.status & K.LEP_STATUS_SENSOR_FAULT)
+
+    @property
+    def overload(self) -> bool:
+        """Overload status bit, or an axis at saturation (the session's flag)."""
+        return bool(self.flags & K.LEP_SF_OVERLOAD or self.status & K.LEP_STATUS_OVERLOAD)
+
+    @property
+    def gap(self) -> bool:
+        """A gap (lost samples, a stall, a reconnect) lies just before this sample."""
+        return bool(self.flags & K.LEP_SF_GAP)
+
+    @property
+    def taring(self) -> bool:
+        """A tare was averaging this sample (its zeroed values use the old offsets)."""
+        return bool(self.flags & K.LEP_SF_TARING)
 
     @property
     def ok(self) -> bool:
         """No status bit set."""
         return self.status & 0x07 == 0
 
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Sample):
+            return NotImplemented
+        return all(getattr(self, k) == getattr(other, k) for k in self.__slots__)
 
-def make_sample(t: float, si: Any, raw: Any, status: int, seq: int) -> Sample:
-    return Sample(
-        t=float(t),
-        force=(float(si[0]), float(si[1]), float(si[2])),
-        torque=(float(si[3]), float(si[4]), float(si[5])),
-        raw=tuple(int(v) for v in raw),  # type: ignore[arg-type]
-        status=int(status),
-        calibration_error=bool(status & K.LEP_STATUS_CALIBRATION),
-        sensor_fault=bool(status & K.LEP_STATUS_SENSOR_FAULT),
-        overload=bool(status & K.LEP_STATUS_OVERLOAD),
-        seq=int(seq),
-    )
+    def __repr__(self) -> str:
+        return ("Sample(" + ", ".join(f"{k}={getattr(self, k)!r}" for k in self.__slots__)
+                + ")")
+
+
+def handshake_sample(t: float, t_utc: float, si: Any, raw: Any, status: int, seq: int) -> Sample:
+    """A sample answered to the handshake command (not from the stream)."""
+    r = tuple(int(v) for v in raw)
+    return Sample(float(t), float(t_utc), tuple(float(v) for v in si),  # type: ignore[arg-type]
+                  r, tuple(float(v) for v in r), int(status), 0, int(seq))  # type: ignore[arg-type]
+
+
+EVENT_NAMES = {
+    K.LEP_EV_GAP: "gap",
+    K.LEP_EV_DISCONNECTED: "disconnected",
+    K.LEP_EV_RECONNECTED: "reconnected",
+    K.LEP_EV_TARE: "tare",
+    K.LEP_EV_OVERLOAD_BEGIN: "overload_begin",
+    K.LEP_EV_OVERLOAD_END: "overload_end",
+}
+
+
+@dataclass(frozen=True)
+class SessionEvent:
+    """Something the session noticed beside the data (lep_session_event)."""
+
+    type: str  # gap, disconnected, reconnected, tare, overload_begin, overload_end
+    sample: int  # index of the sample it applies to (samples delivered before it)
+    t: float  # monotonic s
+    t_utc: float
+    gap_from: float  # gap/reconnected: arrival of the last sample before (monotonic s)
+    gap_to: float  # ... and of the first after
+    lost: int  # gap: samples estimated lost
+    error: int  # disconnected: LEP_E_DISCONNECTED or LEP_E_TIMEOUT
+    axes: int  # overload: bit i = axis i saturated
+    status: int
+    tare: Six  # tare: the offsets now in force, counts
+
+    def as_dict(self) -> Dict[str, Any]:
+        return {f.name: getattr(self, f.name) for f in fields(self)}
 
 
 @dataclass
 class Recording:
-    """Samples recorded in one batch call, as numpy arrays of equal length n."""
+    """Samples of one session, as numpy arrays of equal length n, with the
+    events that came with them and the session's metadata."""
 
-    t: np.ndarray  # (n,) float64, host arrival time [s], monotonic clock
-    si: np.ndarray  # (n, 6) float64, Fx Fy Fz [N], Mx My Mz [N·m] (tare applied)
-    raw: np.ndarray  # (n, 6) int16 counts
+    t: np.ndarray  # (n,) float64, arrival time [s], monotonic clock
+    si: np.ndarray  # (n, 6) float64, Fx Fy Fz [N], Mx My Mz [N·m] (tare, filter, frame)
+    raw: np.ndarray  # (n, 6) int16 counts as received
     status: np.ndarray  # (n,) uint8 status bits
     seq: np.ndarray  # (n,) uint16 reserved bytes (leptrino-sim's sequence number)
+    t_utc: np.ndarray = field(default_factory=lambda: np.empty(0))  # (n,) s since 1970 UTC
+    zeroed: np.ndarray = field(default_factory=lambda: np.empty((0, 6)))  # (n, 6) counts - tare
+    flags: np.ndarray = field(default_factory=lambda: np.empty(0, np.uint8))  # (n,) LEP_SF_*
+    events: List[SessionEvent] = field(default_factory=list)
+    metadata_json: str = "{}"  # the session's metadata object, as the library wrote it
+    start_mono: float = 0.0  # monotonic s when the stream started (origin of t_s in files)
 
     def __len__(self) -> int:
         return int(self.t.shape[0])
+
+    @property
+    def metadata(self) -> Dict[str, Any]:
+        """Model, serial, firmware, rated values, filters, tare, frame, start
+        time, library version (lep_session_metadata_json)."""
+        return dict(json.loads(self.metadata_json or "{}"))
 
     @property
     def force(self) -> np.ndarray:
@@ -115,7 +205,16 @@ class Recording:
 
     @property
     def overload(self) -> np.ndarray:
-        return np.asarray((self.status & K.LEP_STATUS_OVERLOAD) != 0, dtype=bool)
+        """Overload status bit, or an axis at saturation."""
+        over = (self.status & K.LEP_STATUS_OVERLOAD) != 0
+        if self.flags.shape == self.status.shape:
+            over |= (self.flags & K.LEP_SF_OVERLOAD) != 0
+        return np.asarray(over, dtype=bool)
+
+    @property
+    def gap(self) -> np.ndarray:
+        """True where a gap lies just before the sample."""
+        return np.asarray((self.flags & K.LEP_SF_GAP) != 0, dtype=bool)
 
     def missing(self) -> int:
         """Samples lost between the first and the last, counted from the
@@ -132,6 +231,82 @@ class Recording:
         if n < 2 or self.t[-1] <= self.t[0]:
             return 0.0
         return float((n - 1) / (self.t[-1] - self.t[0]))
+
+    def cut(self, n: int) -> "Recording":
+        """The first n samples (and the events before them)."""
+        return Recording(self.t[:n], self.si[:n], self.raw[:n], self.status[:n], self.seq[:n],
+                         self.t_utc[:n], self.zeroed[:n], self.flags[:n],
+                         [e for e in self.events if e.sample <= n], self.metadata_json,
+                         self.start_mono)
+
+    def save(self, path: Any, *, format: Optional[str] = None,
+             columns: Sequence[str] = ("si", "status"), time: str = "rel",
+             overwrite: bool = False, backend: Optional[str] = None) -> None:
+        """Write the recording to path.
+
+        .csv / .jsonl (or format="csv"/"jsonl"): the `leptrino` tool's format,
+        written by the library's one writer (leptrino/output.h): the metadata
+        line, the header, the rows and the events, byte for byte as the tool
+        writes them. columns: any of "raw", "zeroed", "si", "status",
+        "flags", "seq" (the file keeps the library's column order); time:
+        "rel" (s since the stream started), "mono" or "utc". An existing file
+        is refused unless overwrite.
+        .npz (or format="npz"): every array, the events and the metadata
+        (Recording.load reads it back)."""
+        p = str(path)
+        fmt = format or ("npz" if p.endswith(".npz") else "jsonl" if p.endswith(".jsonl")
+                         else "csv" if p.endswith(".csv") else None)
+        if fmt == "npz":
+            if os.path.exists(p) and not overwrite:
+                raise FileExistsError(f"{p}: already exists (pass overwrite=True to replace it)")
+            save_npz(self, p)
+            return
+        if fmt not in ("csv", "jsonl"):
+            raise ValueError(f"{p}: give a name ending in .csv, .jsonl or .npz, or format=")
+        from .output import write_recording
+
+        write_recording(self, p, format=fmt, columns=columns, time=time, overwrite=overwrite,
+                        backend=backend)
+
+    @classmethod
+    def load(cls, path: Any) -> "Recording":
+        """Read a recording written by save(path) to .npz."""
+        with np.load(str(path), allow_pickle=False) as z:
+            meta = str(z["metadata"])
+            events = [SessionEvent(**{**e, "tare": tuple(e["tare"])})
+                      for e in json.loads(str(z["events"]))]
+            return cls(t=z["t"], si=z["si"], raw=z["raw"], status=z["status"], seq=z["seq"],
+                       t_utc=z["t_utc"], zeroed=z["zeroed"], flags=z["flags"], events=events,
+                       metadata_json=meta, start_mono=float(z["start_mono"]))
+
+
+def save_npz(rec: Recording, path: str) -> None:
+    with open(path, "wb") as f:
+        np.savez(f, t=rec.t, t_utc=rec.t_utc, si=rec.si, raw=rec.raw, zeroed=rec.zeroed,
+                 status=rec.status, flags=rec.flags, seq=rec.seq,
+                 events=np.array(json.dumps([e.as_dict() for e in rec.events])),
+                 metadata=np.array(rec.metadata_json), start_mono=np.array(rec.start_mono))
+
+
+@dataclass(frozen=True)
+class Health:
+    """How the stream is doing, since it started (lep_session_health)."""
+
+    elapsed_s: float  # from the first sample to the last
+    nominal_hz: float  # 1200, or the sensor's output-rate field
+    measured_hz: float  # samples received / elapsed
+    recent_hz: float  # over the last second or so
+    shortfall: bool  # measured below 98 % of nominal over at least 1 s
+    received: int
+    delivered: int
+    lost: int  # samples estimated lost in gaps
+    gaps: int
+    errors: int  # framing, BCC, invalid messages, timeouts
+    overloads: int  # overload episodes begun
+    disconnects: int
+    reconnects: int
+    max_gap_s: float
+    client: "ClientStats"  # the current connection's counters
 
 
 @dataclass(frozen=True)

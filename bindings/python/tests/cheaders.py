@@ -103,8 +103,13 @@ def _parse_body(body: str, env: Dict[str, int], counter: List[int]) -> List[Fiel
         decl = body[i:end].strip()
         i = end + 1
         if decl:
-            t, name = _split_decl(decl, env)
+            first, *more = [d.strip() for d in decl.split(",")] if "(" not in decl else [decl]
+            t, name = _split_decl(first, env)
             fields.append((name, t))
+            base = first[:first.rindex(name)].rstrip("* ")  # "double min, max"
+            for d in more:
+                t, name = _split_decl(f"{base} {d}", env)
+                fields.append((name, t))
     return fields
 
 

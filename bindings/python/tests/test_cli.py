@@ -1,129 +1,103 @@
-"""python -m leptrino: info, stream, plot, and its exit codes."""
+"""python -m leptrino: the bundled `leptrino` tool, plus plot in Python; the
+console-script launchers."""
 
 from __future__ import annotations
 
-import json
 import os
-import signal
 import subprocess
 import sys
-import time
 from pathlib import Path
-from typing import Any, Dict, List
 
 import pytest
 
 from conftest import subprocess_env
+from leptrino import _tools
 
 
-def run(backend: str, *args: str, timeout: float = 60) -> subprocess.CompletedProcess:
-    env = subprocess_env(LEPTRINO_BACKEND=backend)
+def run(backend: str, *args: str, timeout: float = 60, **env: str) -> subprocess.CompletedProcess:
+    e = subprocess_env(LEPTRINO_BACKEND=backend, **env)
     return subprocess.run([sys.executable, "-m", "leptrino", *args], capture_output=True,
-                          text=True, timeout=timeout, env=env)
+                          text=True, timeout=timeout, env=e)
 
 
-def test_info(backend: str) -> None:
-    r = run(backend, "info", "--sim", "--sim-model", "CFS034CA301U", "--sim-output-rate-field")
+def tool(name: str, *args: str) -> subprocess.CompletedProcess:
+    return subprocess.run([str(_tools.program_path(name)), *args], capture_output=True,
+                          text=True, timeout=60)
+
+
+def test_commands_are_the_c_tool(backend: str) -> None:
+    for args in (("--version",), ("info", "--sim", "--sim-model", "CFS034CA301U"),
+                 ("info",), ("info", "--sim", "--sim-amplitude", "9"),
+                 ("read", "--sim", "-n", "2")):
+        py, c = run(backend, *args), tool("leptrino", *args)
+        assert py.returncode == c.returncode, (args, py.stderr, c.stderr)
+        if args[0] != "read":  # read prints the host time of each sample
+            assert py.stdout == c.stdout, args
+    assert "CFS034CA301U" in run(backend, "info", "--sim", "--sim-model",
+                                 "CFS034CA301U").stdout
+    r = run(backend, "--help")
+    assert r.returncode == 0 and "plot" in r.stderr
+
+
+def test_stream_rows_from_the_c_tool(backend: str) -> None:
+    r = run(backend, "stream", "--sim", "-c", "50")
     assert r.returncode == 0, r.stderr
-    lines = dict(line.split(":", 1) for line in r.stdout.splitlines())
-    assert lines["model"].strip() == "CFS034CA301U"
-    assert lines["output rate"].strip() == "1200 Hz"
-    assert "Fz 300 N" in lines["rated"] and "Mz 4 N m" in lines["rated"]
-    assert lines["filter"].strip() == "0 (off)"
+    rows = [ln for ln in r.stdout.splitlines() if ln and not ln.startswith("#")]
+    assert len(rows) == 51 and rows[0].startswith("t")
 
 
-def test_stream_csv_and_jsonl(backend: str, tmp_path: Path) -> None:
-    r = run(backend, "stream", "--sim", "--duration", "1")
-    assert r.returncode == 0, r.stderr
-    rows = r.stdout.splitlines()
-    assert rows[0] == "t,fx,fy,fz,mx,my,mz,status"
-    assert 1200 * 0.98 <= len(rows) - 1 <= 1200 * 1.02
-    assert all(len(row.split(",")) == 8 for row in rows[1:])
-    t = [float(row.split(",")[0]) for row in rows[1:]]
-    assert t == sorted(t) and t[-1] < 1.05
-    assert "samples" in r.stderr
-
-    out = tmp_path / "s.jsonl"
-    r = run(backend, "stream", "--sim", "-c", "250", "-f", "jsonl", "-u", "raw", "-o", str(out))
-    assert r.returncode == 0, r.stderr
-    objs: List[Dict[str, Any]] = [json.loads(x) for x in out.read_text().splitlines()]
-    assert len(objs) == 250
-    assert set(objs[0]) == {"t", "fx", "fy", "fz", "mx", "my", "mz", "status"}
-    assert all(isinstance(o["fx"], int) for o in objs)
+def test_missing_program_says_how_to_get_it(backend: str, tmp_path: Path) -> None:
+    r = run(backend, "info", "--sim", LEPTRINO_CLI=str(tmp_path / "nope"))
+    assert r.returncode == 1
+    assert "the leptrino program is not here" in r.stderr and "LEPTRINO_CLI" in r.stderr
+    with pytest.raises(ValueError):
+        _tools.program_path("rm")
 
 
-def test_stream_tare(backend: str) -> None:
-    r = run(backend, "stream", "--sim", "--sim-constant", "--sim-amplitude", "0.4",
-            "--tare", "50", "-c", "100")
-    assert r.returncode == 0, r.stderr
-    vals = [[float(v) for v in row.split(",")[1:7]] for row in r.stdout.splitlines()[1:]]
-    assert len(vals) == 100
-    assert max(abs(v) for row in vals for v in row) < 1e-6
-
-
-def test_stream_sigint_exits_0(backend: str) -> None:
-    env = subprocess_env(LEPTRINO_BACKEND=backend)
-    p = subprocess.Popen([sys.executable, "-m", "leptrino", "stream", "--sim"],
-                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
-    try:
-        assert p.stdout is not None
-        assert p.stdout.readline().startswith("t,fx")
-        time.sleep(0.5)
-        p.send_signal(signal.SIGINT)
-        out, err = p.communicate(timeout=20)
-    finally:
-        p.kill() if p.poll() is None else None
-    assert p.returncode == 0, err
-    assert "samples" in err
-
-
-def test_stream_sigterm_writes_every_sample_received(backend: str) -> None:
-    # The batch in flight when the signal comes is written, not dropped: every
-    # sample received is a row. Only the few data messages still on the line
-    # before the stop's answer are discarded (lep_client_stop's contract).
-    import leptrino
-
-    env = subprocess_env(LEPTRINO_BACKEND=backend)
-    sim = leptrino.Simulator(backend=backend)
-    with sim as port:
-        p = subprocess.Popen([sys.executable, "-m", "leptrino", "stream", port],
-                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                             env=env)
-        try:
-            assert p.stdout is not None
-            assert p.stdout.readline().startswith("t,fx")
-            time.sleep(0.45)
-            p.send_signal(signal.SIGTERM)
-            out, err = p.communicate(timeout=20)
-        finally:
-            p.kill() if p.poll() is None else None
-        sent = sim.stats.samples_sent  # the stream was stopped before the exit
-    assert p.returncode == 0, err
-    rows = out.splitlines()
-    assert len(rows) >= 100
-    assert sent - 10 <= len(rows) <= sent, (len(rows), sent, err)
-    assert f"{len(rows)} samples" in err
-
-
-def test_exit_codes(backend: str, tmp_path: Path) -> None:
-    assert run(backend, "info").returncode == 2
-    assert run(backend, "stream", "--sim", "--count", "0").returncode == 2
-    assert run(backend, "info", "--sim", "--bogus").returncode == 2
-    assert run(backend, "info", "/dev/x", "--sim-nak", "0.5").returncode == 2
-    r = run(backend, "info", str(tmp_path / "missing"))
-    assert r.returncode == 6 and "missing" in r.stderr
-    r = run(backend, "info", "--sim", "--sim-nak", "1")
-    assert r.returncode == 5, r.stderr
-    r = run(backend, "stream", "--sim", "--sim-hangup-after", "0.3")
-    assert r.returncode == 4, r.stderr
-    r = run(backend, "--version")
-    assert r.returncode == 0 and backend in r.stdout
+def test_console_script_launchers(tmp_path: Path) -> None:
+    for func, name in ((_tools.leptrino, "leptrino"), (_tools.leptrino_sim, "leptrino-sim")):
+        code = (f"import sys; sys.argv = ['{name}', '--help']; "
+                f"from leptrino._tools import {func.__name__}; {func.__name__}()")
+        r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                           env=subprocess_env(), timeout=60)
+        assert r.returncode == 0 and name in (r.stdout + r.stderr), r.stderr
 
 
 def test_plot(backend: str, tmp_path: Path) -> None:
     pytest.importorskip("matplotlib")
     png = tmp_path / "forces.png"
-    r = run(backend, "plot", "--sim", "--seconds", "1", "-o", str(png))
+    r = run(backend, "plot", "--sim", "--seconds", "1", "--sim-model", "CFS018CA201U",
+            "--sim-constant", "--tare", "20", "-o", str(png))
     assert r.returncode == 0, r.stderr
+    assert "CFS" not in r.stderr
     data = png.read_bytes()
     assert data[:8] == b"\x89PNG\r\n\x1a\n" and len(data) > 10000
+
+
+def test_plot_sim_options_from_the_table(backend: str, tmp_path: Path) -> None:
+    r = run(backend, "plot", "--help")
+    assert r.returncode == 0
+    import leptrino
+
+    for o in leptrino.Simulator.option_table(backend=backend):
+        assert f"--sim-{o.flag}" in r.stdout
+    png = str(tmp_path / "x.png")
+    r = run(backend, "plot", "--sim", "--sim-amplitude", "5", "-o", png)
+    assert r.returncode == 2 and "amplitude '5'" in r.stderr, r.stderr
+    r = run(backend, "plot", "/dev/x", "--sim-nak", "0.5", "-o", png)
+    assert r.returncode == 2 and "need --sim" in r.stderr
+    r = run(backend, "plot", str(tmp_path / "missing"), "-o", png)
+    assert r.returncode == 6 and "missing" in r.stderr
+    assert not os.path.exists(png)
+
+
+def test_plot_without_matplotlib_names_the_package(backend: str, tmp_path: Path) -> None:
+    blocker = tmp_path / "matplotlib"
+    blocker.mkdir()
+    (blocker / "__init__.py").write_text("raise ImportError('blocked for the test')\n")
+    env = subprocess_env(LEPTRINO_BACKEND=backend)
+    env["PYTHONPATH"] = str(tmp_path) + os.pathsep + env["PYTHONPATH"]
+    r = subprocess.run([sys.executable, "-m", "leptrino", "plot", "--sim", "-o",
+                        str(tmp_path / "x.png")], capture_output=True, text=True, env=env,
+                       timeout=60)
+    assert r.returncode == 1 and "pip install matplotlib" in r.stderr

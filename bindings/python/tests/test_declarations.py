@@ -308,3 +308,27 @@ def test_client_size_covers_the_header_layout(backend: str) -> None:
     be = leptrino.get_backend(backend)
     size = int(be.lib.lep_client_size())
     assert 200 <= size <= 4096
+
+
+def test_session_and_output_are_fully_declared(headers: cheaders.Headers) -> None:
+    """Every function and structure of session.h and output.h (what Sensor and
+    Recording.save use) is declared by both backends, and so checked above."""
+    import re
+
+    from conftest import ROOT
+
+    assert ROOT is not None
+    for header in ("session.h", "output.h", "sim.h"):
+        text = (ROOT / "include" / "leptrino" / header).read_text(encoding="utf-8")
+        funcs = set(re.findall(r"\bLEP_API\b[^;(]*?\b(lep_\w+)\s*\(", text))
+        structs = set(re.findall(r"\btypedef\s+struct\s+\w+\s*\{.*?\}\s*(\w+)\s*;", text, re.S))
+        assert funcs and funcs <= set(ct.FUNCTIONS), (header, funcs - set(ct.FUNCTIONS))
+        assert structs <= set(ct.STRUCTS), (header, structs - set(ct.STRUCTS))
+        try:
+            from leptrino._cdef import CDEF
+        except ImportError:  # pragma: no cover
+            continue
+        for name in funcs:
+            assert re.search(rf"\b{name}\s*\(", CDEF), name
+        for name in structs:
+            assert re.search(rf"\}}\s*{name}\s*;", CDEF), name

@@ -1,0 +1,223 @@
+"""Sensor over the library's session: tare mid-stream, low-pass, frame,
+health, metadata, events, and recordings saved through the C writer."""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import leptrino
+from leptrino import _constants as K
+
+
+def test_session_runs_its_own_virtual_sensor(backend: str) -> None:
+    with leptrino.Sensor(sim={"model": "CFS034CA301U", "output_rate_field": True},
+                         backend=backend) as s:
+        assert s.product_info.model == "CFS034CA301U" and s.product_info.output_rate_hz == 1200
+        meta = s.metadata
+        assert meta["model"] == "CFS034CA301U" and meta["sim"] is True
+        assert meta["library_version"] == leptrino.__version__
+        assert meta["rated"]["fz_N"] == 300
+        rec = s.record(count=300)
+        assert len(rec) == 300 and rec.missing() == 0
+    with pytest.raises(ValueError, match="amplitude"):
+        leptrino.Sensor(sim={"amplitude": 5}, backend=backend)
+    with pytest.raises(TypeError, match="no_such"):
+        leptrino.Sensor(sim={"no_such": 1}, backend=backend)
+    with pytest.raises(ValueError):
+        leptrino.Sensor(backend=backend)  # neither a port nor sim
+
+
+def test_tare_mid_stream_never_stalls(backend: str) -> None:
+    with leptrino.Sensor(sim={"constant": True, "amplitude": 0.25}, backend=backend) as s:
+        with s.stream(count=900) as st:
+            samples = []
+            for x in st:
+                samples.append(x)
+                if len(samples) == 200:
+                    assert s.tare(100) is None  # streaming: runs beside the stream
+                    assert s.taring
+        assert not s.streaming
+        seqs = [x.seq for x in samples]
+        assert seqs == list(range(seqs[0], seqs[0] + 900))  # nothing lost, no stall
+        taring = [i for i, x in enumerate(samples) if x.taring]
+        assert len(taring) == 100 and taring[0] >= 200
+        assert all(x.zeroed == tuple(float(v) for v in x.raw) for x in samples[:taring[-1] + 1])
+        after = samples[taring[-1] + 1:]
+        assert len(after) > 500
+        assert all(max(abs(v) for v in x.si) < 1e-9 for x in after)
+        assert all(x.zeroed == (0.0,) * 6 for x in after)
+        tares = [e for e in st.events if e.type == "tare"]
+        assert len(tares) == 1 and tares[0].tare == (2500.0,) * 6
+        assert tares[0].sample == taring[-1] + 1
+        assert s.tare_offsets == (2500.0,) * 6
+
+
+def test_tare_over_seconds_and_untare(backend: str) -> None:
+    with leptrino.Sensor(sim={"constant": True, "amplitude": 0.1}, backend=backend) as s:
+        assert s.tare(seconds=0.1) == (1000.0,) * 6
+        s.untare()
+        rec = s.record(count=50)
+        assert np.all(rec.zeroed == 1000.0)
+        # the tare's event (held since tare() read the stream), then the untare's
+        assert [e.type for e in rec.events] == ["tare", "tare"]
+        assert rec.events[0].tare == (1000.0,) * 6 and rec.events[1].tare == (0.0,) * 6
+
+
+def test_lowpass_and_decimate(backend: str) -> None:
+    with leptrino.Sensor(sim={"seed": 3}, lowpass=50.0, decimate=4, backend=backend) as s:
+        assert s.lowpass == 50.0
+        meta = s.metadata
+        assert meta["host_lowpass_hz"] == 50 and meta["host_lowpass"] and meta["decimate"] == 4
+        rec = s.record(seconds=1.0)
+        assert 300 * 0.95 <= len(rec) <= 300 * 1.05, len(rec)
+        assert np.all(np.mod(np.diff(rec.seq.astype(np.int64)), 65536) == 4)
+        s.lowpass = 0
+        assert s.lowpass == 0.0
+        with pytest.raises(ValueError, match="low-pass"):
+            s.lowpass = 10000.0
+    with leptrino.Sensor(sim={"seed": 3}, backend=backend) as raw_s:
+        raw = raw_s.record(count=1200)
+    with leptrino.Sensor(sim={"seed": 3}, lowpass=20.0, backend=backend) as f_s:
+        filt = f_s.record(count=1200)
+    # the same waveform, smoothed: far less sample-to-sample noise
+    assert np.array_equal(raw.raw, filt.raw)
+    assert np.std(np.diff(filt.si[600:, 0])) < 0.2 * np.std(np.diff(raw.si[600:, 0]))
+
+
+def test_rotation_and_shift(backend: str) -> None:
+    with leptrino.Sensor(sim={"constant": True, "amplitude": 0.3},
+                         rotation=(0.0, 0.0, math.pi / 2), backend=backend) as s:
+        r = s.rotation
+        assert np.allclose(r, [[0, -1, 0], [1, 0, 0], [0, 0, 1]], atol=1e-12)
+        rec = s.record(count=20)
+        f = rec.raw[0, :3] * np.array(s.rated.force) / 10000
+        m = rec.raw[0, 3:] * np.array(s.rated.torque) / 10000
+        assert np.allclose(rec.force, r @ f) and np.allclose(rec.torque, r @ m)
+        s.set_frame(np.eye(3), shift=(0.0, 0.0, 0.1))
+        assert s.shift == (0.0, 0.0, 0.1)
+        rec = s.record(count=20)
+        shifted = m - np.cross((0.0, 0.0, 0.1), f)
+        assert np.allclose(rec.force, f) and np.allclose(rec.torque, shifted)
+        with pytest.raises(ValueError):
+            s.set_frame((1.0, 2.0))
+
+
+def test_health_and_gaps(backend: str) -> None:
+    with leptrino.Sensor(sim={"drop": 0.02, "seed": 5}, backend=backend) as s:
+        rec = s.record(seconds=1.0)
+        h = s.health
+        assert h.nominal_hz == 1200
+        assert 1100 < h.measured_hz < 1300
+        assert h.received >= len(rec) and h.delivered >= len(rec)
+        gaps = [e for e in rec.events if e.type == "gap"]
+        assert gaps and rec.gap.sum() == len(gaps)
+        assert sum(e.lost for e in gaps) == rec.missing()
+        assert h.gaps >= len(gaps) and h.lost >= rec.missing()
+        assert h.client.samples >= len(rec)
+
+
+def test_disconnect_is_an_event_and_an_error(backend: str) -> None:
+    with leptrino.Sensor(sim={"hangup_after": 0.3}, backend=backend) as s:
+        with pytest.raises(leptrino.DisconnectedError) as info:
+            s.record(seconds=5.0)
+        partial = info.value.recording  # type: ignore[attr-defined]
+        assert len(partial) > 100 and partial.missing() == 0
+
+
+def test_reconnect_marks_the_gap(backend: str) -> None:
+    with leptrino.Sensor(sim={"hangup_after": 0.3, "reopen_after": 300}, reconnect=True,
+                         backend=backend) as s:
+        rec = s.record(seconds=2.0)
+        kinds = [e.type for e in rec.events]
+        assert "disconnected" in kinds and "reconnected" in kinds
+        assert rec.gap.any()
+        assert s.health.reconnects == 1
+
+
+def _csv_rows(path: Path) -> tuple:
+    text = path.read_text()
+    lines = text.splitlines()
+    comments = [ln for ln in lines if ln.startswith("#")]
+    body = [ln for ln in lines if not ln.startswith("#")]
+    rows = list(csv.reader(io.StringIO("\n".join(body))))
+    return comments, rows[0], rows[1:]
+
+
+def test_save_csv_through_the_c_writer(backend: str, tmp_path: Path) -> None:
+    with leptrino.Sensor(sim={"seed": 9}, backend=backend) as s:
+        rec = s.record(count=200)
+        s.tare(50, wait=False)
+        rec2 = s.record(count=120)
+        meta_json = s.metadata_json()
+    path = tmp_path / "r.csv"
+    rec.save(path)
+    comments, header, rows = _csv_rows(path)
+    assert comments[0] == "# leptrino-metadata: " + rec.metadata_json
+    assert json.loads(rec.metadata_json)["serial"] == "00000001"
+    assert header == ["t_s", "fx_N", "fy_N", "fz_N", "mx_Nm", "my_Nm", "mz_Nm", "status"]
+    assert len(rows) == 200
+    for i in (0, 77, 199):
+        assert rows[i][0] == f"{rec.t[i] - rec.start_mono:.6f}"
+        assert rows[i][1:7] == [f"{v:.6f}" for v in rec.si[i]]
+        assert rows[i][7] == str(rec.status[i])
+    with pytest.raises(FileExistsError):
+        rec.save(path)  # never over someone's file
+    rec.save(path, overwrite=True)
+
+    every = tmp_path / "all.csv"
+    rec2.save(every, columns=("raw", "zeroed", "si", "status", "flags", "seq"), time="mono")
+    comments, header, rows = _csv_rows(every)
+    assert header[:8] == ["t_mono_s", "fx_counts", "fy_counts", "fz_counts", "mx_counts",
+                          "my_counts", "mz_counts", "fx_zeroed_counts"]
+    assert header[-3:] == ["status", "flags", "seq"]
+    assert len(rows) == 120
+    assert any(c.startswith("# tare ") for c in comments)  # the event, in place
+    assert [int(r[-1]) for r in rows] == [int(v) for v in rec2.seq]
+    assert [int(r[-2]) for r in rows] == [int(v) for v in rec2.flags]
+    assert json.loads(comments[0].split(": ", 1)[1])["model"] == json.loads(meta_json)["model"]
+
+    jl = tmp_path / "r.jsonl"
+    rec.save(jl)
+    objs = [json.loads(line) for line in jl.read_text().splitlines()]
+    assert objs[0] == {"metadata": json.loads(rec.metadata_json)}
+    assert len(objs) == 201 and objs[1]["fx_N"] == pytest.approx(rec.si[0, 0], abs=1e-6)
+    with pytest.raises(ValueError, match="column"):
+        rec.save(tmp_path / "x.csv", columns=("bogus",))
+    with pytest.raises(ValueError):
+        rec.save(tmp_path / "x.txt")
+
+
+def test_save_npz_round_trip(backend: str, tmp_path: Path) -> None:
+    with leptrino.Sensor(sim={"constant": True}, backend=backend) as s:
+        s.tare(10, wait=False)
+        rec = s.record(count=100)
+    path = tmp_path / "r.npz"
+    rec.save(path)
+    back = leptrino.Recording.load(path)
+    for name in ("t", "t_utc", "si", "raw", "zeroed", "status", "flags", "seq"):
+        assert np.array_equal(getattr(back, name), getattr(rec, name)), name
+        assert getattr(back, name).dtype == getattr(rec, name).dtype
+    assert back.events == rec.events and back.metadata == rec.metadata
+    assert back.start_mono == rec.start_mono
+    with pytest.raises(FileExistsError):
+        rec.save(path)
+
+
+def test_record_arrays_come_from_the_session(backend: str) -> None:
+    with leptrino.Sensor(sim={}, backend=backend) as s:
+        rec = s.record(count=400)
+    assert rec.t_utc.shape == (400,) and rec.zeroed.shape == (400, 6)
+    assert rec.flags.dtype == np.uint8 and rec.zeroed.dtype == np.float64
+    assert np.all(np.diff(rec.t) >= 0)
+    # the wall clock moves with the monotonic one
+    assert np.allclose(rec.t_utc - rec.t, (rec.t_utc - rec.t)[0], atol=0.05)
+    assert rec.metadata["start_utc"] > 1.6e9
+    assert 0 <= rec.t[0] - rec.start_mono < 1.0
+    assert not (rec.flags & K.LEP_SF_TARING).any()
