@@ -182,6 +182,33 @@ def test_split_one_file_per_sensor_jsonl(tmp_path: Path) -> None:
         assert "sensor" not in rows[0]
 
 
+def test_replay_of_own_raw_recording_gives_the_same_counts(tmp_path: Path) -> None:
+    rec = tmp_path / "rec.csv"
+    r = run(["stream", "--sim", "--sim-seed", "5", "--count", "600", "--columns", "raw,seq",
+             "-o", str(rec)])
+    assert r.returncode == 0, r.stderr
+    original = Csv(rec.read_text())
+    seq = original.column("seq")
+    assert all(b - a == 1 for a, b in zip(seq, seq[1:]))  # a recording with no loss
+    r = run(["stream", "--sim", "--sim-replay", str(rec), "--count", "600", "--columns", "raw"])
+    assert r.returncode == 0, r.stderr
+    replayed = Csv(r.stdout)
+    assert [[row[a] for a in RAW] for row in replayed.rows] == \
+        [[row[a] for a in RAW] for row in original.rows]
+
+
+def test_replay_of_a_two_sensor_recording_takes_the_first(tmp_path: Path) -> None:
+    rec = tmp_path / "two.csv"
+    r = run(["stream", "--sim", "--sim-seed", "8", "--sim", "--sim-seed", "9", "--count", "300",
+             "--columns", "raw,status", "-o", str(rec)])
+    assert r.returncode == 0, r.stderr
+    first = [row for row in Csv(rec.read_text()).rows if row["sensor"] == "sim1"]
+    r = run(["stream", "--sim", "--sim-replay", str(rec), "--count", "300", "--columns", "raw"])
+    assert r.returncode == 0, r.stderr
+    assert [[row[a] for a in RAW] for row in Csv(r.stdout).rows] == \
+        [[row[a] for a in RAW] for row in first]
+
+
 def test_sim_option_ranges_come_from_the_simulator() -> None:
     # leptrino-sim accepts an amplitude up to 4 x rated: so does --sim-amplitude.
     r = run(["stream", "--sim", "--sim-amplitude", "3.5", "--count", "5"])
