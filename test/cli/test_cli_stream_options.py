@@ -235,3 +235,27 @@ def test_two_ports_and_a_virtual_sensor_split_by_name(tmp_path: Path) -> None:
     finally:
         a.close()
         b.close()
+
+
+def test_data_timeout_ends_with_exit_3_and_keeps_the_rows(tmp_path: Path) -> None:
+    out = tmp_path / "t.csv"
+    r = run(["stream", "--sim", "--sim-stall", "4000", "--sim-stall-after", "0.5",
+             "--data-timeout", "1", "-o", str(out)], timeout=60)
+    assert r.returncode == 3, r.stderr
+    assert "timed out" in r.stderr or "timeout" in r.stderr
+    csv = Csv(out.read_text())
+    assert len(csv.rows) > 300
+    assert [e["reason"] for e in csv.events("disconnected")] == ["no-data"], csv.comments
+
+
+def test_stall_longer_than_data_timeout_with_reconnect_resumes(tmp_path: Path) -> None:
+    out = tmp_path / "r.csv"
+    r = run(["stream", "--sim", "--sim-stall", "1500", "--sim-stall-after", "0.5",
+             "--data-timeout", "0.5", "--reconnect", "--duration", "3.5", "-o", str(out)],
+            timeout=60)
+    assert r.returncode == 0, r.stderr
+    assert "no data" in r.stderr and "resumed" in r.stderr
+    csv = Csv(out.read_text())
+    gaps = csv.events("gap")
+    assert len(gaps) == 1 and gaps[0]["reason"] == "no-data", csv.comments
+    assert float(gaps[0]["to"]) - float(gaps[0]["from"]) > 1.0

@@ -239,6 +239,7 @@ int cli_exit_code(int err)
         return CLI_OK;
     case LEP_E_TIMEOUT:
     case LEP_E_NO_SYNC:
+    case LEP_E_STALLED:
         return CLI_TIMEOUT;
     case LEP_E_DISCONNECTED:
         return CLI_DISCONNECTED;
