@@ -97,7 +97,7 @@ class Sensor:
         sim: Union[bool, Mapping[str, Any], None] = None,
         retries: int = K.LEP_CLIENT_DEFAULT_RETRIES,
         quiet: float = 0.03,
-        latency: float = 0.02,
+        latency: float = 0.05,
         tare: int = 0,
         lowpass: float = 0.0,
         decimate: int = 1,
