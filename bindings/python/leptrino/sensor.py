@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import json
 import math
+from dataclasses import replace
 import time
 import warnings
 from typing import Any, Dict, Iterator, List, Mapping, Optional, Sequence, Tuple, Union
@@ -180,6 +181,7 @@ class Sensor:
         self._ev = be.new("lep_session_event")
         self._offsets = be.doubles(K.LEP_AXES)
         self.events: List[SessionEvent] = []  # events not yet handed out with data
+        self._delivered = 0
         self._decimate = int(decimate)
 
     # -- life cycle ----------------------------------------------------------
@@ -259,12 +261,13 @@ class Sensor:
         return [float(x) for x in a]
 
     def _drain_events(self, base: int = 0) -> List[SessionEvent]:
+        """The queued events, .sample counted from the stream's sample base."""
         be, ev, s = self._be, self._ev, self._s
         out: List[SessionEvent] = []
         while s is not None and be.lib.lep_session_next_event(s, ev):
             out.append(SessionEvent(
                 type=EVENT_NAMES.get(int(ev.type), str(int(ev.type))),
-                sample=int(ev.sample), t=float(ev.t_mono), t_utc=float(ev.t_utc),
+                sample=max(0, int(ev.sample) - base), t=float(ev.t_mono), t_utc=float(ev.t_utc),
                 gap_from=float(ev.gap_from), gap_to=float(ev.gap_to), lost=int(ev.lost),
                 error=int(ev.error), axes=int(ev.axes), status=int(ev.status),
                 tare=tuple(float(ev.tare[i]) for i in range(K.LEP_AXES)),  # type: ignore[arg-type]
@@ -382,13 +385,14 @@ class Sensor:
             return None
         started = False
         if not streaming:
-            self._check(lib.lep_session_start(s), K.LEP_CMD_START)
+            self.start()
             started = True
         try:
             arrays = _Arrays(self._be, _ITER_BATCH)
             while lib.lep_session_taring(s):
                 arrays.c.n = 0
                 rc = lib.lep_session_read(s, arrays.c, self._timeout_ms)
+                self._delivered += arrays.n
                 if rc < 0 and rc != K.LEP_E_END:
                     self._check(rc, None, f"{self.port}: tare")
                 self.events += self._drain_events()
@@ -482,6 +486,7 @@ class Sensor:
     def start(self) -> None:
         """Start the stream (stream(), record() and tare() do it themselves)."""
         self._check(self._be.lib.lep_session_start(self._live()), K.LEP_CMD_START)
+        self._delivered = 0  # samples read since the start: the events' .sample base
 
     def stop(self) -> None:
         """Stop the stream; samples received and not yet read are dropped."""
@@ -523,9 +528,11 @@ class Sensor:
         arrays = _Arrays(be, cap)
         events, self.events = self.events, []
         started = False
+        events = [replace(e, sample=0) for e in events]  # from before: at its start
         if not lib.lep_session_streaming(s):
-            self._check(lib.lep_session_start(s), K.LEP_CMD_START)
+            self.start()
             started = True
+        base = self._delivered
         try:
             now = float(lib.lep_monotonic_seconds())
             end = now + seconds if seconds is not None else math.inf
@@ -546,7 +553,8 @@ class Sensor:
                 arrays.reserve(n + room)
                 arrays.c.cap = n + room
                 rc = lib.lep_session_read(s, arrays.c, max(1, int(wait_s * 1000)))
-                events += self._drain_events()
+                self._delivered += arrays.n - n
+                events += self._drain_events(base)
                 now = float(lib.lep_monotonic_seconds())
                 if arrays.n > n:
                     last_data = now
@@ -661,6 +669,7 @@ class Stream:
         self._end: Optional[float] = None
         self._arrays = _Arrays(sensor._be, _ITER_BATCH)
         self._pending: Iterator[Sample] = iter(())
+        self._base = 0
         self.events: List[SessionEvent] = []
 
     def __enter__(self) -> "Stream":
@@ -679,6 +688,7 @@ class Stream:
             s.start()
             self._started = True
         self._open = True
+        self._base = s._delivered
         if self._seconds is not None:
             self._end = float(lib.lep_monotonic_seconds()) + self._seconds
 
@@ -729,7 +739,8 @@ class Stream:
                     raise StopIteration
                 wait = max(1, min(wait, int(math.ceil(left * 1000))))
             rc = lib.lep_session_read(s._live(), a.c, wait)
-            self.events += s._drain_events()
+            s._delivered += a.n
+            self.events += s._drain_events(self._base)
             n = a.n
             if n:
                 break

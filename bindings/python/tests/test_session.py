@@ -178,7 +178,11 @@ def test_save_csv_through_the_c_writer(backend: str, tmp_path: Path) -> None:
                           "my_counts", "mz_counts", "fx_zeroed_counts"]
     assert header[-3:] == ["status", "flags", "seq"]
     assert len(rows) == 120
-    assert any(c.startswith("# tare ") for c in comments)  # the event, in place
+    # the tare's event sits where the new offsets start: after the last taring row
+    lines = [ln for ln in every.read_text().splitlines()[2:]]
+    at = next(i for i, ln in enumerate(lines) if ln.startswith("# tare "))
+    assert int(lines[at - 1].split(",")[-2]) & K.LEP_SF_TARING
+    assert not int(lines[at + 1].split(",")[-2]) & K.LEP_SF_TARING
     assert [int(r[-1]) for r in rows] == [int(v) for v in rec2.seq]
     assert [int(r[-2]) for r in rows] == [int(v) for v in rec2.flags]
     assert json.loads(comments[0].split(": ", 1)[1])["model"] == json.loads(meta_json)["model"]
