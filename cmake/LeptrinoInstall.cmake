@@ -46,37 +46,42 @@ configure_file(pkgconfig/leptrino.pc.in ${PROJECT_BINARY_DIR}/leptrino.pc @ONLY)
 install(FILES ${PROJECT_BINARY_DIR}/leptrino.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
 
 # The license, as Debian wants it (share/doc/leptrino/copyright, machine-readable
-# format), made from LICENSE so that the text lives in one file.
-file(STRINGS ${PROJECT_SOURCE_DIR}/LICENSE _lep_license_lines)
-set(LEPTRINO_DEB_LICENSE_TEXT "")
-set(_lep_in_text OFF)
-foreach(_line IN LISTS _lep_license_lines)
-  if(_line MATCHES "^Permission is hereby granted")
-    set(_lep_in_text ON)
-  endif()
-  if(_lep_in_text)
-    if(_line STREQUAL "")
+# format), made from LICENSE so that the text lives in one file. (A partial copy
+# of the tree without LICENSE or packaging/ installs no copyright file.)
+set(_lep_copyright_in ${PROJECT_SOURCE_DIR}/packaging/debian/copyright.in)
+if(EXISTS ${PROJECT_SOURCE_DIR}/LICENSE AND EXISTS ${_lep_copyright_in})
+  file(STRINGS ${PROJECT_SOURCE_DIR}/LICENSE _lep_license_lines)
+  set(LEPTRINO_DEB_LICENSE_TEXT "")
+  set(_lep_in_text OFF)
+  foreach(_line IN LISTS _lep_license_lines)
+    if(_line MATCHES "^Permission is hereby granted")
+      set(_lep_in_text ON)
+    endif()
+    if(_lep_in_text AND _line STREQUAL "")
       string(APPEND LEPTRINO_DEB_LICENSE_TEXT " .\n")
-    else()
+    elseif(_lep_in_text)
       string(APPEND LEPTRINO_DEB_LICENSE_TEXT " ${_line}\n")
     endif()
-  endif()
-endforeach()
-string(STRIP "${LEPTRINO_DEB_LICENSE_TEXT}" LEPTRINO_DEB_LICENSE_TEXT)
-string(PREPEND LEPTRINO_DEB_LICENSE_TEXT " ")
+  endforeach()
+  string(STRIP "${LEPTRINO_DEB_LICENSE_TEXT}" LEPTRINO_DEB_LICENSE_TEXT)
+  string(PREPEND LEPTRINO_DEB_LICENSE_TEXT " ")
+  configure_file(${_lep_copyright_in} ${PROJECT_BINARY_DIR}/copyright @ONLY)
+  install(FILES ${PROJECT_BINARY_DIR}/copyright DESTINATION ${CMAKE_INSTALL_DOCDIR})
+endif()
 
-configure_file(packaging/debian/copyright.in ${PROJECT_BINARY_DIR}/copyright @ONLY)
-install(FILES ${PROJECT_BINARY_DIR}/copyright DESTINATION ${CMAKE_INSTALL_DOCDIR})
-
-if(NOT LEPTRINO_CORE_ONLY)
-  # The udev rule: where udev reads it for a /usr install (the Debian package),
-  # else beside the other data for an administrator to copy to /etc/udev/rules.d.
-  if(CMAKE_INSTALL_PREFIX STREQUAL "/usr")
-    set(LEPTRINO_UDEV_RULES_DIR lib/udev/rules.d CACHE STRING "Where the udev rule is installed (relative to the prefix)")
+# The udev rule: where udev reads it for a /usr install (the Debian package),
+# else beside the other data, for an administrator to copy to /etc/udev/rules.d.
+# -DLEPTRINO_UDEV_RULES_DIR=... (relative to the prefix) chooses another place.
+set(_lep_udev_rule ${PROJECT_SOURCE_DIR}/packaging/udev/60-leptrino.rules)
+if(NOT LEPTRINO_CORE_ONLY AND EXISTS ${_lep_udev_rule})
+  if(DEFINED LEPTRINO_UDEV_RULES_DIR)
+    set(_lep_udev_dir ${LEPTRINO_UDEV_RULES_DIR})
+  elseif(CMAKE_INSTALL_PREFIX STREQUAL "/usr")
+    set(_lep_udev_dir lib/udev/rules.d)
   else()
-    set(LEPTRINO_UDEV_RULES_DIR ${CMAKE_INSTALL_DATADIR}/leptrino/udev CACHE STRING "Where the udev rule is installed (relative to the prefix)")
+    set(_lep_udev_dir ${CMAKE_INSTALL_DATADIR}/leptrino/udev)
   endif()
-  install(FILES packaging/udev/60-leptrino.rules DESTINATION ${LEPTRINO_UDEV_RULES_DIR})
+  install(FILES ${_lep_udev_rule} DESTINATION ${_lep_udev_dir})
 endif()
 
 # Man pages from the programs' --help (help2man), installed in share/man/man1.

@@ -3,12 +3,12 @@
 # second hand-kept copy. Optional: without help2man (or when the programs
 # cannot run on the build machine) there are no man pages, and configure says so.
 #
-# A program joins when its target exists (leptrino-soak once it is built).
-# Each entry: target|one-line summary for the NAME section.
-set(LEPTRINO_MAN_PROGRAMS
-  "leptrino_cli|read, record and configure Leptrino 6-axis force/torque sensors"
-  "leptrino_sim|a virtual Leptrino force/torque sensor on a pseudo-terminal"
-  "leptrino_soak|soak test of the leptrino client against a faulty virtual sensor")
+# Every program built in tools/*/ gets a page (leptrino-soak joins once its
+# directory is added). The NAME line's summary, by program name:
+set(LEPTRINO_MAN_SUMMARIES
+  "leptrino|read, record and configure Leptrino 6-axis force/torque sensors"
+  "leptrino-sim|a virtual Leptrino force/torque sensor on a pseudo-terminal"
+  "leptrino-soak|soak test of the leptrino client against a faulty virtual sensor")
 
 option(LEPTRINO_MAN "Generate and install man pages (needs help2man)" ON)
 set(LEPTRINO_MAN_PAGES "")
@@ -20,6 +20,11 @@ if(CMAKE_CROSSCOMPILING)
   message(STATUS "Man pages: not generated when cross-compiling (help2man runs the programs)")
   return()
 endif()
+set(_lep_man_commands_script ${PROJECT_SOURCE_DIR}/packaging/man/commands.cmake)
+if(NOT EXISTS ${_lep_man_commands_script})
+  message(STATUS "Man pages: ${_lep_man_commands_script} is missing, so no man pages")
+  return()
+endif()
 find_program(LEPTRINO_HELP2MAN help2man)
 if(NOT LEPTRINO_HELP2MAN)
   message(STATUS "Man pages: help2man not found, so no man pages are built or installed "
@@ -28,24 +33,35 @@ if(NOT LEPTRINO_HELP2MAN)
 endif()
 find_program(LEPTRINO_GZIP gzip)
 
-# The programs that exist in this build: target, program name, summary.
+# The programs of this build: the executables of the tools/ directories.
 set(_lep_man_targets "")
 set(_lep_man_names "")
 set(_lep_man_summaries "")
-foreach(entry IN LISTS LEPTRINO_MAN_PROGRAMS)
-  string(FIND "${entry}" "|" _sep)
-  string(SUBSTRING "${entry}" 0 ${_sep} _target)
-  math(EXPR _sep "${_sep} + 1")
-  string(SUBSTRING "${entry}" ${_sep} -1 _summary)
-  if(TARGET ${_target})
+get_property(_lep_subdirs DIRECTORY ${PROJECT_SOURCE_DIR} PROPERTY SUBDIRECTORIES)
+foreach(_dir IN LISTS _lep_subdirs)
+  if(NOT _dir MATCHES "^${PROJECT_SOURCE_DIR}/tools/")
+    continue()
+  endif()
+  get_property(_targets DIRECTORY ${_dir} PROPERTY BUILDSYSTEM_TARGETS)
+  foreach(_target IN LISTS _targets)
+    get_target_property(_type ${_target} TYPE)
+    if(NOT _type STREQUAL "EXECUTABLE")
+      continue()
+    endif()
     get_target_property(_name ${_target} OUTPUT_NAME)
     if(NOT _name)
       set(_name ${_target})
     endif()
+    set(_summary "part of leptrino, the Leptrino force/torque sensor tools")
+    foreach(_entry IN LISTS LEPTRINO_MAN_SUMMARIES)
+      if(_entry MATCHES "^${_name}\\|(.*)$")
+        set(_summary "${CMAKE_MATCH_1}")
+      endif()
+    endforeach()
     list(APPEND _lep_man_targets ${_target})
     list(APPEND _lep_man_names ${_name})
     list(APPEND _lep_man_summaries "${_summary}")
-  endif()
+  endforeach()
 endforeach()
 
 # SEE ALSO (every page) and COPYRIGHT, shared by all pages.
@@ -67,6 +83,13 @@ configure_file(${_lep_man_dir}/common.h2m.new ${_lep_man_dir}/common.h2m COPYONL
 
 foreach(_target _name _summary IN ZIP_LISTS _lep_man_targets _lep_man_names _lep_man_summaries)
   set(_page ${_lep_man_dir}/man1/${_name}.1)
+  # A COMMANDS section with each command's --help (for a program with commands).
+  set(_commands ${_lep_man_dir}/${_name}.commands.h2m)
+  add_custom_command(OUTPUT ${_commands}
+    COMMAND ${CMAKE_COMMAND} -DPROGRAM=$<TARGET_FILE:${_target}> -DOUTPUT=${_commands}
+            -P ${_lep_man_commands_script}
+    DEPENDS ${_target} ${_lep_man_commands_script}
+    VERBATIM)
   # --version-string: the version comes from project(); the program is run
   # only for --help (which must exit 0).
   add_custom_command(OUTPUT ${_page}
@@ -74,8 +97,9 @@ foreach(_target _name _summary IN ZIP_LISTS _lep_man_targets _lep_man_names _lep
     COMMAND ${LEPTRINO_HELP2MAN} --no-info --no-discard-stderr --section 1
             --name ${_summary} --source "leptrino ${PROJECT_VERSION}"
             --version-string "${_name} ${PROJECT_VERSION}"
-            --include ${_lep_man_dir}/common.h2m --output ${_page} $<TARGET_FILE:${_target}>
-    DEPENDS ${_target} ${_lep_man_dir}/common.h2m
+            --include ${_lep_man_dir}/common.h2m --include ${_commands}
+            --output ${_page} $<TARGET_FILE:${_target}>
+    DEPENDS ${_target} ${_lep_man_dir}/common.h2m ${_commands}
     COMMENT "Man page ${_name}(1) from ${_name} --help"
     VERBATIM)
   if(LEPTRINO_GZIP)

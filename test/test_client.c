@@ -6,6 +6,7 @@
 
 static script_io sio;
 static lep_client client;
+static lep_client_rx rx;
 
 void setUp(void)
 {
@@ -13,6 +14,15 @@ void setUp(void)
     script_io_init(&sio);
     io = script_io_table(&sio);
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_init(&client, &io));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_rx(&client, &rx));
+}
+
+/* The decoded message of the last outcome of c (asserted to exist). */
+static lep_response last_response(const lep_client *c)
+{
+    lep_response r;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_response(c, &r));
+    return r;
 }
 
 void tearDown(void)
@@ -134,8 +144,13 @@ static void test_timeout(void)
     sio.silent = true;
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_timeout(&client, 250));
     TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, lep_client_product_info(&client, &info));
-    TEST_ASSERT_EQUAL_UINT32(250, sio.now);
+    /* The documented bound: (retries + 1) x timeout, every attempt the same frame. */
+    TEST_ASSERT_EQUAL_UINT32(4u * 250u, sio.now);
+    TEST_ASSERT_EQUAL_UINT(4, sio.writes);
+    TEST_ASSERT_EQUAL_MEMORY(sio.out, sio.out + 27, 9);
     TEST_ASSERT_EQUAL_UINT32(1, stats().timeouts);
+    TEST_ASSERT_EQUAL_UINT32(3, stats().resent_after_timeout);
+    TEST_ASSERT_EQUAL_UINT32(0, stats().retries);
     TEST_ASSERT_FALSE(lep_client_busy(&client));
 }
 
@@ -150,13 +165,15 @@ static void test_wrong_response_type_is_skipped(void)
     TEST_ASSERT_EQUAL_UINT32(1, stats().unexpected);
 }
 
-static void test_only_wrong_type_times_out(void)
+static void test_only_wrong_type_is_resent(void)
 {
     static const uint8_t filter_answer[] = {0x08, 0xFF, 0xB6, 0x00, 0x01, 0x00, 0x00, 0x00};
     lep_rated rated;
     force_reply(filter_answer, sizeof(filter_answer));
-    TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, lep_client_rated(&client, &rated));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_rated(&client, &rated));
     TEST_ASSERT_EQUAL_UINT32(1, stats().unexpected);
+    TEST_ASSERT_EQUAL_UINT32(1, stats().resent_after_timeout);
+    TEST_ASSERT_EQUAL_UINT32(LEP_CLIENT_DEFAULT_TIMEOUT_MS, sio.now);
 }
 
 static void test_sensor_error_codes(void)
@@ -179,8 +196,10 @@ static void test_invalid_answer_is_counted_not_taken(void)
     uint8_t msg[28] = {0x1C, 0xFF, 0x2B, 0x00, 0x00, 0x00, 0xC0, 0x7F};
     lep_rated rated;
     force_reply(msg, sizeof(msg));
-    TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, lep_client_rated(&client, &rated));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_rated(&client, &rated));
+    TEST_ASSERT_EQUAL_FLOAT(500.0f, rated.axis[LEP_FX]);
     TEST_ASSERT_EQUAL_UINT32(1, stats().invalid);
+    TEST_ASSERT_EQUAL_UINT32(1, stats().resent_after_timeout);
 }
 
 static void test_corrupt_answer_is_counted(void)
@@ -189,7 +208,8 @@ static void test_corrupt_answer_is_counted(void)
     lep_product_info info;
     memcpy(sio.forced, bad, sizeof(bad));
     sio.forced_len = sizeof(bad);
-    TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, lep_client_product_info(&client, &info));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_product_info(&client, &info));
+    TEST_ASSERT_EQUAL_UINT32(1, stats().resent_after_timeout);
     TEST_ASSERT_EQUAL_UINT32(1, stats().bcc_errors);
     TEST_ASSERT_EQUAL_UINT32(sizeof(bad), stats().bytes_discarded);
 }
@@ -247,8 +267,8 @@ static void test_sync_gives_up_on_endless_noise(void)
     (void)lep_device_feed(&sio.dev, start, sizeof(start), &ev, out, sizeof(out), &n);
     sio.silent = true;
     TEST_ASSERT_EQUAL_INT(LEP_E_NO_SYNC, lep_client_sync(&client, 20, NULL));
-    /* The stop's timeout, then at most 20 timeouts + the quiet time of draining. */
-    TEST_ASSERT_TRUE(sio.now <= LEP_CLIENT_DEFAULT_TIMEOUT_MS * 21u + 20u + 2u);
+    /* The stop's (retries + 1) attempts, then at most 20 timeouts + the quiet time of draining. */
+    TEST_ASSERT_TRUE(sio.now <= LEP_CLIENT_DEFAULT_TIMEOUT_MS * (4u + 20u) + 20u + 2u);
 }
 
 static void test_late_answer_is_skipped_by_the_next_query(void)
@@ -276,6 +296,7 @@ static void test_timeout_applies_to_each_attempt(void)
     lep_command cmd = {LEP_CMD_RATED, 0};
     size_t used;
     sio.silent = true;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_retries(&client, 1));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_send(&client, &cmd));
     sio.now += LEP_CLIENT_DEFAULT_TIMEOUT_MS - 1u;
     TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step(&client, nak, sizeof(nak), &used));
@@ -312,6 +333,62 @@ static void test_start_while_streaming_is_a_state_error(void)
     TEST_ASSERT_EQUAL_INT(LEP_E_SENSOR, lep_client_start(&client));
     TEST_ASSERT_EQUAL_UINT8(LEP_RESULT_STATE, lep_client_last_result(&client));
     TEST_ASSERT_TRUE(lep_client_streaming(&client));
+    TEST_ASSERT_EQUAL_UINT32(0, stats().recoveries);
+}
+
+static void test_start_refused_by_a_stale_stream_recovers_once(void)
+{
+    static const uint8_t stop_cmd[] = {0x10, 0x02, 0x04, 0xFF, 0x33, 0x00, 0x10, 0x03, 0xCB};
+    static const uint8_t start_cmd[] = {0x10, 0x02, 0x04, 0xFF, 0x32, 0x00, 0x10, 0x03, 0xCA};
+    lep_device_event ev;
+    uint8_t out[LEP_MAX_FRAME];
+    size_t n;
+    /* A stream left running by an earlier program. */
+    (void)lep_device_feed(&sio.dev, start_cmd, sizeof(start_cmd), &ev, out, sizeof(out), &n);
+    script_push_data(&sio);
+    sio.inflight = 2;
+    /* The sensor refuses (0x04: already streaming): stop, drain, start. */
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
+    TEST_ASSERT_TRUE(lep_client_streaming(&client));
+    TEST_ASSERT_TRUE(lep_device_streaming(&sio.dev));
+    TEST_ASSERT_EQUAL_UINT32(1, stats().recoveries);
+    TEST_ASSERT_EQUAL_UINT8(LEP_RESULT_OK, lep_client_last_result(&client));
+    TEST_ASSERT_EQUAL_size_t(27, sio.out_len);
+    TEST_ASSERT_EQUAL_MEMORY(start_cmd, sio.out, 9);
+    TEST_ASSERT_EQUAL_MEMORY(stop_cmd, sio.out + 9, 9);
+    TEST_ASSERT_EQUAL_MEMORY(start_cmd, sio.out + 18, 9);
+}
+
+static void test_start_refused_twice_is_a_sensor_error(void)
+{
+    static const uint8_t refused[] = {0x04, 0xFF, 0x32, 0x04};
+    lep_command start = {LEP_CMD_START, 0};
+    uint8_t frame[16];
+    size_t n;
+    size_t used;
+    int rc = LEP_STEP_NONE;
+    unsigned i;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_frame_encode(refused, sizeof(refused), frame, sizeof(frame), &n));
+    sio.silent = true;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_send(&client, &start));
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step(&client, frame, n, &used));
+    TEST_ASSERT_EQUAL_UINT(2, sio.writes); /* the stop */
+    TEST_ASSERT_TRUE(lep_client_busy(&client));
+    sio.now += LEP_CLIENT_DEFAULT_TIMEOUT_MS * 4u; /* the stop is never answered: drain anyway */
+    for (i = 0; i < 4 && sio.writes < 6; i++) {
+        TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step(&client, NULL, 0, &used));
+        sio.now += LEP_CLIENT_DEFAULT_TIMEOUT_MS;
+    }
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step(&client, NULL, 0, &used));
+    sio.now += LEP_CLIENT_DEFAULT_QUIET_MS;
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step(&client, NULL, 0, &used));
+    TEST_ASSERT_EQUAL_UINT8(LEP_CMD_START, sio.out[sio.out_len - 5]); /* started again */
+    rc = lep_client_step(&client, frame, n, &used);
+    TEST_ASSERT_EQUAL_INT(LEP_E_SENSOR, rc);
+    TEST_ASSERT_EQUAL_UINT8(LEP_RESULT_STATE, lep_client_last_result(&client));
+    TEST_ASSERT_FALSE(lep_client_streaming(&client));
+    TEST_ASSERT_FALSE(lep_client_busy(&client));
+    TEST_ASSERT_EQUAL_UINT32(0, stats().recoveries);
 }
 
 static void test_next_samples_batches_buffered_data(void)
@@ -397,7 +474,7 @@ static void test_step_api_without_read(void)
     }
     TEST_ASSERT_EQUAL_INT(LEP_STEP_RESPONSE, rc);
     TEST_ASSERT_EQUAL_size_t(sio.in_len - 1, i);
-    TEST_ASSERT_EQUAL_FLOAT(40.0f / 4.0f, lep_client_response(&c)->u.rated.axis[LEP_MY]);
+    TEST_ASSERT_EQUAL_FLOAT(40.0f / 4.0f, last_response(&c).u.rated.axis[LEP_MY]);
     TEST_ASSERT_FALSE(lep_client_busy(&c));
 }
 
@@ -405,11 +482,18 @@ static void test_step_api_deadline(void)
 {
     lep_command cmd = {LEP_CMD_STOP, 0};
     size_t used;
+    unsigned i;
     sio.silent = true;
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_send(&client, &cmd));
     TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step(&client, NULL, 0, &used));
+    for (i = 1; i <= LEP_CLIENT_DEFAULT_RETRIES; i++) {
+        sio.now += LEP_CLIENT_DEFAULT_TIMEOUT_MS;
+        TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step(&client, NULL, 0, &used));
+        TEST_ASSERT_EQUAL_UINT(1u + i, sio.writes); /* resent */
+    }
     sio.now += LEP_CLIENT_DEFAULT_TIMEOUT_MS;
     TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, lep_client_step(&client, NULL, 0, &used));
+    TEST_ASSERT_FALSE(lep_client_busy(&client));
 }
 
 static void test_step_api_stops_at_each_sample(void)
@@ -432,7 +516,7 @@ static void test_step_api_stops_at_each_sample(void)
         int rc = lep_client_step(&client, wire + pos, len - pos, &used);
         pos += used;
         if (rc == LEP_STEP_SAMPLE) {
-            TEST_ASSERT_EQUAL_UINT16(got, lep_client_response(&client)->u.sample.reserved);
+            TEST_ASSERT_EQUAL_UINT16(got, last_response(&client).u.sample.reserved);
             got++;
         }
     }
@@ -470,7 +554,7 @@ static void test_transaction_timeout_across_clock_wrap(void)
     sio.now = 0xFFFFFFFFu - 30u;
     sio.silent = true;
     TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, lep_client_product_info(&client, &info));
-    TEST_ASSERT_EQUAL_UINT32(0xFFFFFFFFu - 30u + LEP_CLIENT_DEFAULT_TIMEOUT_MS, sio.now);
+    TEST_ASSERT_EQUAL_UINT32(0xFFFFFFFFu - 30u + 4u * LEP_CLIENT_DEFAULT_TIMEOUT_MS, sio.now);
 }
 
 static void test_nak_retry_and_answer_across_clock_wrap(void)
@@ -499,6 +583,7 @@ static void test_step_api_deadline_across_clock_wrap(void)
     size_t used;
     sio.silent = true;
     sio.now = 0xFFFFFFFFu - 5u;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_retries(&client, 0));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_send(&client, &cmd));
     sio.now += LEP_CLIENT_DEFAULT_TIMEOUT_MS - 1u; /* wrapped, 1 ms before the deadline */
     TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step(&client, NULL, 0, &used));
@@ -576,8 +661,9 @@ static void test_transaction_times_out_on_endless_noise(void)
     sio.silent = true;
     sio.noise = true;
     TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, lep_client_rated(&client, &rated));
-    TEST_ASSERT_TRUE(sio.now - t0 >= LEP_CLIENT_DEFAULT_TIMEOUT_MS);
-    TEST_ASSERT_TRUE(sio.now - t0 <= LEP_CLIENT_DEFAULT_TIMEOUT_MS + 2u);
+    TEST_ASSERT_TRUE(sio.now - t0 >= 4u * LEP_CLIENT_DEFAULT_TIMEOUT_MS);
+    TEST_ASSERT_TRUE(sio.now - t0 <= 4u * (LEP_CLIENT_DEFAULT_TIMEOUT_MS + 2u));
+    TEST_ASSERT_EQUAL_UINT32(3, stats().resent_after_timeout);
     TEST_ASSERT_EQUAL_UINT32((uint32_t)sio.total_read, stats().bytes_discarded);
 }
 
@@ -727,7 +813,7 @@ static void test_step_api_from_a_ring_buffer(void)
     sio.naks_left = 1;
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_send(&c, &rated));
     TEST_ASSERT_EQUAL_INT(LEP_STEP_RESPONSE, run_until_outcome(&c, &r));
-    TEST_ASSERT_EQUAL_FLOAT(500.0f, lep_client_response(&c)->u.rated.axis[LEP_FZ]);
+    TEST_ASSERT_EQUAL_FLOAT(500.0f, last_response(&c).u.rated.axis[LEP_FZ]);
 
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_send(&c, &start));
     TEST_ASSERT_EQUAL_INT(LEP_STEP_RESPONSE, run_until_outcome(&c, &r));
@@ -737,7 +823,7 @@ static void test_step_api_from_a_ring_buffer(void)
     }
     for (i = 0; i < 20; i++) {
         TEST_ASSERT_EQUAL_INT(LEP_STEP_SAMPLE, run_until_outcome(&c, &r));
-        TEST_ASSERT_EQUAL_UINT16(i, lep_client_response(&c)->u.sample.reserved);
+        TEST_ASSERT_EQUAL_UINT16(i, last_response(&c).u.sample.reserved);
     }
     sio.inflight = 3;
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_send(&c, &stop));
@@ -755,6 +841,373 @@ static void test_step_api_from_a_ring_buffer(void)
     TEST_ASSERT_EQUAL_UINT32(3 + 20 + 3, st.messages);
 }
 
+/* ---- resending (issue: survive a real line) ---- */
+
+static void test_lost_answer_is_resent(void)
+{
+    lep_rated rated;
+    sio.lose_answers = 2;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_rated(&client, &rated));
+    TEST_ASSERT_EQUAL_UINT(3, sio.writes);
+    TEST_ASSERT_EQUAL_UINT32(2, stats().resent_after_timeout);
+    TEST_ASSERT_EQUAL_UINT32(0, stats().timeouts);
+    TEST_ASSERT_EQUAL_UINT32(2u * LEP_CLIENT_DEFAULT_TIMEOUT_MS, sio.now);
+}
+
+static void test_lost_command_is_resent(void)
+{
+    lep_product_info info;
+    sio.lose_commands = 1;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_product_info(&client, &info));
+    TEST_ASSERT_EQUAL_UINT32(1, stats().resent_after_timeout);
+    TEST_ASSERT_EQUAL_STRING("12345678", info.serial);
+}
+
+static void test_naks_and_timeouts_share_one_budget(void)
+{
+    lep_rated rated;
+    sio.naks_left = 2;
+    sio.lose_answers = 5;
+    TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, lep_client_rated(&client, &rated));
+    TEST_ASSERT_EQUAL_UINT(4, sio.writes);
+    TEST_ASSERT_EQUAL_UINT32(2, stats().retries);
+    TEST_ASSERT_EQUAL_UINT32(1, stats().resent_after_timeout);
+    TEST_ASSERT_EQUAL_UINT32(1, stats().timeouts);
+}
+
+static void test_resent_start_answered_state_error_counts_as_started(void)
+{
+    sio.lose_answers = 1; /* the start is executed, its answer lost; no data yet */
+    sio.endless_stream = false;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
+    TEST_ASSERT_TRUE(lep_client_streaming(&client));
+    TEST_ASSERT_TRUE(lep_device_streaming(&sio.dev));
+    TEST_ASSERT_EQUAL_UINT(2, sio.writes);
+    TEST_ASSERT_EQUAL_UINT32(1, stats().resent_confirmed);
+    TEST_ASSERT_EQUAL_UINT32(0, stats().recoveries);
+    TEST_ASSERT_EQUAL_UINT8(LEP_RESULT_STATE, lep_client_last_result(&client));
+}
+
+static void test_resent_start_with_data_flowing_counts_as_started(void)
+{
+    lep_command start = {LEP_CMD_START, 0};
+    lep_response r;
+    lep_sample smp;
+    uint8_t wire[64];
+    size_t len;
+    size_t used;
+    sio.silent = true;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_send(&client, &start));
+    sio.now += LEP_CLIENT_DEFAULT_TIMEOUT_MS;
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step(&client, NULL, 0, &used));
+    TEST_ASSERT_EQUAL_UINT(2, sio.writes); /* resent */
+    TEST_ASSERT_EQUAL_INT(LEP_E_STATE, lep_client_response(&client, &r));
+    /* The first copy was executed after all: its data arrives. */
+    script_push_data(&sio);
+    len = script_pending(&sio);
+    memcpy(wire, sio.in + sio.in_pos, len);
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_RESPONSE, lep_client_step(&client, wire, len, &used));
+    TEST_ASSERT_EQUAL_size_t(len, used);
+    TEST_ASSERT_TRUE(lep_client_streaming(&client));
+    TEST_ASSERT_EQUAL_UINT32(1, stats().resent_confirmed);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_response(&client, &r));
+    TEST_ASSERT_TRUE(r.stream);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_get_sample(&client, &smp));
+    TEST_ASSERT_EQUAL_UINT16(0, smp.reserved);
+}
+
+static void test_data_before_the_first_start_answer_is_not_taken_as_started(void)
+{
+    lep_command start = {LEP_CMD_START, 0};
+    uint8_t wire[64];
+    size_t len;
+    size_t used;
+    sio.silent = true;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_send(&client, &start));
+    script_push_data(&sio);
+    len = script_pending(&sio);
+    memcpy(wire, sio.in + sio.in_pos, len);
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step(&client, wire, len, &used));
+    TEST_ASSERT_FALSE(lep_client_streaming(&client));
+    TEST_ASSERT_TRUE(lep_client_busy(&client));
+    TEST_ASSERT_EQUAL_UINT32(1, stats().unexpected);
+}
+
+static void test_resent_stop_answered_state_error_counts_as_stopped(void)
+{
+    static const uint8_t refused[] = {0x04, 0xFF, 0x33, 0x04};
+    lep_command stop = {LEP_CMD_STOP, 0};
+    uint8_t frame[16];
+    size_t n;
+    size_t used;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_frame_encode(refused, sizeof(refused), frame, sizeof(frame), &n));
+    sio.silent = true;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_send(&client, &stop));
+    /* First copy refused: a sensor error (the client cannot know it was stopped). */
+    TEST_ASSERT_EQUAL_INT(LEP_E_SENSOR, lep_client_step(&client, frame, n, &used));
+    TEST_ASSERT_TRUE(lep_client_streaming(&client));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_send(&client, &stop));
+    sio.now += LEP_CLIENT_DEFAULT_TIMEOUT_MS;
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step(&client, NULL, 0, &used));
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_RESPONSE, lep_client_step(&client, frame, n, &used));
+    TEST_ASSERT_FALSE(lep_client_streaming(&client));
+    TEST_ASSERT_EQUAL_UINT32(1, stats().resent_confirmed);
+}
+
+/* ---- step API: recovery and watchdog ---- */
+
+/* Feed everything the script has queued, one byte per step; advance the clock
+ * 1 ms per call with nothing to feed. Returns the first outcome. */
+static int pump(lep_client *c, unsigned max_ms)
+{
+    unsigned spins;
+    for (spins = 0; spins < 100000u; spins++) {
+        size_t used;
+        int rc;
+        if (script_pending(&sio) > 0) {
+            rc = lep_client_step(c, &sio.in[sio.in_pos], 1, &used);
+            sio.in_pos += used;
+        } else {
+            if (max_ms == 0) {
+                return LEP_STEP_NONE;
+            }
+            max_ms--;
+            sio.now += 1;
+            rc = lep_client_step(c, NULL, 0, &used);
+        }
+        if (rc != LEP_STEP_NONE) {
+            return rc;
+        }
+    }
+    return LEP_STEP_NONE;
+}
+
+static void test_step_recovery_stops_drains_and_identifies(void)
+{
+    static const uint8_t start_cmd[] = {0x10, 0x02, 0x04, 0xFF, 0x32, 0x00, 0x10, 0x03, 0xCA};
+    lep_io io = script_io_table(&sio);
+    lep_client c;
+    lep_device_event ev;
+    lep_response r;
+    uint8_t out[LEP_MAX_FRAME];
+    size_t n;
+    io.read = NULL;
+    sio.endless_stream = false;
+    (void)lep_device_feed(&sio.dev, start_cmd, sizeof(start_cmd), &ev, out, sizeof(out), &n);
+    script_push_data(&sio);
+    script_push(&sio, start_cmd, 4); /* half a frame */
+    sio.inflight = 3;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_init(&c, &io));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_recover(&c, 10));
+    TEST_ASSERT_TRUE(lep_client_busy(&c));
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_RESPONSE, pump(&c, 1000));
+    TEST_ASSERT_FALSE(lep_client_busy(&c));
+    TEST_ASSERT_FALSE(lep_client_streaming(&c));
+    TEST_ASSERT_FALSE(lep_device_streaming(&sio.dev));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_response(&c, &r));
+    TEST_ASSERT_EQUAL_HEX8(LEP_CMD_PRODUCT_INFO, r.code);
+    TEST_ASSERT_EQUAL_STRING("PFS055YA501U6", r.u.info.model);
+    TEST_ASSERT_EQUAL_UINT(0, sio.reads);
+    TEST_ASSERT_EQUAL_UINT(2, sio.writes); /* stop, identify */
+}
+
+static void test_step_recovery_waits_for_a_quiet_line(void)
+{
+    lep_io io = script_io_table(&sio);
+    lep_client c;
+    uint32_t t0;
+    unsigned i;
+    io.read = NULL;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_init(&c, &io));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_recover(&c, 20));
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, pump(&c, 0)); /* the stop's answer */
+    t0 = sio.now;
+    /* Noise every 10 ms for 100 ms: the drain keeps waiting. */
+    for (i = 0; i < 10; i++) {
+        static const uint8_t junk[3] = {0x55, 0x55, 0x55};
+        script_push(&sio, junk, sizeof(junk));
+        TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, pump(&c, 10));
+    }
+    TEST_ASSERT_EQUAL_UINT(1, sio.writes);
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_RESPONSE, pump(&c, 100));
+    TEST_ASSERT_TRUE(sio.now - t0 >= 90u + 20u); /* 20 ms after the last noise */
+    TEST_ASSERT_EQUAL_UINT(2, sio.writes);
+}
+
+static void test_step_recovery_gives_up_on_endless_noise(void)
+{
+    lep_io io = script_io_table(&sio);
+    lep_client c;
+    size_t used;
+    unsigned i;
+    int rc = LEP_STEP_NONE;
+    static const uint8_t junk[1] = {0x55};
+    io.read = NULL;
+    sio.silent = true;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_init(&c, &io));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_recover(&c, 0));
+    for (i = 0; i < 100000u && rc == LEP_STEP_NONE; i++) {
+        sio.now += 1;
+        rc = lep_client_step(&c, junk, 1, &used);
+    }
+    TEST_ASSERT_EQUAL_INT(LEP_E_NO_SYNC, rc);
+    /* The stop's 4 attempts, then 20 timeouts + the quiet time. */
+    TEST_ASSERT_TRUE(sio.now <= 4u * LEP_CLIENT_DEFAULT_TIMEOUT_MS + 20u * LEP_CLIENT_DEFAULT_TIMEOUT_MS +
+                                    LEP_CLIENT_DEFAULT_QUIET_MS + 1u);
+    TEST_ASSERT_FALSE(lep_client_busy(&c));
+}
+
+static void test_recover_write_error(void)
+{
+    sio.write_error = LEP_E_DISCONNECTED;
+    TEST_ASSERT_EQUAL_INT(LEP_E_DISCONNECTED, lep_client_recover(&client, 0));
+    TEST_ASSERT_FALSE(lep_client_busy(&client));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_recover(NULL, 0));
+}
+
+static void test_watchdog_reports_a_stalled_stream(void)
+{
+    lep_io io = script_io_table(&sio);
+    lep_client c;
+    lep_command start = {LEP_CMD_START, 0};
+    unsigned i;
+    io.read = NULL;
+    sio.endless_stream = false;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_init(&c, &io));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_watchdog(&c, 50));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_send(&c, &start));
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_RESPONSE, pump(&c, 0));
+    /* Samples every 10 ms keep it quiet. */
+    for (i = 0; i < 20; i++) {
+        script_push_data(&sio);
+        TEST_ASSERT_EQUAL_INT(LEP_STEP_SAMPLE, pump(&c, 0));
+        TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, pump(&c, 10));
+    }
+    /* Then nothing: LEP_E_STALLED once per 50 ms of silence. */
+    TEST_ASSERT_EQUAL_INT(LEP_E_STALLED, pump(&c, 100));
+    TEST_ASSERT_EQUAL_INT(LEP_E_STALLED, pump(&c, 100));
+    TEST_ASSERT_TRUE(lep_client_streaming(&c));
+    script_push_data(&sio);
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_SAMPLE, pump(&c, 0));
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, pump(&c, 45));
+    {
+        lep_client_stats st;
+        lep_client_get_stats(&c, &st);
+        TEST_ASSERT_EQUAL_UINT32(2, st.stalls);
+        TEST_ASSERT_EQUAL_UINT32(21, st.samples);
+    }
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_watchdog(&c, 0));
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, pump(&c, 1000));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_set_watchdog(NULL, 5));
+}
+
+static void test_watchdog_in_blocking_next_sample(void)
+{
+    lep_sample s;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_watchdog(&client, 30));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_next_sample(&client, &s, 100));
+    sio.endless_stream = false;
+    TEST_ASSERT_EQUAL_INT(LEP_E_STALLED, lep_client_next_sample(&client, &s, 1000));
+    TEST_ASSERT_TRUE(sio.now <= 1u + 30u + 2u);
+    TEST_ASSERT_EQUAL_UINT32(1, stats().stalls);
+    TEST_ASSERT_EQUAL_STRING("no stream data within the watchdog time", lep_strerror(LEP_E_STALLED));
+}
+
+static void test_watchdog_checked_every_32_single_bytes(void)
+{
+    lep_command start = {LEP_CMD_START, 0};
+    static const uint8_t junk[1] = {0x55};
+    size_t used;
+    unsigned i;
+    int rc = LEP_STEP_NONE;
+    sio.endless_stream = false;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_watchdog(&client, 10));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_send(&client, &start));
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_RESPONSE, pump(&client, 0));
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step(&client, NULL, 0, &used));
+    sio.now += 100;
+    for (i = 0; i < 40 && rc == LEP_STEP_NONE; i++) {
+        rc = lep_client_step(&client, junk, 1, &used);
+    }
+    TEST_ASSERT_EQUAL_INT(LEP_E_STALLED, rc);
+    TEST_ASSERT_TRUE(i <= 32u);
+}
+
+/* ---- firmware variants and impossible values through the client ---- */
+
+static void test_reserved_byte_variants_are_counted_and_delivered(void)
+{
+    uint8_t msg[20] = {0x14, 0xFF, 0x32, 0x00, 1, 0, 2, 0, 3, 0, 4, 0, 5, 0, 6, 0, 9, 0, 0x00, 0xA5};
+    lep_sample s;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
+    sio.endless_stream = false;
+    script_push_msg(&sio, msg, sizeof(msg));
+    msg[19] = 0;
+    script_push_msg(&sio, msg, sizeof(msg));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_next_sample(&client, &s, 10));
+    TEST_ASSERT_EQUAL_INT16(6, s.raw[LEP_MZ]);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_next_sample(&client, &s, 10));
+    TEST_ASSERT_EQUAL_UINT32(1, stats().reserved_nonzero);
+    TEST_ASSERT_EQUAL_UINT32(2, stats().samples);
+}
+
+static void test_impossible_samples_are_invalid_never_delivered(void)
+{
+    uint8_t msg[20] = {0x14, 0xFF, 0x32, 0x00, 0, 0, 0x01, 0x7D, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+    lep_sample s;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
+    sio.endless_stream = false;
+    script_push_msg(&sio, msg, sizeof(msg)); /* Fy = 32001 */
+    TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, lep_client_next_sample(&client, &s, 10));
+    TEST_ASSERT_EQUAL_UINT32(1, stats().invalid);
+    TEST_ASSERT_EQUAL_UINT32(0, stats().samples);
+}
+
+static void test_handshake_reserved_variant_is_counted(void)
+{
+    uint8_t msg[20] = {0x14, 0xFF, 0x30, 0x00, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 7, 0, 0, 0, 0x04, 0x01};
+    lep_sample s;
+    force_reply(msg, sizeof(msg));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_sample(&client, &s));
+    TEST_ASSERT_EQUAL_INT16(7, s.raw[LEP_MZ]);
+    TEST_ASSERT_EQUAL_UINT32(1, stats().reserved_nonzero);
+}
+
+/* ---- read buffer ---- */
+
+static void test_blocking_calls_without_a_read_buffer_read_one_byte_at_a_time(void)
+{
+    lep_sample s[4];
+    size_t n;
+    lep_product_info info;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_rx(&client, NULL));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_product_info(&client, &info));
+    TEST_ASSERT_EQUAL_STRING("PFS055YA501U6", info.model);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_next_samples(&client, s, 4, &n, 100));
+    TEST_ASSERT_EQUAL_UINT16(0, s[0].reserved);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_stop(&client));
+    TEST_ASSERT_TRUE(sio.reads >= sio.total_read); /* never more than one byte per read */
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_set_rx(NULL, &rx));
+}
+
+static void test_response_accessors(void)
+{
+    lep_response r;
+    lep_sample s;
+    lep_rated rated;
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_response(NULL, &r));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_response(&client, NULL));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_get_sample(&client, NULL));
+    TEST_ASSERT_EQUAL_INT(LEP_E_STATE, lep_client_response(&client, &r));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_rated(&client, &rated));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_response(&client, &r));
+    TEST_ASSERT_EQUAL_HEX8(LEP_CMD_RATED, r.code);
+    TEST_ASSERT_EQUAL_INT(LEP_E_STATE, lep_client_get_sample(&client, &s)); /* not a sample */
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -768,7 +1221,7 @@ int main(void)
     RUN_TEST(test_no_retries_when_disabled);
     RUN_TEST(test_timeout);
     RUN_TEST(test_wrong_response_type_is_skipped);
-    RUN_TEST(test_only_wrong_type_times_out);
+    RUN_TEST(test_only_wrong_type_is_resent);
     RUN_TEST(test_sensor_error_codes);
     RUN_TEST(test_invalid_answer_is_counted_not_taken);
     RUN_TEST(test_corrupt_answer_is_counted);
@@ -780,6 +1233,8 @@ int main(void)
     RUN_TEST(test_timeout_applies_to_each_attempt);
     RUN_TEST(test_stream_start_next_stop);
     RUN_TEST(test_start_while_streaming_is_a_state_error);
+    RUN_TEST(test_start_refused_by_a_stale_stream_recovers_once);
+    RUN_TEST(test_start_refused_twice_is_a_sensor_error);
     RUN_TEST(test_next_samples_batches_buffered_data);
     RUN_TEST(test_next_sample_timeout_when_stream_stalls);
     RUN_TEST(test_byte_by_byte_reads);
@@ -803,5 +1258,24 @@ int main(void)
     RUN_TEST(test_read_claiming_more_than_asked_is_an_io_error);
     RUN_TEST(test_stop_with_data_in_flight_in_small_reads);
     RUN_TEST(test_step_api_from_a_ring_buffer);
+    RUN_TEST(test_lost_answer_is_resent);
+    RUN_TEST(test_lost_command_is_resent);
+    RUN_TEST(test_naks_and_timeouts_share_one_budget);
+    RUN_TEST(test_resent_start_answered_state_error_counts_as_started);
+    RUN_TEST(test_resent_start_with_data_flowing_counts_as_started);
+    RUN_TEST(test_data_before_the_first_start_answer_is_not_taken_as_started);
+    RUN_TEST(test_resent_stop_answered_state_error_counts_as_stopped);
+    RUN_TEST(test_step_recovery_stops_drains_and_identifies);
+    RUN_TEST(test_step_recovery_waits_for_a_quiet_line);
+    RUN_TEST(test_step_recovery_gives_up_on_endless_noise);
+    RUN_TEST(test_recover_write_error);
+    RUN_TEST(test_watchdog_reports_a_stalled_stream);
+    RUN_TEST(test_watchdog_in_blocking_next_sample);
+    RUN_TEST(test_watchdog_checked_every_32_single_bytes);
+    RUN_TEST(test_reserved_byte_variants_are_counted_and_delivered);
+    RUN_TEST(test_impossible_samples_are_invalid_never_delivered);
+    RUN_TEST(test_handshake_reserved_variant_is_counted);
+    RUN_TEST(test_blocking_calls_without_a_read_buffer_read_one_byte_at_a_time);
+    RUN_TEST(test_response_accessors);
     return UNITY_END();
 }

@@ -52,9 +52,43 @@ static uint32_t rng_next(uint32_t *s)
     return x;
 }
 
+/* Which entry point run() feeds chunks through. */
+enum api { API_FEED, API_FEED_ALL, API_MIXED };
+static enum api g_api = API_FEED;
+
+static void record_event(run_result *r, const lep_frame_event *ev)
+{
+    TEST_ASSERT_LESS_THAN_size_t_MESSAGE(MAX_EVENTS, r->n, "too many events");
+    r->ev[r->n].type = ev->type;
+    r->ev[r->n].error = ev->type == LEP_FRAME_ERROR ? ev->error : 0;
+    r->ev[r->n].len = 0;
+    if (ev->type == LEP_FRAME_MESSAGE) {
+        TEST_ASSERT_NOT_NULL(ev->msg);
+        TEST_ASSERT_LESS_OR_EQUAL_size_t(LEP_MAX_MESSAGE, ev->len);
+        if (ev->len > 0) {
+            memcpy(r->ev[r->n].msg, ev->msg, ev->len);
+        }
+        r->ev[r->n].len = ev->len;
+    }
+    r->n++;
+}
+
+/* The handler of lep_frame_decoder_feed_all. */
+static void on_event(void *user, const lep_frame_event *ev)
+{
+    TEST_ASSERT_NOT_EQUAL_INT_MESSAGE(LEP_FRAME_NONE, ev->type, "handler called without an event");
+    record_event((run_result *)user, ev);
+}
+
 /* Feed one chunk, draining every event it completes. */
 static void feed_chunk(lep_frame_decoder *d, const uint8_t *p, size_t len, run_result *r)
 {
+    static unsigned calls;
+    calls++;
+    if (g_api == API_FEED_ALL || (g_api == API_MIXED && calls % 2u == 0u)) {
+        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_frame_decoder_feed_all(d, p, len, on_event, r));
+        return;
+    }
     do {
         lep_frame_event ev;
         size_t used = lep_frame_decoder_feed(d, p, len, &ev);
@@ -64,19 +98,7 @@ static void feed_chunk(lep_frame_decoder *d, const uint8_t *p, size_t len, run_r
             return;
         }
         TEST_ASSERT_GREATER_THAN_size_t_MESSAGE(0u, used, "event without consuming input");
-        TEST_ASSERT_LESS_THAN_size_t_MESSAGE(MAX_EVENTS, r->n, "too many events");
-        r->ev[r->n].type = ev.type;
-        r->ev[r->n].error = ev.type == LEP_FRAME_ERROR ? ev.error : 0;
-        r->ev[r->n].len = 0;
-        if (ev.type == LEP_FRAME_MESSAGE) {
-            TEST_ASSERT_NOT_NULL(ev.msg);
-            TEST_ASSERT_LESS_OR_EQUAL_size_t(LEP_MAX_MESSAGE, ev.len);
-            if (ev.len > 0) {
-                memcpy(r->ev[r->n].msg, ev.msg, ev.len);
-            }
-            r->ev[r->n].len = ev.len;
-        }
-        r->n++;
+        record_event(r, &ev);
         p += used;
         len -= used;
     } while (len > 0);
@@ -285,12 +307,29 @@ static void test_encode_bounds(void)
     TEST_ASSERT_EQUAL_size_t(0u, lep_frame_size(NULL, 4));
     TEST_ASSERT_EQUAL_size_t(LEP_MAX_FRAME, lep_frame_size(msg, LEP_MAX_MESSAGE));
     TEST_ASSERT_EQUAL_HEX8(LEP_ETX, lep_bcc(msg, 0));
+    TEST_ASSERT_EQUAL_HEX8(LEP_ETX, lep_bcc(NULL, 4));
     TEST_ASSERT_EQUAL_HEX8(0x13u, lep_bcc(msg, 1));
 }
 
 /* ---- decoder ----------------------------------------------------------------- */
 
+static void check_stream_api(const lep_json *v, enum split_mode mode, const char *how);
+
+/* Every stream through feed, through feed_all, and through both in turn. */
 static void check_stream(const lep_json *v, enum split_mode mode, const char *how)
+{
+    static const char *const names[] = {"feed", "feed_all", "feed and feed_all in turn"};
+    char what[128];
+    int api;
+    for (api = API_FEED; api <= API_MIXED; api++) {
+        g_api = (enum api)api;
+        snprintf(what, sizeof what, "%s, %s", how, names[api]);
+        check_stream_api(v, mode, what);
+    }
+    g_api = API_FEED;
+}
+
+static void check_stream_api(const lep_json *v, enum split_mode mode, const char *how)
 {
     static uint8_t in[MAX_INPUT];
     const char *name = lep_json_get_str(v, "name");
@@ -392,6 +431,8 @@ static void test_decoder_busy_and_empty_feed(void)
     /* init resets the counters. */
     lep_frame_decoder_init(&d);
     TEST_ASSERT_EQUAL_UINT32(0u, d.stats.messages);
+    lep_frame_decoder_init(NULL); /* does nothing */
+    TEST_ASSERT_FALSE(lep_frame_decoder_busy(NULL));
 }
 
 /* Bad arguments consume nothing, return 0 and say LEP_E_ARG in the event;
@@ -427,6 +468,58 @@ static void test_decoder_feed_bad_arguments(void)
     TEST_ASSERT_EQUAL_INT(LEP_FRAME_MESSAGE, ev.type);
     TEST_ASSERT_EQUAL_size_t(4u, ev.len);
     TEST_ASSERT_EQUAL_HEX8(0x2A, ev.msg[2]);
+}
+
+static void count_events(void *user, const lep_frame_event *ev)
+{
+    (void)ev;
+    (*(unsigned *)user)++;
+}
+
+/* feed_all: bad arguments are LEP_E_ARG and change nothing; an empty feed is
+ * fine; the handler sees each event once, in order, and the message only
+ * during the call. */
+static void test_decoder_feed_all_arguments(void)
+{
+    static const uint8_t two[] = {0x10, 0x02, 0x04, 0xFF, 0x33, 0x00, 0x10, 0x03, 0xCB, 0x10, 0x15};
+    lep_frame_decoder d;
+    unsigned n = 0;
+    lep_frame_decoder_init(&d);
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_frame_decoder_feed_all(NULL, two, sizeof(two), count_events, &n));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_frame_decoder_feed_all(&d, two, sizeof(two), NULL, &n));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_frame_decoder_feed_all(&d, NULL, 3, count_events, &n));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_frame_decoder_feed_all(&d, NULL, 0, count_events, &n));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_frame_decoder_feed_all(&d, two, 0, count_events, &n));
+    TEST_ASSERT_EQUAL_UINT(0u, n);
+    TEST_ASSERT_EQUAL_UINT32(0u, d.stats.bytes_discarded);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_frame_decoder_feed_all(&d, two, sizeof(two), count_events, &n));
+    TEST_ASSERT_EQUAL_UINT(2u, n);
+    TEST_ASSERT_EQUAL_UINT32(1u, d.stats.messages);
+    TEST_ASSERT_EQUAL_UINT32(1u, d.stats.naks);
+}
+
+/* After a frame whose BCC is 0x10 the decoder is between frames (not busy),
+ * though that byte may still open the next frame. */
+static void test_decoder_not_busy_after_bcc_0x10(void)
+{
+    const lep_json *enc = lep_vectors_section(g_vectors, "encode");
+    size_t i;
+    size_t found = 0;
+    for (i = 0; i < lep_json_len(enc); i++) {
+        uint8_t wire[LEP_MAX_FRAME];
+        size_t wlen = lep_vectors_hex(lep_json_get_str(lep_json_at(enc, i), "wire"), wire, sizeof(wire));
+        lep_frame_decoder d;
+        lep_frame_event ev;
+        if (wire[wlen - 1u] != LEP_DLE) {
+            continue;
+        }
+        found++;
+        lep_frame_decoder_init(&d);
+        TEST_ASSERT_EQUAL_size_t(wlen, lep_frame_decoder_feed(&d, wire, wlen, &ev));
+        TEST_ASSERT_EQUAL_INT(LEP_FRAME_MESSAGE, ev.type);
+        TEST_ASSERT_FALSE(lep_frame_decoder_busy(&d));
+    }
+    TEST_ASSERT_GREATER_THAN_size_t(0u, found);
 }
 
 /* The event for a frame is returned as soon as its last byte is consumed:
@@ -504,6 +597,12 @@ static void test_random_messages_round_trip(void)
         expect_same(&g_want, &g_got, "random messages, random splits");
         run(stream, len, SPLIT_BYTES, 0, &g_got);
         expect_same(&g_want, &g_got, "random messages, byte by byte");
+        g_api = API_FEED_ALL;
+        run(stream, len, SPLIT_RANDOM, seed, &g_got);
+        expect_same(&g_want, &g_got, "random messages, random splits, feed_all");
+        run(stream, len, SPLIT_WHOLE, 0, &g_got);
+        expect_same(&g_want, &g_got, "random messages, whole, feed_all");
+        g_api = API_FEED;
     }
 }
 
@@ -530,6 +629,15 @@ static void test_random_noise_is_chunking_invariant(void)
         expect_same(&whole, &g_got, "noise, byte by byte");
         run(noise, len, SPLIT_RANDOM, seed, &g_got);
         expect_same(&whole, &g_got, "noise, random splits");
+        g_api = API_FEED_ALL;
+        run(noise, len, SPLIT_WHOLE, 0, &g_got);
+        expect_same(&whole, &g_got, "noise, whole, feed_all");
+        run(noise, len, SPLIT_RANDOM, seed, &g_got);
+        expect_same(&whole, &g_got, "noise, random splits, feed_all");
+        g_api = API_MIXED;
+        run(noise, len, SPLIT_RANDOM, seed ^ 0x55u, &g_got);
+        expect_same(&whole, &g_got, "noise, random splits, feed and feed_all in turn");
+        g_api = API_FEED;
     }
 }
 
@@ -549,6 +657,8 @@ int main(void)
     RUN_TEST(test_decode_streams_concatenated);
     RUN_TEST(test_decoder_busy_and_empty_feed);
     RUN_TEST(test_decoder_feed_bad_arguments);
+    RUN_TEST(test_decoder_feed_all_arguments);
+    RUN_TEST(test_decoder_not_busy_after_bcc_0x10);
     RUN_TEST(test_decoder_stops_after_each_event);
     RUN_TEST(test_empty_frame_is_not_delivered);
     RUN_TEST(test_random_messages_round_trip);

@@ -321,6 +321,90 @@ static void test_invalid_response_vectors(void)
     }
 }
 
+/* Firmware variants: decoded into the fields (the last reserved byte of a
+ * sample is accepted with any value), re-encoded into the canonical v1.13 bytes. */
+static void test_response_variant_vectors(void)
+{
+    const lep_json *vs = lep_vectors_section(g_vectors, "response_variants");
+    size_t i;
+    for (i = 0; i < lep_json_len(vs); i++) {
+        const lep_json *v = lep_json_at(vs, i);
+        const char *name = lep_json_get_str(v, "name");
+        uint8_t msg[LEP_MAX_MESSAGE];
+        uint8_t canonical[LEP_MAX_MESSAGE];
+        uint8_t out[LEP_MAX_MESSAGE];
+        size_t len = lep_vectors_hex(lep_json_get_str(v, "message"), msg, sizeof(msg));
+        size_t clen = lep_vectors_hex(lep_json_get_str(v, "canonical"), canonical, sizeof(canonical));
+        size_t n = 0;
+        lep_response want;
+        lep_response got;
+        response_of(v, &want);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_response_decode(msg, len, &got),
+                                      lep_vectors_ctx(name, "decode"));
+        expect_fields(&want, &got, name);
+        if (len == LEP_LEN_SAMPLE) {
+            TEST_ASSERT_EQUAL_HEX8_MESSAGE((uint8_t)lep_json_get_int(v, "last_reserved", -1), msg[19],
+                                           lep_vectors_ctx(name, "last reserved byte"));
+        }
+        TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_response_encode(&got, out, sizeof(out), &n),
+                                      lep_vectors_ctx(name, "encode"));
+        TEST_ASSERT_EQUAL_size_t_MESSAGE(clen, n, lep_vectors_ctx(name, "canonical length"));
+        TEST_ASSERT_EQUAL_HEX8_ARRAY_MESSAGE(canonical, out, clen, lep_vectors_ctx(name, "canonical bytes"));
+    }
+}
+
+/* The encoder refuses what the decoder would reject, so a device never sends it. */
+static void test_encoder_refuses_what_decoding_rejects(void)
+{
+    lep_response r;
+    uint8_t out[LEP_MAX_MESSAGE];
+    size_t n = 99;
+    memset(&r, 0, sizeof(r));
+    r.code = LEP_CMD_SAMPLE;
+    r.u.sample.raw[LEP_MY] = 32001;
+    TEST_ASSERT_EQUAL_INT(LEP_E_VALUE, lep_response_encode(&r, out, sizeof(out), &n));
+    TEST_ASSERT_EQUAL_size_t(0, n);
+    r.u.sample.raw[LEP_MY] = -32000;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_response_encode(&r, out, sizeof(out), &n));
+    memset(&r, 0, sizeof(r));
+    r.code = LEP_CMD_PRODUCT_INFO;
+    strcpy(r.u.info.model, "PFS\033[2J");
+    TEST_ASSERT_EQUAL_INT(LEP_E_VALUE, lep_response_encode(&r, out, sizeof(out), &n));
+    strcpy(r.u.info.model, "PFS055");
+    r.u.info.firmware[0] = (char)0xB3;
+    TEST_ASSERT_EQUAL_INT(LEP_E_VALUE, lep_response_encode(&r, out, sizeof(out), &n));
+    strcpy(r.u.info.firmware, "1.13");
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_response_encode(&r, out, sizeof(out), &n));
+}
+
+/* The float helper agrees with the double one to float precision. */
+static void test_sample_to_si_float(void)
+{
+    lep_sample s;
+    lep_rated rated = {{500.0f, 500.0f, 1000.0f, 40.0f, 40.0f, 30.0f}};
+    double d[LEP_AXES];
+    float f[LEP_AXES] = {0};
+    size_t i;
+    memset(&s, 0, sizeof(s));
+    s.raw[0] = 10000;
+    s.raw[1] = -10000;
+    s.raw[2] = 1;
+    s.raw[3] = 32000;
+    s.raw[4] = -32000;
+    s.raw[5] = 4112;
+    lep_sample_to_si(&s, &rated, d);
+    lep_sample_to_si_f(&s, &rated, f);
+    for (i = 0; i < LEP_AXES; i++) {
+        TEST_ASSERT_FLOAT_WITHIN((float)(1e-6 * (d[i] < 0 ? -d[i] : d[i]) + 1e-9), (float)d[i], f[i]);
+    }
+    TEST_ASSERT_EQUAL_FLOAT(500.0f, f[0]);
+    f[0] = 7.0f;
+    lep_sample_to_si_f(NULL, &rated, f);
+    lep_sample_to_si_f(&s, NULL, f);
+    lep_sample_to_si_f(&s, &rated, NULL);
+    TEST_ASSERT_EQUAL_FLOAT(7.0f, f[0]);
+}
+
 /* Every non-zero result code is the sensor's error, kept apart from library errors. */
 static void test_sensor_result_codes(void)
 {
@@ -565,6 +649,9 @@ int main(void)
     RUN_TEST(test_response_vectors_encode);
     RUN_TEST(test_response_vectors_round_trip);
     RUN_TEST(test_invalid_response_vectors);
+    RUN_TEST(test_response_variant_vectors);
+    RUN_TEST(test_encoder_refuses_what_decoding_rejects);
+    RUN_TEST(test_sample_to_si_float);
     RUN_TEST(test_sensor_result_codes);
     RUN_TEST(test_response_encode_errors);
     RUN_TEST(test_product_info_padding);

@@ -5,7 +5,7 @@
 # that nothing of it is left behind. Runs as root; cleans up even on failure.
 # No Python anywhere in this check.
 set -euo pipefail
-ci_apt cmake ninja-build gcc pkg-config dpkg-dev file help2man man-db binutils
+ci_apt cmake ninja-build gcc pkg-config dpkg-dev file help2man man-db binutils udev
 
 root=$(pwd)
 pkg=leptrino
@@ -98,6 +98,15 @@ soname=$(readelf -d "$lib" | sed -n 's/.*(SONAME).*\[\(.*\)\]/\1/p')
 [ -n "$soname" ] && [ -L "/usr/lib/$multiarch/$soname" ] || fail "no SONAME link '$soname'"
 ldconfig -p | grep -qF "$soname" || fail "$soname not in the ld.so cache (ldconfig trigger)"
 echo "deb: installed; library $lib, SONAME $soname"
+
+# The udev rule parses: udevadm test reads every rules file and names any
+# line it rejects (file:line); no tty here is a sensor, so nothing matches.
+rule=/usr/lib/udev/rules.d/60-leptrino.rules
+tty=$(ls -d /sys/class/tty/* | head -n 1)
+udevadm test --action=add "$tty" >"$work/udev.txt" 2>&1 || true
+grep -qF "Reading rules file: $rule" "$work/udev.txt" || { cat "$work/udev.txt"; fail "udevadm did not read $rule"; }
+if grep -F "$rule:" "$work/udev.txt"; then fail "udevadm rejects lines of $rule (above)"; fi
+echo "deb: udevadm test reads $rule without complaint"
 
 # 4. The shell: the programs, from their installed paths only.
 cd "$work"

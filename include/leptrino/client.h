@@ -49,57 +49,108 @@ typedef struct lep_client_stats {
     uint32_t retries;         /* commands sent again after a NAK */
     uint32_t unexpected;      /* good messages of the wrong type, skipped (a stale stream's data,
                                  samples arriving while a blocking query waits, late answers) */
-    uint32_t invalid;         /* good frames whose message failed validation, and empty frames */
-    uint32_t timeouts;        /* transactions or reads that timed out */
+    uint32_t invalid;         /* good frames whose message failed validation (wrong length or
+                                 reserved byte, |raw| > 32000, non-printable product-info text,
+                                 ...), and empty frames: never delivered */
+    uint32_t timeouts;        /* transactions that failed with LEP_E_TIMEOUT, and blocking reads
+                                 of samples that timed out */
     uint32_t samples;         /* stream samples delivered to the caller (LEP_STEP_SAMPLE) */
+    /* Since 0.2: */
+    uint32_t resent_after_timeout; /* commands sent again because no answer came in time */
+    uint32_t resent_confirmed;     /* resent starts/stops taken as done because their first copy had
+                                      been executed (answered 0x04, or a start's data flowing) */
+    uint32_t recoveries;           /* starts refused with 0x04 (a stream already running) that were
+                                      recovered by stop, drain, start */
+    uint32_t reserved_nonzero;     /* accepted data messages whose last reserved byte was not 0x00
+                                      (unspecified on later firmware) */
+    uint32_t stalls;               /* stream watchdog expiries (LEP_E_STALLED) */
 } lep_client_stats;
 
 /* Step outcomes (non-negative); failures are negative LEP_E_* codes. */
 enum lep_step {
     LEP_STEP_NONE = 0,     /* input consumed, nothing to report */
-    LEP_STEP_RESPONSE = 1, /* the transaction finished: lep_client_response() */
-    LEP_STEP_SAMPLE = 2    /* a stream sample arrived: lep_client_response()->u.sample */
+    LEP_STEP_RESPONSE = 1, /* the transaction (or start-up recovery) finished: lep_client_response() */
+    LEP_STEP_SAMPLE = 2    /* a stream sample arrived: lep_client_get_sample() */
 };
 
 #define LEP_CLIENT_DEFAULT_TIMEOUT_MS 100
 #define LEP_CLIENT_DEFAULT_RETRIES 3u
+#define LEP_CLIENT_DEFAULT_QUIET_MS 50u
+/* The drain of a recovery gives up (LEP_E_NO_SYNC) after this many timeouts plus the quiet time. */
+#define LEP_CLIENT_DRAIN_TIMEOUTS 20u
 #define LEP_CLIENT_RX_SIZE 128u
-#define LEP_CLIENT_TX_SIZE 24u
 
-/* Client context. Caller-allocated; fields are private. */
+/* Read buffer of the blocking calls: bytes read from io.read but not yet
+ * stepped. Caller-allocated; fields are private. Not needed by the step API. */
+typedef struct lep_client_rx {
+    uint16_t pos;
+    uint16_t len;
+    uint8_t buf[LEP_CLIENT_RX_SIZE];
+} lep_client_rx;
+
+/* Client context. Caller-allocated; fields are private. At most 256 bytes
+ * on a 32-bit MCU (the read buffer of the blocking calls is not in it). */
 typedef struct lep_client {
     lep_io io;
     lep_frame_decoder dec;
-    lep_response resp;
-    lep_client_stats stats;
-    lep_command pending;
-    uint32_t deadline;
-    int timeout_ms;
-    uint16_t rx_pos;
-    uint16_t rx_len;
+    lep_client_rx *rx;      /* read buffer of the blocking calls, or NULL */
+    const uint8_t *msg;     /* message of the last outcome (in dec), or NULL */
+    uint32_t t_start;       /* when the transaction attempt or the quiet time began */
+    uint32_t t_aux;         /* when the drain began, or the watchdog's reference time */
+    uint32_t timeout_ms;
+    uint32_t unexpected;    /* the client's own counters (see lep_client_stats) */
+    uint32_t invalid;
+    uint32_t timeouts;
+    uint32_t samples;
+    uint32_t retries;
+    uint32_t resent_after_timeout;
+    uint32_t resent_confirmed;
+    uint32_t recoveries;
+    uint32_t reserved_nonzero;
+    uint32_t stalls;
+    uint16_t watchdog_ms;
+    uint16_t quiet_ms;
     uint8_t state;
+    uint8_t phase;
     uint8_t tries;
     uint8_t max_retries;
     uint8_t last_result;
-    uint8_t tx_len;
-    uint8_t tx[LEP_CLIENT_TX_SIZE];
-    uint8_t rx[LEP_CLIENT_RX_SIZE];
+    uint8_t code;           /* pending command */
+    uint8_t filter;
+    uint8_t msg_len;
+    uint8_t unchecked;      /* single-byte steps since the clock was last read */
 } lep_client;
 
 /* sizeof(lep_client), for FFI callers that allocate it as bytes. */
 LEP_API size_t lep_client_size(void);
 
-/* Bind c to io (copied) with the default timeout and retry limit.
- * Returns LEP_E_ARG when c or io is NULL or io lacks write or now_ms. */
+/* Bind c to io (copied) with the default timeout and retry limit, no read
+ * buffer and no watchdog. Returns LEP_E_ARG when c or io is NULL or io lacks
+ * write or now_ms. */
 LEP_API int lep_client_init(lep_client *c, const lep_io *io);
 
-/* Transaction timeout in ms (> 0), default 100, for each attempt: a NAK
- * restarts it for the retransmission, so a transaction takes at most
- * (retries + 1) x timeout. Returns LEP_E_ARG if <= 0. */
+/* Give the blocking calls their read buffer (caller-owned, must outlive its
+ * use by c; NULL detaches it). Without one, the blocking calls work the same
+ * but read one byte per io.read call. lep_serial_client_init attaches one. */
+LEP_API int lep_client_set_rx(lep_client *c, lep_client_rx *rx);
+
+/* Timeout in ms (> 0), default 100, for each attempt of a transaction. An
+ * attempt that gets no answer in time, or a DLE NAK, sends the command again,
+ * up to the retry limit; so a transaction ends within
+ * (retries + 1) x timeout ms (default 4 x 100 = 400 ms), and a start that is
+ * recovered (stop, drain, start) within 3 x (retries + 1) x timeout +
+ * (20 x timeout + quiet time). Returns LEP_E_ARG if <= 0. */
 LEP_API int lep_client_set_timeout(lep_client *c, int timeout_ms);
 
-/* Times a NAKed command is sent again before LEP_E_NAK (0..255), default 3. */
+/* Times a command is sent again (after a NAK or a timeout, one shared budget)
+ * before LEP_E_NAK / LEP_E_TIMEOUT (0..255), default 3. */
 LEP_API int lep_client_set_retries(lep_client *c, unsigned retries);
+
+/* Stream watchdog: while streaming, no sample for ms milliseconds makes a
+ * step return LEP_E_STALLED once (counted in stalls), then it re-arms. The
+ * stream stays on: the application decides (e.g. lep_client_recover). 0 (the
+ * default) turns it off. */
+LEP_API int lep_client_set_watchdog(lep_client *c, uint16_t ms);
 
 /* Copy the counters (framing counters included) into *out. */
 LEP_API void lep_client_get_stats(const lep_client *c, lep_client_stats *out);
@@ -110,42 +161,71 @@ LEP_API uint8_t lep_client_last_result(const lep_client *c);
 /* True between a successful start and the stop. */
 LEP_API bool lep_client_streaming(const lep_client *c);
 
-/* The last response or sample decoded; valid until the next step. */
-LEP_API const lep_response *lep_client_response(const lep_client *c);
+/* Decode the message that completed the last LEP_STEP_RESPONSE or
+ * LEP_STEP_SAMPLE into *out. Valid only until the next lep_client_step or
+ * lep_client_send (the bytes live in the frame decoder): LEP_E_STATE when
+ * there is none (e.g. a start confirmed by its data has no answer of its own
+ * and gives that data message). LEP_E_ARG for NULL. */
+LEP_API int lep_client_response(const lep_client *c, lep_response *out);
+
+/* The sample of the last LEP_STEP_SAMPLE (or of a handshake answer), same
+ * validity as lep_client_response; LEP_E_STATE when there is none. */
+LEP_API int lep_client_get_sample(const lep_client *c, lep_sample *out);
 
 /* ---- Step API (non-blocking; never calls io.read) ---- */
 
 /* Start a transaction: frame cmd, write it, arm the deadline. A previous
- * unfinished transaction is abandoned. LEP_E_ARG, LEP_E_VALUE, or the
- * io.write error. A start command enters streaming when it succeeds; a stop
- * leaves it, ignoring data messages that arrive before its answer. */
+ * unfinished transaction or recovery is abandoned. LEP_E_ARG, LEP_E_VALUE,
+ * LEP_E_UNEXPECTED (unknown code), or the io.write error. A start command
+ * enters streaming when it succeeds; a stop leaves it, ignoring data messages
+ * that arrive before its answer.
+ * Resending: a start whose resent copy is answered 0x04, or whose stream data
+ * arrives, counts as started; a stop whose resent copy is answered 0x04
+ * counts as stopped. A start whose first copy is refused with 0x04 while the
+ * client is not streaming (a stale stream runs) is recovered once by stop,
+ * drain, start inside the same transaction; a start while the client itself
+ * streams stays LEP_E_SENSOR (0x04). */
 LEP_API int lep_client_send(lep_client *c, const lep_command *cmd);
+
+/* Non-blocking start-up recovery: send a stop (its answer, a timeout, a NAK
+ * or a refusal all go on), drain until no byte has been fed for quiet_ms
+ * (0: 50 ms), then query the product info. Driven by lep_client_step, like a
+ * transaction (lep_client_busy is true meanwhile); it ends with
+ * LEP_STEP_RESPONSE (lep_client_response gives the product info),
+ * LEP_E_NO_SYNC when the line never goes quiet (about 20 timeouts), or the
+ * query's error. Streaming is off afterwards. Stale data is counted as
+ * unexpected. Errors now: LEP_E_ARG, or the io.write error. */
+LEP_API int lep_client_recover(lep_client *c, uint16_t quiet_ms);
 
 /* Feed received bytes data[0..len): consumes up to and including the byte
  * that completes an outcome, storing the count in *consumed; call again with
- * the rest. len 0 just checks the deadline. Returns an enum lep_step value, or
+ * the rest. len 0 just checks the clock. Returns an enum lep_step value, or
  * for the transaction: LEP_E_SENSOR (see lep_client_last_result), LEP_E_NAK
- * (retries exhausted), LEP_E_TIMEOUT, or a write error from a retransmission.
- * A NAK is answered by sending the command again; messages of the wrong type
- * are skipped and counted. */
+ * (retries exhausted after NAKs), LEP_E_TIMEOUT (no answer to the last
+ * copy), LEP_E_NO_SYNC (recovery), a write error from a retransmission; or
+ * LEP_E_STALLED from the watchdog. A NAK or a timed-out attempt is answered by
+ * sending the command again; messages of the wrong type are skipped and
+ * counted. The clock (io.now_ms) is read on every call with len != 1 and at
+ * least every 32 calls with len == 1 (every call during a recovery), so
+ * timeouts are noticed within 32 bytes when input never pauses; feed len 0
+ * when the line is idle (e.g. on each tick). */
 LEP_API int lep_client_step(lep_client *c, const uint8_t *data, size_t len, size_t *consumed);
 
-/* True while a transaction waits for its answer. */
+/* True while a transaction or a recovery waits for its answer. */
 LEP_API bool lep_client_busy(const lep_client *c);
 
-/* ---- Blocking calls (use io.read; return within about the timeout) ---- */
+/* ---- Blocking calls (use io.read; return within the bounds above) ---- */
 
-/* Send cmd and wait for its answer (with NAK retransmission); *resp may be
- * NULL. While streaming, samples that arrive meanwhile are skipped (counted as
- * unexpected). LEP_E_ARG without io.read. */
+/* Send cmd and wait for its answer (resending after NAKs and timeouts);
+ * *resp may be NULL. While streaming, samples that arrive meanwhile are
+ * skipped (counted as unexpected). LEP_E_ARG without io.read. */
 LEP_API int lep_client_transact(lep_client *c, const lep_command *cmd, lep_response *resp);
 
-/* Start-up recovery: stop any running stream (its data is counted as
- * unexpected), drain until the line has been quiet for quiet_ms (<= 0: 50 ms;
- * gives up after about 20 timeouts), then confirm the sensor answers a
- * product-info query, stored in *info when not NULL. A stop that times out
- * or is refused does not end the recovery. LEP_E_NO_SYNC when the line never
- * goes quiet; else the query's error. */
+/* Start-up recovery (lep_client_recover, run to its end): stop any running
+ * stream (its data is counted as unexpected), drain until the line has been
+ * quiet for quiet_ms (<= 0: 50 ms; at most 65535), then confirm the sensor
+ * answers a product-info query, stored in *info when not NULL.
+ * LEP_E_NO_SYNC when the line never goes quiet; else the query's error. */
 LEP_API int lep_client_sync(lep_client *c, int quiet_ms, lep_product_info *info);
 
 /* Queries; out must not be NULL (LEP_E_ARG). Errors as lep_client_transact. */
@@ -157,12 +237,12 @@ LEP_API int lep_client_filter_set(lep_client *c, uint8_t code);
 /* One handshake-mode sample (0x30). LEP_E_STATE while streaming. */
 LEP_API int lep_client_sample(lep_client *c, lep_sample *out);
 
-/* Start continuous output. */
+/* Start continuous output (resent and recovered as lep_client_send says). */
 LEP_API int lep_client_start(lep_client *c);
 /* Next stream sample within timeout_ms (< 0 forever, 0 only what is already
  * received or comes with one read that does not wait). Bytes that arrive
  * without completing a sample do not extend the wait. LEP_E_STATE when not
- * streaming; LEP_E_TIMEOUT; a read error. */
+ * streaming; LEP_E_TIMEOUT; LEP_E_STALLED (watchdog); a read error. */
 LEP_API int lep_client_next_sample(lep_client *c, lep_sample *out, int timeout_ms);
 /* Up to max samples: waits up to timeout_ms for the first, then returns what
  * is already received without waiting again. *n gets the count. */

@@ -18,6 +18,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "config.h"
 #include "export.h"
 #include "frame.h"
 #include "message.h"
@@ -50,6 +51,8 @@ typedef struct lep_device {
     uint8_t filter_pending;
     bool streaming;
 } lep_device;
+
+#if LEP_HAVE_DEVICE
 
 /* Reset d with its identity, ratings and active filter code (copied).
  * LEP_E_ARG for NULL; LEP_E_VALUE for a filter code > 3, invalid ratings, or
@@ -84,6 +87,8 @@ LEP_API uint8_t lep_device_filter_pending(const lep_device *d);
 /* Simulate switching the sensor off and on: streaming stops, the pending
  * filter becomes active, and any partial input is forgotten. */
 LEP_API void lep_device_power_cycle(lep_device *d);
+
+#endif /* LEP_HAVE_DEVICE */
 
 #ifdef __cplusplus
 }

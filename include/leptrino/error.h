@@ -8,6 +8,7 @@
 
 #include <stdint.h>
 
+#include "config.h"
 #include "export.h"
 
 #ifdef __cplusplus
@@ -37,7 +38,8 @@ enum lep_error {
     LEP_E_STATE = -19,        /* call not valid in the client's current state */
     LEP_E_NO_SYNC = -20,      /* the line never went quiet during recovery */
     LEP_E_UNSUPPORTED = -21,  /* not supported on this platform or port */
-    LEP_E_END = -22           /* a session reached its duration or count (not a failure) */
+    LEP_E_END = -22,          /* a session reached its duration or count (not a failure) */
+    LEP_E_STALLED = -23       /* streaming, but no sample within the watchdog time */
 };
 
 /* Sensor result codes (spec 3.2.1). */
@@ -49,10 +51,12 @@ enum lep_result {
     LEP_RESULT_STATE = 0x04      /* state error */
 };
 
-/* Static, never-NULL description of a LEP_E_* code (or "unknown error"). */
+/* Static, never-NULL description of a LEP_E_* code (or "unknown error");
+ * "" when built with LEP_CONFIG_NO_ERROR_STRINGS. */
 LEP_API const char *lep_strerror(int err);
 
-/* Static, never-NULL meaning of a sensor result code (or "unknown result code"). */
+/* Static, never-NULL meaning of a sensor result code (or "unknown result
+ * code"); "" when built with LEP_CONFIG_NO_ERROR_STRINGS. */
 LEP_API const char *lep_result_str(uint8_t result);
 
 #ifdef __cplusplus

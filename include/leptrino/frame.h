@@ -97,6 +97,20 @@ LEP_API void lep_frame_decoder_init(lep_frame_decoder *d);
 LEP_API size_t lep_frame_decoder_feed(lep_frame_decoder *d, const uint8_t *data, size_t len,
                                       lep_frame_event *ev);
 
+/* Called by lep_frame_decoder_feed_all for each event, in input order. ev and
+ * ev->msg are valid only during the call. The handler must not feed the same
+ * decoder (it may feed others). */
+typedef void (*lep_frame_handler)(void *user, const lep_frame_event *ev);
+
+/* Consume all of data[0..len), calling on_event(user, ev) for every event it
+ * completes. Gives exactly the events and counters of lep_frame_decoder_feed
+ * on the same input, for any chunking and mixed with it, at a lower cost
+ * per byte (one call per chunk instead of one per event). Allocates nothing;
+ * runs in O(len) plus the handler's time. Returns LEP_OK, or LEP_E_ARG (d or
+ * on_event NULL, or data NULL with len > 0: nothing consumed, d unchanged). */
+LEP_API int lep_frame_decoder_feed_all(lep_frame_decoder *d, const uint8_t *data, size_t len,
+                                       lep_frame_handler on_event, void *user);
+
 /* True when the decoder is inside a frame (between DLE STX and its BCC). */
 LEP_API bool lep_frame_decoder_busy(const lep_frame_decoder *d);
 

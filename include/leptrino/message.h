@@ -63,8 +63,13 @@ typedef struct lep_command {
     uint8_t filter;
 } lep_command;
 
-/* Product information (0x2A). ASCII fields NUL-terminated with trailing
- * spaces and NULs removed; encoding pads them with spaces again. */
+/* Product information (0x2A). Fields are printable ASCII (0x20..0x7E),
+ * NUL-terminated, with the padding (trailing spaces and NULs) removed;
+ * encoding pads them with spaces again. Decoding rejects (LEP_E_VALUE) a field
+ * with any other byte before its padding (a control byte, a byte >= 0x80, a
+ * NUL followed by text); encoding rejects a non-printable or too long field.
+ * The serial is digits on v1.13 ("00000000".."99999999"); seven digits padded
+ * with a space or a NUL are accepted as sent. */
 typedef struct lep_product_info {
     char model[LEP_MODEL_LEN + 1];
     char serial[LEP_SERIAL_LEN + 1];
@@ -79,9 +84,11 @@ typedef struct lep_rated {
     float axis[LEP_AXES];
 } lep_rated;
 
-/* One sample (0x30 answer or 0x32 continuous data). */
+/* One sample (0x30 answer or 0x32 continuous data). The last reserved byte
+ * of the message ("0x00 fixed" in v1.13, unspecified on later firmware) is
+ * accepted with any value and not kept (the client counts non-zero ones). */
 typedef struct lep_sample {
-    int16_t raw[LEP_AXES]; /* counts: +/-10000 = +/- rated */
+    int16_t raw[LEP_AXES]; /* counts: +/-10000 = +/- rated; |raw| <= 32000 (else LEP_E_VALUE) */
     uint16_t reserved;     /* the two undefined bytes (LE); leptrino-sim puts a sequence number here */
     uint8_t status;        /* LEP_STATUS_* bits */
 } lep_sample;
@@ -112,12 +119,15 @@ LEP_API int lep_command_decode(const uint8_t *msg, size_t len, lep_command *cmd,
 /* Host side: decode and validate a response message. Returns LEP_OK;
  * LEP_E_SENSOR for a well-formed answer with a non-zero result (r->code and
  * r->result set); LEP_E_LENGTH, LEP_E_RESERVED, LEP_E_UNEXPECTED (unknown
- * code) or LEP_E_VALUE (non-finite or non-positive rating, filter code > 3). */
+ * code) or LEP_E_VALUE (non-finite or non-positive rating, filter code > 3,
+ * |raw| > 32000, product-info text that is not printable ASCII + padding). */
 LEP_API int lep_response_decode(const uint8_t *msg, size_t len, lep_response *r);
 
 /* Sensor side: encode r into msg[0..cap). A non-zero result gives the 4-byte
  * form (for any code, so unknown commands can be answered). Errors: LEP_E_ARG,
- * LEP_E_UNEXPECTED (unknown code with result 0), LEP_E_VALUE, LEP_E_BUFFER. */
+ * LEP_E_UNEXPECTED (unknown code with result 0), LEP_E_VALUE (what decoding
+ * would reject: a bad rating or filter code, |raw| > 32000, text that is not
+ * printable ASCII or too long), LEP_E_BUFFER. */
 LEP_API int lep_response_encode(const lep_response *r, uint8_t *msg, size_t cap, size_t *len);
 
 /* Encode straight to a wire frame (message codec + frame codec). */
@@ -126,6 +136,9 @@ LEP_API int lep_response_frame(const lep_response *r, uint8_t *out, size_t cap, 
 
 /* physical = raw * rated / 10000, per axis, into si[6] (N, N m). */
 LEP_API void lep_sample_to_si(const lep_sample *s, const lep_rated *rated, double si[LEP_AXES]);
+
+/* The same in single precision, for MCUs whose FPU (or budget) has no double. */
+LEP_API void lep_sample_to_si_f(const lep_sample *s, const lep_rated *rated, float si[LEP_AXES]);
 
 /* Bit i set when |raw[i]| >= limit (LEP_SATURATION_V113 or _LATER). */
 LEP_API uint8_t lep_sample_saturated(const lep_sample *s, int16_t limit);

@@ -40,7 +40,8 @@ LEP_API void lep_serial_close(lep_serial *s);
 /* The I/O table for lep_client_init; valid until lep_serial_close. */
 LEP_API void lep_serial_get_io(lep_serial *s, lep_io *io);
 
-/* lep_client_init(c, io of s). */
+/* lep_client_init(c, io of s), with the port's read buffer for the blocking calls
+ * (lep_client_set_rx); one client per port. */
 LEP_API int lep_serial_client_init(lep_client *c, lep_serial *s);
 
 LEP_API void lep_serial_get_info(const lep_serial *s, lep_serial_info *info);

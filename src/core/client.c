@@ -1,15 +1,33 @@
-/* Host-side client: transactions, NAK retransmission, streaming, recovery. */
+/* Host-side client: transactions with resending, streaming, recovery, watchdog. */
 #include "leptrino/client.h"
 
 #include <string.h>
 
 #include "leptrino/error.h"
 
-#define ST_WAIT 0x01u   /* a transaction waits for its answer */
+#define ST_WAIT 0x01u   /* a transaction or a recovery waits */
 #define ST_STREAM 0x02u /* continuous output is on */
+#define ST_FRESH 0x04u  /* a sample arrived since the watchdog last looked */
+#define ST_WATCH 0x08u  /* a watchdog time is set (lep_client_set_watchdog) */
 
-#define SYNC_DEFAULT_QUIET_MS 50
-#define SYNC_DRAIN_TIMEOUTS 20
+enum {
+    PH_NONE = 0,    /* a plain transaction (or nothing) */
+    PH_STOP_SYNC,   /* recovery: its stop is out */
+    PH_STOP_START,  /* a start refused with 0x04: the stop is out */
+    PH_DRAIN_SYNC,  /* recovery: waiting for a quiet line, then identify */
+    PH_DRAIN_START, /* start recovery: waiting for a quiet line, then start again */
+    PH_RESTARTED    /* the start sent after a recovery (not recovered twice) */
+};
+
+/* Keep a slow path out of line, so the per-byte path saves few registers. */
+#if defined(__GNUC__)
+#define SLOW_PATH __attribute__((noinline))
+#else
+#define SLOW_PATH
+#endif
+
+/* Single-byte steps between two clock reads. */
+#define CHECK_EVERY 32u
 
 size_t lep_client_size(void)
 {
@@ -26,6 +44,20 @@ int lep_client_init(lep_client *c, const lep_io *io)
     lep_frame_decoder_init(&c->dec);
     c->timeout_ms = LEP_CLIENT_DEFAULT_TIMEOUT_MS;
     c->max_retries = (uint8_t)LEP_CLIENT_DEFAULT_RETRIES;
+    c->quiet_ms = (uint16_t)LEP_CLIENT_DEFAULT_QUIET_MS;
+    return LEP_OK;
+}
+
+int lep_client_set_rx(lep_client *c, lep_client_rx *rx)
+{
+    if (c == NULL) {
+        return LEP_E_ARG;
+    }
+    c->rx = rx;
+    if (rx != NULL) {
+        rx->pos = 0;
+        rx->len = 0;
+    }
     return LEP_OK;
 }
 
@@ -34,7 +66,7 @@ int lep_client_set_timeout(lep_client *c, int timeout_ms)
     if (c == NULL || timeout_ms <= 0) {
         return LEP_E_ARG;
     }
-    c->timeout_ms = timeout_ms;
+    c->timeout_ms = (uint32_t)timeout_ms;
     return LEP_OK;
 }
 
@@ -47,17 +79,40 @@ int lep_client_set_retries(lep_client *c, unsigned retries)
     return LEP_OK;
 }
 
+int lep_client_set_watchdog(lep_client *c, uint16_t ms)
+{
+    if (c == NULL) {
+        return LEP_E_ARG;
+    }
+    c->watchdog_ms = ms;
+    if (ms != 0u) {
+        c->state = (uint8_t)(c->state | ST_FRESH | ST_WATCH); /* the time runs from the next check */
+    } else {
+        c->state = (uint8_t)(c->state & ~ST_WATCH);
+    }
+    return LEP_OK;
+}
+
 void lep_client_get_stats(const lep_client *c, lep_client_stats *out)
 {
     if (c == NULL || out == NULL) {
         return;
     }
-    *out = c->stats;
     out->messages = c->dec.stats.messages;
     out->bcc_errors = c->dec.stats.bcc_errors;
     out->frame_errors = c->dec.stats.escape_errors + c->dec.stats.overruns + c->dec.stats.restarts;
     out->bytes_discarded = c->dec.stats.bytes_discarded;
     out->naks = c->dec.stats.naks;
+    out->retries = c->retries;
+    out->unexpected = c->unexpected;
+    out->invalid = c->invalid;
+    out->timeouts = c->timeouts;
+    out->samples = c->samples;
+    out->resent_after_timeout = c->resent_after_timeout;
+    out->resent_confirmed = c->resent_confirmed;
+    out->recoveries = c->recoveries;
+    out->reserved_nonzero = c->reserved_nonzero;
+    out->stalls = c->stalls;
 }
 
 uint8_t lep_client_last_result(const lep_client *c)
@@ -75,9 +130,35 @@ bool lep_client_busy(const lep_client *c)
     return c != NULL && (c->state & ST_WAIT) != 0u;
 }
 
-const lep_response *lep_client_response(const lep_client *c)
+int lep_client_response(const lep_client *c, lep_response *out)
 {
-    return c == NULL ? NULL : &c->resp;
+    int rc;
+    if (c == NULL || out == NULL) {
+        return LEP_E_ARG;
+    }
+    if (c->msg == NULL) {
+        return LEP_E_STATE;
+    }
+    rc = lep_response_decode(c->msg, c->msg_len, out);
+    return rc == LEP_E_SENSOR ? LEP_OK : rc; /* validated when it arrived */
+}
+
+int lep_client_get_sample(const lep_client *c, lep_sample *out)
+{
+    lep_response r;
+    int rc;
+    if (out == NULL) {
+        return LEP_E_ARG;
+    }
+    rc = lep_client_response(c, &r);
+    if (rc != LEP_OK) {
+        return rc;
+    }
+    if (r.result != LEP_RESULT_OK || r.code != (r.stream ? LEP_CMD_START : LEP_CMD_SAMPLE)) {
+        return LEP_E_STATE;
+    }
+    *out = r.u.sample;
+    return LEP_OK;
 }
 
 static uint32_t now(const lep_client *c)
@@ -85,193 +166,438 @@ static uint32_t now(const lep_client *c)
     return c->io.now_ms(c->io.user);
 }
 
-/* Milliseconds from now until t (negative when t has passed). */
-static int32_t until(const lep_client *c, uint32_t t)
-{
-    uint32_t d = t - now(c);
-    return d < 0x80000000u ? (int32_t)d : -(int32_t)(0xFFFFFFFFu - d) - 1;
-}
-
 static void end_wait(lep_client *c)
 {
     c->state = (uint8_t)(c->state & ~ST_WAIT);
+    c->phase = PH_NONE;
 }
 
+/* Write the pending command (again) and restart the attempt's clock. */
 static int write_pending(lep_client *c)
 {
-    int rc = c->io.write(c->io.user, c->tx, c->tx_len);
+    uint8_t frame[LEP_MAX_FRAME];
+    lep_command cmd;
+    size_t n;
+    int rc;
+    cmd.code = c->code;
+    cmd.filter = c->filter;
+    rc = lep_command_frame(&cmd, frame, sizeof(frame), &n);
+    if (rc == LEP_OK) {
+        rc = c->io.write(c->io.user, frame, n);
+    }
     if (rc < 0) {
         end_wait(c);
         return rc;
     }
-    c->deadline = now(c) + (uint32_t)c->timeout_ms;
+    c->t_start = now(c);
     return LEP_OK;
 }
 
-int lep_client_send(lep_client *c, const lep_command *cmd)
+/* Begin sending code (a new transaction or the next step of a recovery). */
+static int begin(lep_client *c, uint8_t code, uint8_t filter, uint8_t phase)
 {
-    size_t n;
-    int rc;
-    if (c == NULL || cmd == NULL) {
-        return LEP_E_ARG;
-    }
-    end_wait(c);
-    rc = lep_command_frame(cmd, c->tx, sizeof(c->tx), &n);
-    if (rc != LEP_OK) {
-        return rc;
-    }
-    c->tx_len = (uint8_t)n;
-    c->pending = *cmd;
+    c->code = code;
+    c->filter = filter;
     c->tries = 0;
+    c->phase = phase;
     c->state = (uint8_t)(c->state | ST_WAIT);
     return write_pending(c);
 }
 
-/* The answer to the pending command arrived (rc is OK or LEP_E_SENSOR). */
-static int finish(lep_client *c, int rc)
+int lep_client_send(lep_client *c, const lep_command *cmd)
 {
-    end_wait(c);
-    c->last_result = c->resp.result;
-    if (rc != LEP_OK) {
-        return rc;
+    if (c == NULL || cmd == NULL) {
+        return LEP_E_ARG;
     }
-    if (c->pending.code == LEP_CMD_START) {
-        c->state = (uint8_t)(c->state | ST_STREAM);
-    } else if (c->pending.code == LEP_CMD_STOP) {
+    end_wait(c);
+    c->msg = NULL;
+    return begin(c, cmd->code, cmd->filter, PH_NONE);
+}
+
+int lep_client_recover(lep_client *c, uint16_t quiet_ms)
+{
+    if (c == NULL) {
+        return LEP_E_ARG;
+    }
+    end_wait(c);
+    c->msg = NULL;
+    c->quiet_ms = quiet_ms == 0u ? (uint16_t)LEP_CLIENT_DEFAULT_QUIET_MS : quiet_ms;
+    c->state = (uint8_t)(c->state & ~ST_STREAM); /* a stream's data is stale from here on */
+    return begin(c, LEP_CMD_STOP, 0, PH_STOP_SYNC);
+}
+
+static void begin_drain(lep_client *c, uint8_t phase)
+{
+    c->state = (uint8_t)((c->state | ST_WAIT) & ~ST_STREAM);
+    c->phase = phase;
+    c->t_start = now(c);
+    c->t_aux = c->t_start;
+}
+
+/* The transaction ended well: streaming follows the command. */
+static int done(lep_client *c)
+{
+    if (c->code == LEP_CMD_START) {
+        if (c->phase == PH_RESTARTED) {
+            c->recoveries++;
+        }
+        c->state = (uint8_t)(c->state | ST_STREAM | ST_FRESH);
+    } else if (c->code == LEP_CMD_STOP) {
         c->state = (uint8_t)(c->state & ~ST_STREAM);
     }
+    end_wait(c);
     return LEP_STEP_RESPONSE;
+}
+
+/* The answer to the pending command arrived; result is its result code. */
+static int on_answer(lep_client *c, uint8_t result)
+{
+    c->last_result = result;
+    if (c->phase == PH_STOP_SYNC || c->phase == PH_STOP_START) {
+        begin_drain(c, c->phase == PH_STOP_SYNC ? PH_DRAIN_SYNC : PH_DRAIN_START);
+        return LEP_STEP_NONE; /* any answer to the recovery's stop will do */
+    }
+    if (result == LEP_RESULT_OK) {
+        return done(c);
+    }
+    if (result == LEP_RESULT_STATE && (c->code == LEP_CMD_START || c->code == LEP_CMD_STOP)) {
+        if (c->tries > 0u) {
+            c->resent_confirmed++; /* an earlier copy was executed */
+            return done(c);
+        }
+        if (c->code == LEP_CMD_START && c->phase == PH_NONE && (c->state & ST_STREAM) == 0u) {
+            /* A stream we did not start (a stale one) already runs. */
+            int rc = begin(c, LEP_CMD_STOP, 0, PH_STOP_START);
+            return rc < 0 ? rc : LEP_STEP_NONE;
+        }
+    }
+    end_wait(c);
+    return LEP_E_SENSOR;
 }
 
 /* Handle one good frame; returns an outcome, or LEP_STEP_NONE to go on. */
 static int on_message(lep_client *c, const lep_frame_event *ev)
 {
-    bool waiting = (c->state & ST_WAIT) != 0u;
-    int rc = lep_response_decode(ev->msg, ev->len, &c->resp);
+    lep_response r;
+    int rc = lep_response_decode(ev->msg, ev->len, &r);
+    bool waiting = (c->state & ST_WAIT) != 0u && c->phase != PH_DRAIN_SYNC &&
+                   c->phase != PH_DRAIN_START;
     if (rc != LEP_OK && rc != LEP_E_SENSOR) {
-        c->stats.invalid++;
+        c->invalid++;
         return LEP_STEP_NONE;
     }
-    if (c->resp.stream && rc == LEP_OK) {
+    if (r.stream) {
         if ((c->state & ST_STREAM) == 0u) {
-            c->stats.unexpected++; /* a stream we did not start (e.g. a stale one) */
+            if (waiting && c->code == LEP_CMD_START && c->tries > 0u) {
+                c->resent_confirmed++; /* our resent start's first copy was executed */
+                c->last_result = LEP_RESULT_OK;
+                return done(c);
+            }
+            c->unexpected++; /* a stream we did not start (e.g. a stale one) */
             return LEP_STEP_NONE;
         }
-        if (waiting && c->pending.code == LEP_CMD_STOP) {
+        if (waiting && c->code == LEP_CMD_STOP) {
             return LEP_STEP_NONE; /* our data still in flight before the stop answer */
         }
-        c->stats.samples++;
+        if (ev->msg[LEP_LEN_SAMPLE - 1u] != 0u) {
+            c->reserved_nonzero++;
+        }
+        c->samples++;
+        c->state = (uint8_t)(c->state | ST_FRESH);
         return LEP_STEP_SAMPLE;
     }
-    if (waiting && c->resp.code == c->pending.code) {
-        return finish(c, rc);
+    if (waiting && r.code == c->code) {
+        if (r.code == LEP_CMD_SAMPLE && ev->msg[LEP_LEN_SAMPLE - 1u] != 0u) {
+            c->reserved_nonzero++;
+        }
+        return on_answer(c, r.result);
     }
-    c->stats.unexpected++;
+    c->unexpected++;
     return LEP_STEP_NONE;
 }
 
-static int on_nak(lep_client *c)
+/* The attempt failed (NAK or timeout): send again, or give up with err. */
+static int attempt_failed(lep_client *c, int err, uint32_t *counter)
 {
-    if ((c->state & ST_WAIT) == 0u) {
-        return LEP_STEP_NONE;
+    if (c->tries < c->max_retries) {
+        c->tries++;
+        (*counter)++;
+        return write_pending(c);
     }
-    if (c->tries >= c->max_retries) {
-        end_wait(c);
-        return LEP_E_NAK;
+    if (c->phase == PH_STOP_SYNC || c->phase == PH_STOP_START) {
+        begin_drain(c, c->phase == PH_STOP_SYNC ? PH_DRAIN_SYNC : PH_DRAIN_START);
+        return LEP_STEP_NONE; /* a stop that never got through does not end the recovery */
     }
-    c->tries++;
-    c->stats.retries++;
-    return write_pending(c);
+    end_wait(c);
+    if (err == LEP_E_TIMEOUT) {
+        c->timeouts++;
+    }
+    return err;
 }
 
-int lep_client_step(lep_client *c, const uint8_t *data, size_t len, size_t *consumed)
+static int on_event(lep_client *c, const lep_frame_event *ev)
 {
-    size_t pos = 0;
-    int rc = LEP_STEP_NONE;
-    if (c == NULL || consumed == NULL || (data == NULL && len > 0)) {
-        return LEP_E_ARG;
+    if (ev->type == LEP_FRAME_MESSAGE) {
+        return on_message(c, ev);
     }
-    while (pos < len) {
-        lep_frame_event ev;
-        pos += lep_frame_decoder_feed(&c->dec, data + pos, len - pos, &ev);
-        if (ev.type == LEP_FRAME_MESSAGE) {
-            rc = on_message(c, &ev);
-        } else if (ev.type == LEP_FRAME_NAK) {
-            rc = on_nak(c);
-        } else if (ev.type == LEP_FRAME_ERROR && ev.error == LEP_E_LENGTH) {
-            c->stats.invalid++; /* an empty frame */
+    if (ev->type == LEP_FRAME_NAK) {
+        if ((c->state & ST_WAIT) == 0u || c->phase == PH_DRAIN_SYNC || c->phase == PH_DRAIN_START) {
+            return LEP_STEP_NONE;
         }
+        return attempt_failed(c, LEP_E_NAK, &c->retries);
+    }
+    if (ev->error == LEP_E_LENGTH) {
+        c->invalid++; /* an empty frame */
+    }
+    return LEP_STEP_NONE;
+}
+
+/* Milliseconds from t0 + span on, as seen at t (>= 0 once it has passed). */
+static bool passed(uint32_t t, uint32_t t0, uint32_t span)
+{
+    return (uint32_t)(t - t0) >= span;
+}
+
+/* The drain's limit: LEP_CLIENT_DRAIN_TIMEOUTS timeouts plus the quiet time. */
+static uint32_t drain_limit(const lep_client *c)
+{
+    uint32_t cap = (0x7FFFFFFFu - c->quiet_ms) / LEP_CLIENT_DRAIN_TIMEOUTS;
+    uint32_t t = c->timeout_ms < cap ? c->timeout_ms : cap;
+    return t * LEP_CLIENT_DRAIN_TIMEOUTS + c->quiet_ms;
+}
+
+/* Deadlines: attempt timeout, drain, watchdog. fed says bytes came in. */
+static int check_clock(lep_client *c, bool fed)
+{
+    uint32_t t = now(c);
+    if (c->phase == PH_DRAIN_SYNC || c->phase == PH_DRAIN_START) {
+        if (passed(t, c->t_aux, drain_limit(c))) {
+            end_wait(c);
+            return LEP_E_NO_SYNC;
+        }
+        if (fed) {
+            c->t_start = t; /* not quiet yet */
+            return LEP_STEP_NONE;
+        }
+        if (!passed(t, c->t_start, c->quiet_ms)) {
+            return LEP_STEP_NONE;
+        }
+        if (c->phase == PH_DRAIN_SYNC) {
+            return begin(c, LEP_CMD_PRODUCT_INFO, 0, PH_NONE);
+        }
+        return begin(c, LEP_CMD_START, 0, PH_RESTARTED);
+    }
+    if ((c->state & ST_WAIT) != 0u && passed(t, c->t_start, c->timeout_ms)) {
+        int rc = attempt_failed(c, LEP_E_TIMEOUT, &c->resent_after_timeout);
         if (rc != LEP_STEP_NONE) {
-            *consumed = pos;
             return rc;
         }
     }
-    *consumed = pos;
-    if ((c->state & ST_WAIT) != 0u && until(c, c->deadline) <= 0) {
-        end_wait(c);
-        c->stats.timeouts++;
-        return LEP_E_TIMEOUT;
+    if ((c->state & ST_STREAM) != 0u && c->watchdog_ms != 0u) {
+        if ((c->state & ST_FRESH) != 0u) {
+            c->state = (uint8_t)(c->state & ~ST_FRESH);
+            c->t_aux = t;
+        } else if (passed(t, c->t_aux, c->watchdog_ms)) {
+            c->t_aux = t;
+            c->stalls++;
+            return LEP_E_STALLED;
+        }
     }
     return LEP_STEP_NONE;
 }
 
-/* Step over the bytes already read into c->rx (or just check the deadline). */
-static int step_buffered(lep_client *c)
+/* After the input data[0..len) is consumed without an outcome: watch the clock. */
+SLOW_PATH static int step_clock(lep_client *c, size_t len)
+{
+    if ((c->state & ST_WAIT) == 0u && ((c->state & ST_STREAM) == 0u || c->watchdog_ms == 0u)) {
+        return LEP_STEP_NONE; /* no deadline to watch */
+    }
+    if (len == 1u && c->phase == PH_NONE && ++c->unchecked < CHECK_EVERY) {
+        return LEP_STEP_NONE;
+    }
+    c->unchecked = 0;
+    return check_clock(c, len > 0u);
+}
+
+/* The rest of lep_client_step once the decoder reported an event: handle it
+ * and go on with the remaining input. Kept out of the per-byte path. */
+SLOW_PATH static int step_events(lep_client *c, const uint8_t *data, size_t len, size_t pos,
+                       lep_frame_event *ev, size_t *consumed)
+{
+    for (;;) {
+        if (ev->type != LEP_FRAME_NONE) {
+            int rc = on_event(c, ev);
+            if (rc != LEP_STEP_NONE) {
+                if (rc > 0) { /* a response or a sample: keep where its message is */
+                    c->msg = ev->msg;
+                    c->msg_len = (uint8_t)ev->len;
+                }
+                *consumed = pos;
+                return rc;
+            }
+        }
+        if (pos == len) {
+            *consumed = pos;
+            return step_clock(c, len);
+        }
+        pos += lep_frame_decoder_feed(&c->dec, data + pos, len - pos, ev);
+    }
+}
+
+/* The per-byte path is short on purpose (an ISR-fed firmware calls it once a
+ * byte): one feed (it consumes everything up to the first event), and
+ * everything else in step_events / step_clock. */
+int lep_client_step(lep_client *c, const uint8_t *data, size_t len, size_t *consumed)
+{
+    lep_frame_event ev;
+    size_t pos;
+    if (c == NULL || consumed == NULL || (data == NULL && len > 0)) {
+        return LEP_E_ARG;
+    }
+    c->msg = NULL;
+    *consumed = len; /* (few values live across the call: the slow paths read len back) */
+    pos = lep_frame_decoder_feed(&c->dec, data, len, &ev);
+    if (ev.type != LEP_FRAME_NONE) {
+        return step_events(c, data, *consumed, pos, &ev, consumed);
+    }
+    if ((c->state & (ST_WAIT | ST_WATCH)) == 0u) {
+        return LEP_STEP_NONE;
+    }
+    return step_clock(c, *consumed);
+}
+
+/* ---- Blocking calls ---- */
+
+/* Milliseconds until the next deadline (>= 0), or -1 when none is armed. */
+static int32_t next_deadline(const lep_client *c)
+{
+    uint32_t t = now(c);
+    uint32_t left = 0xFFFFFFFFu;
+    if (c->phase == PH_DRAIN_SYNC || c->phase == PH_DRAIN_START) {
+        uint32_t q = (uint32_t)(t - c->t_start);
+        uint32_t a = (uint32_t)(t - c->t_aux);
+        uint32_t lim = drain_limit(c);
+        left = q >= c->quiet_ms ? 0u : c->quiet_ms - q;
+        if (a >= lim) {
+            left = 0;
+        } else if (lim - a < left) {
+            left = lim - a;
+        }
+    } else if ((c->state & ST_WAIT) != 0u) {
+        uint32_t e = (uint32_t)(t - c->t_start);
+        left = e >= c->timeout_ms ? 0u : c->timeout_ms - e;
+    }
+    if ((c->state & ST_STREAM) != 0u && c->watchdog_ms != 0u) {
+        uint32_t e = (c->state & ST_FRESH) != 0u ? 0u : (uint32_t)(t - c->t_aux);
+        uint32_t w = e >= c->watchdog_ms ? 0u : c->watchdog_ms - e;
+        left = w < left ? w : left;
+    }
+    if (left == 0xFFFFFFFFu) {
+        return -1;
+    }
+    return left > 0x7FFFFFFFu ? 0x7FFFFFFF : (int32_t)left;
+}
+
+/* v as an int (16 bits on some MCUs), saturated. */
+static int clamp_int(int32_t v)
+{
+    const int max = (int)((unsigned)-1 >> 1);
+    return v > (int32_t)max ? max : (int)v;
+}
+
+/* The read buffer: the attached one, or a one-byte one on the caller's stack. */
+typedef struct reader {
+    lep_client_rx *rx;
+    size_t cap;
+} reader;
+
+static reader reader_of(lep_client *c, lep_client_rx *local)
+{
+    reader r;
+    r.rx = c->rx != NULL ? c->rx : local;
+    r.cap = c->rx != NULL ? sizeof(c->rx->buf) : 1u;
+    local->pos = 0;
+    local->len = 0;
+    return r;
+}
+
+/* Step over the bytes already read, then (when they are all stepped without
+ * an outcome, or there were none) check the clock: a blocking call never
+ * reads past a deadline. */
+static int step_buffered(lep_client *c, const reader *rd)
 {
     size_t used = 0;
-    int rc = lep_client_step(c, c->rx + c->rx_pos, (size_t)(c->rx_len - c->rx_pos), &used);
-    c->rx_pos = (uint16_t)(c->rx_pos + used);
+    lep_client_rx *rx = rd->rx;
+    int rc = LEP_STEP_NONE;
+    if (rx->pos < rx->len) {
+        rc = lep_client_step(c, rx->buf + rx->pos, (size_t)(rx->len - rx->pos), &used);
+        rx->pos = (uint16_t)(rx->pos + used);
+    }
+    if (rc == LEP_STEP_NONE && rx->pos == rx->len) {
+        rc = lep_client_step(c, NULL, 0, &used);
+    }
     return rc;
 }
 
-/* Read more input into c->rx (only once the bytes there are all stepped);
- * > 0 bytes, 0 on timeout, < 0 error. A read claiming more than it was
- * allowed is a broken backend: LEP_E_IO rather than a guess at the bytes. */
-static int fill(lep_client *c, int timeout_ms)
+/* Read more input (only once the bytes there are all stepped); > 0 bytes,
+ * 0 on timeout, < 0 error. A read claiming more than it was allowed is a
+ * broken backend: LEP_E_IO rather than a guess at the bytes. */
+static int fill(lep_client *c, const reader *rd, int timeout_ms)
 {
-    int n = c->io.read(c->io.user, c->rx, sizeof(c->rx), timeout_ms);
-    if (n > (int)sizeof(c->rx)) {
+    int n = c->io.read(c->io.user, rd->rx->buf, rd->cap, timeout_ms);
+    if (n > (int)rd->cap) {
         return LEP_E_IO;
     }
     if (n > 0) {
-        c->rx_pos = 0;
-        c->rx_len = (uint16_t)n;
+        rd->rx->pos = 0;
+        rd->rx->len = (uint16_t)n;
     }
     return n;
+}
+
+/* Drive the pending transaction or recovery to its outcome (samples that
+ * arrive meanwhile are skipped). */
+static int run(lep_client *c)
+{
+    lep_client_rx local;
+    reader rd = reader_of(c, &local);
+    for (;;) {
+        int rc = step_buffered(c, &rd);
+        int32_t wait;
+        if (rc == LEP_STEP_RESPONSE || rc < 0) {
+            return rc < 0 ? rc : LEP_OK;
+        }
+        if (rc == LEP_STEP_SAMPLE) {
+            c->samples--; /* not delivered: skipped while waiting for another answer */
+            c->unexpected++;
+        }
+        if (rd.rx->pos < rd.rx->len) {
+            continue;
+        }
+        if ((c->state & ST_WAIT) == 0u) {
+            return LEP_E_STATE; /* nothing pending (cannot happen after a send) */
+        }
+        wait = next_deadline(c);
+        rc = fill(c, &rd, clamp_int(wait));
+        if (rc < 0) {
+            end_wait(c);
+            return rc;
+        }
+    }
 }
 
 int lep_client_transact(lep_client *c, const lep_command *cmd, lep_response *resp)
 {
     int rc;
-    if (c == NULL || cmd == NULL) {
-        return LEP_E_ARG;
-    }
-    if (c->io.read == NULL) {
+    if (c == NULL || cmd == NULL || c->io.read == NULL) {
         return LEP_E_ARG;
     }
     rc = lep_client_send(c, cmd);
-    while (rc >= 0) {
-        int32_t left;
-        rc = step_buffered(c);
-        if (rc == LEP_STEP_RESPONSE) {
-            if (resp != NULL) {
-                *resp = c->resp;
-            }
-            return LEP_OK;
-        }
-        if (rc == LEP_STEP_SAMPLE) {
-            /* A stream sample while waiting for another answer: skipped, not delivered. */
-            c->stats.samples--;
-            c->stats.unexpected++;
-        }
-        if (rc < 0 || c->rx_pos < c->rx_len) {
-            continue; /* an error ends the loop; a sample leaves bytes to step over */
-        }
-        left = until(c, c->deadline);
-        rc = fill(c, left > 0 ? (int)left : 0);
-        if (rc < 0) {
-            end_wait(c);
-        }
+    if (rc == LEP_OK) {
+        rc = run(c);
+    }
+    if (rc == LEP_OK && resp != NULL) {
+        rc = lep_client_response(c, resp);
     }
     return rc;
 }
@@ -282,20 +608,22 @@ int lep_client_transact(lep_client *c, const lep_command *cmd, lep_response *res
  * sample never extend the wait. */
 static int next_sample(lep_client *c, lep_sample *out, int timeout_ms, bool count_timeout)
 {
+    lep_client_rx local;
+    reader rd = reader_of(c, &local);
     uint32_t start = now(c);
     bool polled = false; /* the read after the time was up has been made */
     for (;;) {
-        int rc = step_buffered(c);
+        int rc = step_buffered(c, &rd);
         int n;
         int wait = timeout_ms;
+        int32_t clock;
         if (rc == LEP_STEP_SAMPLE) {
-            *out = c->resp.u.sample;
-            return LEP_OK;
+            return lep_client_get_sample(c, out);
         }
         if (rc < 0) {
             return rc;
         }
-        if (c->rx_pos < c->rx_len) {
+        if (rd.rx->pos < rd.rx->len) {
             continue;
         }
         if (timeout_ms >= 0) {
@@ -305,7 +633,8 @@ static int next_sample(lep_client *c, lep_sample *out, int timeout_ms, bool coun
                 break;
             }
         }
-        n = fill(c, wait);
+        clock = next_deadline(c);
+        n = fill(c, &rd, clock >= 0 && (wait < 0 || clock < (int32_t)wait) ? clamp_int(clock) : wait);
         if (n < 0) {
             return n;
         }
@@ -315,7 +644,7 @@ static int next_sample(lep_client *c, lep_sample *out, int timeout_ms, bool coun
         }
     }
     if (count_timeout) {
-        c->stats.timeouts++;
+        c->timeouts++;
     }
     return LEP_E_TIMEOUT;
 }
@@ -351,47 +680,51 @@ int lep_client_next_samples(lep_client *c, lep_sample *out, size_t max, size_t *
     return LEP_OK;
 }
 
-static int simple(lep_client *c, uint8_t code, uint8_t filter)
+/* A transaction of code; its answer decoded into *r when r is not NULL. */
+static int query(lep_client *c, uint8_t code, uint8_t filter, lep_response *r)
 {
     lep_command cmd;
     cmd.code = code;
     cmd.filter = filter;
-    return lep_client_transact(c, &cmd, NULL);
+    return lep_client_transact(c, &cmd, r);
 }
 
 int lep_client_start(lep_client *c)
 {
-    return simple(c, LEP_CMD_START, 0);
+    return query(c, LEP_CMD_START, 0, NULL);
 }
 
 int lep_client_stop(lep_client *c)
 {
-    return simple(c, LEP_CMD_STOP, 0);
+    return query(c, LEP_CMD_STOP, 0, NULL);
 }
 
 int lep_client_product_info(lep_client *c, lep_product_info *out)
 {
-    int rc = out == NULL ? LEP_E_ARG : simple(c, LEP_CMD_PRODUCT_INFO, 0);
+    lep_response r;
+    int rc = out == NULL ? LEP_E_ARG : query(c, LEP_CMD_PRODUCT_INFO, 0, &r);
     if (rc == LEP_OK) {
-        *out = c->resp.u.info;
+        *out = r.u.info;
     }
     return rc;
 }
 
 int lep_client_rated(lep_client *c, lep_rated *out)
 {
-    int rc = out == NULL ? LEP_E_ARG : simple(c, LEP_CMD_RATED, 0);
+    lep_response r;
+    int rc = out == NULL ? LEP_E_ARG : query(c, LEP_CMD_RATED, 0, &r);
     if (rc == LEP_OK) {
-        *out = c->resp.u.rated;
+        *out = r.u.rated;
     }
     return rc;
 }
 
 int lep_client_filter_get(lep_client *c, uint8_t *code)
 {
-    int rc = code == NULL ? LEP_E_ARG : simple(c, LEP_CMD_FILTER_GET, 0);
+    lep_response r;
+    int rc = code == NULL ? LEP_E_ARG : query(c, LEP_CMD_FILTER_GET, 0, &r);
     if (rc == LEP_OK) {
-        *code = c->resp.u.filter;
+        *code = r.u.filter;
     }
     return rc;
 }
@@ -401,11 +734,12 @@ int lep_client_filter_set(lep_client *c, uint8_t code)
     if (code > LEP_FILTER_MAX) {
         return LEP_E_VALUE;
     }
-    return simple(c, LEP_CMD_FILTER_SET, code);
+    return query(c, LEP_CMD_FILTER_SET, code, NULL);
 }
 
 int lep_client_sample(lep_client *c, lep_sample *out)
 {
+    lep_response r;
     int rc;
     if (c == NULL || out == NULL) {
         return LEP_E_ARG;
@@ -413,62 +747,31 @@ int lep_client_sample(lep_client *c, lep_sample *out)
     if ((c->state & ST_STREAM) != 0u) {
         return LEP_E_STATE;
     }
-    rc = simple(c, LEP_CMD_SAMPLE, 0);
+    rc = query(c, LEP_CMD_SAMPLE, 0, &r);
     if (rc == LEP_OK) {
-        *out = c->resp.u.sample;
+        *out = r.u.sample;
     }
     return rc;
 }
 
-/* Read and decode (for the counters) until quiet_ms pass without a byte. */
-static int drain(lep_client *c, int quiet_ms)
-{
-    uint32_t start = now(c);
-    uint32_t limit = 0x7FFFFFFFu; /* saturated: at most about 24 days */
-    if ((uint32_t)c->timeout_ms < (limit - (uint32_t)quiet_ms) / SYNC_DRAIN_TIMEOUTS) {
-        limit = (uint32_t)c->timeout_ms * SYNC_DRAIN_TIMEOUTS + (uint32_t)quiet_ms;
-    }
-    while (c->rx_pos < c->rx_len) {
-        (void)step_buffered(c); /* what the stop's reads brought after its answer */
-    }
-    for (;;) {
-        int n = fill(c, quiet_ms);
-        if (n == 0) {
-            return LEP_OK;
-        }
-        if (n < 0) {
-            return n;
-        }
-        while (c->rx_pos < c->rx_len) {
-            (void)step_buffered(c);
-        }
-        if (now(c) - start > limit) {
-            return LEP_E_NO_SYNC;
-        }
-    }
-}
-
 int lep_client_sync(lep_client *c, int quiet_ms, lep_product_info *info)
 {
-    lep_product_info local;
+    lep_response r;
     int rc;
     if (c == NULL || c->io.read == NULL) {
         return LEP_E_ARG;
     }
-    if (quiet_ms <= 0) {
-        quiet_ms = SYNC_DEFAULT_QUIET_MS;
+    rc = lep_client_recover(c, quiet_ms <= 0 ? (uint16_t)0u
+                               : (uint32_t)quiet_ms > 0xFFFFu ? (uint16_t)0xFFFFu
+                                                              : (uint16_t)quiet_ms);
+    if (rc == LEP_OK) {
+        rc = run(c);
     }
-    end_wait(c);
-    /* Assume a stream may be running: stop it, tolerating data before the answer. */
-    c->state = (uint8_t)(c->state & ~ST_STREAM);
-    rc = lep_client_stop(c);
-    if (rc != LEP_OK && rc != LEP_E_SENSOR && rc != LEP_E_TIMEOUT && rc != LEP_E_NAK) {
-        return rc;
+    if (rc == LEP_OK) {
+        rc = lep_client_response(c, &r);
     }
-    c->state = (uint8_t)(c->state & ~ST_STREAM);
-    rc = drain(c, quiet_ms);
-    if (rc != LEP_OK) {
-        return rc;
+    if (rc == LEP_OK && info != NULL) {
+        *info = r.u.info;
     }
-    return lep_client_product_info(c, info != NULL ? info : &local);
+    return rc;
 }

@@ -5,6 +5,8 @@
 
 #include "leptrino/error.h"
 
+#if LEP_HAVE_DEVICE
+
 /* True when the answers to 0x2A and 0x2B can be encoded from info and rated. */
 static bool identity_ok(const lep_product_info *info, const lep_rated *rated)
 {
@@ -167,3 +169,8 @@ size_t lep_device_feed(lep_device *d, const uint8_t *in, size_t len, lep_device_
     }
     return n;
 }
+
+#else
+/* LEP_CONFIG_NO_DEVICE: nothing here (ISO C wants a declaration in every file). */
+typedef int lep_device_left_out;
+#endif

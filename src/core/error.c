@@ -3,6 +3,10 @@
 
 const char *lep_strerror(int err)
 {
+#if !LEP_HAVE_ERROR_STRINGS
+    (void)err;
+    return "";
+#else
     switch (err) {
     case LEP_OK: return "success";
     case LEP_E_ARG: return "invalid argument";
@@ -27,12 +31,18 @@ const char *lep_strerror(int err)
     case LEP_E_NO_SYNC: return "line never went quiet during recovery";
     case LEP_E_UNSUPPORTED: return "not supported";
     case LEP_E_END: return "end of the requested duration or count";
+    case LEP_E_STALLED: return "no stream data within the watchdog time";
     default: return "unknown error";
     }
+#endif
 }
 
 const char *lep_result_str(uint8_t result)
 {
+#if !LEP_HAVE_ERROR_STRINGS
+    (void)result;
+    return "";
+#else
     switch (result) {
     case LEP_RESULT_OK: return "success";
     case LEP_RESULT_LENGTH: return "length error";
@@ -41,4 +51,5 @@ const char *lep_result_str(uint8_t result)
     case LEP_RESULT_STATE: return "state error";
     default: return "unknown result code";
     }
+#endif
 }

@@ -1,4 +1,12 @@
-/* Frame codec: DLE stuffing, BCC, and the push decoder (spec 2.2-2.3). */
+/* Frame codec: DLE stuffing, BCC, and the push decoder (spec 2.2-2.3).
+ *
+ * The decoder is a state machine written as labelled code, one label per
+ * state, so each byte costs a compare and a jump to the next state's code
+ * instead of a dispatch. Inside a frame it copies a machine word at a time while
+ * the word holds no DLE (a SWAR test) and folds the word into the BCC; at a chunk
+ * end it copies byte by byte. It is plain C over memcpy, so it gives the same
+ * result on any byte order and word size, and it stops only at a state
+ * boundary, which is what makes any chunking give the same events. */
 #include "leptrino/frame.h"
 
 #include <string.h>
@@ -88,201 +96,594 @@ bool lep_frame_decoder_busy(const lep_frame_decoder *d)
     return d != NULL && d->state != S_IDLE && d->state != S_IDLE_DLE && d->state != S_BCC_DLE;
 }
 
-static void begin_frame(lep_frame_decoder *d)
+/* A machine word of bytes for the fast path: size_t is the register width on
+ * the targets we know (8 bytes on x86-64, 4 on a Cortex-M0+). */
+typedef size_t word_t;
+#define W_SIZE sizeof(word_t)
+#define W_ONES ((word_t)-1 / 0xFFu) /* 0x0101...01 */
+#define W_HIGH (W_ONES * 0x80u)      /* 0x8080...80 */
+#define W_DLES (W_ONES * LEP_DLE)    /* 0x1010...10 */
+
+/* Non-zero when some byte of w is 0x10. On a little-endian machine its lowest
+ * set bit is exact: it marks the first such byte in memory order. */
+static word_t has_dle(word_t w)
 {
-    d->state = S_MSG;
-    d->len = 0;
-    d->bcc = 0;
-    d->raw = 2; /* DLE STX */
+    word_t t = w ^ W_DLES;
+    return (t - W_ONES) & ~t & W_HIGH;
 }
 
-static void reject(lep_frame_decoder *d, lep_frame_event *ev, int error, uint8_t next_state)
+/* Index of the first DLE in the word at p, given has_dle() of it (non-zero). */
+#if defined(__GNUC__) && defined(__BYTE_ORDER__) && defined(__ORDER_LITTLE_ENDIAN__) && \
+    (defined(__x86_64__) || defined(__i386__) || defined(__aarch64__))
+#if __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+#define FIRST_DLE(m, p) ((size_t)__builtin_ctzll((unsigned long long)(m)) / 8u)
+#endif
+#endif
+#ifndef FIRST_DLE
+static size_t first_dle(const uint8_t *p)
 {
+    size_t k = 0;
+    while (p[k] != LEP_DLE) {
+        k++;
+    }
+    return k;
+}
+#define FIRST_DLE(m, p) first_dle(p)
+#endif
+
+/* The first k bytes of a word (k < W_SIZE), in memory order on any machine. */
+static word_t first_bytes(word_t w, size_t k)
+{
+    /* Eight 0xFF then zeros: W_SIZE bytes from keep + 8 - k are k 0xFF bytes
+     * then zeros, for any word of up to 8 bytes (4 on a 32-bit target). */
+    static const uint8_t keep[16] = {0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF};
+    word_t m;
+    memcpy(&m, keep + (8u - k), W_SIZE);
+    return w & m;
+}
+
+/* XOR of the bytes of a word. */
+static uint8_t fold(word_t acc)
+{
+    size_t shift;
+    for (shift = W_SIZE * 4u; shift >= 8u; shift /= 2u) {
+        acc ^= acc >> shift;
+    }
+    return (uint8_t)acc;
+}
+
+/* Wrong arguments (kept out of the decoding path). */
+static size_t feed_bad_call(const lep_frame_decoder *d, size_t len, lep_frame_event *ev)
+{
+    if (ev == NULL) {
+        return 0;
+    }
+    ev->msg = NULL;
+    ev->len = 0;
+    if (d != NULL && len == 0) { /* only data was NULL, and there is nothing to read */
+        ev->type = LEP_FRAME_NONE;
+        ev->error = LEP_OK;
+    } else {
+        ev->type = LEP_FRAME_ERROR;
+        ev->error = LEP_E_ARG;
+    }
+    return 0;
+}
+
+/* Count a rejected frame of `wire` wire bytes and make it the event. */
+static void reject(lep_frame_decoder *d, lep_frame_event *ev, int error, size_t wire)
+{
+    d->stats.bytes_discarded += (uint32_t)wire;
+    if (error == LEP_E_BCC) {
+        d->stats.bcc_errors++;
+    } else if (error == LEP_E_ESCAPE) {
+        d->stats.escape_errors++;
+    } else if (error == LEP_E_TOO_LONG) {
+        d->stats.overruns++;
+    }
     ev->type = LEP_FRAME_ERROR;
     ev->error = error;
-    d->stats.bytes_discarded += d->raw;
-    d->raw = 0;
-    d->state = next_state;
-    switch (error) {
-    case LEP_E_BCC: d->stats.bcc_errors++; break;
-    case LEP_E_ESCAPE: d->stats.escape_errors++; break;
-    default: d->stats.overruns++; break;
+}
+
+/* One byte (the path of a caller fed byte by byte, e.g. from an ISR ring
+ * buffer): the same states and transitions as decode() below, written as a
+ * switch on the stored state, so a call costs a couple of dozen instructions.
+ * The tests hold both paths to the same events at every chunking. */
+static size_t feed_byte(lep_frame_decoder *d, uint8_t b, lep_frame_event *ev)
+{
+    size_t nx;
+    ev->type = LEP_FRAME_NONE;
+    ev->error = LEP_OK;
+    ev->msg = NULL;
+    ev->len = 0;
+    if (d->state == S_MSG && b != LEP_DLE && d->len < LEP_MAX_MESSAGE) {
+        d->buf[d->len++] = b; /* the usual byte: a message byte */
+        d->bcc ^= b;
+        return 1;
     }
-}
-
-/* Append one message byte; false (and the frame rejected) past 128 bytes. */
-static bool append(lep_frame_decoder *d, lep_frame_event *ev, uint8_t b)
-{
-    if (d->len >= LEP_MAX_MESSAGE) {
-        reject(d, ev, LEP_E_TOO_LONG, S_SKIP);
-        return false;
-    }
-    d->buf[d->len++] = b;
-    d->bcc ^= b;
-    return true;
-}
-
-/* A DLE NAK completed: deliver it and hunt for the next frame. */
-static bool nak(lep_frame_decoder *d, lep_frame_event *ev)
-{
-    d->state = S_IDLE;
-    d->raw = 0;
-    d->stats.naks++;
-    ev->type = LEP_FRAME_NAK;
-    return true;
-}
-
-/* Advance by one byte; true when it completed an event. */
-static bool step(lep_frame_decoder *d, uint8_t b, lep_frame_event *ev)
-{
+    nx = (size_t)d->len + d->raw; /* wire bytes of the frame so far */
     switch (d->state) {
-    case S_IDLE:
-        if (b == LEP_DLE) {
-            d->state = S_IDLE_DLE;
-        } else {
-            d->stats.bytes_discarded++;
-        }
-        return false;
-    case S_IDLE_DLE:
-        if (b == LEP_STX) {
-            begin_frame(d);
-        } else if (b == LEP_NAK) {
-            return nak(d, ev);
-        } else if (b == LEP_DLE) {
-            d->stats.bytes_discarded++; /* the earlier DLE; this one may still start a frame */
-        } else {
-            d->stats.bytes_discarded += 2;
-            d->state = S_IDLE;
-        }
-        return false;
     case S_MSG:
-        d->raw++;
         if (b == LEP_DLE) {
             d->state = S_MSG_DLE;
-            return false;
+        } else { /* the 129th message byte */
+            reject(d, ev, LEP_E_TOO_LONG, nx + 1u);
+            d->state = S_SKIP;
         }
-        return !append(d, ev, b);
+        return 1;
     case S_MSG_DLE:
-        d->raw++;
-        if (b == LEP_DLE) {
-            d->state = S_MSG;
-            return !append(d, ev, b);
-        }
         if (b == LEP_ETX) {
+            d->raw = (uint16_t)(d->raw + 2u);
             d->state = S_BCC;
-            return false;
-        }
-        if (b == LEP_STX) {
-            /* A new frame starts inside this one: drop the partial frame. */
-            d->stats.bytes_discarded += (uint32_t)(d->raw - 2u);
+        } else if (b == LEP_DLE) {
+            if (d->len == LEP_MAX_MESSAGE) {
+                reject(d, ev, LEP_E_TOO_LONG, nx + 2u);
+                d->state = S_SKIP;
+                return 1;
+            }
+            d->buf[d->len++] = LEP_DLE;
+            d->bcc ^= LEP_DLE;
+            d->raw++;
+            d->state = S_MSG;
+        } else if (b == LEP_STX) {
+            d->stats.bytes_discarded += (uint32_t)nx;
             d->stats.restarts++;
-            begin_frame(d);
-            return false;
+            goto begin2;
+        } else if (b == LEP_NAK) {
+            d->stats.bytes_discarded += (uint32_t)nx;
+            d->stats.escape_errors++;
+            goto nak;
+        } else {
+            reject(d, ev, LEP_E_ESCAPE, nx + 2u);
+            d->state = S_IDLE;
+        }
+        return 1;
+    case S_BCC:
+        if (b == (uint8_t)(d->bcc ^ LEP_ETX)) {
+            if (d->len == 0) {
+                reject(d, ev, LEP_E_LENGTH, nx + 1u);
+                d->state = S_IDLE;
+                return 1;
+            }
+            d->state = b == LEP_DLE ? S_BCC_DLE : S_IDLE;
+            d->stats.messages++;
+            ev->type = LEP_FRAME_MESSAGE;
+            ev->msg = d->buf;
+            ev->len = d->len;
+        } else if (b == LEP_DLE) {
+            reject(d, ev, LEP_E_BCC, nx); /* this DLE may open the next frame */
+            d->state = S_IDLE_DLE;
+        } else {
+            reject(d, ev, LEP_E_BCC, nx + 1u);
+            d->state = S_IDLE;
+        }
+        return 1;
+    case S_IDLE_DLE:
+        if (b == LEP_STX) {
+            goto begin2;
         }
         if (b == LEP_NAK) {
-            /* The sensor NAKs while a frame of its is broken off: drop the
-             * partial frame (an escape error) but never lose the NAK. */
-            d->stats.bytes_discarded += (uint32_t)(d->raw - 2u);
-            d->stats.escape_errors++;
-            return nak(d, ev);
+            goto nak;
         }
-        reject(d, ev, LEP_E_ESCAPE, S_IDLE);
-        return true;
-    case S_BCC: {
-        uint8_t want = (uint8_t)(d->bcc ^ LEP_ETX);
-        if (b == LEP_DLE && want != LEP_DLE) {
-            /* The BCC byte was lost (or hit): this DLE may open the next frame,
-             * so it is not counted with this one. */
-            reject(d, ev, LEP_E_BCC, S_IDLE_DLE);
-            return true;
-        }
-        d->raw++;
-        if (b != want) {
-            reject(d, ev, LEP_E_BCC, S_IDLE);
-            return true;
-        }
-        if (d->len == 0) {
-            /* DLE STX DLE ETX BCC: no Length byte, nothing to deliver. */
-            ev->type = LEP_FRAME_ERROR;
-            ev->error = LEP_E_LENGTH;
-            d->stats.bytes_discarded += d->raw;
-            d->raw = 0;
+        if (b == LEP_DLE) {
+            d->stats.bytes_discarded++;
+        } else {
+            d->stats.bytes_discarded += 2u;
             d->state = S_IDLE;
-            return true;
         }
-        /* A BCC of 0x10 may also be the DLE of what follows: the true BCC was
-         * lost and happened to be 0x10, or the next frame's DLE was lost. */
-        d->state = b == LEP_DLE ? S_BCC_DLE : S_IDLE;
-        d->raw = 0;
-        d->stats.messages++;
-        ev->type = LEP_FRAME_MESSAGE;
-        ev->msg = d->buf;
-        ev->len = d->len;
-        return true;
-    }
+        return 1;
     case S_BCC_DLE:
+        if (b == LEP_STX) {
+            d->raw = 1; /* its DLE was counted with the frame before */
+            goto begin;
+        }
+        if (b == LEP_NAK) {
+            goto nak;
+        }
         if (b == LEP_DLE) {
             d->state = S_IDLE_DLE;
-        } else if (b == LEP_STX) {
-            begin_frame(d);
-            d->raw = 1; /* its DLE was counted with the frame before */
-        } else if (b == LEP_NAK) {
-            return nak(d, ev);
         } else {
             d->stats.bytes_discarded++;
             d->state = S_IDLE;
         }
-        return false;
+        return 1;
     case S_SKIP:
         if (b == LEP_DLE) {
             d->state = S_SKIP_DLE;
         } else {
             d->stats.bytes_discarded++;
         }
-        return false;
+        return 1;
     case S_SKIP_DLE:
         if (b == LEP_STX) {
-            begin_frame(d);
-        } else if (b == LEP_NAK) {
-            return nak(d, ev);
-        } else {
-            d->stats.bytes_discarded += 2;
-            d->state = b == LEP_ETX ? S_SKIP_BCC : (b == LEP_DLE ? S_SKIP : S_IDLE);
+            goto begin2;
         }
-        return false;
-    default: /* S_SKIP_BCC: a DLE may be the BCC or the next frame's DLE (BCC lost) */
+        if (b == LEP_NAK) {
+            goto nak;
+        }
+        d->stats.bytes_discarded += 2u;
+        d->state = b == LEP_ETX ? S_SKIP_BCC : (b == LEP_DLE ? S_SKIP : S_IDLE);
+        return 1;
+    case S_SKIP_BCC:
         if (b == LEP_DLE) {
             d->state = S_IDLE_DLE;
         } else {
             d->stats.bytes_discarded++;
             d->state = S_IDLE;
         }
-        return false;
+        return 1;
+    default: /* S_IDLE */
+        if (b == LEP_DLE) {
+            d->state = S_IDLE_DLE;
+        } else {
+            d->stats.bytes_discarded++;
+        }
+        return 1;
     }
+begin2:
+    d->raw = 2;
+begin:
+    d->len = 0;
+    d->bcc = 0;
+    d->state = S_MSG;
+    return 1;
+nak:
+    d->stats.naks++;
+    d->state = S_IDLE;
+    ev->type = LEP_FRAME_NAK;
+    return 1;
+}
+
+/* The decoder runs on local copies of its state and writes them back when it
+ * returns. n is the message length so far, acc the XOR of its bytes (any byte
+ * lanes; folded to d->bcc between calls), x the frame's wire bytes that are not
+ * message bytes (DLE STX, stuffing DLEs, DLE ETX): the frame has n + x wire
+ * bytes so far (d->raw between calls). Each label below is a state; a state
+ * that runs out of input stores its number and returns. With no handler it
+ * returns at the first event (lep_frame_decoder_feed); with one it hands each
+ * event over and goes on in the next state (lep_frame_decoder_feed_all). */
+static size_t decode(lep_frame_decoder *d, const uint8_t *data, size_t len, lep_frame_event *ev,
+                     lep_frame_handler on_event, void *user)
+{
+    const uint8_t *p;
+    const uint8_t *end;
+    uint8_t *buf;
+    size_t n;
+    size_t x;
+    size_t wire = 0;
+    word_t acc;
+    int error;
+    unsigned st;
+    uint8_t b;
+    p = data;
+    end = data + len;
+    buf = d->buf;
+    st = d->state;
+    if (st == S_IDLE) {
+        goto idle; /* the usual state at a call: the last call ended a frame */
+    }
+    n = d->len;
+    x = d->raw;
+    acc = d->bcc;
+    switch (st) {
+    case S_MSG: goto msg;
+    case S_MSG_DLE: goto msg_dle;
+    case S_BCC: goto bcc;
+    case S_IDLE_DLE: goto idle_dle;
+    case S_BCC_DLE: goto bcc_dle;
+    case S_SKIP: goto skip;
+    case S_SKIP_DLE: goto skip_dle;
+    default: goto skip_bcc;
+    }
+
+idle: { /* between frames: hunting for DLE STX */
+    const uint8_t *q = p;
+    if (end - p >= 2 && p[0] == LEP_DLE && p[1] == LEP_STX) {
+        p += 2; /* the usual case, taken in one step */
+        x = 2;
+        goto begin;
+    }
+    while (q < end && *q != LEP_DLE) {
+        q++;
+    }
+    d->stats.bytes_discarded += (uint32_t)(q - p);
+    if (q == end) {
+        p = q;
+        st = S_IDLE;
+        goto suspend_between;
+    }
+    p = q + 1;
+}
+idle_dle: /* between frames, after a DLE */
+    if (p == end) {
+        st = S_IDLE_DLE;
+        goto suspend_between;
+    }
+    b = *p++;
+    if (b == LEP_STX) {
+        x = 2;
+        goto begin;
+    }
+    if (b == LEP_NAK) {
+        goto nak;
+    }
+    if (b == LEP_DLE) {
+        d->stats.bytes_discarded++; /* the earlier DLE; this one may start a frame */
+        goto idle_dle;
+    }
+    d->stats.bytes_discarded += 2u;
+    goto idle;
+
+begin:
+    n = 0;
+    acc = 0;
+msg: /* inside a frame */
+    if (n <= LEP_MAX_MESSAGE - W_SIZE && (size_t)(end - p) >= W_SIZE) {
+        /* Whole words while they hold no DLE; p and dst advance together, and
+         * the last word starts at most at `last` (input and buf both fit). */
+        size_t room = LEP_MAX_MESSAGE - W_SIZE - n;
+        size_t avail = (size_t)(end - p) - W_SIZE;
+        const uint8_t *last = p + (room < avail ? room : avail);
+        uint8_t *dst = buf + n;
+        for (;;) {
+            word_t w;
+            word_t m;
+            memcpy(&w, p, W_SIZE);
+            memcpy(dst, &w, W_SIZE);
+            m = has_dle(w);
+            if (m != 0) {
+                size_t k = FIRST_DLE(m, p);
+                acc ^= first_bytes(w, k);
+                n = (size_t)(dst - buf) + k;
+                p += k + 1u; /* the DLE */
+                goto msg_dle;
+            }
+            acc ^= w;
+            p += W_SIZE;
+            dst += W_SIZE;
+            if (p > last) {
+                break;
+            }
+        }
+        n = (size_t)(dst - buf);
+    }
+    { /* Byte by byte: the end of the input is near, or of the buffer. */
+        const uint8_t *stop = (size_t)(end - p) < LEP_MAX_MESSAGE - n ? end : p + (LEP_MAX_MESSAGE - n);
+        while (p < stop && *p != LEP_DLE) {
+            buf[n++] = *p;
+            acc ^= *p++;
+        }
+        if (p == end) {
+            st = S_MSG;
+            goto suspend;
+        }
+        if (*p++ != LEP_DLE) {
+            /* The 129th message byte. */
+            error = LEP_E_TOO_LONG;
+            wire = n + x + 1u;
+            st = S_SKIP;
+            goto fail;
+        }
+    }
+msg_dle: /* inside a frame, after a DLE */
+    if (p == end) {
+        st = S_MSG_DLE;
+        goto suspend;
+    }
+    b = *p++;
+    if (b == LEP_ETX) {
+        x += 2u;
+        goto bcc;
+    }
+    if (b == LEP_DLE) {
+        if (n == LEP_MAX_MESSAGE) {
+            error = LEP_E_TOO_LONG;
+            wire = n + x + 2u;
+            st = S_SKIP;
+            goto fail;
+        }
+        buf[n++] = LEP_DLE;
+        acc ^= LEP_DLE;
+        x++;
+        goto msg;
+    }
+    if (b == LEP_STX) {
+        /* A new frame starts inside this one: drop the partial frame. */
+        d->stats.bytes_discarded += (uint32_t)(n + x);
+        d->stats.restarts++;
+        x = 2;
+        goto begin;
+    }
+    if (b == LEP_NAK) {
+        /* The sensor NAKs while a frame of its is broken off: drop the
+         * partial frame (an escape error) but never lose the NAK. */
+        d->stats.bytes_discarded += (uint32_t)(n + x);
+        d->stats.escape_errors++;
+        goto nak;
+    }
+    error = LEP_E_ESCAPE;
+    wire = n + x + 2u;
+    st = S_IDLE;
+    goto fail;
+
+bcc: /* after DLE ETX: this byte is the BCC */
+    if (p == end) {
+        st = S_BCC;
+        goto suspend;
+    }
+    b = *p++;
+    if (b == (uint8_t)(fold(acc) ^ LEP_ETX)) {
+        if (n == 0) {
+            /* DLE STX DLE ETX BCC: no Length byte, nothing to deliver. */
+            error = LEP_E_LENGTH;
+            wire = x + 1u;
+            st = S_IDLE;
+            goto fail;
+        }
+        d->stats.messages++;
+        ev->type = LEP_FRAME_MESSAGE;
+        ev->error = LEP_OK;
+        ev->msg = buf;
+        ev->len = n;
+        /* A BCC of 0x10 may also be the DLE of what follows: the true BCC
+         * was lost and happened to be 0x10, or the next frame's DLE was. */
+        if (on_event == NULL) {
+            d->state = b == LEP_DLE ? S_BCC_DLE : S_IDLE;
+            return (size_t)(p - data);
+        }
+        on_event(user, ev);
+        if (b == LEP_DLE) {
+            goto bcc_dle;
+        }
+        goto idle;
+    }
+    error = LEP_E_BCC;
+    wire = n + x + 1u;
+    st = S_IDLE;
+    if (b == LEP_DLE) {
+        /* The BCC byte was lost (or hit): this DLE may open the next frame,
+         * so it is not counted with this one. */
+        wire--;
+        st = S_IDLE_DLE;
+    }
+    goto fail;
+
+bcc_dle: /* between frames; the last frame's 0x10 BCC may have been a DLE */
+    if (p == end) {
+        st = S_BCC_DLE;
+        goto suspend_between;
+    }
+    b = *p++;
+    if (b == LEP_STX) {
+        x = 1; /* its DLE was counted with the frame before */
+        goto begin;
+    }
+    if (b == LEP_NAK) {
+        goto nak;
+    }
+    if (b == LEP_DLE) {
+        goto idle_dle;
+    }
+    d->stats.bytes_discarded++;
+    goto idle;
+
+skip: /* inside a rejected (over-long) frame: follow its stuffing to its end */
+    while (p < end && *p != LEP_DLE) {
+        p++;
+        d->stats.bytes_discarded++;
+    }
+    if (p == end) {
+        st = S_SKIP;
+        goto suspend_between;
+    }
+    p++;
+skip_dle:
+    if (p == end) {
+        st = S_SKIP_DLE;
+        goto suspend_between;
+    }
+    b = *p++;
+    if (b == LEP_STX) {
+        x = 2;
+        goto begin;
+    }
+    if (b == LEP_NAK) {
+        goto nak;
+    }
+    d->stats.bytes_discarded += 2u;
+    if (b == LEP_DLE) {
+        goto skip;
+    }
+    if (b != LEP_ETX) {
+        goto idle;
+    }
+skip_bcc: /* the BCC of a rejected frame; a DLE may be it or the next frame's DLE */
+    if (p == end) {
+        st = S_SKIP_BCC;
+        goto suspend_between;
+    }
+    if (*p++ == LEP_DLE) {
+        goto idle_dle;
+    }
+    d->stats.bytes_discarded++;
+    goto idle;
+
+suspend_between: /* all input consumed between frames, no event */
+    d->state = (uint8_t)st;
+    ev->type = LEP_FRAME_NONE;
+    ev->error = LEP_OK;
+    ev->msg = NULL;
+    ev->len = 0;
+    return len;
+
+suspend: /* all input consumed inside a frame, no event */
+    d->state = (uint8_t)st;
+    d->len = (uint16_t)n;
+    d->raw = (uint16_t)x;
+    d->bcc = fold(acc);
+    ev->type = LEP_FRAME_NONE;
+    ev->error = LEP_OK;
+    ev->msg = NULL;
+    ev->len = 0;
+    return len;
+
+nak: /* DLE NAK completed: deliver it and hunt for the next frame */
+    d->stats.naks++;
+    ev->type = LEP_FRAME_NAK;
+    ev->error = LEP_OK;
+    ev->msg = NULL;
+    ev->len = 0;
+    if (on_event == NULL) {
+        d->state = S_IDLE;
+        return (size_t)(p - data);
+    }
+    on_event(user, ev);
+    goto idle;
+
+fail: /* a frame rejected: wire is its count of wire bytes */
+    reject(d, ev, error, wire);
+    ev->msg = NULL;
+    ev->len = 0;
+    if (on_event == NULL) {
+        d->state = (uint8_t)st;
+        return (size_t)(p - data);
+    }
+    on_event(user, ev);
+    if (st == S_SKIP) {
+        goto skip;
+    }
+    if (st == S_IDLE_DLE) {
+        goto idle_dle;
+    }
+    goto idle;
 }
 
 size_t lep_frame_decoder_feed(lep_frame_decoder *d, const uint8_t *data, size_t len,
                               lep_frame_event *ev)
 {
-    size_t i;
-    if (ev == NULL) {
-        return 0;
+    if (d == NULL || ev == NULL || data == NULL) {
+        return feed_bad_call(d, len, ev);
     }
-    if (d == NULL || (data == NULL && len > 0)) {
-        ev->type = LEP_FRAME_ERROR;
-        ev->error = LEP_E_ARG;
-        ev->msg = NULL;
-        ev->len = 0;
-        return 0;
+    if (len == 1) {
+        return feed_byte(d, data[0], ev);
     }
-    ev->type = LEP_FRAME_NONE;
-    ev->error = LEP_OK;
-    ev->msg = NULL;
-    ev->len = 0;
-    for (i = 0; i < len; i++) {
-        if (step(d, data[i], ev)) {
-            return i + 1;
+    return decode(d, data, len, ev, NULL, NULL);
+}
+
+int lep_frame_decoder_feed_all(lep_frame_decoder *d, const uint8_t *data, size_t len,
+                               lep_frame_handler on_event, void *user)
+{
+    lep_frame_event ev;
+    if (d == NULL || on_event == NULL || (data == NULL && len > 0)) {
+        return LEP_E_ARG;
+    }
+    if (len == 1) {
+        (void)feed_byte(d, data[0], &ev);
+        if (ev.type != LEP_FRAME_NONE) {
+            on_event(user, &ev);
         }
+    } else if (len > 1) {
+        (void)decode(d, data, len, &ev, on_event, user);
     }
-    return len;
+    return LEP_OK;
 }

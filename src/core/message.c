@@ -11,15 +11,17 @@
 /* The rated values travel as IEEE-754 binary32. */
 typedef char lep_float_is_binary32[(sizeof(float) == 4u) ? 1 : -1];
 
+/* Shifts are done on unsigned types at least as wide as the result: a 16-bit
+ * int (AVR) must not see p[1] << 8 overflow into its sign bit. */
 static uint16_t get_u16(const uint8_t *p)
 {
-    return (uint16_t)(p[0] | (p[1] << 8));
+    return (uint16_t)((uint16_t)p[0] | (uint16_t)((uint16_t)p[1] << 8));
 }
 
 static int16_t get_i16(const uint8_t *p)
 {
     uint16_t u = get_u16(p);
-    return u >= 0x8000u ? (int16_t)((int32_t)u - 65536) : (int16_t)u;
+    return u >= 0x8000u ? (int16_t)((int32_t)u - (int32_t)65536L) : (int16_t)u;
 }
 
 static void put_u16(uint8_t *p, uint16_t v)
@@ -146,27 +148,43 @@ int lep_command_decode(const uint8_t *msg, size_t len, lep_command *cmd, uint8_t
     return LEP_OK;
 }
 
-/* Copy a space-padded ASCII field into a C string without the padding. */
-static void get_text(char *dst, const uint8_t *src, size_t n)
+static bool printable(uint8_t b)
 {
-    memcpy(dst, src, n);
-    dst[n] = '\0';
-    while (n > 0 && (dst[n - 1] == ' ' || dst[n - 1] == '\0')) {
-        dst[--n] = '\0';
-    }
+    return b >= 0x20u && b <= 0x7Eu;
 }
 
-/* Write a C string (at most n characters used) into an n-byte field, space padded. */
+/* Copy an ASCII field into a C string without its padding (trailing spaces
+ * and NULs). LEP_E_VALUE for anything but printable ASCII before the padding
+ * (a control byte, a byte >= 0x80, a NUL followed by text). */
+static int get_text(char *dst, const uint8_t *src, size_t n)
+{
+    size_t end = n;
+    size_t i;
+    while (end > 0 && (src[end - 1] == ' ' || src[end - 1] == 0u)) {
+        end--;
+    }
+    for (i = 0; i < end; i++) {
+        if (!printable(src[i])) {
+            return LEP_E_VALUE;
+        }
+        dst[i] = (char)src[i];
+    }
+    dst[end] = '\0';
+    return LEP_OK;
+}
+
+/* Write a C string (at most n characters, printable ASCII) into an n-byte
+ * field, space padded. */
 static int put_text(uint8_t *dst, const char *src, size_t n, size_t src_cap)
 {
     size_t len = 0;
     while (len < src_cap && src[len] != '\0') {
+        if (len == n || !printable((uint8_t)src[len])) {
+            return LEP_E_VALUE;
+        }
+        dst[len] = (uint8_t)src[len];
         len++;
     }
-    if (len > n) {
-        return LEP_E_VALUE;
-    }
-    memcpy(dst, src, len);
     memset(dst + len, ' ', n - len);
     return LEP_OK;
 }
@@ -190,14 +208,18 @@ static uint32_t parse_rate(const char *s)
     return (digits > 0u && s[i] == '\0') ? v : 0u;
 }
 
+/* The last reserved byte (msg[19], "0x00 fixed" in v1.13) is accepted with
+ * any value: later firmware leaves it unspecified. |raw| > 32000 is
+ * impossible on every firmware: LEP_E_VALUE. */
 static int decode_sample(const uint8_t *msg, lep_sample *s)
 {
     size_t i;
-    if (msg[19] != 0x00u) {
-        return LEP_E_RESERVED;
-    }
     for (i = 0; i < LEP_AXES; i++) {
-        s->raw[i] = get_i16(msg + 4 + 2 * i);
+        int16_t v = get_i16(msg + 4 + 2 * i);
+        if (v > LEP_SATURATION_V113 || v < -LEP_SATURATION_V113) {
+            return LEP_E_VALUE;
+        }
+        s->raw[i] = v;
     }
     s->reserved = get_u16(msg + 16);
     s->status = msg[18];
@@ -212,14 +234,14 @@ static int decode_data(const uint8_t *msg, size_t len, lep_response *r)
         if (len != LEP_LEN_PRODUCT_INFO && len != LEP_LEN_PRODUCT_INFO_RATE) {
             return LEP_E_LENGTH;
         }
-        get_text(r->u.info.model, msg + 4, LEP_MODEL_LEN);
-        get_text(r->u.info.serial, msg + 20, LEP_SERIAL_LEN);
-        get_text(r->u.info.firmware, msg + 28, LEP_FIRMWARE_LEN);
         r->u.info.has_output_rate = len == LEP_LEN_PRODUCT_INFO_RATE;
-        if (r->u.info.has_output_rate) {
-            get_text(r->u.info.output_rate, msg + 32, LEP_RATE_LEN);
-        } else {
-            r->u.info.output_rate[0] = '\0';
+        if (get_text(r->u.info.model, msg + 4, LEP_MODEL_LEN) != LEP_OK ||
+            get_text(r->u.info.serial, msg + 20, LEP_SERIAL_LEN) != LEP_OK ||
+            get_text(r->u.info.firmware, msg + 28, LEP_FIRMWARE_LEN) != LEP_OK ||
+            (r->u.info.has_output_rate &&
+             get_text(r->u.info.output_rate, msg + 32, LEP_RATE_LEN) != LEP_OK)) {
+            memset(&r->u.info, 0, sizeof(r->u.info));
+            return LEP_E_VALUE;
         }
         r->u.info.output_rate_hz = parse_rate(r->u.info.output_rate);
         return LEP_OK;
@@ -283,15 +305,19 @@ int lep_response_decode(const uint8_t *msg, size_t len, lep_response *r)
     return decode_data(msg, len, r);
 }
 
-static void encode_sample(uint8_t *msg, const lep_sample *s)
+static int encode_sample(uint8_t *msg, const lep_sample *s)
 {
     size_t i;
     for (i = 0; i < LEP_AXES; i++) {
+        if (s->raw[i] > LEP_SATURATION_V113 || s->raw[i] < -LEP_SATURATION_V113) {
+            return LEP_E_VALUE;
+        }
         put_u16(msg + 4 + 2 * i, (uint16_t)s->raw[i]);
     }
     put_u16(msg + 16, s->reserved);
     msg[18] = s->status;
     msg[19] = 0x00u;
+    return LEP_OK;
 }
 
 /* Length of the encoded response r, or 0 when r cannot be encoded. */
@@ -364,7 +390,7 @@ int lep_response_encode(const lep_response *r, uint8_t *msg, size_t cap, size_t 
             msg[5] = msg[6] = msg[7] = 0x00u;
             break;
         default: /* the handshake sample or a stream data message */
-            encode_sample(msg, &r->u.sample);
+            rc = encode_sample(msg, &r->u.sample);
             break;
         }
     }
@@ -408,6 +434,17 @@ void lep_sample_to_si(const lep_sample *s, const lep_rated *rated, double si[LEP
     }
     for (i = 0; i < LEP_AXES; i++) {
         si[i] = (double)s->raw[i] * (double)rated->axis[i] / (double)LEP_RAW_FULL_SCALE;
+    }
+}
+
+void lep_sample_to_si_f(const lep_sample *s, const lep_rated *rated, float si[LEP_AXES])
+{
+    size_t i;
+    if (s == NULL || rated == NULL || si == NULL) {
+        return;
+    }
+    for (i = 0; i < LEP_AXES; i++) {
+        si[i] = (float)s->raw[i] * rated->axis[i] / (float)LEP_RAW_FULL_SCALE;
     }
 }
 

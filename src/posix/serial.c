@@ -46,6 +46,7 @@ struct lep_serial {
     int ftdi_saved_ms;    /* value to restore at close, or -1 */
     char ftdi_attr[PATH_MAX];
     char path[PATH_MAX];
+    lep_client_rx rx;     /* read buffer of the blocking client calls */
 };
 
 static int open_error(int e, const char *path, char *err, size_t errlen)
@@ -444,10 +445,12 @@ void lep_serial_get_io(lep_serial *s, lep_io *io)
 int lep_serial_client_init(lep_client *c, lep_serial *s)
 {
     lep_io io;
+    int rc;
     if (c == NULL || s == NULL)
         return LEP_E_ARG;
     lep_serial_get_io(s, &io);
-    return lep_client_init(c, &io);
+    rc = lep_client_init(c, &io);
+    return rc == LEP_OK ? lep_client_set_rx(c, &s->rx) : rc;
 }
 
 void lep_serial_get_info(const lep_serial *s, lep_serial_info *info)

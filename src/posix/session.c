@@ -272,6 +272,8 @@ int lep_session_start(lep_session *s)
     s->failed = 0;
     s->ended = false;
     s->pend_head = s->pend_len = 0;
+    s->held = 0;
+    s->tm_started = false;
     s->have_sample = false;
     s->have_seq = false;
     s->carry_flags = 0;
@@ -292,6 +294,7 @@ int lep_session_stop(lep_session *s)
         return LEP_E_STATE;
     s->streaming = false;
     s->pend_head = s->pend_len = 0;
+    s->held = 0;
     if (s->conn == CONN_UP && lep_client_streaming(&s->client)) {
         rc = lep_client_stop(&s->client);
         if (rc != LEP_OK && rc != LEP_E_DISCONNECTED)

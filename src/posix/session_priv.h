@@ -22,6 +22,8 @@
 /* Samples one read can complete: every byte in whole frames, plus the frame
  * begun by the previous read. */
 #define SESSION_PENDING (SESSION_RBUF / SESSION_MIN_FRAME + 2u)
+/* How soon a read judges a suspected hole when a latency budget would wait longer. */
+#define SESSION_CONFIRM_S 0.02
 /* Events kept until lep_session_next_event takes them; beyond, the oldest go. */
 #define SESSION_EVENTS 1024u
 
@@ -91,6 +93,14 @@ struct lep_session {
     uint32_t dec_phase;
     double first_delivered_t;
     bool overloaded;
+    /* holes found from arrival times (no sequence numbers) */
+    bool tm_started;
+    double tm_anchor_t;
+    uint64_t tm_anchor_k, tm_k;
+    double tm_window_t, tm_window_min;
+    size_t held;              /* newest pending rows held back: a suspected hole before them */
+    double suspect_from, suspect_to;
+    uint64_t suspect_index;
     lep_client_stats base_stats; /* the connection's counters at start or reconnect */
 
     /* ---- [mu] processing ---- */

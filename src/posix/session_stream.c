@@ -135,10 +135,11 @@ static void health_sample(lep_session *s, double t)
 }
 
 /* [mu] held */
-static void gap_event(lep_session *s, int type, double from, double to, uint32_t lost, int error)
+static void gap_event(lep_session *s, int type, uint64_t sample, double from, double to,
+                      uint32_t lost, int error)
 {
     lep_session_event ev;
-    lep_priv_session_event_init(&ev, type, s->h.delivered, to);
+    lep_priv_session_event_init(&ev, type, sample, to);
     ev.gap_from = from;
     ev.gap_to = to;
     ev.lost = lost;
@@ -157,6 +158,69 @@ static uint32_t clip_u32(double v)
     return v >= 4294967295.0 ? 4294967295u : (uint32_t)v;
 }
 
+/* ---- holes on a sensor without sequence numbers ---- */
+
+/* Lateness of the stream after a read: how far the samples received since
+ * the anchor fall behind one per nominal period. Transit jitter (USB
+ * packets, a sender running late) makes it rise and fall back when the late
+ * samples arrive; a hole makes it rise and stay. So a read that leaves the
+ * stream late by more than gap_periods is only a suspect: its rows are held
+ * back until the next read, which confirms the hole (still late: LEP_EV_GAP,
+ * the first held row flagged) or refutes it (caught up: rows released as
+ * they are). The anchor follows a sensor running fast (lateness below 0) at
+ * once, and one running slow by the smallest lateness of each second.
+ * [mu] held. */
+static void time_gaps(lep_session *s, size_t n, double t_read, double before_t, double first_t,
+                      size_t rows_before)
+{
+    const double thr = s->opt.gap_periods * s->period_s;
+    double late;
+
+    if (!s->tm_started || s->gap_next) {
+        s->tm_started = true;
+        s->tm_anchor_t = t_read;
+        s->tm_anchor_k = 0;
+        s->tm_k = 0;
+        s->tm_window_t = t_read;
+        s->tm_window_min = INFINITY;
+        return;
+    }
+    s->tm_k += n;
+    late = t_read - (s->tm_anchor_t + (double)(s->tm_k - s->tm_anchor_k) * s->period_s);
+    if (late < 0.0) {
+        s->tm_anchor_t = t_read;
+        s->tm_anchor_k = s->tm_k;
+        late = 0.0;
+    }
+    if (s->held > 0) {
+        if (late > thr) {
+            /* the held rows are the ones just before this read's */
+            size_t first = (s->pend_head + rows_before - s->held) % SESSION_PENDING;
+            s->pending[first].flags |= LEP_SF_GAP;
+            gap_event(s, LEP_EV_GAP, s->suspect_index, s->suspect_from, s->suspect_to,
+                      clip_u32(floor(late / s->period_s + 0.5)), 0);
+            s->tm_anchor_t = t_read;
+            s->tm_anchor_k = s->tm_k;
+            late = 0.0;
+        }
+        s->held = 0;
+    } else if (late > thr && s->pend_len > rows_before) {
+        s->held = s->pend_len - rows_before;
+        s->suspect_from = before_t;
+        s->suspect_to = first_t;
+        s->suspect_index = s->h.delivered - s->held;
+        return;
+    }
+    if (late < s->tm_window_min)
+        s->tm_window_min = late;
+    if (t_read - s->tm_window_t >= 1.0) {
+        if (s->tm_window_min > 0.0 && s->tm_window_min < thr)
+            s->tm_anchor_t += s->tm_window_min;
+        s->tm_window_t = t_read;
+        s->tm_window_min = INFINITY;
+    }
+}
+
 /* ---- feeding ---- */
 
 void lep_priv_session_feed(lep_session *s, const uint8_t *data, size_t len, double t_read)
@@ -164,16 +228,16 @@ void lep_priv_session_feed(lep_session *s, const uint8_t *data, size_t len, doub
     lep_sample got[SESSION_PENDING];
     lep_client_stats st;
     size_t n = 0, off = 0, i;
-    double lower, t_utc_off;
-    bool time_gap = false;
-    uint32_t time_lost = 0;
+    double lower, t_utc_off, first_t = 0.0, before_t;
+    size_t rows_before;
 
     while (off < len) {
         size_t used = 0;
         int rc = lep_client_step(&s->client, data + off, len - off, &used);
         off += used;
-        if (rc == LEP_STEP_SAMPLE && n < SESSION_PENDING)
-            got[n++] = lep_client_response(&s->client)->u.sample;
+        if (rc == LEP_STEP_SAMPLE && n < SESSION_PENDING &&
+            lep_client_get_sample(&s->client, &got[n]) == LEP_OK)
+            ++n;
         if (used == 0)
             break;
     }
@@ -184,15 +248,8 @@ void lep_priv_session_feed(lep_session *s, const uint8_t *data, size_t len, doub
     s->h.client = st;
     s->h.errors = s->errors_before + conn_errors(&st, &s->base_stats) + s->data_timeouts;
     lower = s->last_read_t > s->last_sample_t ? s->last_read_t : s->last_sample_t;
-    if (n > 0 && s->have_sample && !s->gap_next && s->sim == NULL) {
-        /* A real sensor: the reads since the last sample should have brought
-         * one sample per period; a shortfall beyond gap_periods is a hole. */
-        double deficit = (t_read - s->last_data_read_t) * s->nominal_hz - (double)n;
-        if (deficit > s->opt.gap_periods) {
-            time_gap = true;
-            time_lost = clip_u32(floor(deficit + 0.5));
-        }
-    }
+    before_t = s->last_sample_t;
+    rows_before = s->pend_len;
     for (i = 0; i < n; i++) {
         const lep_sample *smp = &got[i];
         double t = t_read - (double)(n - 1u - i) * s->period_s;
@@ -203,7 +260,7 @@ void lep_priv_session_feed(lep_session *s, const uint8_t *data, size_t len, doub
             t = lower;
         if (s->gap_next) {
             double est = (t - s->gap_from) * s->nominal_hz - 1.0;
-            gap_event(s, LEP_EV_RECONNECTED, s->gap_from, t, clip_u32(floor(est + 0.5)),
+            gap_event(s, LEP_EV_RECONNECTED, s->h.delivered, s->gap_from, t, clip_u32(floor(est + 0.5)),
                       s->gap_error);
             flags |= LEP_SF_GAP;
             s->gap_next = false;
@@ -216,13 +273,12 @@ void lep_priv_session_feed(lep_session *s, const uint8_t *data, size_t len, doub
                 d += 65536u * (uint32_t)floor((est - (double)d) / 65536.0 + 0.5);
             lost = d > 0 ? d - 1u : 0u;
             if (lost > 0) {
-                gap_event(s, LEP_EV_GAP, s->last_sample_t, t, lost, 0);
+                gap_event(s, LEP_EV_GAP, s->h.delivered, s->last_sample_t, t, lost, 0);
                 flags |= LEP_SF_GAP;
             }
-        } else if (i == 0 && time_gap) {
-            gap_event(s, LEP_EV_GAP, s->last_sample_t, t, time_lost, 0);
-            flags |= LEP_SF_GAP;
         }
+        if (i == 0)
+            first_t = t;
         s->have_seq = true;
         s->last_seq = smp->reserved;
         health_sample(s, t);
@@ -234,6 +290,8 @@ void lep_priv_session_feed(lep_session *s, const uint8_t *data, size_t len, doub
         s->have_sample = true;
         lower = t;
     }
+    if (n > 0 && s->sim == NULL)
+        time_gaps(s, n, t_read, before_t, first_t, rows_before);
     if (n > 0)
         s->last_data_read_t = t_read;
     s->last_read_t = t_read;
@@ -249,10 +307,11 @@ void lep_priv_session_stream_reset(lep_session *s, double now)
     if (s->last_sample_t > now)
         s->last_sample_t = now;
     /* Bytes the client read past the start command's answer are stream data. */
-    if (s->client.rx_pos < s->client.rx_len) {
-        n = (size_t)(s->client.rx_len - s->client.rx_pos);
-        memcpy(left, s->client.rx + s->client.rx_pos, n);
-        s->client.rx_pos = s->client.rx_len;
+    lep_client_rx *rx = s->client.rx; /* the serial port's, attached by lep_serial_client_init */
+    if (rx != NULL && rx->pos < rx->len) {
+        n = (size_t)(rx->len - rx->pos);
+        memcpy(left, rx->buf + rx->pos, n);
+        rx->pos = rx->len;
     }
     if (n > 0)
         lep_priv_session_feed(s, left, n, now);
@@ -272,6 +331,8 @@ static void stream_lost(lep_session *s, int error, double now)
     ev.gap_from = s->last_sample_t;
     lep_priv_session_push_event(s, &ev);
     s->h.disconnects++;
+    s->held = 0; /* a suspected hole ends in the loss itself */
+    s->tm_started = false;
     if (error == LEP_E_TIMEOUT)
         s->data_timeouts++;
     s->errors_before += conn_errors(&st, &s->base_stats);
@@ -311,6 +372,7 @@ static int reconnect_once(lep_session *s, double now)
     pthread_mutex_unlock(&s->mu);
     s->have_seq = false;
     s->gap_next = true;
+    s->tm_started = false;
     lep_priv_session_stream_reset(s, now);
     return LEP_OK;
 }
@@ -344,7 +406,7 @@ static void copy_row(lep_session_batch *b, const session_row *r)
 /* Move pending rows into b; *first gets the arrival of the first one moved. */
 static void deliver(lep_session *s, lep_session_batch *b, double *first)
 {
-    while (s->pend_len > 0 && b->n < b->cap) {
+    while (s->pend_len > s->held && b->n < b->cap) {
         const session_row *r = &s->pending[s->pend_head];
         if (*first < 0.0)
             *first = r->t_mono;
@@ -377,8 +439,12 @@ int lep_session_read(lep_session *s, lep_session_batch *b, int timeout_ms)
         int rc, wait;
 
         deliver(s, b, &first);
-        if (s->ended && s->pend_len == 0)
+        if (s->ended && s->pend_len == s->held) {
+            s->held = 0; /* nothing comes after the end to judge it by */
+            if (s->pend_len > 0)
+                continue;
             return LEP_E_END;
+        }
         if (b->n == b->cap)
             return LEP_OK;
         got = b->n > n0 || events_pushed(s) != ev0;
@@ -410,6 +476,8 @@ int lep_session_read(lep_session *s, lep_session_batch *b, int timeout_ms)
             /* Save wake-ups: sleep until the budget is spent, then take
              * everything in one read that does not wait. */
             wake = got ? first + budget : s->last_read_t + budget;
+            if (s->held > 0 && wake > s->last_read_t + SESSION_CONFIRM_S)
+                wake = s->last_read_t + SESSION_CONFIRM_S; /* judge a suspected hole soon */
             if (wake > deadline)
                 wake = deadline;
             if (wake > data_deadline)

@@ -62,6 +62,11 @@ int lep_sim_start(const lep_sim_options *o, lep_sim **out, char *err, size_t err
         free(s);
         return rc;
     }
+    {
+        uint8_t code;
+        for (code = 0; code <= LEP_FILTER_MAX; code++)
+            lep_priv_fir_design(&s->fir[code], code, o->rate_hz);
+    }
     rc = lep_priv_sim_init_device(s, err, errlen);
     if (rc == LEP_OK && (pipe(s->wake) != 0 || lep_priv_sim_set_flags(s->wake[0]) != 0 ||
                          lep_priv_sim_set_flags(s->wake[1]) != 0)) {
@@ -98,6 +103,15 @@ int lep_sim_start(const lep_sim_options *o, lep_sim **out, char *err, size_t err
     }
     s->thread_started = true;
     *out = s;
+    return LEP_OK;
+}
+
+int lep_sim_stream_sample(const lep_sim *s, uint64_t k, uint8_t filter, lep_sample *out)
+{
+    if (s == NULL || out == NULL || filter > LEP_FILTER_MAX)
+        return LEP_E_ARG;
+    lep_priv_fir_sample(&s->fir[filter], &s->sig, k, out);
+    out->reserved = (uint16_t)(k & 0xFFFFu);
     return LEP_OK;
 }
 

@@ -50,7 +50,7 @@ void lep_priv_sim_handshake_sample(lep_sim *s)
     lep_sample smp;
     int64_t since = lep_priv_monotonic_ns() - s->power_on;
     uint64_t n = since > 0 ? (uint64_t)((double)since / s->period_ns) : 0u;
-    lep_priv_signal_sample(&s->sig, n, &smp);
+    lep_priv_fir_sample(&s->fir[lep_device_filter(&s->dev)], &s->sig, n, &smp);
     lep_device_set_sample(&s->dev, &smp);
 }
 

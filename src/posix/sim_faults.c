@@ -18,7 +18,7 @@ static bool roll(lep_sim *s, double p)
 /* Send a message frame, through the garbage/corrupt/drop faults. */
 void lep_priv_sim_emit(lep_sim *s, const uint8_t *frame, size_t len, bool data)
 {
-    uint8_t buf[LEP_MAX_FRAME + 16];
+    uint8_t buf[LEP_SIM_FRAME_ROOM];
     size_t n = 0;
     if (data && roll(s, s->opt.p_drop)) {
         s->st.samples_dropped++;

@@ -12,10 +12,13 @@
 #include "leptrino/device.h"
 #include "leptrino/frame.h"
 #include "leptrino/sim.h"
+#include "sim_filter.h"
 #include "sim_signal.h"
 
 #define OUTQ_SIZE 32768u
 #define PEND_SIZE 1024u
+/* Room for the largest message the sensor sends: a frame and its garbage. */
+#define LEP_SIM_FRAME_ROOM (LEP_MAX_FRAME + 16u)
 /* Beyond this lag behind schedule (the process was not scheduled), samples
  * are skipped instead of sent in a burst. A stall skips what it covered. */
 #define MAX_LAG_NS 500000000
@@ -40,10 +43,13 @@ struct lep_sim {
     lep_product_info info;
     lep_rated rated;
     lep_sim_signal sig;
+    lep_sim_fir fir[LEP_FILTER_MAX + 1]; /* the sensor's filter, per code */
     double period_ns;
 
     /* owned by the serving thread */
     lep_sim_stats st; /* working copy, published under lock */
+    lep_sim_fir_state fir_state; /* the stream's filter inputs */
+    uint8_t fir_code;            /* the code fir_state was filled for */
     lep_device dev;
     lep_frame_decoder shadow; /* sees frames first, so a NAK fault can withhold one */
     uint8_t pend[PEND_SIZE];
@@ -67,6 +73,8 @@ int lep_priv_sim_open_pty(lep_sim *s, char *err, size_t errlen);
 void lep_priv_sim_close_pty(lep_sim *s);
 void lep_priv_sim_flush_out(lep_sim *s);
 bool lep_priv_sim_queue(lep_sim *s, const uint8_t *b, size_t n);
+/* True when the output queue cannot take another message. */
+bool lep_priv_sim_queue_full(const lep_sim *s);
 
 /* sim_link.c: ownership of the link path (see the file's comment) */
 /* Take the link's lock and check what is at the path: LEP_OK (nothing to

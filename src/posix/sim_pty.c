@@ -122,6 +122,11 @@ void lep_priv_sim_flush_out(lep_sim *s)
     }
 }
 
+bool lep_priv_sim_queue_full(const lep_sim *s)
+{
+    return s->out_len + LEP_SIM_FRAME_ROOM > OUTQ_SIZE;
+}
+
 bool lep_priv_sim_queue(lep_sim *s, const uint8_t *b, size_t n)
 {
     if (s->out_len + n > OUTQ_SIZE)

@@ -24,16 +24,26 @@ int64_t lep_priv_sim_deadline(const lep_sim *s, uint64_t k)
 
 void lep_priv_sim_stream_due(lep_sim *s, int64_t now)
 {
+    uint8_t code = lep_device_filter(&s->dev);
+    if (code != s->fir_code) { /* a power cycle applied another filter */
+        s->fir_state.primed = false;
+        s->fir_code = code;
+    }
     while (s->streaming && lep_priv_sim_deadline(s, s->k) <= now) {
         lep_sample smp;
         uint8_t frame[LEP_MAX_FRAME];
         size_t len;
+        if (lep_priv_sim_queue_full(s)) { /* nobody reads: not even computed */
+            s->st.samples_blocked++;
+            s->k++;
+            continue;
+        }
         if (now - lep_priv_sim_deadline(s, s->k) > MAX_LAG_NS) {
             s->st.samples_skipped++;
             s->k++;
             continue;
         }
-        lep_priv_signal_sample(&s->sig, s->k, &smp);
+        lep_priv_fir_next(&s->fir_state, &s->fir[code], &s->sig, s->k, &smp);
         smp.reserved = (uint16_t)(s->k & 0xFFFFu);
         s->k++;
         if (lep_device_stream_frame(&smp, frame, sizeof frame, &len) == LEP_OK)

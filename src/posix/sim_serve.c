@@ -92,6 +92,8 @@ static int wait_events(lep_sim *s, struct pollfd *p, nfds_t n, int64_t until)
 #endif
 }
 
+#define BLOCKED_WAKE_NS 100000000 /* 100 ms */
+
 void *lep_priv_sim_serve(void *arg)
 {
     lep_sim *s = arg;
@@ -134,8 +136,14 @@ void *lep_priv_sim_serve(void *arg)
             p[1].events = (short)(POLLIN | (s->out_len > 0 ? POLLOUT : 0));
             p[1].revents = 0;
             n = 2;
-            if (s->streaming)
+            /* The next sample's deadline, unless the queue is full (nobody
+             * reads): then wait for room (POLLOUT), waking every
+             * BLOCKED_WAKE_NS instead of each sample to count the samples
+             * due meanwhile as blocked. */
+            if (s->streaming && !lep_priv_sim_queue_full(s))
                 until = lep_priv_sim_deadline(s, s->k);
+            else if (s->streaming)
+                until = now + BLOCKED_WAKE_NS;
         }
         if (stalled)
             until = earliest(until, s->stall_until);
@@ -147,19 +155,22 @@ void *lep_priv_sim_serve(void *arg)
         if (wait_events(s, p, n, until) < 0 && errno != EINTR)
             break;
 
+        stop = cycle = hangup = false;
+        stall_ms = -1;
         if (p[0].revents & POLLIN) {
+            /* a request: callers set it under the lock, then write the pipe */
             uint8_t junk[64];
             while (read(s->wake[0], junk, sizeof junk) > 0) {
             }
+            pthread_mutex_lock(&s->lock);
+            stop = s->req_stop;
+            cycle = s->req_power_cycle;
+            hangup = s->req_hangup;
+            stall_ms = s->req_stall_ms;
+            s->req_power_cycle = s->req_hangup = false;
+            s->req_stall_ms = -1;
+            pthread_mutex_unlock(&s->lock);
         }
-        pthread_mutex_lock(&s->lock);
-        stop = s->req_stop;
-        cycle = s->req_power_cycle;
-        hangup = s->req_hangup;
-        stall_ms = s->req_stall_ms;
-        s->req_power_cycle = s->req_hangup = false;
-        s->req_stall_ms = -1;
-        pthread_mutex_unlock(&s->lock);
         if (stop)
             break;
         now = lep_priv_monotonic_ns();

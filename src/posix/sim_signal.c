@@ -5,13 +5,9 @@
 #define _DEFAULT_SOURCE
 #endif
 
-#include <ctype.h>
-#include <errno.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "errmsg.h"
 #include "leptrino/error.h"
 #include "sim_signal.h"
 
@@ -30,115 +26,6 @@ uint64_t lep_priv_splitmix64(uint64_t *state)
 double lep_priv_uniform(uint64_t *state)
 {
     return (double)(lep_priv_splitmix64(state) >> 11) * (1.0 / 9007199254740992.0);
-}
-
-/* Parse one CSV line of 6 or 7 integers. Returns 1 for a row, 0 for a line
- * to skip (blank, comment, header), -1 for a malformed line. */
-static int parse_row(const char *line, lep_sample *row, int16_t *status)
-{
-    const char *p = line;
-    long v[7];
-    int count = 0;
-    while (*p == ' ' || *p == '\t')
-        p++;
-    if (*p == '\0' || *p == '\n' || *p == '\r' || *p == '#')
-        return 0;
-    if (isalpha((unsigned char)*p))
-        return 0; /* a header line */
-    for (;;) {
-        char *end;
-        if (count == 7)
-            return -1;
-        errno = 0;
-        v[count] = strtol(p, &end, 10);
-        if (end == p || errno != 0)
-            return -1;
-        count++;
-        p = end;
-        while (*p == ' ' || *p == '\t')
-            p++;
-        if (*p == ',' || *p == ';') {
-            p++;
-            continue;
-        }
-        if (*p == '\0' || *p == '\n' || *p == '\r')
-            break;
-        return -1;
-    }
-    if (count < 6)
-        return -1;
-    memset(row, 0, sizeof *row);
-    {
-        int i;
-        for (i = 0; i < LEP_AXES; i++) {
-            if (v[i] < -32768 || v[i] > 32767)
-                return -1;
-            row->raw[i] = (int16_t)v[i];
-        }
-    }
-    if (count == 7) {
-        if (v[6] < 0 || v[6] > 255)
-            return -1;
-        *status = (int16_t)v[6];
-    } else {
-        *status = -1;
-    }
-    return 1;
-}
-
-static int load_replay(lep_sim_signal *g, const char *file, char *err, size_t errlen)
-{
-    char line[512];
-    size_t cap = 0, lineno = 0;
-    FILE *f = fopen(file, "r");
-    if (f == NULL) {
-        lep_priv_set_err(err, errlen, "%s: cannot open replay file: %s", file, strerror(errno));
-        return errno == ENOENT ? LEP_E_NOT_FOUND : LEP_E_IO;
-    }
-    while (fgets(line, sizeof line, f) != NULL) {
-        lep_sample row;
-        int16_t status;
-        int r;
-        lineno++;
-        r = parse_row(line, &row, &status);
-        if (r == 0)
-            continue;
-        if (r < 0) {
-            lep_priv_set_err(err, errlen,
-                    "%s:%zu: expected 6 or 7 integers fx,fy,fz,mx,my,mz[,status] (int16, status 0..255)",
-                    file, lineno);
-            fclose(f);
-            return LEP_E_VALUE;
-        }
-        if (g->replay_rows == cap) {
-            size_t ncap = cap ? cap * 2 : 256;
-            lep_sample *nr = realloc(g->replay, ncap * sizeof *nr);
-            int16_t *ns;
-            if (nr == NULL) {
-                fclose(f);
-                lep_priv_set_err(err, errlen, "%s: out of memory", file);
-                return LEP_E_IO;
-            }
-            g->replay = nr;
-            ns = realloc(g->replay_status, ncap * sizeof *ns);
-            if (ns == NULL) {
-                fclose(f);
-                lep_priv_set_err(err, errlen, "%s: out of memory", file);
-                return LEP_E_IO;
-            }
-            g->replay_status = ns;
-            cap = ncap;
-        }
-        g->replay[g->replay_rows] = row;
-        g->replay_status[g->replay_rows] = status;
-        g->replay_rows++;
-    }
-    fclose(f);
-    if (g->replay_rows == 0) {
-        lep_priv_set_err(err, errlen, "%s: no samples in replay file", file);
-        return LEP_E_VALUE;
-    }
-    return LEP_OK;
 }
 
 int lep_priv_signal_init(lep_sim_signal *g, const lep_sim_options *o, const lep_rated *rated,
@@ -162,7 +49,7 @@ int lep_priv_signal_init(lep_sim_signal *g, const lep_sim_options *o, const lep_
         g->phase[i] = TWO_PI * lep_priv_uniform(&st);
     }
     if (o->replay_csv[0] != '\0') {
-        int rc = load_replay(g, o->replay_csv, err, errlen);
+        int rc = lep_priv_replay_load(g, o->replay_csv, err, errlen);
         if (rc != LEP_OK) {
             lep_priv_signal_free(g);
             return rc;
@@ -192,7 +79,7 @@ static double abs_d(double x)
 }
 
 /* sin(x) to ~1e-9 after reduction to [-pi/2, pi/2]. */
-static double sine(double x)
+double lep_priv_sine(double x)
 {
     double k, r, r2;
     const double pi = TWO_PI / 2.0;
@@ -218,11 +105,10 @@ static int16_t saturate(double counts)
     return (int16_t)(counts >= 0 ? (int)(counts + 0.5) : -(int)(-counts + 0.5));
 }
 
-void lep_priv_signal_sample(const lep_sim_signal *g, uint64_t n, lep_sample *out)
+int lep_priv_signal_counts(const lep_sim_signal *g, uint64_t n, double counts[LEP_AXES])
 {
     double t = (double)n / g->rate_hz;
-    double counts[LEP_AXES];
-    int i, given_status = -1, over = 0;
+    int i, given_status = -1;
     if (g->replay != NULL) {
         size_t row = (size_t)(n % g->replay_rows);
         for (i = 0; i < LEP_AXES; i++)
@@ -235,7 +121,7 @@ void lep_priv_signal_sample(const lep_sim_signal *g, uint64_t n, lep_sample *out
                 v = g->amplitude;
             } else {
                 uint64_t st = g->seed ^ (n * 0xD1B54A32D192ED03u) ^ ((uint64_t)i << 56);
-                v = g->amplitude * sine(TWO_PI * g->freq[i] * t + g->phase[i]) +
+                v = g->amplitude * lep_priv_sine(TWO_PI * g->freq[i] * t + g->phase[i]) +
                     g->noise * (2.0 * lep_priv_uniform(&st) - 1.0);
             }
             counts[i] = v * LEP_RAW_FULL_SCALE;
@@ -250,6 +136,12 @@ void lep_priv_signal_sample(const lep_sim_signal *g, uint64_t n, lep_sample *out
             counts[axis] = sign * OVERLOAD_LEVEL * LEP_RAW_FULL_SCALE;
         }
     }
+    return given_status;
+}
+
+void lep_priv_signal_finish(const double counts[LEP_AXES], int given_status, lep_sample *out)
+{
+    int i, over = 0;
     memset(out, 0, sizeof *out);
     for (i = 0; i < LEP_AXES; i++) {
         if (abs_d(counts[i]) > LEP_RAW_FULL_SCALE)
@@ -262,4 +154,13 @@ void lep_priv_signal_sample(const lep_sim_signal *g, uint64_t n, lep_sample *out
         out->status = over ? (uint8_t)LEP_STATUS_OVERLOAD : 0u;
     if (given_status >= 0 && over)
         out->status |= LEP_STATUS_OVERLOAD;
+}
+
+double lep_priv_signal_clip(double counts)
+{
+    if (counts > LEP_SATURATION_V113)
+        return LEP_SATURATION_V113;
+    if (counts < -LEP_SATURATION_V113)
+        return -LEP_SATURATION_V113;
+    return counts;
 }

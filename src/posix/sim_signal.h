@@ -12,6 +12,8 @@
 uint64_t lep_priv_splitmix64(uint64_t *state);
 /* Uniform in [0, 1). */
 double lep_priv_uniform(uint64_t *state);
+/* sin(x) to about 1e-9 (the library needs no libm). */
+double lep_priv_sine(double x);
 
 typedef struct lep_sim_signal {
     lep_rated rated;
@@ -32,8 +34,24 @@ int lep_priv_signal_init(lep_sim_signal *g, const lep_sim_options *o, const lep_
                          char *err, size_t errlen);
 void lep_priv_signal_free(lep_sim_signal *g);
 
-/* The sample at index n of the sample clock (t = n / rate_hz): a pure
- * function of the options, the seed and n. reserved is left 0. */
-void lep_priv_signal_sample(const lep_sim_signal *g, uint64_t n, lep_sample *out);
+/* sim_replay.c: read a replay file into g->replay (rows of raw counts and
+ * the status each gives, or -1). LEP_E_NOT_FOUND/LEP_E_IO/LEP_E_VALUE with a
+ * message naming the file and line. On failure g may hold rows already
+ * read: lep_priv_signal_free releases them. */
+int lep_priv_replay_load(lep_sim_signal *g, const char *file, char *err, size_t errlen);
+
+/* What the sensor measures at index n of the sample clock (t = n / rate_hz),
+ * in counts before the ADC's limit (an overload may exceed it): a pure
+ * function of the options, the seed and n. Returns the status byte given by a
+ * replay file for that row, or -1 (derive it). */
+int lep_priv_signal_counts(const lep_sim_signal *g, uint64_t n, double counts[LEP_AXES]);
+
+/* Counts to a sample: rounded and saturated at +/-32000, status bit 2 where
+ * any axis exceeds rated (+/-10000), or the given status (>= 0) plus that
+ * bit. reserved is left 0. */
+void lep_priv_signal_finish(const double counts[LEP_AXES], int given_status, lep_sample *out);
+
+/* The ADC's limit: counts clipped to +/-32000. */
+double lep_priv_signal_clip(double counts);
 
 #endif

@@ -5,15 +5,19 @@ virtual sensor from LEPTRINO_CLI_SIM (both set by ctest)."""
 
 from __future__ import annotations
 
+import json
 import os
 import subprocess
 from collections.abc import Iterator
-from typing import IO, Sequence
+from typing import IO, Any, Sequence
 
 import pytest
 
-CSV_HEADER = "t,fx,fy,fz,mx,my,mz,status"
-AXES = ("fx", "fy", "fz", "mx", "my", "mz")
+CSV_HEADER = "t_s,fx_N,fy_N,fz_N,mx_Nm,my_Nm,mz_Nm,status"
+AXES = ("fx_N", "fy_N", "fz_N", "mx_Nm", "my_Nm", "mz_Nm")
+RAW = ("fx_counts", "fy_counts", "fz_counts", "mx_counts", "my_counts", "mz_counts")
+ZEROED = tuple(a.replace("_counts", "_zeroed_counts") for a in RAW)
+METADATA_PREFIX = "# leptrino-metadata: "
 
 
 def cli_path() -> str:
@@ -35,23 +39,72 @@ def run(args: Sequence[str], timeout: float = 60.0) -> subprocess.CompletedProce
     )
 
 
+class Csv:
+    """A CSV recording of the tool, read without pandas: the metadata
+    objects, the header, the rows (as dicts of floats, or str for the sensor
+    column) and the other '#' comment lines (events), in order."""
+
+    def __init__(self, text: str, header: str | None = None) -> None:
+        lines = text.splitlines()
+        assert lines, "no output"
+        self.metadata: list[dict[str, Any]] = []
+        i = 0
+        while i < len(lines) and lines[i].startswith(METADATA_PREFIX):
+            self.metadata.append(json.loads(lines[i][len(METADATA_PREFIX):]))
+            i += 1
+        assert self.metadata, "no metadata header"
+        assert i < len(lines), "no header line"
+        self.header = lines[i].split(",")
+        if header is not None:
+            assert lines[i] == header
+        self.rows: list[dict[str, Any]] = []
+        self.comments: list[str] = []
+        self.lines_after_header = lines[i + 1:]
+        for line in lines[i + 1:]:
+            if line.startswith("#"):
+                self.comments.append(line)
+                continue
+            fields = line.split(",")
+            assert len(fields) == len(self.header), line
+            row: dict[str, Any] = {}
+            for name, value in zip(self.header, fields):
+                row[name] = value if name == "sensor" else float(value)
+            self.rows.append(row)
+
+    def column(self, name: str) -> list[Any]:
+        return [r[name] for r in self.rows]
+
+    def events(self, word: str) -> list[dict[str, str]]:
+        """'# WORD k=v k=v' comment lines as dicts."""
+        out = []
+        for c in self.comments:
+            parts = c[1:].split()
+            if parts and parts[0] == word:
+                out.append(dict(p.split("=", 1) for p in parts[1:] if "=" in p))
+        return out
+
+
 def parse_csv(text: str) -> tuple[list[list[float]], list[str]]:
-    """Rows of a CSV output (header checked) and its '#' comment lines."""
-    lines = text.splitlines()
-    assert lines, "no output"
-    assert lines[0] == CSV_HEADER
-    rows: list[list[float]] = []
-    comments: list[str] = []
-    for line in lines[1:]:
-        if line.startswith("#"):
-            comments.append(line)
-            continue
-        fields = line.split(",")
-        assert len(fields) == 8, line
-        values = [float(f) for f in fields]
-        assert int(fields[7]) == values[7]
-        rows.append(values)
-    return rows, comments
+    """Rows of a default-columns CSV output (header checked) as lists, and
+    its '#' comment lines other than the metadata."""
+    csv = Csv(text, CSV_HEADER)
+    return [[r[k] for k in csv.header] for r in csv.rows], csv.comments
+
+
+def parse_jsonl(text: str) -> tuple[list[dict[str, Any]], list[dict[str, Any]],
+                                    list[dict[str, Any]]]:
+    """(metadata objects, sample objects, event objects) of a JSON-lines output."""
+    meta, rows, events = [], [], []
+    for line in text.splitlines():
+        obj = json.loads(line)
+        if "metadata" in obj:
+            assert not rows, "metadata after samples"
+            meta.append(obj["metadata"])
+        elif "event" in obj:
+            events.append(obj)
+        else:
+            rows.append(obj)
+    return meta, rows, events
 
 
 class SimProcess:

@@ -2,11 +2,11 @@
 
 from __future__ import annotations
 
-import json
 import subprocess
 import time
 
-from conftest import CSV_HEADER, SimProcess, cli_path, parse_csv, run
+from conftest import SimProcess, cli_path, parse_csv, parse_jsonl, run
+from fake_sensor import FakeSensor
 
 
 def info_fields(text: str) -> dict[str, str]:
@@ -46,13 +46,13 @@ def test_info_sim_options() -> None:
 def test_read_n_samples() -> None:
     r = run(["read", "--sim", "-n", "5"])
     assert r.returncode == 0, r.stderr
-    assert r.stdout.splitlines()[0] == CSV_HEADER
     rows, _ = parse_csv(r.stdout)
     assert len(rows) == 5
     r = run(["read", "--sim", "--count", "3", "--format", "jsonl", "--units", "raw"])
     assert r.returncode == 0, r.stderr
-    recs = [json.loads(line) for line in r.stdout.splitlines()]
-    assert len(recs) == 3 and all(isinstance(rec["fx"], int) for rec in recs)
+    meta, recs, _ = parse_jsonl(r.stdout)
+    assert len(meta) == 1 and meta[0]["model"] == "PFS055YA501U6"
+    assert len(recs) == 3 and all(isinstance(rec["fx_counts"], int) for rec in recs)
 
 
 def test_filter_set_power_cycle_get_round_trip() -> None:
@@ -133,7 +133,7 @@ def test_silent_port_times_out_exit_3() -> None:
     # A stalled virtual sensor answers nothing: exit code 3.
     r = run(["info", "--sim", "--sim-stall", "5000", "--timeout", "50"])
     assert r.returncode == 3, r.stderr
-    assert "timeout" in r.stderr or "quiet" in r.stderr or "answer" in r.stderr
+    assert "timed out" in r.stderr or "timeout" in r.stderr
 
 
 def test_sensor_refusing_every_command_exit_5() -> None:
@@ -147,3 +147,28 @@ def test_sensor_refusing_every_command_exit_5() -> None:
 def test_nak_faults_are_retried() -> None:
     r = run(["info", "--sim", "--sim-nak", "0.2", "--sim-seed", "7"])
     assert r.returncode == 0, r.stderr
+
+
+def test_info_survives_a_refused_filter_query() -> None:
+    sensor = FakeSensor(filter_result=0x02)
+    try:
+        r = run(["info", sensor.port])
+    finally:
+        sensor.close()
+    assert r.returncode == 0, r.stderr
+    f = info_fields(r.stdout)
+    assert f["model"] == "PFS055YA501U6"
+    assert f["serial"] == "00000042"
+    assert f["rated"].startswith("Fx 500 N,")
+    assert f["filter"] == "not supported by this sensor"
+    assert 0xB6 in sensor.commands
+
+
+def test_filter_query_refused_is_said_plainly() -> None:
+    sensor = FakeSensor(filter_result=0x02)
+    try:
+        r = run(["filter", sensor.port])
+    finally:
+        sensor.close()
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.strip() == "filter: not supported by this sensor"

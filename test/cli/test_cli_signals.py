@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import SimProcess, cli_path, parse_csv, run
+from conftest import Csv, SimProcess, cli_path, parse_csv, parse_jsonl, run
 
 
 def wait_streaming(sim: SimProcess, want: int, timeout: float = 10.0) -> bool:
@@ -58,6 +58,7 @@ def test_sigint_with_in_process_sim_exits_0() -> None:
     assert len(lines) > 100
     for line in lines:
         json.loads(line)  # every line complete, the last one included
+    assert "metadata" in json.loads(lines[0])
 
 
 def test_closed_output_pipe_stops_cleanly() -> None:
@@ -88,18 +89,18 @@ def test_reconnect_resumes_after_hangup_and_marks_the_gap(fmt: str, tmp_path: Pa
     assert "disconnected" in r.stderr and "resumed" in r.stderr
     text = out.read_text()
     if fmt == "csv":
-        rows, comments = parse_csv(text)
-        assert len(comments) == 1 and comments[0].startswith("# gap from=")
-        fields = dict(kv.split("=", 1) for kv in comments[0][2:].split()[1:])
-        gap_from, gap_to = float(fields["from"]), float(fields["to"])
-        assert fields["reason"] == "disconnected"
-        ts = [row[0] for row in rows]
+        csv = Csv(text)
+        gaps = csv.events("gap")
+        assert len(gaps) == 1, csv.comments
+        gap_from, gap_to = float(gaps[0]["from"]), float(gaps[0]["to"])
+        assert gaps[0]["reason"] == "disconnected"
+        ts = csv.column("t_s")
     else:
-        recs = [json.loads(line) for line in text.splitlines()]
-        gaps = [rec["gap"] for rec in recs if "gap" in rec]
-        assert len(gaps) == 1 and gaps[0]["reason"] == "disconnected"
+        _, rows, events = parse_jsonl(text)
+        gaps = [e for e in events if e["event"] == "gap"]
+        assert len(gaps) == 1 and gaps[0]["reason"] == "disconnected", events
         gap_from, gap_to = gaps[0]["from"], gaps[0]["to"]
-        ts = [rec["t"] for rec in recs if "gap" not in rec]
+        ts = [rec["t_s"] for rec in rows]
     assert 0.5 < gap_from < gap_to
     assert gap_to - gap_from >= 0.3  # the port was away for 400 ms
     before = [t for t in ts if t <= gap_from]

@@ -56,11 +56,12 @@ def test_same_terminal_gets_clean_rows_then_the_summary() -> None:
     lines = data.decode().split("\r\n")  # the terminal turns \n into \r\n
     while lines and lines[-1] == "":
         lines.pop()
-    assert lines[0].startswith("t,")
-    ncols = len(lines[0].split(","))
+    assert lines[0].startswith("# leptrino-metadata: {")
+    assert lines[1].startswith("t_s,")
+    ncols = len(lines[1].split(","))
     summary = lines[-1]
     assert summary.startswith("leptrino: stream:") and "samples" in summary
-    rows = lines[1:-1]
+    rows = lines[2:-1]
     assert len(rows) > 500
     for row in rows:
         if row.startswith("#"):

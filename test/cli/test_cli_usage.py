@@ -9,7 +9,7 @@ import pytest
 
 from conftest import run
 
-COMMANDS = ["list", "info", "read", "stream", "filter"]
+COMMANDS = ["list", "info", "read", "stream", "filter", "watch"]
 
 
 def test_version() -> None:
@@ -40,8 +40,9 @@ def test_help_of_every_command(cmd: str) -> None:
 
 def test_stream_help_documents_units_and_gap() -> None:
     out = run(["stream", "--help"]).stdout
-    assert "t,fx,fy,fz,mx,my,mz,status" in out
-    assert "N m" in out and "# gap" in out and "--sim-hangup-after" in out
+    for word in ("fx_N", "mx_Nm", "fx_counts", "fx_zeroed_counts", "t_utc_s", "# gap",
+                 "leptrino-metadata", "SIGUSR1", "SIGUSR2", "--split", "--sim-hangup-after"):
+        assert word in out, word
 
 
 BAD = [
@@ -66,8 +67,40 @@ BAD = [
     ["read", "--sim", "-n", "2.5"],
     ["read", "--sim", "--format", "xml"],
     ["stream"],
-    ["stream", "/dev/ttyUSB9", "--sim"],
-    ["stream", "--sim", "/dev/ttyUSB9"],
+    ["stream", "/dev/ttyUSB9", "/dev/ttyUSB9"],
+    ["stream", "--sim", "--sim-amplitude", "5"],
+    ["stream", "--sim", "--sim-bogus", "1"],
+    ["stream", "--sim", "--columns", "bogus"],
+    ["stream", "--sim", "--columns", ""],
+    ["stream", "--sim", "--columns", "si,si"],
+    ["stream", "--sim", "--columns", "si,"],
+    ["stream", "--sim", "--columns", "si", "--units", "raw"],
+    ["stream", "--sim", "--time", "local"],
+    ["stream", "--sim", "--lowpass", "0"],
+    ["stream", "--sim", "--lowpass", "-5"],
+    ["stream", "--sim", "--lowpass", "x"],
+    ["stream", "--sim", "--lowpass", "1000"],
+    ["stream", "--sim", "--decimate", "0"],
+    ["stream", "--sim", "--decimate", "1.5"],
+    ["stream", "--sim", "--rotate", "1,2"],
+    ["stream", "--sim", "--rotate", "a,b,c"],
+    ["stream", "--sim", "--rotate", "1,2,3,4"],
+    ["stream", "--sim", "--rotate", "0,0,inf"],
+    ["stream", "--sim", "--matrix", "1,0,0,0,1,0,0,0"],
+    ["stream", "--sim", "--rotate", "0,0,90", "--matrix", "1,0,0,0,1,0,0,0,1"],
+    ["stream", "--sim", "--shift", "0,0"],
+    ["stream", "--sim", "--latency", "-1"],
+    ["stream", "--sim", "--retare", "0"],
+    ["stream", "--sim", "--split", "out.csv"],
+    ["stream", "--sim", "--split", "{n}.csv", "-o", "x.csv"],
+    ["stream", "--sim", "--overwrite=1"],
+    ["stream", *["--sim"] * 9],
+    ["watch"],
+    ["watch", "--sim", "--sim"],
+    ["watch", "--sim", "--tare", "0"],
+    ["watch", "--sim", "--lowpass", "abc"],
+    ["watch", "--sim"],
+    ["info", "--sim", "--sim"],
     ["stream", "--sim", "--bogus"],
     ["stream", "--sim", "-x"],
     ["stream", "--sim", "--duration"],

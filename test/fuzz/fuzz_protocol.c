@@ -162,10 +162,17 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             check(ev.len == ev1.len && memcmp(ev.msg, ev1.msg, ev.len) == 0);
             check(ev.len >= 1 && ev.len <= LEP_MAX_MESSAGE);
             delivered += (uint32_t)lep_frame_size(ev.msg, ev.len);
-            /* A message that decodes must encode back to the same bytes. */
-            if (lep_response_decode(ev.msg, ev.len, &r) == LEP_OK &&
-                lep_response_encode(&r, again, sizeof(again), &n) == LEP_OK) {
-                check(n == ev.len && memcmp(again, ev.msg, n) == 0);
+            /* A message that decodes has a canonical form (space padding, last
+             * reserved byte 0) that decodes to the same and encodes to itself. */
+            if (lep_response_decode(ev.msg, ev.len, &r) == LEP_OK) {
+                lep_response r2;
+                uint8_t twice[LEP_MAX_MESSAGE];
+                size_t n2;
+                check(lep_response_encode(&r, again, sizeof(again), &n) == LEP_OK);
+                check(n == ev.len);
+                check(lep_response_decode(again, n, &r2) == LEP_OK);
+                check(lep_response_encode(&r2, twice, sizeof(twice), &n2) == LEP_OK);
+                check(n2 == n && memcmp(again, twice, n) == 0);
             }
             (void)lep_command_decode(ev.msg, ev.len, &cmd, &result);
         } else if (ev.type == LEP_FRAME_NAK) {

@@ -7,7 +7,7 @@ set -u
 src=$1 cc=$2 gen=$3
 fail=0
 allowed_std='stdint.h|stddef.h|stdbool.h|string.h'
-core_headers="leptrino.h export.h error.h frame.h message.h client.h device.h"
+core_headers="leptrino.h config.h export.h error.h frame.h message.h client.h device.h"
 files=("$src"/src/core/*.c)
 for h in $core_headers; do files+=("$src/include/leptrino/$h"); done
 
@@ -18,8 +18,8 @@ for f in "${files[@]}"; do
       '"'*) name=${inc#\"}
             case "$name" in
               leptrino/leptrino.h|leptrino/export.h|leptrino/error.h|leptrino/frame.h|\
-              leptrino/message.h|leptrino/client.h|leptrino/device.h|leptrino/version.h|\
-              export.h|error.h|frame.h|message.h|client.h|device.h|version.h|leptrino/version.h) ;;
+              leptrino/message.h|leptrino/client.h|leptrino/device.h|leptrino/version.h|leptrino/config.h|\
+              config.h|export.h|error.h|frame.h|message.h|client.h|device.h|version.h|leptrino/version.h) ;;
               *) echo "FAIL $f: project include outside the core: $name"; fail=1 ;;
             esac ;;
       '<'*) name=${inc#<}

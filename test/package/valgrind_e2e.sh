@@ -6,6 +6,7 @@
 # usage: valgrind_e2e.sh BUILD_DIR CTEST VALGRIND [LABEL]
 set -euo pipefail
 build=$1 ctest=$2 valgrind=$3 label=${4:-e2e}
+valgrind=$(command -v "$valgrind") || { echo "FAIL valgrind not found"; exit 1; }
 opts="--error-exitcode=99 --leak-check=full --errors-for-leak-kinds=definite --show-leak-kinds=definite --num-callers=30 --track-origins=yes"
 logs="$build/Testing/Temporary"
 rm -f "$logs"/MemoryChecker.*.log

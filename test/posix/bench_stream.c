@@ -59,6 +59,7 @@ int main(int argc, char **argv)
     lep_sim *sim = NULL;
     lep_serial *port = NULL;
     lep_client client;
+    lep_client_rx rx;
     struct counting k = {{0}, 0, 0, 0, 0};
     lep_io io;
     lep_sample smp;
@@ -82,6 +83,7 @@ int main(int argc, char **argv)
     io.now_ms = c_now;
     io.user = &k;
     lep_client_init(&client, &io);
+    lep_client_set_rx(&client, &rx);
     if ((rc = lep_client_start(&client)) != LEP_OK) {
         fprintf(stderr, "bench_stream: start: %s\n", lep_strerror(rc));
         return 1;

@@ -3,6 +3,8 @@
 #ifndef LEP_SESSION_TEST_H
 #define LEP_SESSION_TEST_H
 
+#include <pthread.h>
+#include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -51,6 +53,34 @@ static void st_batch_free(st_batch *x)
     free(x->status);
     free(x->flags);
     free(x->seq);
+}
+
+/* A flag one thread raises and another polls (race-free under TSan). */
+typedef struct st_flag {
+    pthread_mutex_t mu;
+    bool up;
+} st_flag;
+
+static inline void st_flag_init(st_flag *f)
+{
+    pthread_mutex_init(&f->mu, NULL);
+    f->up = false;
+}
+
+static inline void st_flag_raise(st_flag *f)
+{
+    pthread_mutex_lock(&f->mu);
+    f->up = true;
+    pthread_mutex_unlock(&f->mu);
+}
+
+static inline bool st_flag_is_up(st_flag *f)
+{
+    bool up;
+    pthread_mutex_lock(&f->mu);
+    up = f->up;
+    pthread_mutex_unlock(&f->mu);
+    return up;
 }
 
 /* Open a session on a virtual sensor with options *in (defaults when NULL);

@@ -6,6 +6,8 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <pthread.h>
+#include <time.h>
 #include <string.h>
 
 #include "leptrino/error.h"
@@ -277,6 +279,74 @@ static void test_latency_budget_delivers_the_same_samples(void)
     }
 }
 
+typedef struct poker {
+    lep_session *s;
+    st_flag stop;
+    unsigned calls;
+} poker;
+
+/* Another thread changing and reading the settings while the stream runs. */
+static void *poke(void *arg)
+{
+    poker *p = arg;
+    double r[9], off[LEP_AXES];
+    lep_session_health h;
+    lep_session_metadata m;
+    char json[4096];
+    size_t len;
+    lep_rotation_from_rpy(0.1, 0.2, 0.3, r);
+    while (!st_flag_is_up(&p->stop)) {
+        (void)lep_session_tare(p->s, 20, 0.0);
+        (void)lep_session_set_lowpass(p->s, (p->calls % 2u) ? 50.0 : 0.0);
+        (void)lep_session_set_rotation(p->s, r, NULL);
+        lep_session_get_health(p->s, &h);
+        lep_session_get_metadata(p->s, &m);
+        (void)lep_session_metadata_json(p->s, json, sizeof json, &len);
+        (void)lep_session_get_tare(p->s, off);
+        if (p->calls % 7u == 0u)
+            (void)lep_session_untare(p->s);
+        p->calls++;
+        {
+            struct timespec ts = {0, 2000000};
+            nanosleep(&ts, NULL);
+        }
+    }
+    return NULL;
+}
+
+static void test_settings_from_another_thread(void)
+{
+    lep_session_options o;
+    lep_session *s;
+    st_batch b;
+    poker p;
+    pthread_t th;
+    lep_session_event ev;
+    size_t i, tares = 0;
+    lep_session_options_init(&o);
+    o.count = 1200;
+    s = open_sim(&o, &o);
+    st_batch_init(&b, 1200);
+    memset(&p, 0, sizeof p);
+    st_flag_init(&p.stop);
+    p.s = s;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
+    TEST_ASSERT_EQUAL_INT(0, pthread_create(&th, NULL, poke, &p));
+    while (lep_session_read(s, &b.b, 2000) == LEP_OK) {
+    }
+    st_flag_raise(&p.stop);
+    pthread_join(th, NULL);
+    TEST_ASSERT_EQUAL_size_t(1200, b.b.n);
+    for (i = 1; i < b.b.n; i++) /* nothing lost, nothing stalled */
+        TEST_ASSERT_EQUAL_UINT16((uint16_t)(b.seq[i - 1] + 1u), b.seq[i]);
+    while (lep_session_next_event(s, &ev))
+        tares += ev.type == LEP_EV_TARE;
+    TEST_ASSERT_TRUE(p.calls > 10);
+    TEST_ASSERT_TRUE(tares > 0);
+    lep_session_close(s);
+    st_batch_free(&b);
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -287,5 +357,6 @@ int main(void)
     RUN_TEST(test_bad_options_are_refused_with_a_message);
     RUN_TEST(test_two_sessions_at_once);
     RUN_TEST(test_latency_budget_delivers_the_same_samples);
+    RUN_TEST(test_settings_from_another_thread);
     return UNITY_END();
 }

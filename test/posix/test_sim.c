@@ -321,6 +321,36 @@ static void test_stale_stream_recovery(void)
     TEST_ASSERT_EQUAL_UINT32(0, cs.bcc_errors);
 }
 
+/* A stream nobody reads fills the pty and the queue: the samples due then are
+ * counted as blocked (not computed, no wake-up each), every index accounted
+ * for; a client that comes later recovers. */
+static void test_nobody_reading_blocks(void)
+{
+    lep_sim_options o;
+    lep_sim_stats st;
+    int i;
+    lep_sim_options_init(&o);
+    o.start_streaming = true;
+    o.rate_hz = 10000;
+    start_sim(&o);
+    for (i = 0; i < 500; i++) {
+        st = stats_now();
+        if (st.samples_blocked > 1000)
+            break;
+        sleep_ms(10);
+    }
+    TEST_ASSERT_TRUE(st.samples_blocked > 1000);
+    TEST_ASSERT_TRUE(st.samples_sent > 100);
+    TEST_ASSERT_EQUAL_UINT64(0, st.samples_dropped);
+    /* every index of the stream is sent, blocked or skipped (the published
+     * sequence is the next index, mod 65536) */
+    TEST_ASSERT_EQUAL_UINT16(st.sequence, (uint16_t)(st.samples_sent + st.samples_blocked +
+                                                     st.samples_skipped));
+    open_client();
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_sync(&client, 30, &scratch_info));
+    TEST_ASSERT_FALSE(stats_now().streaming);
+}
+
 static void wait_power_cycles(uint64_t n)
 {
     int i;
@@ -598,6 +628,7 @@ static void test_timeouts_honoured(void)
     lep_sim_stall(sim, 3000);
     sleep_ms(20);
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_timeout(&client, 300));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_retries(&client, 0)); /* one attempt: 300 ms */
     t = lep_monotonic_seconds();
     rc = lep_client_product_info(&client, &scratch_info);
     dt = lep_monotonic_seconds() - t;
@@ -843,6 +874,98 @@ static void test_replay_and_determinism(void)
     }
 }
 
+static void replay_file(char *file, size_t cap, const char *text)
+{
+    FILE *f;
+    snprintf(file, cap, "/tmp/lep-replay2-%ld.csv", (long)getpid());
+    f = fopen(file, "w");
+    TEST_ASSERT_NOT_NULL(f);
+    fputs(text, f);
+    fclose(f);
+}
+
+static int start_replay(const char *file)
+{
+    lep_sim_options o;
+    lep_sim_options_init(&o);
+    snprintf(o.replay_csv, sizeof o.replay_csv, "%s", file);
+    return lep_sim_start(&o, &sim, err, sizeof err);
+}
+
+/* The leptrino tool's own raw recordings replay: comments skipped, columns
+ * picked by name wherever they stand, the first sensor of several. */
+static void test_replay_of_a_raw_recording(void)
+{
+    char file[64];
+    lep_sample smp;
+    static const int16_t want[3][6] = {
+        {1, 2, 3, 4, 5, 6}, {-10, -20, -30, -40, -50, -60}, {32000, 0, -32000, 7, 8, 9}};
+    static const uint8_t want_status[3] = {0, 0x01, LEP_STATUS_OVERLOAD};
+    unsigned i;
+    int a;
+    replay_file(file, sizeof file,
+                "# leptrino-metadata: {\"model\":\"PFS055YA501U6\",\"serial\":\"00000001\"}\r\n"
+                "# leptrino-metadata: {\"model\":\"CFS018CA201U\"}\n"
+                "t_s,sensor,fx_N,fy_N,fz_N,mx_Nm,my_Nm,mz_Nm,mz_counts,my_counts,mx_counts,"
+                "fz_counts,fy_counts,fx_counts,status,seq\r\n"
+                "0.000833,left,0.1,0.2,0.3,0.004,0.005,0.006,6,5,4,3,2,1,0,0\r\n"
+                "0.000833,right,9,9,9,9,9,9,99,99,99,99,99,99,0,0\n"
+                "# gap from=0.001 to=0.002 lost=1 reason=gap\n"
+                "0.002500,left,-0.5,-1,-1.5,-0.04,-0.05,-0.06,-60,-50,-40,-30,-20,-10,1,2\n"
+                "\n"
+                "0.003333, left ,1600,0,-1600,0.07,0.08,0.09, 9 , 8,7,-32000,0,32000,0,3\n");
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, start_replay(file), err);
+    for (i = 0; i < 6; i++) {
+        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_sim_stream_sample(sim, i, 0, &smp));
+        for (a = 0; a < 6; a++)
+            TEST_ASSERT_EQUAL_INT16(want[i % 3][a], smp.raw[a]);
+        TEST_ASSERT_EQUAL_HEX8(want_status[i % 3], smp.status);
+    }
+    /* and on the wire */
+    open_client();
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
+    for (i = 0; i < 3; i++) {
+        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_next_sample(&client, &smp, 2000));
+        TEST_ASSERT_EQUAL_INT16(want[i][0], smp.raw[0]);
+    }
+    lep_serial_close(port);
+    port = NULL;
+    lep_sim_stop(sim);
+    sim = NULL;
+
+    /* the old headerless form with a status column, and CRLF */
+    replay_file(file, sizeof file, "1,2,3,4,5,6,4\r\n-1,-2,-3,-4,-5,-6\r\n");
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, start_replay(file), err);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_sim_stream_sample(sim, 0, 0, &smp));
+    TEST_ASSERT_EQUAL_HEX8(LEP_STATUS_OVERLOAD, smp.status);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_sim_stream_sample(sim, 1, 0, &smp));
+    TEST_ASSERT_EQUAL_INT16(-6, smp.raw[5]);
+    lep_sim_stop(sim);
+    sim = NULL;
+
+    /* an SI recording cannot be replayed: say what is missing */
+    replay_file(file, sizeof file, "# x\nt_s,fx_N,fy_N,fz_N,mx_Nm,my_Nm,mz_Nm,status\n0.1,1,2,3,4,5,6,0\n");
+    TEST_ASSERT_EQUAL_INT(LEP_E_VALUE, start_replay(file));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err, ":2: the header has no fx_counts column"), err);
+    TEST_ASSERT_NULL(sim);
+    /* a value that is not a count names its line and column */
+    replay_file(file, sizeof file, "fx_counts,fy_counts,fz_counts,mx_counts,my_counts,mz_counts\n"
+                                   "1,2,3,4,5,6\n1,2,3.5,4,5,6\n");
+    TEST_ASSERT_EQUAL_INT(LEP_E_VALUE, start_replay(file));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err, ":3: column fz_counts: '3.5'"), err);
+    replay_file(file, sizeof file, "fx_counts,fy_counts,fz_counts,mx_counts,my_counts,mz_counts\n"
+                                   "1,2,3,4,5,40000\n");
+    TEST_ASSERT_EQUAL_INT(LEP_E_VALUE, start_replay(file));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err, "mz_counts: '40000'"), err);
+    replay_file(file, sizeof file, "fx_counts,fy_counts,fz_counts,mx_counts,my_counts,mz_counts\n");
+    TEST_ASSERT_EQUAL_INT(LEP_E_VALUE, start_replay(file));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err, "no samples"), err);
+    replay_file(file, sizeof file, "1,2,3,4,5\n");
+    TEST_ASSERT_EQUAL_INT(LEP_E_VALUE, start_replay(file));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err, ":1: expected 6 or 7 integers"), err);
+    (void)unlink(file);
+}
+
 static void test_bad_options(void)
 {
     lep_sim_options o;
@@ -899,6 +1022,7 @@ int main(void)
     RUN_TEST(test_stream_exact_accounting);
     RUN_TEST(test_nak_retries);
     RUN_TEST(test_stale_stream_recovery);
+    RUN_TEST(test_nobody_reading_blocks);
     RUN_TEST(test_filter_after_power_cycle);
     RUN_TEST(test_hangup_is_disconnected);
     RUN_TEST(test_hangup_after_and_reopen_at_link);
@@ -912,5 +1036,6 @@ int main(void)
     RUN_TEST(test_corruption_is_caught);
     RUN_TEST(test_overload_saturates);
     RUN_TEST(test_replay_and_determinism);
+    RUN_TEST(test_replay_of_a_raw_recording);
     return UNITY_END();
 }

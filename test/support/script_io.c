@@ -69,6 +69,10 @@ static int script_write(void *user, const uint8_t *data, size_t len)
     TEST_ASSERT_TRUE_MESSAGE(s->out_len + len <= sizeof(s->out), "script output overflow");
     memcpy(s->out + s->out_len, data, len);
     s->out_len += len;
+    if (s->lose_commands > 0) {
+        s->lose_commands--;
+        return 0;
+    }
     while (pos < len && !s->silent) {
         lep_device_event ev;
         uint8_t reply[LEP_MAX_FRAME];
@@ -93,7 +97,9 @@ static int script_write(void *user, const uint8_t *data, size_t len)
             }
         }
         s->commands++;
-        if (s->forced_len > 0) {
+        if (s->lose_answers > 0) {
+            s->lose_answers--;
+        } else if (s->forced_len > 0) {
             script_push(s, s->forced, s->forced_len);
             s->forced_len = 0;
         } else {

@@ -41,6 +41,8 @@ typedef struct script_io {
     bool noise;               /* an empty line grows 64 bytes of noise (no frame) per ms */
     int overclaim;            /* read reports this many bytes more than it copied */
     size_t total_read;        /* bytes handed to the host by all reads */
+    unsigned lose_answers;    /* the next N commands are executed but their answers are lost */
+    unsigned lose_commands;   /* the next N commands never reach the device */
     lep_device dev;
 } script_io;
 

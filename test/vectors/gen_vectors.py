@@ -211,10 +211,20 @@ def response(code: int, result: int, data: bytes = b"") -> bytes:
     return bytes([length, 0xFF, code, result]) + data
 
 
-def text_field(text: str, width: int) -> bytes:
+def text_field(text: str, width: int, pad: bytes = b" ") -> bytes:
     raw = text.encode("ascii")
     assert len(raw) <= width
-    return raw + b" " * (width - len(raw))
+    return raw + pad * (width - len(raw))
+
+
+def raw_info(model: bytes, serial: bytes, firmware: bytes, rate: bytes | None = None) -> bytes:
+    """Product-info data from exact field bytes (for padding variants and defects)."""
+    assert (len(model), len(serial), len(firmware)) == (16, 8, 4)
+    data = model + serial + firmware
+    if rate is not None:
+        assert len(rate) == 6
+        data += rate
+    return data
 
 
 def info_data(model: str, serial: str, firmware: str, rate: str | None) -> bytes:
@@ -399,6 +409,8 @@ def frames_vectors() -> dict[str, Any]:
          [msg_ev(bcc10), msg_ev(bcc10), msg_ev(bcc10)]),
         ("lost BCC of an over-long frame", frame(over129)[:-1] + frame(pi),
          [err_ev("too_long"), msg_ev(pi)]),
+        ("illegal byte after DLE inside an over-long frame", frame(over129)[:-3] + unhex("10 41")
+         + frame(pi), [err_ev("too_long"), msg_ev(pi)]),
         ("every kind of event in one stream",
          unhex("FF") + frame(pi) + unhex("10 15") + partial + frame(rated, bad_bcc=True)
          + unhex("10 02 33 10 07") + frame(over129) + frame(bcc10) + frame(sample),
@@ -528,8 +540,8 @@ def messages_vectors() -> dict[str, Any]:
         sample=smp(SPEC_DATA_RAW, 0x04))
     add("handshake sample at rest", response(0x30, 0, sample_data([0] * 6)), sample=smp([0] * 6))
     add("handshake sample with sequence number and all status bits",
-        response(0x30, 0, sample_data([1, -1, 32767, -32768, 15000, -15000], 0x07, 0xBEEF)),
-        sample=smp([1, -1, 32767, -32768, 15000, -15000], 0x07, 0xBEEF))
+        response(0x30, 0, sample_data([1, -1, 32000, -32000, 15000, -15000], 0x07, 0xBEEF)),
+        sample=smp([1, -1, 32000, -32000, 15000, -15000], 0x07, 0xBEEF))
     add("start ack", response(0x32, 0))
     add("stop ack", response(0x33, 0))
     add("filter set ack", response(0xA6, 0))
@@ -590,8 +602,26 @@ def messages_vectors() -> dict[str, Any]:
         bad("rated negative zero", rated_with(4, bytes.fromhex("00000080")), "value"),
         bad("filter code 4", response(0xB6, 0, bytes([4, 0, 0, 0])), "value"),
         bad("filter reserved byte not zero", response(0xB6, 0, bytes([1, 0, 1, 0])), "reserved"),
-        bad("sample last reserved byte not zero",
-            response(0x30, 0, sample_data(SPEC_DATA_RAW, last=1)), "reserved"),
+        bad("sample raw 32001 (beyond the v1.13 saturation)",
+            response(0x30, 0, sample_data([0, 0, 32001, 0, 0, 0])), "value"),
+        bad("sample raw -32001", response(0x30, 0, sample_data([0, 0, 0, 0, 0, -32001])), "value"),
+        bad("stream raw 32767", response(0x32, 0, sample_data([32767, 0, 0, 0, 0, 0])), "value"),
+        bad("stream raw -32768", response(0x32, 0, sample_data([0, -32768, 0, 0, 0, 0])), "value"),
+        bad("product info with an escape sequence in the model",
+            response(0x2A, 0, raw_info(b"PFS\x1b[2J055      ", b"12345678", b"1.13")), "value"),
+        bad("product info with a NUL inside the model",
+            response(0x2A, 0, raw_info(b"PFS\x00055YA501U6  ", b"12345678", b"1.13")), "value"),
+        bad("product info with a NUL inside the serial",
+            response(0x2A, 0, raw_info(b"PFS055YA501U6   ", b"1234\x00567", b"1.13")), "value"),
+        bad("product info with a byte >= 0x80 in the firmware",
+            response(0x2A, 0, raw_info(b"PFS055YA501U6   ", b"12345678", b"1.\xb33")), "value"),
+        bad("product info with DEL in the serial",
+            response(0x2A, 0, raw_info(b"PFS055YA501U6   ", b"1234567\x7f", b"1.13")), "value"),
+        bad("product info with a control byte in the output rate",
+            response(0x2A, 0, raw_info(b"PFS080YS102U6   ", b"00012345", b"1.31", b"12\r00 ")),
+            "value"),
+        bad("product info with a newline at the end of the model",
+            response(0x2A, 0, raw_info(b"PFS055YA501U6\n  ", b"12345678", b"1.13")), "value"),
         bad("unknown code", "04 FF 40 00", "unexpected"),
         bad("unknown code with a result", "04 FF 40 02", "unexpected"),
     ]
@@ -599,6 +629,44 @@ def messages_vectors() -> dict[str, Any]:
         m = unhex(entry["message"])
         if entry["error"] != "length" and len(m) >= 1:
             assert m[0] == len(m), entry  # only the intended defect
+
+    # Firmware variants (protocol notes): accepted when decoding; encoding the
+    # decoded fields gives the canonical v1.13 bytes (space padding, last byte 0).
+    variants: list[dict[str, Any]] = []
+
+    def variant(name: str, msg: bytes, canonical: bytes, last_reserved: int = 0,
+                **fields: Any) -> None:
+        entry: dict[str, Any] = {"name": name, "message": hx(msg), "canonical": hx(canonical),
+                                 "code": msg[2], "result": msg[3], "stream": False,
+                                 "last_reserved": last_reserved}
+        entry.update(fields)
+        variants.append(entry)
+
+    for last in (0x01, 0x80, 0xFF):
+        variant(f"continuous data, last reserved byte 0x{last:02X} (v1.31)",
+                response(0x32, 0, sample_data([100, -200, 9999, -1, 0, 4112], 0x20, 7, last)),
+                response(0x32, 0, sample_data([100, -200, 9999, -1, 0, 4112], 0x20, 7)),
+                last_reserved=last, stream=True,
+                sample=smp([100, -200, 9999, -1, 0, 4112], 0x20, 7))
+    variant("handshake sample, last reserved byte 0x5A",
+            response(0x30, 0, sample_data(SPEC_DATA_RAW, 0x04, 0, 0x5A)),
+            response(0x30, 0, sample_data(SPEC_DATA_RAW, 0x04)), last_reserved=0x5A,
+            sample=smp(SPEC_DATA_RAW, 0x04))
+    canonical_info = response(0x2A, 0, info_data("PFS055YA501U6", "1234567", "1.13", None))
+    for pad, what in ((b" ", "a space"), (b"\x00", "a NUL")):
+        variant(f"seven-digit serial padded with {what}",
+                response(0x2A, 0, raw_info(b"PFS055YA501U6   ", b"1234567" + pad, b"1.13")),
+                canonical_info, info=info("PFS055YA501U6", "1234567", "1.13", None, 0))
+    variant("text fields padded with NULs",
+            response(0x2A, 0, info_data("PFS080YS102U6", "00012345", "1.31", None)
+                     .replace(b" ", b"\x00")),
+            response(0x2A, 0, info_data("PFS080YS102U6", "00012345", "1.31", None)),
+            info=info("PFS080YS102U6", "00012345", "1.31", None, 0))
+    variant("padding mixing spaces and NULs, empty firmware field",
+            response(0x2A, 0, raw_info(b"CFS034CA301U\x00 \x00 ", b"0000001 ", b"\x00\x00\x00\x00",
+                                        b"1200\x00\x00")),
+            response(0x2A, 0, info_data("CFS034CA301U", "0000001", "", "1200")),
+            info=info("CFS034CA301U", "0000001", "", "1200", 1200))
 
     si = []
     for model, values in PRESETS:
@@ -619,6 +687,7 @@ def messages_vectors() -> dict[str, Any]:
         "command_encode_errors": command_encode_errors,
         "responses": responses,
         "invalid_responses": invalid_responses,
+        "response_variants": variants,
         "si": si,
         "saturation": saturation,
     }

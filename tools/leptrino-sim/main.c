@@ -14,6 +14,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/time.h>
 #include <pthread.h>
 
@@ -169,20 +170,33 @@ static int parse(int argc, char **argv, struct cli *c)
     return -1;
 }
 
+/* CPU time of this process (user + system), in seconds. */
+static double cpu_seconds(void)
+{
+    struct rusage ru;
+    if (getrusage(RUSAGE_SELF, &ru) != 0)
+        return 0.0;
+    return (double)ru.ru_utime.tv_sec + (double)ru.ru_utime.tv_usec * 1e-6 +
+           (double)ru.ru_stime.tv_sec + (double)ru.ru_stime.tv_usec * 1e-6;
+}
+
 static void print_stats(lep_sim *s)
 {
     lep_sim_stats st;
+    double cpu = cpu_seconds();
     lep_sim_get_stats(s, &st);
     fprintf(stderr,
             "leptrino-sim: %llu samples sent, %llu dropped, %llu skipped, %llu blocked; "
             "%llu commands, %llu NAKs (%llu faked), %llu corrupted, %llu garbage bytes, "
-            "%llu hang-ups, %llu reopens, %llu power cycles\n",
+            "%llu hang-ups, %llu reopens, %llu power cycles; "
+            "CPU %.3f s (%.2f us per sample sent)\n",
             (unsigned long long)st.samples_sent, (unsigned long long)st.samples_dropped,
             (unsigned long long)st.samples_skipped, (unsigned long long)st.samples_blocked,
             (unsigned long long)st.commands, (unsigned long long)st.naks,
             (unsigned long long)st.faked_naks, (unsigned long long)st.bytes_corrupted,
             (unsigned long long)st.garbage_bytes, (unsigned long long)st.hangups,
-            (unsigned long long)st.reopens, (unsigned long long)st.power_cycles);
+            (unsigned long long)st.reopens, (unsigned long long)st.power_cycles, cpu,
+            st.samples_sent > 0 ? cpu * 1e6 / (double)st.samples_sent : 0.0);
 }
 
 int main(int argc, char **argv)

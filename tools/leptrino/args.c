@@ -154,3 +154,33 @@ void cli_args_unknown(cli_args *a)
     else
         cli_args_error(a, "unknown option '%s'", a->name);
 }
+
+bool cli_args_doubles(cli_args *a, double *out, size_t n)
+{
+    const char *v = cli_args_value(a);
+    const char *p = v;
+    size_t i;
+    if (v == NULL)
+        return false;
+    for (i = 0; i < n; ++i) {
+        char *end = NULL;
+        errno = 0;
+        out[i] = strtod(p, &end);
+        if (end == p || errno == ERANGE || !isfinite(out[i]) ||
+            (i + 1 < n ? *end != ',' : *end != '\0')) {
+            cli_args_error(a, "option %s: '%s' is not %lu comma-separated numbers", a->name, v,
+                           (unsigned long)n);
+            return false;
+        }
+        p = end + 1;
+    }
+    return true;
+}
+
+bool cli_args_help(cli_args *a)
+{
+    if (!cli_args_is(a, "-h", "--help"))
+        return false;
+    cli_args_flag(a);
+    return !a->failed;
+}

@@ -1,10 +1,13 @@
 /* Private interface between the files of the `leptrino` command-line tool.
  *
  * main.c dispatches to one cmd_*.c per command. args.c parses options,
- * conn.c opens a sensor (real port or in-process virtual sensor) and maps
- * errors to exit codes, output.c writes samples (CSV / JSON lines),
- * status.c draws the live status line, signals.c turns SIGINT/SIGTERM into
- * a flag. Nothing here is exported from the program. */
+ * sensors.c turns PORT / --sim / --sim-* into sessions (leptrino/session.h:
+ * the one place that starts a sensor up) and maps errors to exit codes,
+ * term.c and signals.c deal with the terminal and signals, status.c draws
+ * the live status line, watch_view.c the screen of `leptrino watch`.
+ * No sensor logic lives here: tare, units, filtering, gaps, reconnection
+ * and the formatting of samples belong to the session and its writer.
+ * Nothing here is exported from the program. */
 #ifndef LEPTRINO_TOOL_CLI_H
 #define LEPTRINO_TOOL_CLI_H
 
@@ -14,11 +17,10 @@
 #include <stdio.h>
 
 #include <leptrino/leptrino.h>
+#include <leptrino/output.h>
 #include <leptrino/serial.h>
+#include <leptrino/session.h>
 #include <leptrino/sim.h>
-
-/* poll() sizes: sensors one command may read at once. */
-#define CLI_MAX_SENSORS 8
 
 /* Exit codes (documented in `leptrino --help` and docs/cli.md). */
 enum cli_exit {
@@ -32,6 +34,9 @@ enum cli_exit {
     CLI_BUSY = 7,         /* the port is in use by another program */
     CLI_PERMISSION = 8    /* no permission to open the port */
 };
+
+/* Sensors one `leptrino stream` may record at once. */
+#define CLI_MAX_SENSORS 8
 
 /* ---- args.c: a cursor over argv ----
  * Options may come before or after positionals; `--name=value` and
@@ -56,6 +61,8 @@ void cli_args_init(cli_args *a, int argc, char **argv, const char *cmd);
 bool cli_args_next(cli_args *a);
 /* Current element is the option -s / --long (either may be NULL). */
 bool cli_args_is(cli_args *a, const char *short_name, const char *long_name);
+/* The current element is -h / --help (without a value: --help=x fails). */
+bool cli_args_help(cli_args *a);
 /* The option takes no value: fails on --flag=value. Returns true. */
 bool cli_args_flag(cli_args *a);
 /* The option's value (inline or the next element); NULL and failed if absent. */
@@ -63,6 +70,8 @@ const char *cli_args_value(cli_args *a);
 /* Numeric values of the current option; on error failed is set and 0 returned. */
 double cli_args_double(cli_args *a, double lo, double hi, bool lo_exclusive);
 uint64_t cli_args_uint(cli_args *a, uint64_t lo, uint64_t hi);
+/* n comma-separated finite numbers into out; false (and failed) otherwise. */
+bool cli_args_doubles(cli_args *a, double *out, size_t n);
 /* Report the current element as unknown (option) or unexpected (positional). */
 void cli_args_unknown(cli_args *a);
 /* Print "leptrino: CMD: <message>" and set failed. */
@@ -72,68 +81,44 @@ void cli_args_error(cli_args *a, const char *fmt, ...)
 #endif
     ;
 
-/* ---- conn.c: the sensor behind PORT or --sim ---- */
+/* ---- sensors.c: PORT... / --sim... into sessions ---- */
+typedef struct cli_sensor {
+    const char *port;      /* PORT as given, or NULL for a virtual sensor */
+    lep_sim_options sim;   /* its options (virtual sensor) */
+    char name[64];         /* label: the port, or sim1, sim2, ... */
+    lep_session *session;  /* after cli_sensors_open */
+} cli_sensor;
+
 typedef struct cli_port_opts {
-    const char *port;         /* positional PORT, or NULL */
-    bool sim;                 /* --sim */
-    const char *sim_option;   /* first --sim-* option seen (to reject it without --sim) */
-    lep_sim_options sim_opts;
-    int timeout_ms;           /* --timeout, transaction timeout */
-    bool sim_reopen;          /* --sim-reopen-after given */
-    bool reopen_link_auto;    /* a link path was made up for --sim-reopen-after */
-    char link_buf[128];
+    cli_sensor sensor[CLI_MAX_SENSORS];
+    size_t n;
+    size_t sims;                  /* how many of them are virtual */
+    bool several;                 /* the command takes several sensors */
+    lep_sim_options sim_defaults; /* --sim-* given before the first --sim */
+    const char *sim_option;       /* the first --sim-* option seen (needs a --sim) */
+    int timeout_ms;               /* --timeout, transaction timeout */
 } cli_port_opts;
 
-void cli_port_opts_init(cli_port_opts *po);
-/* Handle the current option if it is a port/sim option; true if it was. */
+void cli_port_opts_init(cli_port_opts *po, bool several);
+/* Handle the current element if it is PORT, --sim, --sim-* or --timeout. */
 bool cli_port_option(cli_port_opts *po, cli_args *a);
-/* After parsing: exactly one of PORT and --sim; --sim-* only with --sim. */
+/* Add a serial port (as a positional PORT does); false and failed on error. */
+bool cli_port_add(cli_port_opts *po, cli_args *a, const char *port);
+/* After parsing: at least one sensor (exactly one unless several). */
 bool cli_port_check(cli_port_opts *po, cli_args *a);
-/* Help text for the port/sim options. */
-void cli_port_help(FILE *f);
+/* Help text for the port and virtual sensor options (from the sim table). */
+void cli_port_help(FILE *f, bool several);
 
-typedef struct cli_conn {
-    const char *cmd;
-    lep_sim *sim;
-    lep_serial *serial;
-    lep_client client;
-    lep_product_info info;
-    int timeout_ms;
-    char path[512];
-} cli_conn;
-
-/* Start the virtual sensor if asked, open the port, sync (stop a stale
- * stream, confirm the sensor answers). Prints the error; returns an exit code. */
-int cli_conn_open(cli_conn *c, const cli_port_opts *po, const char *cmd);
-/* Open c->path again after a disconnect and sync. Quiet; returns LEP_* code. */
-int cli_conn_reopen(cli_conn *c);
-/* Close the port (not the virtual sensor). */
-void cli_conn_drop(cli_conn *c);
-/* Close everything. */
-void cli_conn_close(cli_conn *c);
-/* Print "leptrino: CMD: <what>: <error>" and return the exit code for err. */
-int cli_conn_fail(const cli_conn *c, const char *what, int err);
+/* Open a session on every sensor with o as the template (port and sim
+ * filled in here). Prints the error naming the port and closes what was
+ * opened; returns an exit code. */
+int cli_sensors_open(cli_port_opts *po, const lep_session_options *o, const char *cmd);
+void cli_sensors_close(cli_port_opts *po);
+/* Print "leptrino: CMD: PORT: WHAT: <error>"; returns the exit code for err. */
+int cli_session_fail(lep_session *s, const char *cmd, const char *port, const char *what,
+                     int err);
 /* Exit code for a LEP_E_* code. */
 int cli_exit_code(int err);
-
-/* ---- output.c: samples as CSV or JSON lines ---- */
-typedef enum cli_format { CLI_FORMAT_CSV, CLI_FORMAT_JSONL } cli_format;
-
-typedef struct cli_writer {
-    FILE *f;
-    cli_format format;
-    bool si;           /* N and N m; else raw counts */
-    lep_rated rated;
-    bool tared;
-    double offset[LEP_AXES]; /* raw counts subtracted (mean of the tare samples) */
-} cli_writer;
-
-bool cli_parse_format(const char *s, cli_format *out);
-bool cli_parse_units(const char *s, bool *si);
-void cli_write_header(cli_writer *w);
-void cli_write_sample(cli_writer *w, double t, const lep_sample *s);
-/* A gap in the data: from = last t before, to = first t after (< 0: never resumed). */
-void cli_write_gap(cli_writer *w, double from, double to, const char *reason);
 
 /* ---- term.c: the user's terminal ---- */
 /* Single keys from stdin without echo (stdin a terminal); false otherwise. */
@@ -187,8 +172,27 @@ bool cli_take_resize(void);
 /* Sleep ms milliseconds, returning early when a stop is requested. */
 void cli_sleep_ms(int ms);
 
+/* ---- watch_view.c: the screen of `leptrino watch` ---- */
+typedef struct cli_watch_view {
+    lep_session_metadata meta;
+    lep_session_health health;
+    bool have_sample;
+    double si[LEP_AXES];     /* the latest sample, zeroed SI */
+    uint8_t status;          /* its status bits */
+    uint8_t overload_axes;   /* axes in an overload episode */
+    bool taring;
+    char lowpass_text[32];
+    char message[160];       /* the last event, already safe to print */
+} cli_watch_view;
+
+/* Draw the whole view for a cols x rows window with one write() to fd. */
+void cli_watch_draw(int fd, const cli_watch_view *v, int cols, int rows);
+
 /* ---- main.c ---- */
 void cli_print_exit_codes(FILE *f);
+/* The end of a command's help: the sensor options (sensors 1: one, 2:
+ * several, 0: none), then the exit codes. */
+void cli_print_help_end(FILE *f, int sensors);
 
 /* ---- commands ---- */
 int cli_cmd_list(int argc, char **argv);
@@ -196,5 +200,6 @@ int cli_cmd_info(int argc, char **argv);
 int cli_cmd_read(int argc, char **argv);
 int cli_cmd_stream(int argc, char **argv);
 int cli_cmd_filter(int argc, char **argv);
+int cli_cmd_watch(int argc, char **argv);
 
 #endif

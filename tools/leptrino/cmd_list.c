@@ -31,10 +31,7 @@ int cli_cmd_list(int argc, char **argv)
 
     cli_args_init(&a, argc, argv, "list");
     while (cli_args_next(&a)) {
-        if (cli_args_is(&a, "-h", "--help")) {
-            cli_args_flag(&a);
-            if (a.failed)
-                break;
+        if (cli_args_help(&a)) {
             help();
             return CLI_OK;
         }

@@ -1,440 +1,626 @@
-/* `leptrino stream`: continuous output to CSV or JSON lines, until a
- * duration, a count, Ctrl-C or SIGTERM; optional tare and reconnection. */
+/* `leptrino stream`: one or more sensors' continuous output to CSV or JSON
+ * lines until a duration, a count, Ctrl-C or SIGTERM. Everything about the
+ * data (tare, filter, frame, gaps, health, reconnection, how a row is
+ * written) belongs to the session and its writer (leptrino/output.h); this
+ * file parses options, wires sessions to writers, turns keys and signals
+ * into tare requests and reports. */
 #define _POSIX_C_SOURCE 200809L
 
 #include <errno.h>
+#include <math.h>
+#include <stdarg.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "cli.h"
 
-#define CLI_BATCH 256
-#define CLI_WAIT_MS 100         /* longest wait before looking at the stop flag */
-#define CLI_NOTE_PERIOD_S 10.0  /* at most one "still waiting" message per period */
-#define CLI_BACKOFF_MIN_MS 100
-#define CLI_BACKOFF_MAX_MS 1000
+#define BATCH 512
+#define WAIT_MS 100 /* longest wait before looking at flags and keys */
+#define EVENTS 64
+#define PI 3.14159265358979323846
 
 typedef struct stream_opts {
     cli_port_opts po;
-    double duration;      /* s, 0 = none */
-    uint64_t count;       /* samples written, 0 = none */
-    uint64_t tare;        /* samples averaged for the offset, 0 = no tare */
-    double data_timeout;  /* s without data that counts as a timeout */
-    const char *output;   /* NULL or "-" = stdout */
-    cli_format format_value;
-    bool si;              /* SI units (default) or raw counts */
-    bool reconnect;
+    lep_session_options so; /* duration, count, tare, filter, frame, timeouts, latency */
+    unsigned retare;        /* samples a tare during the run averages */
+    bool rotate_given, matrix_given;
+    double rpy_deg[3];
+    const char *output;     /* NULL or "-" = stdout */
+    const char *split;      /* pattern: one file per sensor */
+    lep_output_options out; /* format, columns, time, overwrite */
+    bool columns_given, units_given;
 } stream_opts;
 
-typedef struct stream_state {
-    cli_conn c;
-    cli_writer w;
-    cli_status st;
-    FILE *out;
-    bool out_tty;
-    double t0;
-    double last_t;       /* arrival of the last sample (or of streaming start) */
-    uint64_t received;   /* samples received (tare included) */
-    uint64_t written;
-    uint64_t overloads;
-    uint64_t errors_before; /* client error counters of earlier connections */
-    uint64_t gaps;
-    bool gap_pending;
-    double gap_from;
-    const char *gap_reason;
-    double tare_sum[LEP_AXES];
-    uint64_t tare_n;
-    int write_errno;     /* != 0 once the output failed */
-} stream_state;
+typedef struct sensor_run {
+    cli_sensor *sensor;
+    lep_session *s;
+    lep_output *w;          /* its writer (shared when all go to one file) */
+    int index;              /* its sensor index in w */
+    bool own_writer;
+    bool done;              /* reached duration/count */
+    int failed;             /* LEP_E_* that ended it, 0 while fine */
+} sensor_run;
 
 static void help(void)
 {
-    fputs("Usage: leptrino stream PORT|--sim [options]\n"
+    fputs("Usage: leptrino stream PORT|--sim [PORT|--sim ...] [options]\n"
           "\n"
-          "Start continuous output and write every sample, until --duration, --count,\n"
-          "Ctrl-C or SIGTERM. On Ctrl-C / SIGTERM the sensor's stream is stopped, the\n"
-          "output flushed, and the exit code is 0.\n"
+          "Start continuous output of one or more sensors and write every sample until\n"
+          "--duration, --count, Ctrl-C or SIGTERM. On Ctrl-C / SIGTERM the sensors'\n"
+          "streams are stopped, the output flushed, and the exit code is 0.\n"
           "\n"
-          "Output (CSV header exactly t,fx,fy,fz,mx,my,mz,status):\n"
-          "  t       s since streaming started (monotonic clock, taken when the read\n"
-          "          that delivered the sample returned)\n"
-          "  fx..fz  N;  mx..mz  N m  (raw counts with --units raw: +/-10000 = rated)\n"
-          "  status  status bits: 1 calibration data error, 2 sensor fault, 4 overload\n"
+          "Output:\n"
+          "  -o, --output FILE        write to FILE ('-' = stdout, the default); an\n"
+          "                           existing FILE is kept unless --overwrite\n"
+          "      --split PATTERN      one file per sensor: {sensor} in PATTERN becomes\n"
+          "                           the sensor's name (sim1, sim2, or the port with '/'\n"
+          "                           as '_'), {n} its number (1, 2, ...)\n"
+          "      --overwrite          replace existing output files\n"
+          "  -f, --format csv|jsonl   CSV (default) or one JSON object per line\n"
+          "      --columns LIST       comma-separated, in this order in the output:\n"
+          "                           raw     counts as received (fx_counts..mz_counts)\n"
+          "                           zeroed  counts minus the tare (fx_zeroed_counts..)\n"
+          "                           si      N and N m after tare, low-pass, rotation,\n"
+          "                                   shift (fx_N,fy_N,fz_N,mx_Nm,my_Nm,mz_Nm)\n"
+          "                           status  the sensor's status bits (1 calibration\n"
+          "                                   data error, 2 sensor fault, 4 overload)\n"
+          "                           flags   the session's flags (1 gap before, 2\n"
+          "                                   overload, 4 taring, 8 low-pass settling)\n"
+          "                           seq     the virtual sensor's sequence number\n"
+          "                           sensor  the sensor's name (added by itself when\n"
+          "                                   several sensors share one file)\n"
+          "                           (default si,status)\n"
+          "  -u, --units si|raw       shorthand: --columns si,status or raw,status\n"
+          "      --time rel|mono|utc  the first column: t_s, seconds since the start\n"
+          "                           (default; one time base for every sensor),\n"
+          "                           t_mono_s (monotonic clock) or t_utc_s (Unix time)\n"
+          "A metadata header comes first (CSV: '# leptrino-metadata: {...}' lines; JSON\n"
+          "lines: a first {\"metadata\": ...} object): sensor, rated values, filters, tare,\n"
+          "frame, start time. Gaps are marked where they happen: CSV '# gap ...' lines,\n"
+          "JSON lines {\"gap\": ...} objects.\n"
           "\n"
-          "Options:\n"
-          "  -d, --duration S        stop after S seconds (the tare period included)\n"
-          "  -c, --count N           stop after N samples written\n"
-          "  -o, --output FILE       write to FILE instead of stdout ('-' = stdout)\n"
-          "  -f, --format csv|jsonl  CSV (default) or one JSON object per line\n"
-          "  -u, --units si|raw      N and N m (default), or raw counts\n"
-          "      --tare N            average the first N samples and subtract that offset\n"
-          "                          from every later sample; the N samples are not written\n"
-          "      --reconnect         when the port goes away, keep reopening it (100 ms ..\n"
-          "                          1 s apart), resume streaming, and mark the gap:\n"
-          "                          CSV '# gap from=T1 to=T2 reason=R', JSON lines\n"
-          "                          {\"gap\":{\"from\":T1,\"to\":T2,\"reason\":\"R\"}}\n"
-          "      --data-timeout S    no data for S seconds is an error (default 2)\n"
-          "  -h, --help              show this help\n",
+          "Run:\n"
+          "  -d, --duration S         stop after S seconds of data\n"
+          "  -c, --count N            stop after N samples of each sensor\n"
+          "      --tare N             zero on the mean of the first N samples (they are\n"
+          "                           not written)\n"
+          "      --retare N           samples a tare during the run averages (default:\n"
+          "                           --tare N, else 100)\n"
+          "      --lowpass HZ         host low-pass filter cut-off on the SI values\n"
+          "      --decimate N         write every Nth sample (after the low-pass)\n"
+          "      --rotate R,P,Y       output frame rotated by roll, pitch, yaw (degrees)\n"
+          "      --matrix M11,...,M33 output frame rotated by this 3x3 matrix (row-major)\n"
+          "      --shift X,Y,Z        moments about this point (m, in the output frame)\n"
+          "      --latency MS         delivery may wait up to MS ms to save wake-ups\n"
+          "                           (default 0; 50 or more suits recording)\n"
+          "      --reconnect          when a port goes away, reopen it (100 ms .. 1 s\n"
+          "                           apart) and resume; the gap is marked\n"
+          "      --data-timeout S     no data for S seconds is an error (default 2)\n"
+          "  -h, --help               show this help\n"
+          "\n"
+          "Tare during the run: press t (tare) or u (untare) when standard input is a\n"
+          "terminal; send SIGUSR1 (tare) or SIGUSR2 (untare) otherwise. A tare applies\n"
+          "to every sensor and never stalls the stream.\n"
+          "\n",
           stdout);
-    cli_port_help(stdout);
+    cli_port_help(stdout, true);
     fputs("\n"
-          "A live status line (samples, Hz, errors, overloads, elapsed) is drawn on stderr\n"
-          "when stderr is a terminal; a one-line summary is printed on stderr at the end.\n"
+          "A live status line is drawn on stderr when stderr is a terminal that the data\n"
+          "do not go to; a summary per sensor is printed on stderr at the end, with the\n"
+          "measured rate against the nominal one.\n"
           "\n",
           stdout);
     cli_print_exit_codes(stdout);
+}
+
+static bool parse_columns(const char *v, unsigned *out)
+{
+    static const struct {
+        const char *name;
+        unsigned bit;
+    } NAMES[] = {
+        {"raw", LEP_COL_RAW},       {"zeroed", LEP_COL_ZEROED}, {"si", LEP_COL_SI},
+        {"status", LEP_COL_STATUS}, {"flags", LEP_COL_FLAGS},   {"seq", LEP_COL_SEQ},
+        {"sensor", LEP_COL_SENSOR},
+    };
+    const char *p = v;
+    *out = 0;
+    while (*p != '\0') {
+        size_t len = strcspn(p, ","), i;
+        bool found = false;
+        for (i = 0; i < sizeof NAMES / sizeof NAMES[0]; ++i) {
+            if (strlen(NAMES[i].name) == len && strncmp(p, NAMES[i].name, len) == 0) {
+                if ((*out & NAMES[i].bit) != 0)
+                    return false; /* twice */
+                *out |= NAMES[i].bit;
+                found = true;
+            }
+        }
+        if (!found)
+            return false;
+        p += len;
+        if (*p == ',' && *++p == '\0')
+            return false;
+    }
+    return *out != 0;
 }
 
 static int parse(int argc, char **argv, stream_opts *o)
 {
     cli_args a;
     const char *v;
+    double shift[3];
     cli_args_init(&a, argc, argv, "stream");
     memset(o, 0, sizeof *o);
-    cli_port_opts_init(&o->po);
-    o->data_timeout = 2.0;
-    o->format_value = CLI_FORMAT_CSV;
-    o->si = true;
+    cli_port_opts_init(&o->po, true);
+    lep_session_options_init(&o->so);
+    lep_output_options_init(&o->out);
     while (cli_args_next(&a)) {
-        if (cli_args_is(&a, "-h", "--help")) {
-            cli_args_flag(&a);
-            if (a.failed)
-                break;
+        if (cli_args_help(&a)) {
             help();
             return -1;
         } else if (cli_args_is(&a, "-d", "--duration")) {
-            o->duration = cli_args_double(&a, 0.0, 1e9, true);
+            o->so.duration_s = cli_args_double(&a, 0.0, 1e9, true);
         } else if (cli_args_is(&a, "-c", "--count")) {
-            o->count = cli_args_uint(&a, 1, UINT64_MAX);
+            o->so.count = cli_args_uint(&a, 1, UINT64_MAX);
         } else if (cli_args_is(&a, "-o", "--output")) {
             o->output = cli_args_value(&a);
+        } else if (cli_args_is(&a, NULL, "--split")) {
+            o->split = cli_args_value(&a);
+            if (o->split != NULL && strstr(o->split, "{sensor}") == NULL &&
+                strstr(o->split, "{n}") == NULL)
+                cli_args_error(&a, "option --split: '%s' has neither {sensor} nor {n}", o->split);
+        } else if (cli_args_is(&a, NULL, "--overwrite")) {
+            cli_args_flag(&a);
+            o->out.overwrite = true;
         } else if (cli_args_is(&a, "-f", "--format")) {
             v = cli_args_value(&a);
-            if (v != NULL && !cli_parse_format(v, &o->format_value))
+            if (v != NULL && strcmp(v, "csv") == 0)
+                o->out.format = LEP_OUTPUT_CSV;
+            else if (v != NULL && strcmp(v, "jsonl") == 0)
+                o->out.format = LEP_OUTPUT_JSONL;
+            else if (v != NULL)
                 cli_args_error(&a, "unknown format '%s' (csv or jsonl)", v);
+        } else if (cli_args_is(&a, NULL, "--columns")) {
+            v = cli_args_value(&a);
+            o->columns_given = true;
+            if (v != NULL && !parse_columns(v, &o->out.columns))
+                cli_args_error(&a, "option --columns: '%s' is not a list of raw, zeroed, si, "
+                                   "status, flags, seq, sensor (each once)",
+                               v);
         } else if (cli_args_is(&a, "-u", "--units")) {
             v = cli_args_value(&a);
-            if (v != NULL && !cli_parse_units(v, &o->si))
+            o->units_given = true;
+            if (v != NULL && strcmp(v, "si") == 0)
+                o->out.columns = LEP_COL_SI | LEP_COL_STATUS;
+            else if (v != NULL && strcmp(v, "raw") == 0)
+                o->out.columns = LEP_COL_RAW | LEP_COL_STATUS;
+            else if (v != NULL)
                 cli_args_error(&a, "unknown units '%s' (si or raw)", v);
+        } else if (cli_args_is(&a, NULL, "--time")) {
+            v = cli_args_value(&a);
+            if (v != NULL && strcmp(v, "rel") == 0)
+                o->out.time = LEP_TIME_REL;
+            else if (v != NULL && strcmp(v, "mono") == 0)
+                o->out.time = LEP_TIME_MONO;
+            else if (v != NULL && strcmp(v, "utc") == 0)
+                o->out.time = LEP_TIME_UTC;
+            else if (v != NULL)
+                cli_args_error(&a, "unknown time '%s' (rel, mono or utc)", v);
         } else if (cli_args_is(&a, NULL, "--tare")) {
-            o->tare = cli_args_uint(&a, 1, 1000000);
+            o->so.tare_samples = (unsigned)cli_args_uint(&a, 1, 1000000);
+        } else if (cli_args_is(&a, NULL, "--retare")) {
+            o->retare = (unsigned)cli_args_uint(&a, 1, 1000000);
+        } else if (cli_args_is(&a, NULL, "--lowpass")) {
+            o->so.lowpass_hz = cli_args_double(&a, 0.0, 1e5, true);
+        } else if (cli_args_is(&a, NULL, "--decimate")) {
+            o->so.decimate = (unsigned)cli_args_uint(&a, 1, 100000);
+        } else if (cli_args_is(&a, NULL, "--rotate")) {
+            o->rotate_given = cli_args_doubles(&a, o->rpy_deg, 3);
+        } else if (cli_args_is(&a, NULL, "--matrix")) {
+            o->matrix_given = cli_args_doubles(&a, o->so.rotation, 9);
+        } else if (cli_args_is(&a, NULL, "--shift")) {
+            if (cli_args_doubles(&a, shift, 3))
+                memcpy(o->so.shift_m, shift, sizeof shift);
+        } else if (cli_args_is(&a, NULL, "--latency")) {
+            o->so.latency_ms = (int)cli_args_uint(&a, 0, 10000);
         } else if (cli_args_is(&a, NULL, "--reconnect")) {
             cli_args_flag(&a);
-            o->reconnect = true;
+            o->so.reconnect = true;
         } else if (cli_args_is(&a, NULL, "--data-timeout")) {
-            o->data_timeout = cli_args_double(&a, 0.0, 3600.0, true);
-        } else if (cli_port_option(&o->po, &a)) {
-        } else if (a.positional && o->po.port == NULL) {
-            o->po.port = a.cur;
-        } else {
+            o->so.data_timeout_ms = (int)(cli_args_double(&a, 0.0, 3600.0, true) * 1000.0);
+            if (o->so.data_timeout_ms < 1 && !a.failed)
+                o->so.data_timeout_ms = 1;
+        } else if (!cli_port_option(&o->po, &a)) {
             cli_args_unknown(&a);
         }
     }
     if (a.failed || !cli_port_check(&o->po, &a))
         return CLI_USAGE;
+    if (o->columns_given && o->units_given) {
+        cli_args_error(&a, "give --columns or --units, not both");
+        return CLI_USAGE;
+    }
+    if (o->rotate_given && o->matrix_given) {
+        cli_args_error(&a, "give --rotate or --matrix, not both");
+        return CLI_USAGE;
+    }
+    if (o->split != NULL && o->output != NULL) {
+        cli_args_error(&a, "give --output or --split, not both");
+        return CLI_USAGE;
+    }
+    if (o->rotate_given)
+        lep_rotation_from_rpy(o->rpy_deg[0] * PI / 180.0, o->rpy_deg[1] * PI / 180.0,
+                              o->rpy_deg[2] * PI / 180.0, o->so.rotation);
+    if (o->retare == 0)
+        o->retare = o->so.tare_samples > 0 ? o->so.tare_samples : 100;
+    if (o->po.n > 1 && o->split == NULL)
+        o->out.columns |= LEP_COL_SENSOR;
     return CLI_OK;
 }
 
-static double now_s(const stream_state *s)
+/* The file for sensor i under --split: {sensor} and {n} replaced. */
+static bool split_path(const char *pattern, const cli_sensor *s, size_t i, char *out, size_t cap)
 {
-    return lep_monotonic_seconds() - s->t0;
-}
-
-static uint64_t client_errors(const cli_conn *c)
-{
-    lep_client_stats cs;
-    if (c->serial == NULL)
-        return 0;
-    lep_client_get_stats(&c->client, &cs);
-    return (uint64_t)cs.bcc_errors + cs.frame_errors + cs.invalid;
-}
-
-static uint64_t total_errors(const stream_state *s)
-{
-    return s->errors_before + client_errors(&s->c);
-}
-
-static void show_status(stream_state *s, double t, const char *note)
-{
-    char text[200];
-    snprintf(text, sizeof text, "%llu samples  %7.1f Hz  %llu errors  %llu overloads  %.1f s%s",
-             (unsigned long long)s->written, t > 0.0 ? (double)s->received / t : 0.0,
-             (unsigned long long)total_errors(s), (unsigned long long)s->overloads, t, note);
-    cli_status_update(&s->st, t, text);
-}
-
-/* Take one sample: tare, gap mark, output. False when the output failed. */
-static bool take(stream_state *s, const stream_opts *o, double t, const lep_sample *smp)
-{
-    int i;
-    s->received++;
-    if ((smp->status & LEP_STATUS_OVERLOAD) != 0)
-        s->overloads++;
-    if (o->tare > 0 && s->tare_n < o->tare) {
-        for (i = 0; i < LEP_AXES; ++i)
-            s->tare_sum[i] += smp->raw[i];
-        if (++s->tare_n == o->tare) {
-            for (i = 0; i < LEP_AXES; ++i)
-                s->w.offset[i] = s->tare_sum[i] / (double)s->tare_n;
-            s->w.tared = true;
+    size_t used = 0;
+    const char *p = pattern;
+    char name[64], num[24];
+    size_t k;
+    snprintf(name, sizeof name, "%s", s->name);
+    for (k = 0; name[k] != '\0'; ++k)
+        if (name[k] == '/')
+            name[k] = '_';
+    snprintf(num, sizeof num, "%lu", (unsigned long)i + 1);
+    while (*p != '\0') {
+        const char *rep = NULL;
+        size_t skip = 1, len;
+        if (strncmp(p, "{sensor}", 8) == 0) {
+            rep = name[0] == '_' ? name + 1 : name;
+            skip = 8;
+        } else if (strncmp(p, "{n}", 3) == 0) {
+            rep = num;
+            skip = 3;
         }
-        return true;
+        len = rep != NULL ? strlen(rep) : 1;
+        if (used + len >= cap)
+            return false;
+        memcpy(out + used, rep != NULL ? rep : p, len);
+        used += len;
+        p += skip;
     }
-    if (s->gap_pending) {
-        cli_write_gap(&s->w, s->gap_from, t, s->gap_reason);
-        s->gap_pending = false;
-    }
-    cli_write_sample(&s->w, t, smp);
-    s->written++;
-    if (ferror(s->out)) {
-        s->write_errno = errno != 0 ? errno : EIO;
-        return false;
-    }
+    out[used] = '\0';
     return true;
 }
 
-static bool time_is_up(const stream_state *s, const stream_opts *o)
+typedef struct stream_state {
+    stream_opts o;
+    sensor_run run[CLI_MAX_SENSORS];
+    size_t n;
+    double t0;          /* the one time base: the earliest start */
+    cli_status st;
+    bool keys;
+    bool stopped;       /* by a signal */
+    int write_error;    /* errno of a failed output, 0 while fine */
+    /* one batch, reused */
+    double t_mono[BATCH], t_utc[BATCH], zeroed[BATCH * LEP_AXES], si[BATCH * LEP_AXES];
+    int16_t raw[BATCH * LEP_AXES];
+    uint8_t status[BATCH], flags[BATCH];
+    uint16_t seq[BATCH];
+} stream_state;
+
+static void batch_init(stream_state *st, lep_session_batch *b)
 {
-    return o->duration > 0.0 && now_s(s) >= o->duration;
+    memset(b, 0, sizeof *b);
+    b->cap = BATCH;
+    b->t_mono = st->t_mono;
+    b->t_utc = st->t_utc;
+    b->raw = st->raw;
+    b->zeroed = st->zeroed;
+    b->si = st->si;
+    b->status = st->status;
+    b->flags = st->flags;
+    b->seq = st->seq;
 }
 
-/* Open again after a disconnect (or a data timeout) and restart streaming.
- * LEP_OK when resumed; 1 when stopped by a signal or the duration. */
-static int reconnect(stream_state *s, const stream_opts *o, const char *reason)
-{
-    int delay = CLI_BACKOFF_MIN_MS;
-    unsigned attempts = 0;
-    double lost_at = now_s(s);
-    double next_note = lost_at + CLI_NOTE_PERIOD_S;
+static void note(stream_state *st, const sensor_run *r, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
 
-    s->errors_before += client_errors(&s->c);
-    cli_conn_drop(&s->c);
-    if (!s->gap_pending) {
-        s->gap_pending = true;
-        s->gap_from = s->last_t;
-        s->gap_reason = reason;
-        s->gaps++;
-    }
-    cli_status_clear(&s->st);
-    fprintf(stderr, "leptrino: stream: %s: %s at t=%.3f s; reopening it (Ctrl-C to stop)\n",
-            s->c.path, reason, lost_at);
-    for (;;) {
-        int rc;
-        double t;
-        cli_sleep_ms(delay);
-        if (cli_stop_requested() || time_is_up(s, o))
-            return 1;
-        attempts++;
-        rc = cli_conn_reopen(&s->c);
-        if (rc == LEP_OK)
-            rc = lep_client_rated(&s->c.client, &s->w.rated);
-        if (rc == LEP_OK)
-            rc = lep_client_start(&s->c.client);
-        t = now_s(s);
-        if (rc == LEP_OK) {
-            cli_status_clear(&s->st);
-            fprintf(stderr, "leptrino: stream: %s: back after %.1f s (%u attempts); streaming "
-                            "resumed\n",
-                    s->c.path, t - lost_at, attempts);
-            s->last_t = t;
-            return LEP_OK;
+/* One message line on stderr about sensor r (the status line erased first). */
+static void note(stream_state *st, const sensor_run *r, const char *fmt, ...)
+{
+    va_list ap;
+    cli_status_clear(&st->st);
+    fprintf(stderr, "leptrino: stream: %s: ", r->sensor->name);
+    va_start(ap, fmt);
+    vfprintf(stderr, fmt, ap);
+    va_end(ap);
+    fputc('\n', stderr);
+}
+
+/* Write what one read gave: rows, and the events where they belong. */
+static void emit(stream_state *st, sensor_run *r, const lep_session_batch *b)
+{
+    lep_session_event ev[EVENTS];
+    size_t nev = 0, k;
+    int rc;
+    size_t from = 0;
+    bool more = true;
+    while (more) {
+        nev = 0;
+        while (nev < EVENTS && lep_session_next_event(r->s, &ev[nev]))
+            nev++;
+        more = nev == EVENTS;
+        for (k = 0; k < nev; ++k) {
+            if (ev[k].type == LEP_EV_DISCONNECTED) {
+                if (!st->o.so.reconnect)
+                    r->failed = ev[k].error;
+                else
+                    note(st, r, "%s at t=%.3f s; reopening the port (Ctrl-C to stop)",
+                         ev[k].error == LEP_E_TIMEOUT ? "no data" : "disconnected",
+                         ev[k].gap_from - st->t0);
+            } else if (ev[k].type == LEP_EV_RECONNECTED) {
+                note(st, r, "back at t=%.3f s after %.1f s; streaming resumed",
+                     ev[k].t_mono - st->t0, ev[k].gap_to - ev[k].gap_from);
+            }
         }
-        cli_conn_drop(&s->c);
-        if (t >= next_note) {
-            cli_status_clear(&s->st);
-            fprintf(stderr, "leptrino: stream: %s: still waiting after %.0f s (%u attempts; "
-                            "last: %s)\n",
-                    s->c.path, t - lost_at, attempts, lep_strerror(rc));
-            next_note = t + CLI_NOTE_PERIOD_S;
+        if (st->write_error != 0 || (b->n == 0 && nev == 0))
+            break;
+        rc = lep_output_write(r->w, r->index, b, from, ev, nev);
+        from = b->n; /* the rows go with the first events only */
+        if (rc != LEP_OK) {
+            st->write_error = lep_output_errno(r->w) != 0 ? lep_output_errno(r->w) : EIO;
+            break;
         }
-        show_status(s, t, "  reconnecting");
-        delay = delay * 2 > CLI_BACKOFF_MAX_MS ? CLI_BACKOFF_MAX_MS : delay * 2;
     }
 }
 
-/* The stream loop. Returns an exit code; *stopped says a signal ended it. */
-static int loop(stream_state *s, const stream_opts *o, bool *stopped)
+static void status_line(stream_state *st)
 {
-    static lep_sample batch[CLI_BATCH];
+    char text[256];
+    size_t i, used = 0;
+    double now = lep_monotonic_seconds();
+    if (!st->st.enabled)
+        return;
+    text[0] = '\0';
+    for (i = 0; i < st->n && used < sizeof text - 1; ++i) {
+        lep_session_health h;
+        int len;
+        lep_session_get_health(st->run[i].s, &h);
+        len = snprintf(text + used, sizeof text - used,
+                       "%s%s%s%llu samples %.1f Hz %llu err %llu gaps", i > 0 ? " | " : "",
+                       st->n > 1 ? st->run[i].sensor->name : "", st->n > 1 ? " " : "",
+                       (unsigned long long)h.delivered, h.recent_hz,
+                       (unsigned long long)h.errors, (unsigned long long)h.gaps);
+        used = len < 0 ? used : used + (size_t)len;
+        if (used > sizeof text - 1)
+            used = sizeof text - 1; /* truncated: the line is cut there */
+    }
+    if (used < sizeof text - 1)
+        snprintf(text + used, sizeof text - used, "  %.1f s", now - st->t0);
+    cli_status_update(&st->st, now, text);
+}
 
+static void tare_requests(stream_state *st)
+{
+    unsigned t = cli_take_tare_requests(), u = cli_take_untare_requests();
+    int key;
+    size_t i;
+    while ((key = cli_term_read_key()) >= 0) {
+        if (key == 't' || key == 'T')
+            t++;
+        else if (key == 'u' || key == 'U')
+            u++;
+    }
+    for (i = 0; i < st->n && (t > 0 || u > 0); ++i) {
+        if (u > 0)
+            lep_session_untare(st->run[i].s);
+        if (t > 0)
+            lep_session_tare(st->run[i].s, st->o.retare, 0.0);
+    }
+}
+
+/* Read and write until every sensor is done, one fails, a signal or an
+ * output error. Returns an exit code. */
+static int loop(stream_state *st)
+{
+    lep_session_batch b;
+    size_t i;
     for (;;) {
-        size_t n = 0, i;
-        int rc, wait_ms = CLI_WAIT_MS;
-        double t;
+        size_t active = 0;
+        int fds[CLI_MAX_SENSORS + 1];
+        bool ready[CLI_MAX_SENSORS + 1];
 
         if (cli_stop_requested()) {
-            *stopped = true;
+            st->stopped = true;
             return CLI_OK;
         }
-        t = now_s(s);
-        if (o->duration > 0.0) {
-            double left = o->duration - t;
-            if (left <= 0.0)
-                return CLI_OK;
-            if (left * 1000.0 < (double)wait_ms)
-                wait_ms = (int)(left * 1000.0) + 1;
+        tare_requests(st);
+        for (i = 0; i < st->n; ++i) {
+            sensor_run *r = &st->run[i];
+            if (r->failed != 0)
+                return cli_session_fail(r->s, "stream", r->sensor->name, "stream", r->failed);
+            fds[i] = r->done ? -1 : lep_session_fd(r->s);
+            active += r->done ? 0u : 1u;
         }
-        rc = lep_client_next_samples(&s->c.client, batch, CLI_BATCH, &n, wait_ms);
-        t = now_s(s);
-        for (i = 0; i < n; ++i) {
-            if (o->duration > 0.0 && t >= o->duration)
-                return CLI_OK; /* arrived after the end: not part of the record */
-            if (!take(s, o, t, &batch[i]))
+        if (active == 0)
+            return CLI_OK;
+        if (st->write_error != 0)
+            return st->write_error == EPIPE ? CLI_OK : CLI_FAIL;
+        if (st->n > 1 || st->keys) {
+            /* Several sources: wait for any, then take what each has. */
+            fds[st->n] = st->keys ? STDIN_FILENO : -1;
+            cli_wait_input(fds, st->n + 1, ready, WAIT_MS);
+        }
+        for (i = 0; i < st->n; ++i) {
+            sensor_run *r = &st->run[i];
+            int rc;
+            if (r->done)
+                continue;
+            batch_init(st, &b);
+            rc = lep_session_read(r->s, &b, st->n > 1 || st->keys ? 0 : WAIT_MS);
+            emit(st, r, &b);
+            if (rc == LEP_E_END)
+                r->done = true;
+            else if (rc != LEP_OK && rc != LEP_E_TIMEOUT && r->failed == 0)
+                r->failed = rc;
+        }
+        status_line(st);
+    }
+}
+
+/* One line per sensor: samples, time, measured against nominal rate (a
+ * shortfall said plainly), errors, overloads, gaps and what they lost. */
+static void summary(stream_state *st)
+{
+    size_t i;
+    for (i = 0; i < st->n; ++i) {
+        sensor_run *r = &st->run[i];
+        lep_session_health h;
+        bool tared;
+        double off[LEP_AXES];
+        lep_session_get_health(r->s, &h);
+        tared = lep_session_get_tare(r->s, off);
+        fprintf(stderr,
+                "leptrino: stream: %s: %llu samples in %.3f s, %.1f Hz measured (nominal %.0f "
+                "Hz), %llu errors, %llu overloads, %llu gaps (%llu samples lost, longest "
+                "%.3f s)%s%s\n",
+                r->sensor->name, (unsigned long long)h.delivered, h.elapsed_s, h.measured_hz,
+                h.nominal_hz, (unsigned long long)h.errors, (unsigned long long)h.overloads,
+                (unsigned long long)h.gaps, (unsigned long long)h.lost, h.max_gap_s,
+                st->o.so.tare_samples == 0 ? "" : tared ? ", tared" : ", tare incomplete",
+                st->stopped ? "; stopped by signal" : "");
+        if (h.shortfall)
+            fprintf(stderr, "leptrino: stream: %s: RATE SHORTFALL: %.1f Hz is %.1f %% below the "
+                            "nominal %.0f Hz (samples were lost or the sensor runs slow)\n",
+                    r->sensor->name, h.measured_hz,
+                    100.0 * (h.nominal_hz - h.measured_hz) / h.nominal_hz, h.nominal_hz);
+    }
+}
+
+/* Writers: one for every sensor (--split) or one shared. */
+static int open_outputs(stream_state *st)
+{
+    size_t i;
+    for (i = 0; i < st->n; ++i) {
+        sensor_run *r = &st->run[i];
+        char path[1024], err[512];
+        const char *target = st->o.output;
+        lep_output_options oo;
+        struct stat sb;
+        int rc;
+        if (st->o.split == NULL && i > 0) {
+            r->w = st->run[0].w;
+            r->index = lep_output_add_session(r->w, r->s, r->sensor->name);
+            continue;
+        }
+        if (st->o.split != NULL) {
+            if (!split_path(st->o.split, r->sensor, i, path, sizeof path)) {
+                fprintf(stderr, "leptrino: stream: --split: the file name is too long\n");
                 return CLI_FAIL;
-            if (o->count > 0 && s->written >= o->count)
-                return CLI_OK;
-        }
-        if (n > 0) {
-            s->last_t = t;
-            if (s->out_tty)
-                fflush(s->out);
-        }
-        show_status(s, t, "");
-
-        if (rc == LEP_OK || (rc == LEP_E_TIMEOUT && n > 0))
-            continue;
-        if (rc == LEP_E_TIMEOUT) {
-            if (t - s->last_t < o->data_timeout)
-                continue;
-            if (o->reconnect) {
-                if (reconnect(s, o, "no data") != LEP_OK) {
-                    *stopped = cli_stop_requested();
-                    return CLI_OK;
-                }
-                continue;
             }
-            cli_status_clear(&s->st);
-            fprintf(stderr, "leptrino: stream: %s: timeout: no data for %.1f s\n", s->c.path,
-                    t - s->last_t);
-            return CLI_TIMEOUT;
+            target = path;
         }
-        if (cli_stop_requested()) { /* a read interrupted by the signal */
-            *stopped = true;
-            return CLI_OK;
+        if (target != NULL && strcmp(target, "-") == 0)
+            target = NULL;
+        err[0] = '\0';
+        oo = st->o.out;
+        /* A device or a pipe (-o /dev/null, a FIFO) holds nobody's file:
+         * writing to it needs no --overwrite. */
+        if (target != NULL && stat(target, &sb) == 0 && !S_ISREG(sb.st_mode) &&
+            !S_ISDIR(sb.st_mode))
+            oo.overwrite = true;
+        rc = lep_output_open(target, &oo, &r->w, err, sizeof err);
+        if (rc != LEP_OK) {
+            r->w = NULL;
+            fprintf(stderr, "leptrino: stream: %s\n", err[0] != '\0' ? err : lep_strerror(rc));
+            return CLI_FAIL;
         }
-        if (rc == LEP_E_DISCONNECTED && o->reconnect) {
-            if (reconnect(s, o, "disconnected") != LEP_OK) {
-                *stopped = cli_stop_requested();
-                return CLI_OK;
-            }
-            continue;
-        }
-        cli_status_clear(&s->st);
-        if (rc == LEP_E_DISCONNECTED) {
-            fprintf(stderr, "leptrino: stream: %s: disconnected (the port went away at t=%.3f s; "
-                            "--reconnect keeps trying)\n",
-                    s->c.path, t);
-            return CLI_DISCONNECTED;
-        }
-        return cli_conn_fail(&s->c, "stream", rc);
+        r->own_writer = true;
+        r->index = lep_output_add_session(r->w, r->s, r->sensor->name);
     }
+    return CLI_OK;
 }
 
-/* Stop the sensor's stream if the port is still there (errors are reported). */
-static void stop_sensor(stream_state *s)
+static void close_outputs(stream_state *st)
 {
-    int rc;
-    if (s->c.serial == NULL || !lep_client_streaming(&s->c.client))
-        return;
-    rc = lep_client_stop(&s->c.client);
-    if (rc != LEP_OK && rc != LEP_E_DISCONNECTED)
-        rc = lep_client_stop(&s->c.client); /* one more try, e.g. after a lost answer */
-    if (rc != LEP_OK && rc != LEP_E_DISCONNECTED) {
-        cli_status_clear(&s->st);
-        fprintf(stderr, "leptrino: stream: %s: could not stop the sensor's stream: %s\n",
-                s->c.path, lep_strerror(rc));
+    size_t i;
+    for (i = 0; i < st->n; ++i) {
+        sensor_run *r = &st->run[i];
+        if (r->own_writer && lep_output_close(r->w) != LEP_OK && st->write_error == 0)
+            st->write_error = EIO;
+        r->w = NULL;
+        r->own_writer = false;
     }
-}
-
-static FILE *open_output(const stream_opts *o, bool *is_tty)
-{
-    FILE *f;
-    if (o->output == NULL || strcmp(o->output, "-") == 0) {
-        f = stdout;
-    } else {
-        f = fopen(o->output, "w");
-        if (f == NULL) {
-            fprintf(stderr, "leptrino: stream: cannot open output '%s': %s\n", o->output,
-                    strerror(errno));
-            return NULL;
-        }
-    }
-    *is_tty = isatty(fileno(f)) == 1;
-    /* Block buffering for files and pipes: no per-sample system call. */
-    setvbuf(f, NULL, *is_tty ? _IOLBF : _IOFBF, (size_t)1 << 16);
-    return f;
 }
 
 int cli_cmd_stream(int argc, char **argv)
 {
-    static stream_state s; /* large (client context): keep it off the stack */
-    stream_opts o;
-    bool stopped = false;
+    static stream_state st;
     int code, rc;
-    double elapsed;
+    size_t i;
 
-    code = parse(argc, argv, &o);
+    memset(&st, 0, sizeof st);
+    code = parse(argc, argv, &st.o);
     if (code != CLI_OK)
         return code < 0 ? CLI_OK : code;
-
-    memset(&s, 0, sizeof s);
     cli_signals_install();
-    /* The sensor first: a run that cannot reach it leaves FILE alone. */
-    code = cli_conn_open(&s.c, &o.po, "stream");
+
+    /* The sensors first: a run that cannot reach them leaves the files alone. */
+    code = cli_sensors_open(&st.o.po, &st.o.so, "stream");
     if (code != CLI_OK)
         return code;
-    rc = lep_client_rated(&s.c.client, &s.w.rated);
-    if (rc != LEP_OK) {
-        code = cli_conn_fail(&s.c, "rated values", rc);
-        cli_conn_close(&s.c);
-        return code;
+    st.n = st.o.po.n;
+    for (i = 0; i < st.n; ++i) {
+        st.run[i].sensor = &st.o.po.sensor[i];
+        st.run[i].s = st.o.po.sensor[i].session;
     }
-    s.out = open_output(&o, &s.out_tty);
-    if (s.out == NULL) {
-        cli_conn_close(&s.c);
-        return CLI_FAIL;
+    for (i = 0; code == CLI_OK && i < st.n; ++i) {
+        rc = lep_session_start(st.run[i].s);
+        if (rc != LEP_OK)
+            code = cli_session_fail(st.run[i].s, "stream", st.run[i].sensor->name, "start", rc);
     }
-    cli_status_init(&s.st, s.out_tty ? fileno(s.out) : -1);
-    s.w.f = s.out;
-    s.w.format = o.format_value;
-    s.w.si = o.si;
-    rc = lep_client_start(&s.c.client);
-    if (rc != LEP_OK) {
-        code = cli_conn_fail(&s.c, "start", rc);
-        cli_conn_close(&s.c);
-        if (s.out != stdout)
-            fclose(s.out);
-        return code;
+    if (code == CLI_OK) {
+        /* One time base: t = 0 at the earliest start. */
+        st.t0 = INFINITY;
+        for (i = 0; i < st.n; ++i) {
+            lep_session_metadata m;
+            lep_session_get_metadata(st.run[i].s, &m);
+            if (m.start_mono < st.t0)
+                st.t0 = m.start_mono;
+        }
+        st.o.out.t0_mono = st.t0;
+        code = open_outputs(&st);
     }
-    s.t0 = lep_monotonic_seconds();
-    cli_write_header(&s.w);
-
-    code = loop(&s, &o, &stopped);
-    elapsed = now_s(&s);
-    stop_sensor(&s);
-    if (s.gap_pending)
-        cli_write_gap(&s.w, s.gap_from, -1.0, s.gap_reason);
-
-    if (fflush(s.out) != 0 && s.write_errno == 0)
-        s.write_errno = errno != 0 ? errno : EIO;
-    if (s.out != stdout && fclose(s.out) != 0 && s.write_errno == 0)
-        s.write_errno = errno != 0 ? errno : EIO;
-    cli_status_clear(&s.st);
-    if (s.write_errno == EPIPE) {
+    if (code == CLI_OK) {
+        bool to_stdout = st.o.split == NULL &&
+                         (st.o.output == NULL || strcmp(st.o.output, "-") == 0);
+        cli_status_init(&st.st, to_stdout ? STDOUT_FILENO : -1);
+        st.keys = cli_term_keys_begin();
+        code = loop(&st);
+        cli_term_keys_end();
+    }
+    for (i = 0; i < st.n; ++i) {
+        if (lep_session_streaming(st.run[i].s)) {
+            rc = lep_session_stop(st.run[i].s);
+            if (rc != LEP_OK && rc != LEP_E_DISCONNECTED)
+                note(&st, &st.run[i], "could not stop the sensor's stream: %s", lep_strerror(rc));
+        }
+    }
+    close_outputs(&st);
+    cli_status_clear(&st.st);
+    if (st.write_error == EPIPE) {
         code = CLI_OK; /* the reader went away (e.g. `| head`): a normal end */
-    } else if (s.write_errno != 0) {
-        fprintf(stderr, "leptrino: stream: cannot write the output: %s\n", strerror(s.write_errno));
+    } else if (st.write_error != 0) {
+        fprintf(stderr, "leptrino: stream: cannot write the output: %s\n",
+                strerror(st.write_error));
         code = CLI_FAIL;
     }
-    fprintf(stderr,
-            "leptrino: stream: %llu samples in %.3f s (%.1f Hz), %llu errors, %llu overloads, "
-            "%llu gaps%s%s\n",
-            (unsigned long long)s.written, elapsed,
-            elapsed > 0.0 ? (double)s.received / elapsed : 0.0,
-            (unsigned long long)total_errors(&s), (unsigned long long)s.overloads,
-            (unsigned long long)s.gaps,
-            o.tare == 0 ? "" : s.w.tared ? ", tared" : ", tare incomplete",
-            stopped ? "; stopped by signal" : "");
-    cli_conn_close(&s.c);
+    if (st.t0 > 0.0 && st.t0 < INFINITY)
+        summary(&st);
+    cli_sensors_close(&st.o.po);
     return code;
 }

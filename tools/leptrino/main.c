@@ -14,7 +14,8 @@ static const cli_command COMMANDS[] = {
     {"list", cli_cmd_list, "list serial ports, marking likely sensors"},
     {"info", cli_cmd_info, "show model, serial, firmware, rated values, filter"},
     {"read", cli_cmd_read, "read N samples one by one (handshake mode)"},
-    {"stream", cli_cmd_stream, "record continuous data to CSV or JSON lines"},
+    {"stream", cli_cmd_stream, "record one or more sensors to CSV or JSON lines"},
+    {"watch", cli_cmd_watch, "live view in the terminal: bars, rate, errors; keys t, u, q"},
     {"filter", cli_cmd_filter, "show or set the digital filter"},
 };
 
@@ -35,11 +36,20 @@ void cli_print_exit_codes(FILE *f)
           f);
 }
 
+void cli_print_help_end(FILE *f, int sensors)
+{
+    if (sensors > 0) {
+        cli_port_help(f, sensors > 1);
+        fputc('\n', f);
+    }
+    cli_print_exit_codes(f);
+}
+
 static void usage(FILE *f)
 {
     size_t i;
     fputs("Usage: leptrino COMMAND [options]\n"
-          "       leptrino --version | --help | help COMMAND\n"
+          "  or:  leptrino --version | --help | help COMMAND\n"
           "\n"
           "Talk to Leptrino 6-axis force/torque sensors over a serial port, or to a\n"
           "built-in virtual sensor (--sim) when there is no hardware.\n"
@@ -53,6 +63,7 @@ static void usage(FILE *f)
           "  leptrino stream --sim --duration 3\n"
           "  leptrino info /dev/ttyACM0\n"
           "  leptrino stream /dev/ttyACM0 --tare 100 -o forces.csv\n"
+          "  leptrino watch --sim\n"
           "\n"
           "'leptrino COMMAND --help' shows the options of a command.\n"
           "\n",

@@ -111,6 +111,11 @@ typedef struct lep_client_stats {
     uint32_t invalid;
     uint32_t timeouts;
     uint32_t samples;
+    uint32_t resent_after_timeout;
+    uint32_t resent_confirmed;
+    uint32_t recoveries;
+    uint32_t reserved_nonzero;
+    uint32_t stalls;
 } lep_client_stats;
 
 size_t lep_client_size(void);

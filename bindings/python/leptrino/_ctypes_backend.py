@@ -124,6 +124,11 @@ class lep_client_stats(Structure):
         ("invalid", c_uint32),
         ("timeouts", c_uint32),
         ("samples", c_uint32),
+        ("resent_after_timeout", c_uint32),
+        ("resent_confirmed", c_uint32),
+        ("recoveries", c_uint32),
+        ("reserved_nonzero", c_uint32),
+        ("stalls", c_uint32),
     ]
 
 

@@ -106,7 +106,7 @@ def expected() -> dict[str, bytes]:
         "rsp_sample_dle": rsp(0x30, 0, sample([0x1010] * 6, 0x1010, 0x10)),
         "rsp_sample_bcc10": rsp(0x30, 0, sample([201, 1, 2, 3, 4, 5])),
         "rsp_sample_ctl": rsp(0x30, 0, sample([0x0210, 0x0310, 0x1510, 0x1010, 0, 0])),
-        "rsp_stream_ext": rsp(0x32, 0, sample([32767, -32768, -1, 1, 15000, -15000], 0xBEEF, 7)),
+        "rsp_stream_ext": rsp(0x32, 0, sample([32000, -32000, -1, 1, 15000, -15000], 0xBEEF, 7)),
         "rsp_start_ack": rsp(0x32),
         "rsp_stop_ack": rsp(0x33),
         "rsp_filter_set_ack": rsp(0xA6),

@@ -33,7 +33,11 @@ extern uint32_t __bss_start__, __bss_end__;
 
 typedef void (*lep_vector)(void);
 
-/* Initial stack pointer, reset, NMI, HardFault, MemManage, BusFault, UsageFault. */
+/* A program with a tick (the MCU example) defines its own; unexpected otherwise. */
+void SysTick_Handler(void) __attribute__((weak, alias("lep_fault_handler")));
+
+/* Initial stack pointer, reset, NMI, HardFault, MemManage, BusFault,
+ * UsageFault, 4 reserved, SVCall, DebugMonitor, reserved, PendSV, SysTick. */
 __attribute__((section(".vectors"), used)) const lep_vector lep_vectors[16] = {
     (lep_vector)(uintptr_t)&__stack_top,
     lep_reset_handler,
@@ -42,6 +46,12 @@ __attribute__((section(".vectors"), used)) const lep_vector lep_vectors[16] = {
     lep_fault_handler,
     lep_fault_handler,
     lep_fault_handler,
+    0, 0, 0, 0,
+    lep_fault_handler,
+    lep_fault_handler,
+    0,
+    lep_fault_handler,
+    SysTick_Handler,
 };
 
 void lep_reset_handler(void)

@@ -1,0 +1,435 @@
+/* End-to-end measurements of leptrino-bench: the client against leptrino-sim
+ * in another process over a pseudo-terminal, as a user's program runs it.
+ *
+ * Latency of sample k: the time next_sample returned it minus the time the
+ * virtual sensor was due to write it, t0 + (k+1)/rate (its absolute deadline,
+ * docs/simulator.md), where k comes from the sequence number the sim puts in
+ * the reserved bytes. The sim sets t0 when it handles the start command; we
+ * take t0 as the moment the start command was written, which is at most
+ * t0_window_us earlier, so the latencies are upper bounds by at most that. */
+#define _DEFAULT_SOURCE
+#include "e2e.h"
+
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <sys/time.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "bench.h"
+#include "leptrino/leptrino.h"
+#include "leptrino/record.h"
+#include "leptrino/serial.h"
+
+#define LAT_MAX 200000u
+
+typedef struct sim_proc {
+    pid_t pid;
+    char port[256];
+} sim_proc;
+
+void e2e_defaults(e2e_options *o, const char *self)
+{
+    static char sim[4096];
+    static char python[4096];
+    const char *slash = strrchr(self, '/');
+    int dir = slash != NULL ? (int)(slash - self) : 1;
+    memset(o, 0, sizeof(*o));
+    o->self = self;
+    o->source = LEP_BENCH_SOURCE_DIR;
+    /* Build tree (bench/ beside tools/), then installed (same bindir), then PATH. */
+    snprintf(sim, sizeof sim, "%.*s/../tools/leptrino-sim/leptrino-sim", dir, slash ? self : ".");
+    if (access(sim, X_OK) != 0) {
+        snprintf(sim, sizeof sim, "%.*s/leptrino-sim", dir, slash ? self : ".");
+        if (access(sim, X_OK) != 0) {
+            snprintf(sim, sizeof sim, "leptrino-sim");
+        }
+    }
+    o->sim = sim;
+    snprintf(python, sizeof python, "%s/build/venv/bin/python", o->source);
+    o->python = access(python, X_OK) == 0 ? python : "python3";
+}
+
+static int64_t now_ns(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (int64_t)ts.tv_sec * 1000000000 + ts.tv_nsec;
+}
+
+static double cpu_s(int who)
+{
+    struct rusage ru;
+    getrusage(who, &ru);
+    return (double)ru.ru_utime.tv_sec + (double)ru.ru_utime.tv_usec * 1e-6 + (double)ru.ru_stime.tv_sec +
+           (double)ru.ru_stime.tv_usec * 1e-6;
+}
+
+/* read + write system calls of this process so far (/proc/self/io), or -1. */
+static long long proc_rw_syscalls(void)
+{
+    char line[128];
+    long long r = -1;
+    long long w = -1;
+    FILE *f = fopen("/proc/self/io", "r");
+    if (f == NULL) {
+        return -1;
+    }
+    while (fgets(line, sizeof line, f) != NULL) {
+        (void)(sscanf(line, "syscr: %lld", &r) || sscanf(line, "syscw: %lld", &w));
+    }
+    fclose(f);
+    return r >= 0 && w >= 0 ? r + w : -1;
+}
+
+static int sim_start(const e2e_options *o, double rate, sim_proc *sp)
+{
+    int fds[2];
+    char a_rate[32];
+    FILE *f;
+    memset(sp, 0, sizeof(*sp));
+    snprintf(a_rate, sizeof a_rate, "%g", rate);
+    if (pipe(fds) != 0) {
+        return -1;
+    }
+    sp->pid = fork();
+    if (sp->pid < 0) {
+        return -1;
+    }
+    if (sp->pid == 0) {
+        char *argv[] = {(char *)o->sim, "--rate", a_rate, NULL};
+        dup2(fds[1], 1);
+        close(fds[0]);
+        close(fds[1]);
+        execvp(argv[0], argv);
+        _exit(127);
+    }
+    close(fds[1]);
+    f = fdopen(fds[0], "r");
+    if (f == NULL || fgets(sp->port, sizeof sp->port, f) == NULL) {
+        if (f != NULL) {
+            fclose(f);
+        }
+        kill(sp->pid, SIGTERM);
+        waitpid(sp->pid, NULL, 0);
+        return -1;
+    }
+    fclose(f);
+    sp->port[strcspn(sp->port, "\n")] = '\0';
+    return 0;
+}
+
+/* Stop the sim; its CPU seconds (user + sys) over its life. */
+static double sim_stop(sim_proc *sp)
+{
+    struct rusage ru;
+    int status;
+    memset(&ru, 0, sizeof(ru));
+    kill(sp->pid, SIGTERM);
+    if (wait4(sp->pid, &status, 0, &ru) < 0) {
+        return 0.0 / 0.0;
+    }
+    return (double)ru.ru_utime.tv_sec + (double)ru.ru_utime.tv_usec * 1e-6 + (double)ru.ru_stime.tv_sec +
+           (double)ru.ru_stime.tv_usec * 1e-6;
+}
+
+typedef struct stream_result {
+    int rc;
+    size_t samples;
+    size_t lost;       /* sequence numbers skipped */
+    double wall_s;
+    double cpu_s;
+    long long rw_syscalls;
+    double t0_window_us;
+    double *lat_us;    /* [samples] */
+} stream_result;
+
+enum mode { MODE_LOW_LATENCY = 0, MODE_RECORDING = 1 };
+
+/* Open port, sync, start, stream `seconds` (or `count` samples) in mode,
+ * stop. lat may be NULL. */
+static void stream_run(const char *port, int mode, double seconds, size_t count, double rate, stream_result *r)
+{
+    lep_serial *sp = NULL;
+    static lep_client c;
+    lep_product_info info;
+    lep_rated rated;
+    char err[256];
+    int64_t t_start;
+    double period_ns = 1e9 / rate;
+    uint64_t k = 0;
+    int have_k = 0;
+    double t_end;
+    double c0;
+    long long s0;
+    double w0;
+    memset(r, 0, sizeof(*r));
+    r->lat_us = malloc(LAT_MAX * sizeof(double));
+    r->rc = lep_serial_open(port, &sp, err, sizeof err);
+    if (r->rc != LEP_OK) {
+        return;
+    }
+    lep_serial_client_init(&c, sp);
+    r->rc = lep_client_sync(&c, 50, &info);
+    if (r->rc == LEP_OK) {
+        r->rc = lep_client_rated(&c, &rated);
+    }
+    t_start = now_ns();
+    if (r->rc == LEP_OK) {
+        r->rc = lep_client_start(&c);
+    }
+    r->t0_window_us = (double)(now_ns() - t_start) / 1e3;
+    c0 = cpu_s(RUSAGE_SELF);
+    s0 = proc_rw_syscalls();
+    w0 = bench_now_s();
+    t_end = w0 + seconds;
+    while (r->rc == LEP_OK && (count > 0 ? r->samples < count : bench_now_s() < t_end)) {
+        lep_sample buf[256];
+        size_t n = 0;
+        size_t i;
+        int64_t t_recv;
+        if (mode == MODE_LOW_LATENCY) {
+            r->rc = lep_client_next_sample(&c, buf, 1000);
+            n = r->rc == LEP_OK ? 1u : 0u;
+        } else {
+            static double t[256];
+            static int16_t raw[256 * 6];
+            static uint16_t seq[256];
+            lep_record_batch b;
+            memset(&b, 0, sizeof(b));
+            b.cap = 256;
+            b.t = t;
+            b.raw = raw;
+            b.seq = seq;
+            r->rc = lep_record_fill(&c, NULL, &b, bench_now_s() + 0.1, 1000);
+            n = b.n;
+            for (i = 0; i < n; i++) {
+                buf[i].reserved = seq[i];
+            }
+        }
+        t_recv = now_ns();
+        for (i = 0; i < n; i++) {
+            uint16_t seq = buf[i].reserved;
+            if (have_k) {
+                uint64_t next = k + ((uint16_t)(seq - (uint16_t)k) == 0 ? 65536u : (uint16_t)(seq - (uint16_t)k));
+                r->lost += (size_t)(next - k - 1u);
+                k = next;
+            } else {
+                k = seq;
+                have_k = 1;
+            }
+            if (r->samples < LAT_MAX) {
+                r->lat_us[r->samples] = ((double)(t_recv - t_start) - (double)(k + 1u) * period_ns) / 1e3;
+            }
+            r->samples++;
+        }
+    }
+    r->wall_s = bench_now_s() - w0;
+    r->cpu_s = cpu_s(RUSAGE_SELF) - c0;
+    r->rw_syscalls = s0 >= 0 ? proc_rw_syscalls() - s0 : -1;
+    (void)lep_client_stop(&c);
+    lep_serial_close(sp);
+}
+
+int e2e_child_main(int argc, char **argv)
+{
+    stream_result r;
+    if (argc < 3) {
+        return 2;
+    }
+    stream_run(argv[1], atoi(argv[0]), atof(argv[2]), 0, 1200.0, &r);
+    free(r.lat_us);
+    return r.rc == LEP_OK ? 0 : 1;
+}
+
+/* System calls of a child streaming `seconds` in mode, counted by strace -f -c. */
+static long long strace_calls(const e2e_options *o, const char *port, int mode, double seconds)
+{
+    char out[] = "/tmp/leptrino-bench-st-XXXXXX";
+    char a_mode[8], a_secs[32], a_out[64], line[256];
+    long long calls = -1;
+    FILE *f;
+    int fd = mkstemp(out);
+    char *argv[] = {"strace", "-f", "-c", "-U", "calls", "-o", a_out, (char *)o->self, "--e2e-child",
+                    a_mode, (char *)port, a_secs, NULL};
+    if (fd < 0) {
+        return -1;
+    }
+    close(fd);
+    snprintf(a_out, sizeof a_out, "%s", out);
+    snprintf(a_mode, sizeof a_mode, "%d", mode);
+    snprintf(a_secs, sizeof a_secs, "%g", seconds);
+    if (bench_run(argv, NULL) == 0 && (f = fopen(out, "r")) != NULL) {
+        while (fgets(line, sizeof line, f) != NULL) {
+            long long v;
+            char word[16];
+            if (sscanf(line, " %lld %15s", &v, word) == 2 && strcmp(word, "total") == 0) {
+                calls = v;
+            }
+        }
+        fclose(f);
+    }
+    remove(out);
+    return calls;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a;
+    double y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static void report_mode(const e2e_options *o, const char *key, int mode, const sim_proc *sp, size_t samples,
+                        double stream_seconds)
+{
+    stream_result r;
+    size_t n;
+    json_open(key);
+    stream_run(sp->port, mode, 0.0, samples, 1200.0, &r);
+    json_str("path", mode == MODE_LOW_LATENCY ? "lep_client_next_sample, one sample per call"
+                                              : "lep_record_fill, 0.1 s batches (the Python record() path)");
+    json_int("rc", r.rc);
+    json_int("samples", (long long)r.samples);
+    json_int("lost", (long long)r.lost);
+    n = r.samples < LAT_MAX ? r.samples : LAT_MAX;
+    qsort(r.lat_us, n, sizeof(double), cmp_double);
+    json_open("latency_us");
+    json_num("p50", bench_percentile(r.lat_us, n, 0.50));
+    json_num("p99", bench_percentile(r.lat_us, n, 0.99));
+    json_num("max", n > 0 ? r.lat_us[n - 1u] : 0.0 / 0.0);
+    json_num("min", n > 0 ? r.lat_us[0] : 0.0 / 0.0);
+    json_str("reference", "sim deadline t0+(k+1)/rate, t0 = when the start command was written "
+                          "(upper bounds by at most t0_window_us)");
+    json_num("t0_window_us", r.t0_window_us);
+    json_close();
+    json_num("wall_s", r.wall_s);
+    json_num("cpu_s", r.cpu_s);
+    json_num("cpu_percent_of_one_core", 100.0 * r.cpu_s / r.wall_s);
+    json_num("cpu_us_per_sample", r.samples ? r.cpu_s * 1e6 / (double)r.samples : 0.0 / 0.0);
+    json_num("read_write_syscalls_per_sample_proc",
+             r.rw_syscalls >= 0 && r.samples ? (double)r.rw_syscalls / (double)r.samples : 0.0 / 0.0);
+    free(r.lat_us);
+    if (bench_have("strace")) {
+        long long base = strace_calls(o, sp->port, mode, 0.0);
+        long long run = strace_calls(o, sp->port, mode, stream_seconds);
+        double per_s = base >= 0 && run >= 0 ? (double)(run - base) / stream_seconds : 0.0 / 0.0;
+        json_num("syscalls_per_s", per_s);
+        json_num("syscalls_per_sample", per_s / 1200.0);
+        json_str("syscalls_method", "strace -f -c: (calls streaming T s) - (calls streaming 0 s), over T; "
+                                    "the traced run is slower than the untraced one");
+    } else {
+        json_null("syscalls_per_s");
+        json_null("syscalls_per_sample");
+        json_str("syscalls_method", "strace not installed");
+    }
+    json_close();
+}
+
+static void max_rate(const e2e_options *o)
+{
+    static const double rates[] = {1200, 2400, 4800, 7200, 10000};
+    double best = 0.0;
+    size_t i;
+    json_open_array("rates");
+    for (i = 0; i < sizeof(rates) / sizeof(rates[0]); i++) {
+        sim_proc sp;
+        stream_result r;
+        json_open(NULL);
+        json_num("rate_hz", rates[i]);
+        if (sim_start(o, rates[i], &sp) != 0) {
+            json_str("error", "leptrino-sim did not start");
+            json_close();
+            break;
+        }
+        stream_run(sp.port, MODE_LOW_LATENCY, o->smoke ? 0.3 : 2.0, 0, rates[i], &r);
+        (void)sim_stop(&sp);
+        free(r.lat_us);
+        json_int("rc", r.rc);
+        json_int("samples", (long long)r.samples);
+        json_int("lost", (long long)r.lost);
+        json_num("received_hz", (double)r.samples / r.wall_s);
+        json_close();
+        if (r.rc != LEP_OK || r.lost != 0) {
+            break;
+        }
+        best = rates[i];
+    }
+    json_close_array();
+    json_num("max_rate_without_loss_hz", best > 0.0 ? best : 0.0 / 0.0);
+}
+
+static void python_costs(const e2e_options *o)
+{
+    char script[4096];
+    char out[] = "/tmp/leptrino-bench-py-XXXXXX";
+    char line[512];
+    double rec = 0.0 / 0.0;
+    double it = 0.0 / 0.0;
+    const char *reason = NULL;
+    int fd = mkstemp(out);
+    char *check[] = {(char *)o->python, "-c", "import leptrino", NULL};
+    char *argv[] = {(char *)o->python, script, "--runs", o->smoke ? "1" : "3", "--seconds",
+                    o->smoke ? "0.3" : "2", NULL};
+    FILE *f;
+    snprintf(script, sizeof script, "%s/bindings/python/bench_record.py", o->source);
+    json_open("python");
+    if (fd < 0) {
+        reason = "no temporary file";
+    } else if (access(script, R_OK) != 0) {
+        reason = "bindings/python/bench_record.py not found (pass --source DIR)";
+    } else if (bench_run(check, NULL) != 0) {
+        reason = "the leptrino package is not importable by this interpreter (pass --python PATH)";
+    } else if (bench_run(argv, out) != 0) {
+        reason = "bench_record.py failed";
+    } else if ((f = fopen(out, "r")) != NULL) {
+        while (fgets(line, sizeof line, f) != NULL) {
+            (void)(sscanf(line, "record(): median %lf", &rec) || sscanf(line, "stream(): median %lf", &it));
+        }
+        fclose(f);
+        if (rec != rec) {
+            reason = "bench_record.py printed no record() figure";
+        }
+    }
+    if (fd >= 0) {
+        close(fd);
+        remove(out);
+    }
+    json_str("interpreter", o->python);
+    json_num("record_us_cpu_per_sample", rec);
+    json_num("stream_iter_us_cpu_per_sample", it);
+    json_str("reason", reason);
+    json_str("method", "bindings/python/bench_record.py (time.thread_time of the recording thread, "
+                       "virtual sensor in process), median of its runs");
+    json_close();
+}
+
+void e2e_report(const e2e_options *o)
+{
+    sim_proc sp;
+    double sim_cpu;
+    size_t samples = o->smoke ? 600u : 12000u;
+    json_open("end_to_end");
+    json_str("sim", o->sim);
+    if (sim_start(o, 1200.0, &sp) != 0) {
+        json_str("error", "leptrino-sim did not start (pass --sim PATH)");
+        json_close();
+        python_costs(o);
+        return;
+    }
+    report_mode(o, "low_latency", MODE_LOW_LATENCY, &sp, samples, o->smoke ? 0.5 : 3.0);
+    report_mode(o, "recording", MODE_RECORDING, &sp, samples, o->smoke ? 0.5 : 3.0);
+    sim_cpu = sim_stop(&sp);
+    json_num("sim_cpu_s_whole_life", sim_cpu);
+    json_null("session_latency_budget");
+    json_str("session_latency_budget_reason",
+             "lep_session is not implemented in this tree yet (include/leptrino/session.h only); the "
+             "recording figures are those of lep_record_fill, which wakes for every read");
+    max_rate(o);
+    json_close();
+    python_costs(o);
+}

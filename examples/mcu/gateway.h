@@ -1,0 +1,43 @@
+/* A sensor gateway on a microcontroller: keeps a Leptrino sensor streaming
+ * and forwards every sample (board_publish), without threads or blocking.
+ *
+ * It drives leptrino's step API from the main loop: bytes come from the UART
+ * RX ring buffer, time from the board's millisecond tick. At start-up, and
+ * whenever the stream stalls or a transaction fails, it recovers the line
+ * (stop a stale stream, drain, identify), reads the rated values and starts
+ * the stream again. */
+#ifndef MCU_GATEWAY_H
+#define MCU_GATEWAY_H
+
+#include <stdint.h>
+
+#include "leptrino/leptrino.h"
+
+/* No sample for this long while streaming: the stream is taken as stalled. */
+#define GATEWAY_WATCHDOG_MS 100u
+/* Start-up recovery: the line must stay quiet this long after the stop. */
+#define GATEWAY_QUIET_MS 20u
+
+typedef struct gateway_counts {
+    uint32_t samples;    /* samples forwarded */
+    uint32_t recoveries; /* recoveries begun (the first one at start-up) */
+    uint32_t stalls;     /* stream watchdog expiries */
+    uint32_t errors;     /* transactions that failed (timeout, NAKs, sensor error) */
+} gateway_counts;
+
+typedef struct gateway {
+    lep_client client;
+    lep_rated rated;
+    gateway_counts counts;
+    uint8_t state;
+    uint32_t since_ms; /* when the drain's quiet time or the last sample began */
+} gateway;
+
+/* Bind the client to the board's UART and tick, and begin the recovery. */
+void gateway_init(gateway *g);
+
+/* Feed what the UART received since the last call (or only check the
+ * clock); never blocks. Call it from the main loop, at least once per tick. */
+void gateway_poll(gateway *g);
+
+#endif

@@ -1,0 +1,222 @@
+"""`leptrino watch` (and `stream`'s keys) in a real terminal: tmux runs the
+program in a detached session, keys go in with send-keys, the screen comes
+back with capture-pane.
+
+Skipped only when tmux is not installed; CI installs it: .ci/checks/40-cli.sh
+sets LEPTRINO_REQUIRE_TMUX=1, which turns the skip into a failure."""
+
+from __future__ import annotations
+
+import os
+import re
+import shlex
+import shutil
+import signal
+import subprocess
+import time
+import uuid
+from collections.abc import Callable, Iterator
+from pathlib import Path
+
+import pytest
+
+from conftest import Csv, cli_path
+
+if shutil.which("tmux") is None:
+    if os.environ.get("LEPTRINO_REQUIRE_TMUX") == "1":
+        pytest.fail("tmux is required here (LEPTRINO_REQUIRE_TMUX=1) but not installed",
+                    pytrace=False)
+    pytest.skip("tmux is not installed", allow_module_level=True)
+
+AXES = ("Fx", "Fy", "Fz", "Mx", "My", "Mz")
+
+
+class Tmux:
+    """One detached tmux server and session of our own (own socket)."""
+
+    def __init__(self, command: str, cols: int = 100, rows: int = 30) -> None:
+        self.socket = f"leptrino-test-{uuid.uuid4().hex[:8]}"
+        self.name = "w"
+        self._tmux("new-session", "-d", "-s", self.name, "-x", str(cols), "-y", str(rows),
+                   command)
+
+    def _tmux(self, *args: str) -> str:
+        r = subprocess.run(["tmux", "-L", self.socket, *args], capture_output=True, text=True,
+                           timeout=20, check=False)
+        assert r.returncode == 0, (args, r.stderr)
+        return r.stdout
+
+    def screen(self) -> str:
+        return self._tmux("capture-pane", "-p", "-t", self.name)
+
+    def keys(self, *keys: str) -> None:
+        self._tmux("send-keys", "-t", self.name, *keys)
+
+    def resize(self, cols: int, rows: int) -> None:
+        self._tmux("resize-window", "-t", self.name, "-x", str(cols), "-y", str(rows))
+
+    def wait_for(self, pred: Callable[[str], bool], timeout: float = 20.0) -> str:
+        deadline = time.monotonic() + timeout
+        text = ""
+        while time.monotonic() < deadline:
+            text = self.screen()
+            if pred(text):
+                return text
+            time.sleep(0.1)
+        raise AssertionError(f"screen never matched; last screen:\n{text}")
+
+    def program_pid(self) -> int:
+        """The pid of leptrino: the child of the pane's shell."""
+        shell = int(self._tmux("display-message", "-p", "-t", self.name, "#{pane_pid}"))
+        children = []
+        for entry in os.listdir("/proc"):
+            if not entry.isdigit():
+                continue
+            try:
+                with open(f"/proc/{entry}/stat") as f:
+                    stat = f.read()
+            except OSError:
+                continue
+            # pid (comm) state ppid ...: comm may hold spaces, so split after ')'
+            if int(stat.rsplit(")", 1)[1].split()[1]) == shell:
+                children.append(int(entry))
+        assert len(children) == 1, children
+        return children[0]
+
+    def close(self) -> None:
+        subprocess.run(["tmux", "-L", self.socket, "kill-server"], capture_output=True,
+                       timeout=20, check=False)
+
+
+def shell_command(args: list[str], marker: str) -> str:
+    """Run leptrino in a shell that reports how it ended and whether the
+    terminal settings came back, then stays (so the pane can be read)."""
+    cmd = " ".join(shlex.quote(a) for a in [cli_path(), *args])
+    return ("sh -c " + shlex.quote(
+        f"trap : INT; before=$(stty -g); {cmd} 2>/tmp/{marker}.err; code=$?; "
+        f"if [ \"$(stty -g)\" = \"$before\" ]; then t=restored; else t=changed; fi; "
+        f"echo {marker} exit=$code tty=$t; sleep 60"))
+
+
+@pytest.fixture
+def marker() -> Iterator[str]:
+    m = f"END{uuid.uuid4().hex[:6]}"
+    yield m
+    try:
+        os.unlink(f"/tmp/{m}.err")
+    except FileNotFoundError:
+        pass
+
+
+def axis_values(screen: str) -> dict[str, float]:
+    values = {}
+    for axis in AXES:
+        m = re.search(rf"^\S?\s*{axis}\s+(-?\d+\.\d+) ", screen, re.M)
+        if m:
+            values[axis] = float(m.group(1))
+    return values
+
+
+def bar_width(screen: str) -> int:
+    m = re.search(r"^\S?\s*Fx\s+\S+\s+N\s+(\[.*\])", screen, re.M)
+    assert m, screen
+    return len(m.group(1))
+
+
+def has_all_axes(screen: str) -> bool:
+    return len(axis_values(screen)) == 6
+
+
+def test_watch_tare_untare_resize_quit(marker: str) -> None:
+    t = Tmux(shell_command(["watch", "--sim", "--sim-constant", "--sim-amplitude", "0.3",
+                            "--tare", "50"], marker))
+    try:
+        screen = t.wait_for(has_all_axes)
+        assert "PFS055YA501U6" in screen and "keys" in screen
+        assert re.search(r"rate\s+\d", screen)
+        assert "tare      off" in screen
+        # A constant load of 0.3 x rated: Fx = 150 N on a 500 N sensor, bar 30 % full.
+        loaded = axis_values(screen)
+        assert abs(loaded["Fx"] - 150.0) < 10.0, screen
+        assert "30.0 %" in screen or "29.9 %" in screen or "30.1 %" in screen
+
+        t.keys("t")
+        screen = t.wait_for(lambda s: "tare      on" in s
+                            and all(abs(v) < 1.0 for v in axis_values(s).values())
+                            and has_all_axes(s))
+        t.keys("u")
+        screen = t.wait_for(lambda s: "tare      off" in s and has_all_axes(s)
+                            and abs(axis_values(s)["Fx"] - 150.0) < 10.0)
+
+        wide = bar_width(screen)
+        t.resize(70, 24)
+        screen = t.wait_for(lambda s: has_all_axes(s) and bar_width(s) < wide)
+        assert all(len(line) <= 70 for line in screen.splitlines())
+
+        t.keys("q")
+        screen = t.wait_for(lambda s: marker in s)
+        assert f"{marker} exit=0 tty=restored" in screen
+        assert "keys" not in screen  # back on the normal screen
+        with open(f"/tmp/{marker}.err") as f:
+            assert "leptrino: watch:" in f.read()
+    finally:
+        t.close()
+
+
+def test_watch_sigterm_restores_the_terminal(marker: str) -> None:
+    t = Tmux(shell_command(["watch", "--sim"], marker))
+    try:
+        t.wait_for(has_all_axes)
+        os.kill(t.program_pid(), signal.SIGTERM)
+        screen = t.wait_for(lambda s: marker in s)
+        assert f"{marker} exit=0 tty=restored" in screen
+    finally:
+        t.close()
+
+
+def test_watch_sigusr1_tares(marker: str) -> None:
+    t = Tmux(shell_command(["watch", "--sim", "--sim-constant", "--sim-seed", "7"], marker))
+    try:
+        t.wait_for(has_all_axes)
+        os.kill(t.program_pid(), signal.SIGUSR1)
+        t.wait_for(lambda s: "tare      on" in s)
+        t.keys("q")
+        assert f"{marker} exit=0 tty=restored" in t.wait_for(lambda s: marker in s)
+    finally:
+        t.close()
+
+
+def test_watch_lost_port_ends_with_exit_4_and_a_restored_terminal(marker: str) -> None:
+    t = Tmux(shell_command(["watch", "--sim", "--sim-hangup-after", "1"], marker))
+    try:
+        screen = t.wait_for(lambda s: marker in s)
+        assert f"{marker} exit=4 tty=restored" in screen
+        with open(f"/tmp/{marker}.err") as f:
+            assert "disconnected" in f.read()
+    finally:
+        t.close()
+
+
+def test_stream_keys_tare_and_untare_in_a_terminal(marker: str, tmp_path: Path) -> None:
+    out = tmp_path / "keys.csv"
+    t = Tmux(shell_command(["stream", "--sim", "--sim-constant", "--retare", "50",
+                            "-o", str(out)], marker))
+    try:
+        deadline = time.monotonic() + 20
+        while time.monotonic() < deadline and (not out.exists() or out.stat().st_size < 20000):
+            time.sleep(0.1)
+        time.sleep(0.3)
+        t.keys("t")
+        time.sleep(1.0)
+        t.keys("u")
+        time.sleep(0.5)
+        t.keys("C-c")
+        screen = t.wait_for(lambda s: marker in s)
+        assert f"{marker} exit=0 tty=restored" in screen
+    finally:
+        t.close()
+    csv = Csv(out.read_text())
+    assert len(csv.events("tare")) == 2, csv.comments
+    fx = csv.column("fx_N")
+    assert abs(fx[0] - 100.0) < 1.0 and abs(fx[-1] - 100.0) < 1.0
+    assert len([v for v in fx if abs(v) < 0.05]) > 400

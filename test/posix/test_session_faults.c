@@ -1,0 +1,394 @@
+/* The session when things go wrong, against the virtual sensor: a stall
+ * shorter than the data timeout, dropped samples counted exactly, another
+ * reader stealing bytes from the port, a hang-up with and without
+ * reconnection, a data timeout, overload episodes. */
+#define _POSIX_C_SOURCE 200809L
+
+#include <fcntl.h>
+#include <poll.h>
+#include <pthread.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "leptrino/error.h"
+#include "leptrino/serial.h"
+#include "leptrino/session.h"
+#include "leptrino/sim.h"
+#include "session_test.h"
+#include "unity.h"
+
+void setUp(void)
+{
+}
+
+void tearDown(void)
+{
+}
+
+/* Read until b holds want samples; returns the last return code. */
+static int read_until(lep_session *s, st_batch *b, size_t want)
+{
+    int rc = LEP_OK;
+    while (b->b.n < want) {
+        rc = lep_session_read(s, &b->b, 3000);
+        if (rc != LEP_OK)
+            break;
+    }
+    return rc;
+}
+
+/* Samples missing between the delivered sequence numbers (no wrap here). */
+static uint64_t missing(const st_batch *b, size_t *holes)
+{
+    uint64_t m = 0;
+    size_t i;
+    *holes = 0;
+    for (i = 1; i < b->b.n; i++) {
+        uint16_t d = (uint16_t)(b->seq[i] - b->seq[i - 1]);
+        if (d > 1) {
+            m += d - 1u;
+            (*holes)++;
+            TEST_ASSERT_TRUE_MESSAGE(b->flags[i] & LEP_SF_GAP, "sample after a hole not flagged");
+        } else {
+            TEST_ASSERT_FALSE(b->flags[i] & LEP_SF_GAP);
+        }
+    }
+    return m;
+}
+
+static void test_a_stall_shorter_than_the_data_timeout_is_a_gap(void)
+{
+    lep_session_options o;
+    lep_session *s = open_sim(&o, NULL);
+    st_batch b;
+    lep_session_health h;
+    lep_session_event ev;
+    size_t holes, i, after = 0;
+    bool seen = false;
+
+    st_batch_init(&b, 4000);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, read_until(s, &b, 200));
+    lep_sim_stall(lep_session_sim(s), 1000); /* data timeout is 2000 ms */
+    TEST_ASSERT_EQUAL_INT(LEP_OK, read_until(s, &b, 1000));
+    lep_session_get_health(s, &h);
+    TEST_ASSERT_EQUAL_UINT64(1, h.gaps);
+    TEST_ASSERT_EQUAL_UINT64(missing(&b, &holes), h.lost);
+    TEST_ASSERT_EQUAL_size_t(1, holes);
+    TEST_ASSERT_UINT64_WITHIN(120, 1200, h.lost); /* about one second of samples */
+    TEST_ASSERT_TRUE(h.max_gap_s > 0.5);
+    TEST_ASSERT_EQUAL_UINT64(0, h.disconnects);
+    while (lep_session_next_event(s, &ev)) {
+        if (ev.type != LEP_EV_GAP)
+            continue;
+        seen = true;
+        TEST_ASSERT_EQUAL_UINT32(h.lost, ev.lost);
+        TEST_ASSERT_TRUE(ev.gap_to - ev.gap_from > 0.5);
+        for (i = 0; i < b.b.n; i++)
+            if (b.flags[i] & LEP_SF_GAP)
+                after = i;
+        TEST_ASSERT_EQUAL_UINT64(after, ev.sample);
+    }
+    TEST_ASSERT_TRUE(seen);
+    lep_session_close(s);
+    st_batch_free(&b);
+}
+
+static void test_dropped_samples_are_counted_exactly(void)
+{
+    lep_session_options o;
+    lep_session *s;
+    st_batch b;
+    lep_session_health h;
+    lep_session_event ev;
+    size_t holes, events = 0;
+    uint64_t lost_in_events = 0;
+    lep_session_options_init(&o);
+    o.sim.p_drop = 0.02;
+    o.sim.seed = 7;
+    s = open_sim(&o, &o);
+    st_batch_init(&b, 2400);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, read_until(s, &b, 2400));
+    lep_session_get_health(s, &h);
+    TEST_ASSERT_TRUE(h.lost > 10);
+    TEST_ASSERT_EQUAL_UINT64(missing(&b, &holes), h.lost);
+    TEST_ASSERT_EQUAL_UINT64(holes, h.gaps);
+    while (lep_session_next_event(s, &ev))
+        if (ev.type == LEP_EV_GAP) {
+            events++;
+            lost_in_events += ev.lost;
+        }
+    TEST_ASSERT_EQUAL_size_t(holes, events);
+    TEST_ASSERT_EQUAL_UINT64(h.lost, lost_in_events);
+    lep_session_close(s);
+    st_batch_free(&b);
+}
+
+typedef struct thief {
+    int fd;
+    st_flag stop;
+    size_t stolen;
+} thief;
+
+static void *steal(void *arg)
+{
+    thief *t = arg;
+    uint8_t buf[256];
+    while (!st_flag_is_up(&t->stop)) {
+        struct pollfd p;
+        p.fd = t->fd;
+        p.events = POLLIN;
+        p.revents = 0;
+        if (poll(&p, 1, 10) > 0) {
+            ssize_t n = read(t->fd, buf, sizeof buf);
+            if (n > 0)
+                t->stolen += (size_t)n;
+        }
+    }
+    return NULL;
+}
+
+/* Another program reading the same port takes bytes the session never sees:
+ * it must show up as gaps (and broken frames as errors), not "0 gaps". */
+static void test_another_reader_stealing_bytes_is_reported(void)
+{
+    lep_session_options o;
+    lep_session *s = open_sim(&o, NULL);
+    st_batch b;
+    lep_session_health h;
+    thief t;
+    pthread_t th;
+    size_t holes;
+
+    st_batch_init(&b, 6000);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, read_until(s, &b, 100));
+    memset(&t, 0, sizeof t);
+    st_flag_init(&t.stop);
+    /* A second open of the pty works for root despite TIOCEXCL; otherwise
+     * share the session's descriptor, as a forked program would. */
+    t.fd = open(lep_sim_pty_path(lep_session_sim(s)), O_RDWR | O_NOCTTY | O_NONBLOCK);
+    if (t.fd < 0)
+        t.fd = dup(lep_session_fd(s));
+    TEST_ASSERT_TRUE(t.fd >= 0);
+    TEST_ASSERT_EQUAL_INT(0, pthread_create(&th, NULL, steal, &t));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, read_until(s, &b, 700));
+    st_flag_raise(&t.stop);
+    pthread_join(th, NULL);
+    close(t.fd);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, read_until(s, &b, 900));
+    TEST_ASSERT_TRUE(t.stolen > 0);
+    lep_session_get_health(s, &h);
+    TEST_ASSERT_TRUE_MESSAGE(h.gaps > 0, "bytes stolen by another reader were not reported");
+    TEST_ASSERT_EQUAL_UINT64(missing(&b, &holes), h.lost);
+    TEST_ASSERT_TRUE(h.lost > 0);
+    lep_session_close(s);
+    st_batch_free(&b);
+}
+
+static void test_hangup_without_reconnect_is_reported(void)
+{
+    lep_session_options o;
+    lep_session *s = open_sim(&o, NULL);
+    st_batch b;
+    lep_session_event ev;
+    lep_session_health h;
+    int rc;
+    bool seen = false;
+
+    st_batch_init(&b, 4000);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, read_until(s, &b, 100));
+    lep_sim_hangup(lep_session_sim(s));
+    rc = read_until(s, &b, 4000);
+    TEST_ASSERT_EQUAL_INT(LEP_E_DISCONNECTED, rc);
+    TEST_ASSERT_EQUAL_INT(LEP_E_DISCONNECTED, lep_session_read(s, &b.b, 10)); /* and stays */
+    while (lep_session_next_event(s, &ev))
+        if (ev.type == LEP_EV_DISCONNECTED) {
+            seen = true;
+            TEST_ASSERT_EQUAL_INT(LEP_E_DISCONNECTED, ev.error);
+        }
+    TEST_ASSERT_TRUE(seen);
+    lep_session_get_health(s, &h);
+    TEST_ASSERT_EQUAL_UINT64(1, h.disconnects);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_stop(s)); /* the port is gone: nothing to stop */
+    lep_session_close(s);
+    st_batch_free(&b);
+}
+
+static void test_hangup_with_reconnect_resumes_and_marks_the_gap(void)
+{
+    lep_session_options o;
+    lep_session *s;
+    st_batch b;
+    lep_session_event ev;
+    lep_session_health h;
+    size_t i, resumed = 0;
+    int order = 0;
+    lep_session_options_init(&o);
+    o.reconnect = true;
+    o.sim.reopen_after_ms = 300; /* the session makes the link the port comes back under */
+    s = open_sim(&o, &o);
+    st_batch_init(&b, 3000);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, read_until(s, &b, 200));
+    lep_sim_hangup(lep_session_sim(s));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, read_until(s, &b, 1000));
+    lep_session_get_health(s, &h);
+    TEST_ASSERT_EQUAL_UINT64(1, h.disconnects);
+    TEST_ASSERT_EQUAL_UINT64(1, h.reconnects);
+    /* the stream restarted: sequence numbers begin at 0 again, flagged */
+    for (i = 1; i < b.b.n; i++)
+        if (b.seq[i] != (uint16_t)(b.seq[i - 1] + 1u)) {
+            TEST_ASSERT_EQUAL_size_t(0, resumed);
+            resumed = i;
+        }
+    TEST_ASSERT_TRUE(resumed > 0);
+    TEST_ASSERT_EQUAL_UINT16(0, b.seq[resumed]);
+    TEST_ASSERT_TRUE(b.flags[resumed] & LEP_SF_GAP);
+    TEST_ASSERT_TRUE(b.t_mono[resumed] - b.t_mono[resumed - 1] > 0.25);
+    while (lep_session_next_event(s, &ev)) {
+        if (ev.type == LEP_EV_DISCONNECTED) {
+            TEST_ASSERT_EQUAL_INT(0, order++);
+            TEST_ASSERT_EQUAL_INT(LEP_E_DISCONNECTED, ev.error);
+        } else if (ev.type == LEP_EV_RECONNECTED) {
+            TEST_ASSERT_EQUAL_INT(1, order++);
+            TEST_ASSERT_EQUAL_UINT64(resumed, ev.sample);
+            TEST_ASSERT_EQUAL_DOUBLE(b.t_mono[resumed - 1], ev.gap_from);
+            TEST_ASSERT_EQUAL_DOUBLE(b.t_mono[resumed], ev.gap_to);
+            TEST_ASSERT_TRUE(ev.lost > 200);
+        }
+    }
+    TEST_ASSERT_EQUAL_INT(2, order);
+    lep_session_close(s);
+    st_batch_free(&b);
+}
+
+static void test_data_timeout_without_reconnect(void)
+{
+    lep_session_options o;
+    lep_session *s;
+    st_batch b;
+    lep_session_event ev;
+    bool seen = false;
+    lep_session_options_init(&o);
+    o.data_timeout_ms = 300;
+    s = open_sim(&o, &o);
+    st_batch_init(&b, 4000);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, read_until(s, &b, 100));
+    lep_sim_stall(lep_session_sim(s), 1500);
+    TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, read_until(s, &b, 4000));
+    TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, lep_session_read(s, &b.b, 10));
+    while (lep_session_next_event(s, &ev))
+        if (ev.type == LEP_EV_DISCONNECTED) {
+            seen = true;
+            TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, ev.error);
+        }
+    TEST_ASSERT_TRUE(seen);
+    lep_session_close(s);
+    st_batch_free(&b);
+}
+
+static void test_overload_episodes_are_events(void)
+{
+    lep_session_options o;
+    lep_session *s;
+    st_batch b;
+    lep_session_event ev;
+    lep_session_health h;
+    size_t i, flagged = 0;
+    int begins = 0, ends = 0;
+    lep_session_options_init(&o);
+    o.sim.overload_every_s = 0.2;
+    o.sim.overload_duration_s = 0.05;
+    s = open_sim(&o, &o);
+    st_batch_init(&b, 1200);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, read_until(s, &b, 1200));
+    for (i = 0; i < b.b.n; i++) {
+        bool over = (b.status[i] & 0x04u) != 0u;
+        TEST_ASSERT_EQUAL(over, (b.flags[i] & LEP_SF_OVERLOAD) != 0u);
+        flagged += over;
+    }
+    TEST_ASSERT_TRUE(flagged > 0);
+    while (lep_session_next_event(s, &ev)) {
+        if (ev.type == LEP_EV_OVERLOAD_BEGIN) {
+            TEST_ASSERT_EQUAL_INT(begins, ends);
+            begins++;
+            if (ev.sample >= b.b.n)
+                continue; /* for a sample received but not read yet */
+            TEST_ASSERT_TRUE(b.flags[ev.sample] & LEP_SF_OVERLOAD);
+            TEST_ASSERT_FALSE(ev.sample > 0 && (b.flags[ev.sample - 1] & LEP_SF_OVERLOAD));
+        } else if (ev.type == LEP_EV_OVERLOAD_END) {
+            ends++;
+            TEST_ASSERT_EQUAL_INT(begins, ends);
+        }
+    }
+    lep_session_get_health(s, &h);
+    TEST_ASSERT_TRUE(begins >= 3);
+    TEST_ASSERT_EQUAL_UINT64((uint64_t)begins, h.overloads);
+    lep_session_close(s);
+    st_batch_free(&b);
+}
+
+/* A sensor without sequence numbers (a port path, not the in-process
+ * virtual sensor): the hole is found from arrival times and its size
+ * estimated from the elapsed time. */
+static void test_a_stall_on_a_port_is_found_from_arrival_times(void)
+{
+    lep_sim_options so;
+    lep_sim *sim = NULL;
+    lep_session_options o;
+    lep_session *s = NULL;
+    st_batch b;
+    lep_session_health h;
+    lep_session_event ev;
+    char err[256] = "";
+    bool seen = false;
+    size_t i, flagged = 0;
+
+    lep_sim_options_init(&so);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_sim_start(&so, &sim, err, sizeof err), err);
+    lep_session_options_init(&o);
+    o.port = lep_sim_port(sim);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_session_open(&o, &s, err, sizeof err), err);
+    TEST_ASSERT_NULL(lep_session_sim(s));
+    st_batch_init(&b, 4000);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, read_until(s, &b, 200));
+    lep_sim_stall(sim, 1000);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, read_until(s, &b, 1000));
+    lep_session_get_health(s, &h);
+    TEST_ASSERT_TRUE(h.gaps >= 1);
+    TEST_ASSERT_UINT64_WITHIN(150, 1200, h.lost);
+    while (lep_session_next_event(s, &ev))
+        if (ev.type == LEP_EV_GAP && ev.lost > 600) {
+            seen = true;
+            TEST_ASSERT_TRUE(ev.gap_to - ev.gap_from > 0.8);
+            TEST_ASSERT_TRUE(ev.sample < b.b.n);
+            TEST_ASSERT_TRUE(b.flags[ev.sample] & LEP_SF_GAP);
+        }
+    TEST_ASSERT_TRUE(seen);
+    for (i = 0; i < b.b.n; i++)
+        flagged += (b.flags[i] & LEP_SF_GAP) != 0u;
+    TEST_ASSERT_EQUAL_size_t(h.gaps, flagged);
+    lep_session_close(s);
+    lep_sim_stop(sim);
+    st_batch_free(&b);
+}
+
+int main(void)
+{
+    UNITY_BEGIN();
+    RUN_TEST(test_a_stall_shorter_than_the_data_timeout_is_a_gap);
+    RUN_TEST(test_dropped_samples_are_counted_exactly);
+    RUN_TEST(test_another_reader_stealing_bytes_is_reported);
+    RUN_TEST(test_hangup_without_reconnect_is_reported);
+    RUN_TEST(test_hangup_with_reconnect_resumes_and_marks_the_gap);
+    RUN_TEST(test_data_timeout_without_reconnect);
+    RUN_TEST(test_overload_episodes_are_events);
+    RUN_TEST(test_a_stall_on_a_port_is_found_from_arrival_times);
+    return UNITY_END();
+}

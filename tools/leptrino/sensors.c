@@ -1,0 +1,285 @@
+/* The sensors a command talks to: serial PORTs and virtual sensors (--sim),
+ * each opened as a session (leptrino/session.h), which does the start-up
+ * recovery, identity, rated values and filter query in one place. Also the
+ * mapping of library errors to exit codes.
+ *
+ * Virtual sensor options are not listed here: `--sim-NAME VALUE` is looked
+ * up in the simulator's own option table (lep_sim_option_find), which
+ * parses and range-checks the value; help comes from the same table. Each
+ * --sim adds a virtual sensor; a --sim-* option applies to the virtual
+ * sensor of the last --sim before it, or to every one when it comes before
+ * the first --sim. */
+#define _POSIX_C_SOURCE 200809L
+
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "cli.h"
+
+#define SIM_PREFIX "--sim-"
+
+void cli_port_opts_init(cli_port_opts *po, bool several)
+{
+    memset(po, 0, sizeof *po);
+    po->several = several;
+    lep_sim_options_init(&po->sim_defaults);
+    /* Longer than the library's 100 ms: a loaded gateway or a USB hub can be
+     * slow to answer, and the wait only matters when no sensor answers. */
+    po->timeout_ms = 500;
+}
+
+static cli_sensor *add_sensor(cli_port_opts *po, cli_args *a)
+{
+    cli_sensor *s;
+    if (po->n > 0 && !po->several) {
+        if (a->positional && po->sensor[0].port != NULL)
+            cli_args_error(a, "unexpected argument '%s' (one PORT or --sim)", a->cur);
+        else
+            cli_args_error(a, "give either PORT or --sim, not both");
+        return NULL;
+    }
+    if (po->n == CLI_MAX_SENSORS) {
+        cli_args_error(a, "at most %d sensors at once", CLI_MAX_SENSORS);
+        return NULL;
+    }
+    s = &po->sensor[po->n++];
+    memset(s, 0, sizeof *s);
+    return s;
+}
+
+/* The virtual sensor a --sim-* option applies to (NULL: the defaults). */
+static lep_sim_options *sim_target(cli_port_opts *po)
+{
+    size_t i = po->n;
+    while (i > 0) {
+        --i;
+        if (po->sensor[i].port == NULL)
+            return &po->sensor[i].sim;
+    }
+    return NULL;
+}
+
+static bool sim_option(cli_port_opts *po, cli_args *a)
+{
+    const lep_sim_option_info *info;
+    const char *value;
+    lep_sim_options *target;
+    char err[256];
+
+    if (a->positional || strncmp(a->name, SIM_PREFIX, strlen(SIM_PREFIX)) != 0)
+        return false;
+    info = lep_sim_option_find(a->name + strlen(SIM_PREFIX));
+    if (info == NULL || strcmp(info->name, a->name + strlen(SIM_PREFIX)) != 0)
+        return false; /* reported as an unknown option (only the dashed name is one) */
+    a->matched = true;
+    if (info->type == LEP_SIM_OPT_FLAG) {
+        cli_args_flag(a);
+        value = "true";
+    } else {
+        value = cli_args_value(a);
+    }
+    if (a->failed)
+        return true;
+    if (po->sim_option == NULL)
+        po->sim_option = info->name;
+    target = sim_target(po);
+    err[0] = '\0';
+    /* Before the first --sim: check it on the defaults, which every later
+     * --sim starts from; after one: that virtual sensor only. */
+    if (lep_sim_option_set(target != NULL ? target : &po->sim_defaults, info->name, value, err,
+                           sizeof err) != LEP_OK) {
+        cli_args_error(a, "option %s: %s", a->name, err[0] != '\0' ? err : "invalid value");
+        return true;
+    }
+    return true;
+}
+
+bool cli_port_option(cli_port_opts *po, cli_args *a)
+{
+    cli_sensor *s;
+    if (cli_args_is(a, NULL, "--sim")) {
+        cli_args_flag(a);
+        if (a->failed || (s = add_sensor(po, a)) == NULL)
+            return true;
+        s->sim = po->sim_defaults;
+        po->sims++;
+        snprintf(s->name, sizeof s->name, "sim%lu", (unsigned long)po->sims);
+        return true;
+    }
+    if (cli_args_is(a, "-t", "--timeout")) {
+        po->timeout_ms = (int)cli_args_uint(a, 1, 60000);
+        return true;
+    }
+    if (sim_option(po, a))
+        return true;
+    if (a->positional) {
+        cli_port_add(po, a, a->cur);
+        return true;
+    }
+    return false;
+}
+
+bool cli_port_add(cli_port_opts *po, cli_args *a, const char *port)
+{
+    cli_sensor *s;
+    if ((s = add_sensor(po, a)) == NULL)
+        return false;
+    if (port[0] == '\0') {
+        cli_args_error(a, "PORT is empty (a serial device such as /dev/ttyACM0)");
+        return false;
+    }
+    s->port = port;
+    snprintf(s->name, sizeof s->name, "%s", port);
+    return true;
+}
+
+bool cli_port_check(cli_port_opts *po, cli_args *a)
+{
+    size_t i, j;
+    if (a->failed)
+        return false;
+    if (po->n == 0) {
+        cli_args_error(a, "missing PORT (a serial device such as /dev/ttyACM0) or --sim");
+        return false;
+    }
+    if (po->sims == 0 && po->sim_option != NULL) {
+        cli_args_error(a, "option --sim-%s needs --sim", po->sim_option);
+        return false;
+    }
+    for (i = 0; i < po->n; ++i) {
+        cli_sensor *s = &po->sensor[i];
+        for (j = 0; j < i; ++j) {
+            if (s->port != NULL && po->sensor[j].port != NULL &&
+                strcmp(s->port, po->sensor[j].port) == 0) {
+                cli_args_error(a, "PORT %s is given twice", s->port);
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
+void cli_port_help(FILE *f, bool several)
+{
+    size_t i, n = lep_sim_option_count();
+    if (several)
+        fputs("Sensors (one or more; each PORT and each --sim adds one):\n"
+              "  PORT                     serial device, e.g. /dev/ttyACM0 or\n"
+              "                           /dev/serial/by-id/...\n"
+              "  --sim                    a built-in virtual sensor (may be repeated)\n",
+              f);
+    else
+        fputs("Sensor:\n"
+              "  PORT                     serial device, e.g. /dev/ttyACM0 or\n"
+              "                           /dev/serial/by-id/...\n"
+              "  --sim                    a built-in virtual sensor instead of a port\n",
+              f);
+    fputs("  -t, --timeout MS         answer timeout per command in ms (default 500)\n"
+          "\n"
+          "Virtual sensor options (with --sim; after a --sim they apply to that virtual\n"
+          "sensor, before the first --sim to all of them):\n",
+          f);
+    for (i = 0; i < n; ++i) {
+        const lep_sim_option_info *o = lep_sim_option_at(i);
+        char left[80], range[64] = "", dflt[64] = "";
+        bool number = o->type == LEP_SIM_OPT_INT || o->type == LEP_SIM_OPT_UINT ||
+                      o->type == LEP_SIM_OPT_DOUBLE;
+        int len = snprintf(left, sizeof left, "--sim-%s%s%s", o->name,
+                           o->arg != NULL ? " " : "", o->arg != NULL ? o->arg : "");
+        if (number)
+            snprintf(range, sizeof range, "%s%g..%g", o->min_exclusive ? ">" : "", o->min,
+                     o->max);
+        if (o->default_text != NULL && o->default_text[0] != '\0')
+            snprintf(dflt, sizeof dflt, "%sdefault %s", number ? ", " : "", o->default_text);
+        if (len > 23)
+            fprintf(f, "  %s\n  %-24s %s", left, "", o->help);
+        else
+            fprintf(f, "  %-24s %s", left, o->help);
+        if (range[0] != '\0' || dflt[0] != '\0')
+            fprintf(f, " (%s%s)", range, dflt);
+        fputc('\n', f);
+    }
+}
+
+int cli_exit_code(int err)
+{
+    switch (err) {
+    case LEP_OK:
+        return CLI_OK;
+    case LEP_E_TIMEOUT:
+    case LEP_E_NO_SYNC:
+        return CLI_TIMEOUT;
+    case LEP_E_DISCONNECTED:
+        return CLI_DISCONNECTED;
+    case LEP_E_SENSOR:
+    case LEP_E_NAK:
+        return CLI_SENSOR;
+    case LEP_E_NOT_FOUND:
+    case LEP_E_NOT_TTY:
+        return CLI_NOT_FOUND;
+    case LEP_E_BUSY:
+        return CLI_BUSY;
+    case LEP_E_PERMISSION:
+        return CLI_PERMISSION;
+    default:
+        return CLI_FAIL;
+    }
+}
+
+int cli_session_fail(lep_session *s, const char *cmd, const char *port, const char *what,
+                     int err)
+{
+    lep_client *c = s != NULL ? lep_session_client(s) : NULL;
+    if (err == LEP_E_SENSOR && c != NULL) {
+        uint8_t r = lep_client_last_result(c);
+        fprintf(stderr, "leptrino: %s: %s: %s: the sensor answered result 0x%02X (%s)\n", cmd,
+                port, what, (unsigned)r, lep_result_str(r));
+    } else if (err == LEP_E_DISCONNECTED) {
+        fprintf(stderr, "leptrino: %s: %s: %s: disconnected (the port went away)\n", cmd, port,
+                what);
+    } else {
+        fprintf(stderr, "leptrino: %s: %s: %s: %s\n", cmd, port, what, lep_strerror(err));
+    }
+    return cli_exit_code(err) == CLI_OK ? CLI_FAIL : cli_exit_code(err);
+}
+
+int cli_sensors_open(cli_port_opts *po, const lep_session_options *o, const char *cmd)
+{
+    size_t i;
+    for (i = 0; i < po->n; ++i) {
+        cli_sensor *s = &po->sensor[i];
+        lep_session_options so = *o;
+        char err[512];
+        int rc;
+        so.timeout_ms = po->timeout_ms;
+        so.port = s->port;
+        so.use_sim = s->port == NULL;
+        if (so.use_sim)
+            so.sim = s->sim;
+        err[0] = '\0';
+        rc = lep_session_open(&so, &s->session, err, sizeof err);
+        if (rc != LEP_OK) {
+            int code = cli_exit_code(rc);
+            s->session = NULL;
+            if (so.use_sim && code == CLI_NOT_FOUND)
+                code = CLI_FAIL; /* e.g. a missing --sim-replay file: not a port problem */
+            if (rc == LEP_E_ARG || rc == LEP_E_VALUE)
+                code = CLI_USAGE; /* options that do not go together, a cut-off too high */
+            fprintf(stderr, "leptrino: %s: %s\n", cmd,
+                    err[0] != '\0' ? err : lep_strerror(rc));
+            cli_sensors_close(po);
+            return code == CLI_OK ? CLI_FAIL : code;
+        }
+    }
+    return CLI_OK;
+}
+
+void cli_sensors_close(cli_port_opts *po)
+{
+    size_t i;
+    for (i = 0; i < po->n; ++i) {
+        lep_session_close(po->sensor[i].session);
+        po->sensor[i].session = NULL;
+    }
+}
