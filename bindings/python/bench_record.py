@@ -46,10 +46,13 @@ def main() -> None:
     args = ap.parse_args()
 
     be = leptrino.get_backend(args.backend)
-    rec_us, rec_n, it_us, it_n, lost = [], [], [], [], 0
+    rec_us, rec_n, it_us, it_n, c_us, lost = [], [], [], [], [], 0
     with leptrino.Sensor(sim={"rate": args.rate}, latency=args.latency,
                          backend=args.backend) as sensor:
         sensor.record(count=100)  # warm up (allocations, first batch)
+        # record() in a running stream (as a long recording amortises the
+        # start and stop), then the start + stop themselves.
+        sensor.start()
         for _ in range(args.runs):
             c0 = time.thread_time()
             rec = sensor.record(seconds=args.seconds)
@@ -57,6 +60,28 @@ def main() -> None:
             rec_us.append((c1 - c0) / len(rec) * 1e6)
             rec_n.append(len(rec))
             lost += rec.missing()
+        sensor.stop()
+        ss_ms = []
+        for _ in range(args.runs):
+            c0 = time.thread_time()
+            sensor.start()
+            sensor.stop()
+            ss_ms.append((time.thread_time() - c0) * 1e3)
+        # The session alone: lep_session_read into one big batch, no Python
+        # around it but the loop (what record() costs above it is Python's).
+        from leptrino.sensor import _Arrays
+
+        arrays = _Arrays(be, int(args.rate * args.seconds * 1.2) + 1000)
+        for _ in range(args.runs):
+            arrays.c.n = 0
+            sensor.start()
+            end = time.monotonic() + args.seconds
+            c0 = time.thread_time()
+            while time.monotonic() < end:
+                be.lib.lep_session_read(sensor._s, arrays.c, 250)
+            c1 = time.thread_time()
+            sensor.stop()
+            c_us.append((c1 - c0) / max(1, arrays.n) * 1e6)
         for _ in range(args.runs):
             n = 0
             c0 = time.thread_time()
@@ -68,6 +93,7 @@ def main() -> None:
             it_n.append(n)
 
     rec_med, it_med = statistics.median(rec_us), statistics.median(it_us)
+    c_med = statistics.median(c_us)
     result = {
         "backend": be.name,
         "rate_hz": args.rate,
@@ -78,6 +104,8 @@ def main() -> None:
         "record_runs_us": [round(x, 3) for x in rec_us],
         "record_samples": statistics.median(rec_n),
         "record_lost": lost,
+        "session_read_only_us_per_sample": round(c_med, 3),
+        "start_stop_ms_cpu": round(statistics.median(ss_ms), 3),
         "iterate_us_per_sample": round(it_med, 3),
         "iterate_runs_us": [round(x, 3) for x in it_us],
         "iterate_samples": statistics.median(it_n),
@@ -92,6 +120,9 @@ def main() -> None:
     print(f"record():   median {rec_med:.2f} us CPU per sample "
           f"(runs: {', '.join(f'{x:.2f}' for x in rec_us)}) "
           f"= {rec_med * args.rate / 1e4:.2f} % of one core; target <= 2 us")
+    print(f"(the session's reads alone: median {c_med:.2f} us CPU per sample; "
+          f"Python adds {rec_med - c_med:.2f} us to record(); a start + stop costs "
+          f"{statistics.median(ss_ms):.2f} ms CPU)")
     print(f"iterating:  median {it_med:.2f} us CPU per sample "
           f"(runs: {', '.join(f'{x:.2f}' for x in it_us)}) "
           f"= {it_med * args.rate / 1e4:.2f} % of one core; target <= 10 us")
