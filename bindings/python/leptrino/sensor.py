@@ -183,6 +183,8 @@ class Sensor:
         self.events: List[SessionEvent] = []  # events not yet handed out with data
         self._delivered = 0
         self._decimate = int(decimate)
+        self._reconnect = bool(reconnect)
+        self._data_timeout_s = max(1, _ms(data_timeout, "data_timeout")) / 1000
 
     # -- life cycle ----------------------------------------------------------
     def __enter__(self) -> "Sensor":
@@ -259,6 +261,26 @@ class Sensor:
         if a.shape != (3,):
             raise ValueError("shift is (x, y, z) in metres")
         return [float(x) for x in a]
+
+    def _stream_lost(self, lost_seen: bool, silent_s: float) -> bool:
+        """After a read that timed out: has the session given the stream up?
+        It says so with a disconnected event since the last data (after
+        data_timeout of silence; with reconnect it keeps trying instead). The
+        silence bound is a fallback, should no event come."""
+        if self._reconnect:
+            return False
+        return lost_seen or silent_s >= self._data_timeout_s + self._timeout_ms / 1000
+
+    @staticmethod
+    def _lost_state(lost_seen: bool, new: List[SessionEvent], got_data: bool) -> bool:
+        """Whether a disconnect is pending: set by a disconnected event, cleared
+        by data or a reconnected event."""
+        for e in new:
+            if e.type == "disconnected":
+                lost_seen = True
+            elif e.type == "reconnected":
+                lost_seen = False
+        return lost_seen and not got_data
 
     def _drain_events(self, base: int = 0) -> List[SessionEvent]:
         """The queued events, .sample counted from the stream's sample base."""
@@ -537,6 +559,7 @@ class Sensor:
             now = float(lib.lep_monotonic_seconds())
             end = now + seconds if seconds is not None else math.inf
             last_data = now
+            lost_seen = False
             while True:
                 n = arrays.n
                 if count is not None:
@@ -554,14 +577,16 @@ class Sensor:
                 arrays.c.cap = n + room
                 rc = lib.lep_session_read(s, arrays.c, max(1, int(wait_s * 1000)))
                 self._delivered += arrays.n - n
-                events += self._drain_events(base)
+                new = self._drain_events(base)
+                events += new
                 now = float(lib.lep_monotonic_seconds())
                 if arrays.n > n:
                     last_data = now
+                lost_seen = self._lost_state(lost_seen, new, arrays.n > n)
                 if rc == K.LEP_E_END:
                     break
-                if rc == K.LEP_E_TIMEOUT and now - last_data < self._timeout_ms / 1000:
-                    continue  # a slice of the wait, not the timeout
+                if rc == K.LEP_E_TIMEOUT and not self._stream_lost(lost_seen, now - last_data):
+                    continue  # nothing in this slice of the wait
                 if rc < 0:
                     exc = error_for(be, rc, f"{self.port}: recording")
                     exc.recording = arrays.result(events, self)  # type: ignore[attr-defined]
@@ -670,6 +695,8 @@ class Stream:
         self._arrays = _Arrays(sensor._be, _ITER_BATCH)
         self._pending: Iterator[Sample] = iter(())
         self._base = 0
+        self._last_data: Optional[float] = None
+        self._lost_seen = False
         self.events: List[SessionEvent] = []
 
     def __enter__(self) -> "Stream":
@@ -739,16 +766,24 @@ class Stream:
                     raise StopIteration
                 wait = max(1, min(wait, int(math.ceil(left * 1000))))
             rc = lib.lep_session_read(s._live(), a.c, wait)
+            now = float(lib.lep_monotonic_seconds())
             s._delivered += a.n
-            self.events += s._drain_events(self._base)
+            new = s._drain_events(self._base)
+            self.events += new
             n = a.n
             if n:
+                self._last_data = now
+                self._lost_seen = False
                 break
             if rc == K.LEP_E_END:
                 self.close()
                 raise StopIteration
-            if rc == K.LEP_E_TIMEOUT and wait < s._timeout_ms:
-                continue  # the seconds ran out, checked above
+            if self._last_data is None:
+                self._last_data = now
+            self._lost_seen = s._lost_state(self._lost_seen, new, False)
+            if rc == K.LEP_E_TIMEOUT and not s._stream_lost(self._lost_seen,
+                                                            now - self._last_data):
+                continue  # nothing in this wait (or the seconds ran out, checked above)
             if rc < 0:
                 s._check(rc, None, f"{s.port}: waiting for stream data")
         t = a.t_mono[:n].tolist()

@@ -271,3 +271,32 @@ def test_same_rows_as_the_c_tool(backend: str, tmp_path: Path, cli_args: list,
     c, py = _normalised(c_file), _normalised(py_file)
     assert len(c) == len(py) >= 302
     assert c == py
+
+
+def test_stall_shorter_than_the_data_timeout_is_a_gap(backend: str) -> None:
+    with leptrino.Sensor(sim={"stall": 300, "stall_after": 0.3}, timeout=0.1,
+                         backend=backend) as s:
+        n, gap_events = 0, 0
+        with s.stream(seconds=1.2) as st:
+            for x in st:  # a 0.3 s hole, three times the answer timeout: no error
+                n += 1
+            gap_events = sum(1 for e in st.events if e.type == "gap")
+        assert n > 500 and gap_events >= 1
+        assert s.health.gaps >= 1 and s.health.max_gap_s >= 0.25
+
+
+def test_data_timeout_ends_the_stream(backend: str) -> None:
+    import time
+
+    with leptrino.Sensor(sim={"stall": 2500, "stall_after": 0.2}, data_timeout=0.5,
+                         backend=backend) as s:
+        t0 = time.monotonic()
+        with pytest.raises(leptrino.TimeoutError) as info:
+            s.record(seconds=10.0)
+        # given up after the data timeout, not the 10 s (the stop then waits for
+        # the stalled sensor's answer)
+        assert time.monotonic() - t0 < 6.0
+        partial = info.value.recording  # type: ignore[attr-defined]
+        assert 100 < len(partial) and partial.t[-1] - partial.t[0] < 1.0
+        lost = [e for e in partial.events if e.type == "disconnected"]
+        assert lost and lost[0].error == K.LEP_E_TIMEOUT
