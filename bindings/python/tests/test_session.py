@@ -32,6 +32,15 @@ def test_session_runs_its_own_virtual_sensor(backend: str) -> None:
         leptrino.Sensor(sim={"no_such": 1}, backend=backend)
     with pytest.raises(ValueError):
         leptrino.Sensor(backend=backend)  # neither a port nor sim
+    sim = leptrino.Simulator(backend=backend, model="CFS018CA201U")
+    try:
+        with pytest.raises(ValueError):
+            leptrino.Sensor(sim, sim=True, backend=backend)  # both
+        with leptrino.Sensor(sim, backend=backend) as s:  # a Simulator is its port
+            assert s.port == sim.port and s.product_info.model == "CFS018CA201U"
+            assert s.metadata["sim"] is False  # the session sees a serial port
+    finally:
+        sim.stop()
 
 
 def test_tare_mid_stream_never_stalls(backend: str) -> None:
