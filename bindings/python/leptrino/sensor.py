@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import json
 import math
-from dataclasses import replace
 import time
 import warnings
 from typing import Any, Dict, Iterator, List, Mapping, Optional, Sequence, Tuple, Union
@@ -180,7 +179,9 @@ class Sensor:
         self._si = be.doubles(K.LEP_AXES)
         self._ev = be.new("lep_session_event")
         self._offsets = be.doubles(K.LEP_AXES)
-        self.events: List[SessionEvent] = []  # events not yet handed out with data
+        #: events read by tare(wait=True) in a stream of its own (not a recording's)
+        self.events: List[SessionEvent] = []
+        self._start_mono = 0.0
         self._delivered = 0
         self._decimate = int(decimate)
         self._reconnect = bool(reconnect)
@@ -289,7 +290,10 @@ class Sensor:
         while s is not None and be.lib.lep_session_next_event(s, ev):
             out.append(SessionEvent(
                 type=EVENT_NAMES.get(int(ev.type), str(int(ev.type))),
-                sample=max(0, int(ev.sample) - base), t=float(ev.t_mono), t_utc=float(ev.t_utc),
+                # queued before this stream started (an untare while stopped): at its start
+                sample=(max(0, int(ev.sample) - base) if float(ev.t_mono) >= self._start_mono
+                        else 0),
+                t=float(ev.t_mono), t_utc=float(ev.t_utc),
                 gap_from=float(ev.gap_from), gap_to=float(ev.gap_to), lost=int(ev.lost),
                 error=int(ev.error), axes=int(ev.axes), status=int(ev.status),
                 tare=tuple(float(ev.tare[i]) for i in range(K.LEP_AXES)),  # type: ignore[arg-type]
@@ -509,6 +513,7 @@ class Sensor:
         """Start the stream (stream(), record() and tare() do it themselves)."""
         self._check(self._be.lib.lep_session_start(self._live()), K.LEP_CMD_START)
         self._delivered = 0  # samples read since the start: the events' .sample base
+        self._start_mono = float(self._metadata_struct().start_mono)
 
     def stop(self) -> None:
         """Stop the stream; samples received and not yet read are dropped."""
@@ -548,9 +553,8 @@ class Sensor:
             assert seconds is not None
             cap = int(seconds * rate * 1.05) + 64
         arrays = _Arrays(be, cap)
-        events, self.events = self.events, []
+        events: List[SessionEvent] = []
         started = False
-        events = [replace(e, sample=0) for e in events]  # from before: at its start
         if not lib.lep_session_streaming(s):
             self.start()
             started = True

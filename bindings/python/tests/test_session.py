@@ -74,10 +74,11 @@ def test_tare_over_seconds_and_untare(backend: str) -> None:
         s.untare()
         rec = s.record(count=50)
         assert np.all(rec.zeroed == 1000.0)
-        # the tare's event (held since tare() read the stream), then the untare's
+        # the untare (done while stopped) applies from the recording's first row;
+        # the tare's own event stayed with the stream tare() ran for it
         tares = [e for e in rec.events if e.type == "tare"]
-        assert len(tares) == 2
-        assert tares[0].tare == (1000.0,) * 6 and tares[1].tare == (0.0,) * 6
+        assert len(tares) == 1 and tares[0].tare == (0.0,) * 6 and tares[0].sample == 0
+        assert [e.tare for e in s.events if e.type == "tare"] == [(1000.0,) * 6]
 
 
 def test_lowpass_and_decimate(backend: str) -> None:
