@@ -23,7 +23,7 @@ test-c:
 test-python:
 	$(PYTHON) -m venv $(VENV)
 	$(VENV)/bin/python -m pip install -q --upgrade pip
-	$(VENV)/bin/python -m pip install -q "./bindings/python[test]"
+	$(VENV)/bin/python -m pip install -q "./bindings/python[test,bridge]"
 	$(VENV)/bin/python -m pytest -q -p no:cacheprovider bindings/python/tests
 
 sanitize:
