@@ -13,4 +13,5 @@ python3 -m venv build/bridge-venv
 PYTHONDONTWRITEBYTECODE=1 timeout 600 "$py" -m pytest -q -p no:cacheprovider \
   bindings/python/tests/test_bridge_wire.py bindings/python/tests/test_bridge_zenoh.py \
   bindings/python/tests/test_bridge_mcap.py
+"$(dirname "$py")/leptrino-bridge" --help >/dev/null   # the console script is installed
 (cd /tmp && timeout 300 "$py" -m leptrino.bridge.bench --quick)
