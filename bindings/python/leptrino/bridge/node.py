@@ -19,7 +19,7 @@ import time
 from dataclasses import dataclass, field
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
-from .. import _constants as K
+from ..codec import sample_to_si
 from ..errors import LeptrinoError
 from ..sensor import Sensor
 from . import cdr
@@ -143,10 +143,7 @@ class SensorNode:
             spec.port, opts.timeout_s, sim=spec.sim, tare=opts.tare_at_start,
             lowpass=opts.lowpass_hz, rotation=opts.rotation, reconnect=True,
             latency=opts.latency_s, data_timeout=opts.data_timeout_s)
-        # wrench_raw: counts * rated / full scale, the operations of
-        # lep_sample_to_si in its order (bit-identical to the session's SI
-        # values when nothing is applied; the tests compare them)
-        self._rated = tuple(float(v) for v in self.sensor.rated)
+        self._rated = self.sensor.rated  # wrench_raw: lep_sample_to_si(raw, rated)
         try:
             self._enc = cdr.WrenchStampedEncoder(spec.frame_id)
         except ValueError:
@@ -236,8 +233,7 @@ class SensorNode:
         stream = self.sensor.stream()
         it = iter(stream)
         enc = self._enc.encode
-        rx, ry, rz_, qx, qy, qz = self._rated
-        full = float(K.LEP_RAW_FULL_SCALE)
+        rated = self._rated
         wrench, wrench_raw, c = self.wrench, self.wrench_raw, self.counters
         assert wrench is not None and wrench_raw is not None
         failing = False
@@ -269,10 +265,8 @@ class SensorNode:
             last_ns = ns
             sec, nsec = divmod(ns, 1_000_000_000)
             wrench.send(enc(sec, nsec, s.si), ns)
-            r = s.raw
-            wrench_raw.send(enc(sec, nsec, (r[0] * rx / full, r[1] * ry / full,
-                                            r[2] * rz_ / full, r[3] * qx / full,
-                                            r[4] * qy / full, r[5] * qz / full)), ns)
+            # the library's unit conversion, sample by sample (about 10 us)
+            wrench_raw.send(enc(sec, nsec, sample_to_si(s.raw, rated)), ns)
             c.samples += 1
             c.last_sample_mono = s.t
             if stream.events:
