@@ -694,15 +694,18 @@ LEP_NOINLINE static void decode_all(lep_frame_decoder *d, const uint8_t *data, s
 size_t lep_frame_decoder_feed(lep_frame_decoder *d, const uint8_t *data, size_t len,
                               lep_frame_event *ev)
 {
+#ifndef FRAME_FAST
     size_t i;
+#endif
     if (d == NULL || ev == NULL || data == NULL) {
         return feed_bad_call(d, len, ev);
     }
 #ifdef FRAME_FAST
-    if (len > 1) {
-        return decode_one_event(d, data, len, ev);
+    if (len == 1) {
+        return feed_byte(d, data[0], ev);
     }
-#endif
+    return decode_one_event(d, data, len, ev);
+#else
     ev->type = LEP_FRAME_NONE;
     for (i = 0; i < len; i++) {
         (void)feed_byte(d, data[i], ev);
@@ -711,27 +714,35 @@ size_t lep_frame_decoder_feed(lep_frame_decoder *d, const uint8_t *data, size_t 
         }
     }
     return len;
+#endif
 }
 
 int lep_frame_decoder_feed_all(lep_frame_decoder *d, const uint8_t *data, size_t len,
                                lep_frame_handler on_event, void *user)
 {
     lep_frame_event ev;
+#ifndef FRAME_FAST
     size_t i;
+#endif
     if (d == NULL || on_event == NULL || (data == NULL && len > 0)) {
         return LEP_E_ARG;
     }
 #ifdef FRAME_FAST
-    if (len > 1) {
+    if (len == 1) {
+        (void)feed_byte(d, data[0], &ev);
+        if (ev.type != LEP_FRAME_NONE) {
+            on_event(user, &ev);
+        }
+    } else if (len > 1) {
         decode_all(d, data, len, on_event, user);
-        return LEP_OK;
     }
-#endif
+#else
     for (i = 0; i < len; i++) {
         (void)feed_byte(d, data[i], &ev);
         if (ev.type != LEP_FRAME_NONE) {
             on_event(user, &ev);
         }
     }
+#endif
     return LEP_OK;
 }
