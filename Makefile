@@ -1,11 +1,12 @@
 # Convenience front door; CMake does the work (see CMakePresets.json).
 #   make demo   build everything, then stream 3 s from the virtual sensor
 #   make test   build everything and run the whole suite (C via ctest, Python via pytest)
+#   make bench  the figures of BENCHMARKS.md (leptrino-bench, medians of 3 runs)
 PYTHON ?= python3
 VENV ?= build/venv
 LEPTRINO := build/dev/tools/leptrino/leptrino
 
-.PHONY: all demo test test-c test-python sanitize clang core coverage clean
+.PHONY: all demo test test-c test-python sanitize clang core coverage clean bench
 
 all:
 	cmake --preset dev
@@ -22,7 +23,7 @@ test-c:
 test-python:
 	$(PYTHON) -m venv $(VENV)
 	$(VENV)/bin/python -m pip install -q --upgrade pip
-	$(VENV)/bin/python -m pip install -q "./bindings/python[test]"
+	$(VENV)/bin/python -m pip install -q "./bindings/python[test,bridge]"
 	$(VENV)/bin/python -m pytest -q -p no:cacheprovider bindings/python/tests
 
 sanitize:
@@ -45,6 +46,10 @@ clang:
 	CC=clang cmake -S . -B build/clang -G Ninja -DLEPTRINO_BUILD_TESTS=ON
 	cmake --build build/clang
 	ctest --test-dir build/clang --output-on-failure
+
+# Every figure of BENCHMARKS.md: leptrino-bench run 3 times, medians (a few minutes).
+bench: all
+	$(PYTHON) bench/bench_runs.py --runs 3 --out build/dev/bench.json build/dev/bench/leptrino-bench
 
 clean:
 	rm -rf build

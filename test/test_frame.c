@@ -522,6 +522,50 @@ static void test_decoder_not_busy_after_bcc_0x10(void)
     TEST_ASSERT_GREATER_THAN_size_t(0u, found);
 }
 
+/* A frame of 130 stuffed DLEs is over-long at the 129th, however it is split,
+ * and the frame after it still comes through. */
+static void test_overlong_run_of_stuffed_dles(void)
+{
+    static const uint8_t pi[] = {0x10, 0x02, 0x04, 0xFF, 0x2A, 0x00, 0x10, 0x03, 0xD2};
+    static uint8_t in[2u + 2u * 130u + 3u + sizeof(pi)];
+    size_t len = 0;
+    size_t i;
+    in[len++] = LEP_DLE;
+    in[len++] = LEP_STX;
+    for (i = 0; i < 130u; i++) {
+        in[len++] = LEP_DLE;
+        in[len++] = LEP_DLE;
+    }
+    in[len++] = LEP_DLE;
+    in[len++] = LEP_ETX;
+    in[len++] = 0x13;
+    memcpy(in + len, pi, sizeof(pi));
+    len += sizeof(pi);
+    memset(&g_want, 0, sizeof(g_want));
+    g_want.n = 2;
+    g_want.ev[0].type = LEP_FRAME_ERROR;
+    g_want.ev[0].error = LEP_E_TOO_LONG;
+    g_want.ev[1].type = LEP_FRAME_MESSAGE;
+    g_want.ev[1].len = 4;
+    memcpy(g_want.ev[1].msg, pi + 2, 4);
+    g_want.stats.messages = 1;
+    g_want.stats.overruns = 1;
+    g_want.stats.bytes_discarded = (uint32_t)(len - sizeof(pi));
+    for (i = 0; i <= API_MIXED; i++) {
+        uint32_t seed;
+        g_api = (enum api)i;
+        run(in, len, SPLIT_WHOLE, 0, &g_got);
+        expect_same(&g_want, &g_got, "130 stuffed DLEs, whole");
+        run(in, len, SPLIT_BYTES, 0, &g_got);
+        expect_same(&g_want, &g_got, "130 stuffed DLEs, byte by byte");
+        for (seed = 1; seed <= 16u; seed++) {
+            run(in, len, SPLIT_RANDOM, seed * 0x9E3779B9u, &g_got);
+            expect_same(&g_want, &g_got, "130 stuffed DLEs, random splits");
+        }
+    }
+    g_api = API_FEED;
+}
+
 /* The event for a frame is returned as soon as its last byte is consumed:
  * bytes after it are left to the next call. */
 static void test_decoder_stops_after_each_event(void)
@@ -659,6 +703,7 @@ int main(void)
     RUN_TEST(test_decoder_feed_bad_arguments);
     RUN_TEST(test_decoder_feed_all_arguments);
     RUN_TEST(test_decoder_not_busy_after_bcc_0x10);
+    RUN_TEST(test_overlong_run_of_stuffed_dles);
     RUN_TEST(test_decoder_stops_after_each_event);
     RUN_TEST(test_empty_frame_is_not_delivered);
     RUN_TEST(test_random_messages_round_trip);

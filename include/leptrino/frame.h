@@ -86,7 +86,8 @@ LEP_API void lep_frame_decoder_init(lep_frame_decoder *d);
 /* Consume bytes of data[0..len) up to and including the first one that
  * completes an event, and return how many were consumed (at least 1 when
  * len > 0). Call again with the rest. ev->type is LEP_FRAME_NONE when all
- * input was consumed without an event. Costs O(len), allocates nothing,
+ * input was consumed without an event (the other fields of ev are set only
+ * with the event types that use them). Costs O(len), allocates nothing,
  * keeps no pointer to data; ev->msg points into d.
  *
  * Bad arguments: when d or ev is NULL, or data is NULL with len > 0, nothing

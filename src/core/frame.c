@@ -183,6 +183,8 @@ static void reject(lep_frame_decoder *d, lep_frame_event *ev, int error, size_t 
     }
     ev->type = LEP_FRAME_ERROR;
     ev->error = error;
+    ev->msg = NULL;
+    ev->len = 0;
 }
 
 /* One byte (the path of a caller fed byte by byte, e.g. from an ISR ring
@@ -192,10 +194,7 @@ static void reject(lep_frame_decoder *d, lep_frame_event *ev, int error, size_t 
 static size_t feed_byte(lep_frame_decoder *d, uint8_t b, lep_frame_event *ev)
 {
     size_t nx;
-    ev->type = LEP_FRAME_NONE;
-    ev->error = LEP_OK;
-    ev->msg = NULL;
-    ev->len = 0;
+    ev->type = LEP_FRAME_NONE; /* the other fields only with the events that use them */
     if (d->state == S_MSG && b != LEP_DLE && d->len < LEP_MAX_MESSAGE) {
         d->buf[d->len++] = b; /* the usual byte: a message byte */
         d->bcc ^= b;
@@ -248,6 +247,7 @@ static size_t feed_byte(lep_frame_decoder *d, uint8_t b, lep_frame_event *ev)
             d->state = b == LEP_DLE ? S_BCC_DLE : S_IDLE;
             d->stats.messages++;
             ev->type = LEP_FRAME_MESSAGE;
+            ev->error = LEP_OK;
             ev->msg = d->buf;
             ev->len = d->len;
         } else if (b == LEP_DLE) {
@@ -331,6 +331,9 @@ nak:
     d->stats.naks++;
     d->state = S_IDLE;
     ev->type = LEP_FRAME_NAK;
+    ev->error = LEP_OK;
+    ev->msg = NULL;
+    ev->len = 0;
     return 1;
 }
 
@@ -342,6 +345,9 @@ nak:
  * that runs out of input stores its number and returns. With no handler it
  * returns at the first event (lep_frame_decoder_feed); with one it hands each
  * event over and goes on in the next state (lep_frame_decoder_feed_all). */
+#if defined(__GNUC__) && defined(__OPTIMIZE__) && !defined(__OPTIMIZE_SIZE__)
+__attribute__((always_inline)) inline /* a copy per entry point, not at -O0/-Os */
+#endif
 static size_t decode(lep_frame_decoder *d, const uint8_t *data, size_t len, lep_frame_event *ev,
                      lep_frame_handler on_event, void *user)
 {
@@ -418,14 +424,11 @@ begin:
     n = 0;
     acc = 0;
 msg: /* inside a frame */
-    if (n <= LEP_MAX_MESSAGE - W_SIZE && (size_t)(end - p) >= W_SIZE) {
-        /* Whole words while they hold no DLE; p and dst advance together, and
-         * the last word starts at most at `last` (input and buf both fit). */
-        size_t room = LEP_MAX_MESSAGE - W_SIZE - n;
-        size_t avail = (size_t)(end - p) - W_SIZE;
-        const uint8_t *last = p + (room < avail ? room : avail);
+    {
+        /* Whole words while they hold no DLE and fit in the input and in buf. */
         uint8_t *dst = buf + n;
-        for (;;) {
+        uint8_t *const dst_last = buf + (LEP_MAX_MESSAGE - W_SIZE);
+        while ((size_t)(end - p) >= W_SIZE && dst <= dst_last) {
             word_t w;
             word_t m;
             memcpy(&w, p, W_SIZE);
@@ -441,9 +444,6 @@ msg: /* inside a frame */
             acc ^= w;
             p += W_SIZE;
             dst += W_SIZE;
-            if (p > last) {
-                break;
-            }
         }
         n = (size_t)(dst - buf);
     }
@@ -485,6 +485,13 @@ msg_dle: /* inside a frame, after a DLE */
         buf[n++] = LEP_DLE;
         acc ^= LEP_DLE;
         x++;
+        /* Runs of stuffed DLEs (payloads full of 0x10) pair by pair. */
+        while ((size_t)(end - p) >= 2u && p[0] == LEP_DLE && p[1] == LEP_DLE && n < LEP_MAX_MESSAGE) {
+            buf[n++] = LEP_DLE;
+            acc ^= LEP_DLE;
+            x++;
+            p += 2;
+        }
         goto msg;
     }
     if (b == LEP_STX) {
@@ -611,9 +618,6 @@ skip_bcc: /* the BCC of a rejected frame; a DLE may be it or the next frame's DL
 suspend_between: /* all input consumed between frames, no event */
     d->state = (uint8_t)st;
     ev->type = LEP_FRAME_NONE;
-    ev->error = LEP_OK;
-    ev->msg = NULL;
-    ev->len = 0;
     return len;
 
 suspend: /* all input consumed inside a frame, no event */
@@ -622,9 +626,6 @@ suspend: /* all input consumed inside a frame, no event */
     d->raw = (uint16_t)x;
     d->bcc = fold(acc);
     ev->type = LEP_FRAME_NONE;
-    ev->error = LEP_OK;
-    ev->msg = NULL;
-    ev->len = 0;
     return len;
 
 nak: /* DLE NAK completed: deliver it and hunt for the next frame */
@@ -642,8 +643,6 @@ nak: /* DLE NAK completed: deliver it and hunt for the next frame */
 
 fail: /* a frame rejected: wire is its count of wire bytes */
     reject(d, ev, error, wire);
-    ev->msg = NULL;
-    ev->len = 0;
     if (on_event == NULL) {
         d->state = (uint8_t)st;
         return (size_t)(p - data);
@@ -658,6 +657,26 @@ fail: /* a frame rejected: wire is its count of wire bytes */
     goto idle;
 }
 
+/* decode() specialised for each entry point (the handler a constant), kept
+ * out of line so the one-byte path stays a small function. */
+#if defined(__GNUC__)
+#define LEP_NOINLINE __attribute__((noinline))
+#else
+#define LEP_NOINLINE
+#endif
+LEP_NOINLINE static size_t decode_one_event(lep_frame_decoder *d, const uint8_t *data, size_t len,
+                                            lep_frame_event *ev)
+{
+    return decode(d, data, len, ev, NULL, NULL);
+}
+
+LEP_NOINLINE static void decode_all(lep_frame_decoder *d, const uint8_t *data, size_t len,
+                                    lep_frame_handler on_event, void *user)
+{
+    lep_frame_event ev;
+    (void)decode(d, data, len, &ev, on_event, user);
+}
+
 size_t lep_frame_decoder_feed(lep_frame_decoder *d, const uint8_t *data, size_t len,
                               lep_frame_event *ev)
 {
@@ -667,7 +686,7 @@ size_t lep_frame_decoder_feed(lep_frame_decoder *d, const uint8_t *data, size_t 
     if (len == 1) {
         return feed_byte(d, data[0], ev);
     }
-    return decode(d, data, len, ev, NULL, NULL);
+    return decode_one_event(d, data, len, ev);
 }
 
 int lep_frame_decoder_feed_all(lep_frame_decoder *d, const uint8_t *data, size_t len,
@@ -683,7 +702,7 @@ int lep_frame_decoder_feed_all(lep_frame_decoder *d, const uint8_t *data, size_t
             on_event(user, &ev);
         }
     } else if (len > 1) {
-        (void)decode(d, data, len, &ev, on_event, user);
+        decode_all(d, data, len, on_event, user);
     }
     return LEP_OK;
 }

@@ -240,6 +240,7 @@ int lep_sim_option_set(lep_sim_options *o, const char *name, const char *value, 
                        size_t errlen);
 int lep_sim_option_get(const lep_sim_options *o, const char *name, char *buf, size_t buflen);
 int lep_sim_options_check(const lep_sim_options *o, char *err, size_t errlen);
+int lep_sim_stream_sample(const lep_sim *s, uint64_t k, uint8_t filter, lep_sample *out);
 
 /* record.h */
 typedef struct lep_record_batch {

@@ -460,6 +460,7 @@ FUNCTIONS: Dict[str, Tuple[Any, List[Any]]] = {
     "lep_sim_option_set": (c_int, [_P(lep_sim_options), c_char_p, c_char_p, _P(c_char), c_size_t]),
     "lep_sim_option_get": (c_int, [_P(lep_sim_options), c_char_p, _P(c_char), c_size_t]),
     "lep_sim_options_check": (c_int, [_P(lep_sim_options), _P(c_char), c_size_t]),
+    "lep_sim_stream_sample": (c_int, [_P(lep_sim), c_uint64, c_uint8, _P(lep_sample)]),
     # record.h
     "lep_record_fill": (
         c_int,

@@ -1,0 +1,73 @@
+#!/usr/bin/env python3
+"""Check that a leptrino-bench output parses and holds every key (CI smoke).
+
+Asserts the shape, never the speed: a figure may be any number, or null where
+the JSON gives the reason next to it.
+
+    python3 bench/check_bench_json.py build/dev/bench-smoke.json
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+from typing import Any
+
+CHUNK_KEYS = [
+    "leptrino", "plain", "ratio_plain_over_leptrino", "plain_loop", "ratio_plain_loop_over_leptrino",
+    "leptrino_feed", "ratio_plain_over_leptrino_feed", "leptrino_messages", "leptrino_feed_messages",
+    "plain_messages", "plain_loop_messages", "leptrino_msgs_per_s", "leptrino_feed_msgs_per_s",
+    "plain_msgs_per_s", "plain_loop_msgs_per_s", "leptrino_ns_per_byte", "plain_ns_per_byte",
+    "plain_loop_ns_per_byte",
+]
+MODE_KEYS = [
+    "path", "latency_budget_ms", "rc", "samples", "lost", "latency_us", "wall_s", "cpu_s", "cpu_percent_of_one_core",
+    "cpu_us_per_sample", "read_write_syscalls_per_sample_proc", "syscalls_per_s", "syscalls_per_sample",
+    "syscalls_method",
+]
+
+
+def need(obj: Any, path: str, keys: list[str]) -> list[str]:
+    if not isinstance(obj, dict):
+        return [f"{path}: not an object"]
+    return [f"{path}.{k}: missing" for k in keys if k not in obj]
+
+
+def main() -> int:
+    with open(sys.argv[1], encoding="utf-8") as f:
+        d = json.load(f)
+    errs = need(d, "", ["tool", "leptrino_version", "smoke", "machine", "limits", "decoder",
+                        "client_step", "encoder", "end_to_end", "python"])
+    errs += need(d.get("limits"), "limits", ["line_bytes_per_s", "data_frame_bytes", "period_us",
+                                             "frame_wire_time_us"])
+    dec = d.get("decoder", {})
+    errs += need(dec, "decoder", ["method", "unit", "streams"])
+    for stream in ("realistic", "all_0x10", "corrupt_1pct"):
+        s = dec.get("streams", {}).get(stream)
+        errs += need(s, f"decoder.streams.{stream}", ["bytes", "payload_0x10_share", "chunks"])
+        for chunk in ("1", "32", "4096"):
+            c = (s or {}).get("chunks", {}).get(chunk)
+            errs += need(c, f"decoder.streams.{stream}.chunks.{chunk}", CHUNK_KEYS)
+            if isinstance(c, dict) and c.get("leptrino_messages") != c.get(
+                    "leptrino_feed_messages"):
+                errs.append(f"{stream}/{chunk}: feed and feed_all disagree")
+    errs += need(d.get("client_step"), "client_step", ["leptrino", "plain_same_input", "samples"])
+    errs += need(d.get("encoder"), "encoder", ["frame_encode_msgs_per_s", "sample_to_frame_msgs_per_s"])
+    e2e = d.get("end_to_end", {})
+    errs += need(e2e, "end_to_end", ["sim", "low_latency", "recording", "client", "session_latency_budget_ms",
+                                     "rates", "max_rate_without_loss_hz"])
+    for mode in ("low_latency", "recording", "client"):
+        m = e2e.get(mode)
+        errs += need(m, f"end_to_end.{mode}", MODE_KEYS)
+        errs += need((m or {}).get("latency_us"), f"end_to_end.{mode}.latency_us", ["p50", "p99", "max"])
+    errs += need(d.get("python"), "python", ["record_us_cpu_per_sample", "stream_iter_us_cpu_per_sample",
+                                             "reason"])
+    for e in errs:
+        print("bench smoke:", e, file=sys.stderr)
+    if not errs:
+        print(f"bench smoke: ok ({len(json.dumps(d))} bytes of JSON, every key present)")
+    return 1 if errs else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
