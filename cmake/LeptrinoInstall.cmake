@@ -32,6 +32,9 @@ if(LEPTRINO_CORE_ONLY)
   set(LEPTRINO_PC_LIBS_PRIVATE "")
 else()
   set(LEPTRINO_PC_LIBS_PRIVATE "-pthread")
+  if(LEPTRINO_LIBM)  # the session's filter and rotation (src/CMakeLists.txt)
+    string(APPEND LEPTRINO_PC_LIBS_PRIVATE " -lm")
+  endif()
 endif()
 # A /usr install (the Debian package) says prefix=/usr: pkg-config then
 # recognises /usr/include and /usr/lib/<multiarch> as system directories and

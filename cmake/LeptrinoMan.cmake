@@ -3,12 +3,15 @@
 # second hand-kept copy. Optional: without help2man (or when the programs
 # cannot run on the build machine) there are no man pages, and configure says so.
 #
-# Every program built in tools/*/ gets a page (leptrino-soak joins once its
-# directory is added). The NAME line's summary, by program name:
+# Every installed program gets a page: the project's executables named
+# leptrino* (leptrino, leptrino-sim, leptrino-soak, leptrino-bench ...; test
+# and example programs have other names), found in every directory, so a new
+# program joins by itself. The NAME line's summary, by program name:
 set(LEPTRINO_MAN_SUMMARIES
   "leptrino|read, record and configure Leptrino 6-axis force/torque sensors"
   "leptrino-sim|a virtual Leptrino force/torque sensor on a pseudo-terminal"
-  "leptrino-soak|soak test of the leptrino client against a faulty virtual sensor")
+  "leptrino-soak|soak test of the leptrino client against a faulty virtual sensor"
+  "leptrino-bench|measure the leptrino library and print the figures as JSON")
 
 option(LEPTRINO_MAN "Generate and install man pages (needs help2man)" ON)
 set(LEPTRINO_MAN_PAGES "")
@@ -33,24 +36,24 @@ if(NOT LEPTRINO_HELP2MAN)
 endif()
 find_program(LEPTRINO_GZIP gzip)
 
-# The programs of this build: the executables of the tools/ directories.
+# The programs of this build: executables named leptrino*, in any directory.
 set(_lep_man_targets "")
 set(_lep_man_names "")
 set(_lep_man_summaries "")
-get_property(_lep_subdirs DIRECTORY ${PROJECT_SOURCE_DIR} PROPERTY SUBDIRECTORIES)
-foreach(_dir IN LISTS _lep_subdirs)
-  if(NOT _dir MATCHES "^${PROJECT_SOURCE_DIR}/tools/")
-    continue()
-  endif()
+set(_lep_dirs ${PROJECT_SOURCE_DIR})
+while(_lep_dirs)
+  list(POP_FRONT _lep_dirs _dir)
+  get_property(_subdirs DIRECTORY ${_dir} PROPERTY SUBDIRECTORIES)
+  list(APPEND _lep_dirs ${_subdirs})
   get_property(_targets DIRECTORY ${_dir} PROPERTY BUILDSYSTEM_TARGETS)
   foreach(_target IN LISTS _targets)
     get_target_property(_type ${_target} TYPE)
-    if(NOT _type STREQUAL "EXECUTABLE")
-      continue()
-    endif()
     get_target_property(_name ${_target} OUTPUT_NAME)
     if(NOT _name)
       set(_name ${_target})
+    endif()
+    if(NOT _type STREQUAL "EXECUTABLE" OR NOT _name MATCHES "^leptrino")
+      continue()
     endif()
     set(_summary "part of leptrino, the Leptrino force/torque sensor tools")
     foreach(_entry IN LISTS LEPTRINO_MAN_SUMMARIES)
@@ -62,7 +65,7 @@ foreach(_dir IN LISTS _lep_subdirs)
     list(APPEND _lep_man_names ${_name})
     list(APPEND _lep_man_summaries "${_summary}")
   endforeach()
-endforeach()
+endwhile()
 
 # SEE ALSO (every page) and COPYRIGHT, shared by all pages.
 set(_lep_man_dir ${PROJECT_BINARY_DIR}/man)

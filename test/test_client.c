@@ -17,6 +17,17 @@ void setUp(void)
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_rx(&client, &rx));
 }
 
+/* A stream left running by an earlier program: the device streams before any command. */
+static void leave_stream_running(void)
+{
+    static const uint8_t start[] = {0x10, 0x02, 0x04, 0xFF, 0x32, 0x00, 0x10, 0x03, 0xCA};
+    lep_device_event ev;
+    uint8_t out[LEP_MAX_FRAME];
+    size_t n;
+    (void)lep_device_feed(&sio.dev, start, sizeof(start), &ev, out, sizeof(out), &n);
+    TEST_ASSERT_TRUE(lep_device_streaming(&sio.dev));
+}
+
 /* The decoded message of the last outcome of c (asserted to exist). */
 static lep_response last_response(const lep_client *c)
 {
@@ -217,12 +228,8 @@ static void test_corrupt_answer_is_counted(void)
 static void test_stale_stream_does_not_answer_queries(void)
 {
     lep_rated rated;
-    lep_device_event ev;
-    uint8_t out[LEP_MAX_FRAME];
-    size_t n;
-    static const uint8_t start[] = {0x10, 0x02, 0x04, 0xFF, 0x32, 0x00, 0x10, 0x03, 0xCA};
     /* A stream left running by an earlier program. */
-    (void)lep_device_feed(&sio.dev, start, sizeof(start), &ev, out, sizeof(out), &n);
+    leave_stream_running();
     TEST_ASSERT_TRUE(lep_device_streaming(&sio.dev));
     script_push_data(&sio);
     script_push_data(&sio);
@@ -235,11 +242,8 @@ static void test_stale_stream_does_not_answer_queries(void)
 static void test_sync_recovers_stale_stream(void)
 {
     lep_product_info info;
-    lep_device_event ev;
-    uint8_t out[LEP_MAX_FRAME];
-    size_t n;
     static const uint8_t start[] = {0x10, 0x02, 0x04, 0xFF, 0x32, 0x00, 0x10, 0x03, 0xCA};
-    (void)lep_device_feed(&sio.dev, start, sizeof(start), &ev, out, sizeof(out), &n);
+    leave_stream_running();
     script_push_data(&sio);
     /* Half a frame on the line when the program starts. */
     script_push(&sio, start + 3, 4);
@@ -260,11 +264,7 @@ static void test_sync_on_a_silent_line_times_out(void)
 static void test_sync_gives_up_on_endless_noise(void)
 {
     /* A device that answers nothing but streams forever: the line never goes quiet. */
-    lep_device_event ev;
-    uint8_t out[LEP_MAX_FRAME];
-    size_t n;
-    static const uint8_t start[] = {0x10, 0x02, 0x04, 0xFF, 0x32, 0x00, 0x10, 0x03, 0xCA};
-    (void)lep_device_feed(&sio.dev, start, sizeof(start), &ev, out, sizeof(out), &n);
+    leave_stream_running();
     sio.silent = true;
     TEST_ASSERT_EQUAL_INT(LEP_E_NO_SYNC, lep_client_sync(&client, 20, NULL));
     /* The stop's (retries + 1) attempts, then at most 20 timeouts + the quiet time of draining. */
@@ -340,11 +340,8 @@ static void test_start_refused_by_a_stale_stream_recovers_once(void)
 {
     static const uint8_t stop_cmd[] = {0x10, 0x02, 0x04, 0xFF, 0x33, 0x00, 0x10, 0x03, 0xCB};
     static const uint8_t start_cmd[] = {0x10, 0x02, 0x04, 0xFF, 0x32, 0x00, 0x10, 0x03, 0xCA};
-    lep_device_event ev;
-    uint8_t out[LEP_MAX_FRAME];
-    size_t n;
     /* A stream left running by an earlier program. */
-    (void)lep_device_feed(&sio.dev, start_cmd, sizeof(start_cmd), &ev, out, sizeof(out), &n);
+    leave_stream_running();
     script_push_data(&sio);
     sio.inflight = 2;
     /* The sensor refuses (0x04: already streaming): stop, drain, start. */
@@ -693,14 +690,11 @@ static void test_sync_accounts_for_every_stale_byte(void)
     /* A stale stream: two data frames in flight before the stop answer, one
      * more right after it, and the reads split that last frame. */
     static const uint8_t stop_answer[] = {0x10, 0x02, 0x04, 0xFF, 0x33, 0x00, 0x10, 0x03, 0xCB};
-    static const uint8_t start[] = {0x10, 0x02, 0x04, 0xFF, 0x32, 0x00, 0x10, 0x03, 0xCA};
     lep_product_info info;
-    lep_device_event ev;
     lep_sample smp;
-    uint8_t out[LEP_MAX_FRAME];
     size_t n;
     lep_client_stats st;
-    (void)lep_device_feed(&sio.dev, start, sizeof(start), &ev, out, sizeof(out), &n);
+    leave_stream_running();
     memset(&smp, 0, sizeof(smp));
     memcpy(sio.forced, stop_answer, sizeof(stop_answer));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_device_stream_frame(&smp, sio.forced + sizeof(stop_answer),
@@ -988,13 +982,10 @@ static void test_step_recovery_stops_drains_and_identifies(void)
     static const uint8_t start_cmd[] = {0x10, 0x02, 0x04, 0xFF, 0x32, 0x00, 0x10, 0x03, 0xCA};
     lep_io io = script_io_table(&sio);
     lep_client c;
-    lep_device_event ev;
     lep_response r;
-    uint8_t out[LEP_MAX_FRAME];
-    size_t n;
     io.read = NULL;
     sio.endless_stream = false;
-    (void)lep_device_feed(&sio.dev, start_cmd, sizeof(start_cmd), &ev, out, sizeof(out), &n);
+    leave_stream_running();
     script_push_data(&sio);
     script_push(&sio, start_cmd, 4); /* half a frame */
     sio.inflight = 3;
@@ -1135,6 +1126,21 @@ static void test_watchdog_checked_every_32_single_bytes(void)
     TEST_ASSERT_TRUE(i <= 32u);
 }
 
+/* Found by fuzz_client: a watchdog stall while a blocking query waits used
+ * to end the query with LEP_E_STALLED and leave the transaction pending. */
+static void test_watchdog_stall_does_not_end_a_blocking_query(void)
+{
+    lep_rated rated;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_watchdog(&client, 4));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
+    sio.endless_stream = false;
+    sio.lose_answers = 1; /* the query waits one timeout: the watchdog expires meanwhile */
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_rated(&client, &rated));
+    TEST_ASSERT_FALSE(lep_client_busy(&client));
+    TEST_ASSERT_TRUE(stats().stalls >= 1u);
+    TEST_ASSERT_EQUAL_FLOAT(500.0f, rated.axis[LEP_FX]);
+}
+
 /* ---- firmware variants and impossible values through the client ---- */
 
 static void test_reserved_byte_variants_are_counted_and_delivered(void)
@@ -1208,6 +1214,207 @@ static void test_response_accessors(void)
     TEST_ASSERT_EQUAL_INT(LEP_E_STATE, lep_client_get_sample(&client, &s)); /* not a sample */
 }
 
+/* ---- arguments and rare paths ---- */
+
+static void test_null_arguments(void)
+{
+    lep_io io = script_io_table(&sio);
+    lep_client_stats st;
+    lep_product_info info;
+    lep_rated rated;
+    lep_sample smp;
+    lep_command cmd = {LEP_CMD_RATED, 0};
+    uint8_t code;
+    size_t used;
+    size_t n = 5;
+    io.write = NULL;
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_init(&client, &io));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_init(&client, NULL));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_set_timeout(NULL, 10));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_set_retries(NULL, 1));
+    lep_client_get_stats(NULL, &st);
+    lep_client_get_stats(&client, NULL);
+    TEST_ASSERT_EQUAL_UINT8(0, lep_client_last_result(NULL));
+    TEST_ASSERT_FALSE(lep_client_streaming(NULL));
+    TEST_ASSERT_FALSE(lep_client_busy(NULL));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_send(NULL, &cmd));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_send(&client, NULL));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_step(NULL, NULL, 0, &used));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_step(&client, NULL, 0, NULL));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_step(&client, NULL, 1, &used));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_transact(NULL, &cmd, NULL));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_transact(&client, NULL, NULL));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_product_info(&client, NULL));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_rated(&client, NULL));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_filter_get(&client, NULL));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_sample(NULL, &smp));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_sample(&client, NULL));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_sync(NULL, 10, NULL));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_next_sample(NULL, &smp, 0));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_next_sample(&client, NULL, 0));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_next_samples(&client, &smp, 1, NULL, 0));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_next_samples(&client, NULL, 1, &n, 0));
+    TEST_ASSERT_EQUAL_size_t(0, n);
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_next_samples(&client, &smp, 0, &n, 0));
+    TEST_ASSERT_EQUAL_INT(0, sio.writes);
+    (void)info;
+    (void)rated;
+    (void)code;
+}
+
+static void test_send_of_an_unknown_command_writes_nothing(void)
+{
+    lep_command cmd = {0x40, 0};
+    TEST_ASSERT_EQUAL_INT(LEP_E_UNEXPECTED, lep_client_send(&client, &cmd));
+    TEST_ASSERT_FALSE(lep_client_busy(&client));
+    TEST_ASSERT_EQUAL_UINT(0, sio.writes);
+}
+
+static void test_empty_frame_is_invalid(void)
+{
+    static const uint8_t empty[] = {0x10, 0x02, 0x10, 0x03, 0x03};
+    lep_rated rated;
+    script_push(&sio, empty, sizeof(empty));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_rated(&client, &rated));
+    TEST_ASSERT_EQUAL_UINT32(1, stats().invalid);
+}
+
+static void test_nak_without_a_transaction_is_ignored(void)
+{
+    static const uint8_t nak[2] = {LEP_DLE, LEP_NAK};
+    size_t used;
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step(&client, nak, sizeof(nak), &used));
+    TEST_ASSERT_EQUAL_UINT32(1, stats().naks);
+    TEST_ASSERT_EQUAL_UINT(0, sio.writes);
+}
+
+static void test_get_sample_needs_a_sample(void)
+{
+    lep_sample s;
+    TEST_ASSERT_EQUAL_INT(LEP_E_STATE, lep_client_get_sample(&client, &s)); /* nothing yet */
+    sio.lose_answers = 1;
+    sio.endless_stream = false;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client)); /* confirmed by a 0x04 answer */
+    TEST_ASSERT_EQUAL_INT(LEP_E_STATE, lep_client_get_sample(&client, &s));
+}
+
+static void test_sync_clamps_the_quiet_time_and_reports_write_errors(void)
+{
+    lep_product_info info;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_sync(&client, 100000, &info));
+    TEST_ASSERT_EQUAL_UINT32(0xFFFFu, sio.now); /* quiet for 65535 ms at most */
+    sio.write_error = LEP_E_IO;
+    TEST_ASSERT_EQUAL_INT(LEP_E_IO, lep_client_sync(&client, 10, &info));
+}
+
+static void test_messages_and_naks_during_a_start_recovery_drain(void)
+{
+    static const uint8_t refused[] = {0x04, 0xFF, 0x32, 0x04};
+    static const uint8_t stop_ack[] = {0x04, 0xFF, 0x33, 0x00};
+    static const uint8_t nak[2] = {LEP_DLE, LEP_NAK};
+    lep_command start = {LEP_CMD_START, 0};
+    uint8_t frame[16];
+    size_t n;
+    size_t used;
+    sio.silent = true;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_send(&client, &start));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_frame_encode(refused, sizeof(refused), frame, sizeof(frame), &n));
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step(&client, frame, n, &used)); /* stop sent */
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_frame_encode(stop_ack, sizeof(stop_ack), frame, sizeof(frame), &n));
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step(&client, frame, n, &used)); /* draining */
+    /* A late duplicate answer and a NAK while draining: neither ends nor resends anything. */
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step(&client, frame, n, &used));
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step(&client, nak, sizeof(nak), &used));
+    TEST_ASSERT_EQUAL_UINT(2, sio.writes);
+    TEST_ASSERT_EQUAL_UINT32(1, stats().unexpected);
+    sio.now += LEP_CLIENT_DEFAULT_QUIET_MS;
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step(&client, NULL, 0, &used));
+    TEST_ASSERT_EQUAL_UINT(3, sio.writes); /* started again */
+}
+
+static void test_blocking_sync_drain_limit_after_a_clock_jump(void)
+{
+    /* A stale stream that never stops, and the clock jumps forward mid-drain. */
+    leave_stream_running();
+    sio.silent = true;
+    sio.max_chunk = 1;
+    TEST_ASSERT_EQUAL_INT(LEP_E_NO_SYNC, lep_client_sync(&client, 30, NULL));
+}
+
+static void test_next_sample_takes_a_step_api_answer_in_stride(void)
+{
+    lep_command rated = {LEP_CMD_RATED, 0};
+    lep_sample s;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
+    sio.endless_stream = false;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_send(&client, &rated)); /* answered at once */
+    script_push_data(&sio);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_next_sample(&client, &s, 50));
+    TEST_ASSERT_FALSE(lep_client_busy(&client));
+}
+
+static void test_blocking_waits_bounded_by_the_watchdog(void)
+{
+    lep_sample s;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_watchdog(&client, 40));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
+    sio.endless_stream = false;
+    /* Forever, and a longer timeout than the watchdog: both end at the stall. */
+    TEST_ASSERT_EQUAL_INT(LEP_E_STALLED, lep_client_next_sample(&client, &s, -1));
+    TEST_ASSERT_EQUAL_INT(40, sio.last_timeout);
+    TEST_ASSERT_EQUAL_INT(LEP_E_STALLED, lep_client_next_sample(&client, &s, 500));
+    /* A shorter timeout than the watchdog: the timeout. */
+    TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, lep_client_next_sample(&client, &s, 10));
+    TEST_ASSERT_EQUAL_INT(10, sio.last_timeout);
+}
+
+/* A clock that moves between any two readings (a loaded machine): every
+ * deadline may already be over when the blocking calls compute their waits. */
+static void test_blocking_calls_with_a_clock_that_never_stands_still(void)
+{
+    lep_product_info info;
+    lep_rated rated;
+    lep_sample s;
+    unsigned i;
+    leave_stream_running();
+    sio.tick = 7;
+    sio.max_chunk = 3;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_timeout(&client, 200));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_sync(&client, 5, &info));
+    TEST_ASSERT_EQUAL_STRING("12345678", info.serial);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_watchdog(&client, 9));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
+    for (i = 0; i < 5; i++) {
+        int rc = lep_client_next_sample(&client, &s, 100);
+        TEST_ASSERT_TRUE(rc == LEP_OK || rc == LEP_E_STALLED);
+    }
+    sio.endless_stream = false;
+    TEST_ASSERT_EQUAL_INT(LEP_E_STALLED, lep_client_next_sample(&client, &s, 1000));
+    sio.silent = true;
+    TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, lep_client_rated(&client, &rated));
+    sio.silent = false;
+    sio.noise = true;
+    TEST_ASSERT_EQUAL_INT(LEP_E_NO_SYNC, lep_client_sync(&client, 30, &info));
+}
+
+static void test_blocking_calls_need_a_read_function(void)
+{
+    lep_io io = script_io_table(&sio);
+    lep_client c;
+    lep_sample s;
+    io.read = NULL;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_init(&c, &io));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_next_sample(&c, &s, 0));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_sync(&c, 0, NULL));
+}
+
+static void test_sync_default_quiet_time(void)
+{
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_sync(&client, 0, NULL));
+    TEST_ASSERT_EQUAL_UINT32(LEP_CLIENT_DEFAULT_QUIET_MS, sio.now);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_sync(&client, -5, NULL));
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -1272,10 +1479,24 @@ int main(void)
     RUN_TEST(test_watchdog_reports_a_stalled_stream);
     RUN_TEST(test_watchdog_in_blocking_next_sample);
     RUN_TEST(test_watchdog_checked_every_32_single_bytes);
+    RUN_TEST(test_watchdog_stall_does_not_end_a_blocking_query);
     RUN_TEST(test_reserved_byte_variants_are_counted_and_delivered);
     RUN_TEST(test_impossible_samples_are_invalid_never_delivered);
     RUN_TEST(test_handshake_reserved_variant_is_counted);
     RUN_TEST(test_blocking_calls_without_a_read_buffer_read_one_byte_at_a_time);
     RUN_TEST(test_response_accessors);
+    RUN_TEST(test_null_arguments);
+    RUN_TEST(test_send_of_an_unknown_command_writes_nothing);
+    RUN_TEST(test_empty_frame_is_invalid);
+    RUN_TEST(test_nak_without_a_transaction_is_ignored);
+    RUN_TEST(test_get_sample_needs_a_sample);
+    RUN_TEST(test_sync_clamps_the_quiet_time_and_reports_write_errors);
+    RUN_TEST(test_messages_and_naks_during_a_start_recovery_drain);
+    RUN_TEST(test_blocking_sync_drain_limit_after_a_clock_jump);
+    RUN_TEST(test_next_sample_takes_a_step_api_answer_in_stride);
+    RUN_TEST(test_blocking_waits_bounded_by_the_watchdog);
+    RUN_TEST(test_blocking_calls_with_a_clock_that_never_stands_still);
+    RUN_TEST(test_blocking_calls_need_a_read_function);
+    RUN_TEST(test_sync_default_quiet_time);
     return UNITY_END();
 }

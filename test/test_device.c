@@ -258,6 +258,49 @@ static void test_unanswerable_frames(void)
     }
 }
 
+/* Every entry point with a NULL argument: a clear "nothing" instead of a crash. */
+static void test_null_arguments(void)
+{
+    lep_product_info info;
+    lep_rated rated = {{1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f}};
+    lep_sample s;
+    size_t n = 7;
+    static const uint8_t byte = 0x10;
+    memset(&info, 0, sizeof(info));
+    memset(&s, 0, sizeof(s));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_device_init(NULL, &info, &rated, 0));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_device_init(&dev, NULL, &rated, 0));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_device_init(&dev, &info, NULL, 0));
+    lep_device_set_sample(NULL, &s);
+    lep_device_set_sample(&dev, NULL);
+    TEST_ASSERT_FALSE(lep_device_streaming(NULL));
+    TEST_ASSERT_EQUAL_UINT8(0, lep_device_filter(NULL));
+    TEST_ASSERT_EQUAL_UINT8(0, lep_device_filter_pending(NULL));
+    lep_device_power_cycle(NULL);
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_device_stream_frame(NULL, out, sizeof(out), &n));
+    TEST_ASSERT_EQUAL_size_t(0, lep_device_feed(NULL, &byte, 1, &ev, out, sizeof(out), &out_len));
+    TEST_ASSERT_EQUAL_size_t(0, lep_device_feed(&dev, &byte, 1, NULL, out, sizeof(out), &out_len));
+    TEST_ASSERT_EQUAL_size_t(0, lep_device_feed(&dev, &byte, 1, &ev, NULL, sizeof(out), &out_len));
+    TEST_ASSERT_EQUAL_size_t(0, lep_device_feed(&dev, &byte, 1, &ev, out, sizeof(out), NULL));
+    TEST_ASSERT_EQUAL_size_t(0, lep_device_feed(&dev, NULL, 1, &ev, out, sizeof(out), &out_len));
+    TEST_ASSERT_EQUAL_INT(LEP_DEVICE_NONE, ev.type);
+    TEST_ASSERT_EQUAL_size_t(0, lep_device_feed(&dev, NULL, 0, &ev, out, sizeof(out), &out_len));
+    TEST_ASSERT_EQUAL_UINT8(1, lep_device_filter(&dev)); /* untouched */
+}
+
+/* A NAK that does not fit the caller's buffer is dropped, never overrun. */
+static void test_nak_with_a_tiny_buffer(void)
+{
+    static const uint8_t bad[] = {0x10, 0x02, 0x04, 0xFF, 0x2A, 0x00, 0x10, 0x03, 0xD3};
+    uint8_t tiny[1] = {0xEE};
+    size_t n = 99;
+    size_t used = lep_device_feed(&dev, bad, sizeof(bad), &ev, tiny, sizeof(tiny), &n);
+    TEST_ASSERT_EQUAL_size_t(sizeof(bad), used);
+    TEST_ASSERT_EQUAL_INT(LEP_DEVICE_NAK, ev.type);
+    TEST_ASSERT_EQUAL_size_t(0, n);
+    TEST_ASSERT_EQUAL_HEX8(0xEE, tiny[0]);
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -271,5 +314,7 @@ int main(void)
     RUN_TEST(test_filter_applies_at_power_cycle);
     RUN_TEST(test_stream_frame);
     RUN_TEST(test_unanswerable_frames);
+    RUN_TEST(test_null_arguments);
+    RUN_TEST(test_nak_with_a_tiny_buffer);
     return UNITY_END();
 }

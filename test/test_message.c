@@ -364,6 +364,8 @@ static void test_encoder_refuses_what_decoding_rejects(void)
     r.u.sample.raw[LEP_MY] = 32001;
     TEST_ASSERT_EQUAL_INT(LEP_E_VALUE, lep_response_encode(&r, out, sizeof(out), &n));
     TEST_ASSERT_EQUAL_size_t(0, n);
+    r.u.sample.raw[LEP_MY] = -32001;
+    TEST_ASSERT_EQUAL_INT(LEP_E_VALUE, lep_response_encode(&r, out, sizeof(out), &n));
     r.u.sample.raw[LEP_MY] = -32000;
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_response_encode(&r, out, sizeof(out), &n));
     memset(&r, 0, sizeof(r));
@@ -398,6 +400,11 @@ static void test_sample_to_si_float(void)
         TEST_ASSERT_FLOAT_WITHIN((float)(1e-6 * (d[i] < 0 ? -d[i] : d[i]) + 1e-9), (float)d[i], f[i]);
     }
     TEST_ASSERT_EQUAL_FLOAT(500.0f, f[0]);
+    d[0] = 7.0;
+    lep_sample_to_si(NULL, &rated, d);
+    lep_sample_to_si(&s, NULL, d);
+    lep_sample_to_si(&s, &rated, NULL);
+    TEST_ASSERT_EQUAL_DOUBLE(7.0, d[0]);
     f[0] = 7.0f;
     lep_sample_to_si_f(NULL, &rated, f);
     lep_sample_to_si_f(&s, NULL, f);

@@ -24,7 +24,8 @@ emulated() {
   # Every emulated target must be registered: a missing tool is a failure here.
   local listed t
   listed=$(ctest --test-dir build/dev -L embedded -N)
-  for t in emulated_cortex_m3 emulated_armv6m_unaligned_traps emulated_s390x_big_endian host_m32; do
+  for t in emulated_cortex_m3 emulated_armv6m_unaligned_traps emulated_s390x_big_endian \
+           emulated_s390x_catches_byte_order_bug host_m32; do
     grep -q " $t\$" <<<"$listed" || { echo "$t not registered"; return 1; }
   done
   if ! ctest --test-dir build/dev -L embedded -V >build/embedded-ctest.log 2>&1; then

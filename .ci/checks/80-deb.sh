@@ -28,11 +28,18 @@ cleanup() {
 }
 trap cleanup EXIT
 fail() { echo "FAIL deb: $*"; exit 1; }
+# Under pipefail, `cmd | grep -q` can fail when grep stops reading at the first
+# match and cmd dies of SIGPIPE: the greps below read all their input instead.
 
 # Never touch a leptrino someone installed: no such package, no such files.
-if dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q 'installed'; then
-  fail "a $pkg package is installed already; not replacing it"
-fi
+[ "$(id -u)" = 0 ] || fail "needs root (dpkg -i / dpkg -r)"
+
+# state PKG: dpkg's state of the package ("" or not-installed when unknown to it).
+state() { dpkg-query -W -f='${db:Status-Status}' "$1" 2>/dev/null || true; }
+case "$(state "$pkg")" in
+  ""|not-installed) ;;
+  *) fail "a $pkg package is on this machine already ($(state "$pkg")); not replacing it" ;;
+esac
 
 # 1. Build the package from a fresh configure.
 t0=$(date +%s)
@@ -56,24 +63,29 @@ need=(
   /usr/share/doc/leptrino/copyright
 )
 if [ -f tools/leptrino-soak/CMakeLists.txt ]; then
-  need+=(/usr/bin/leptrino-soak /usr/share/man/man1/leptrino-soak.1.gz)
+  need+=(/usr/bin/leptrino-soak)
 fi
+# Every program of the package has its man page.
+programs=$(sed -n 's|^/usr/bin/\(.*\)|\1|p' "$work/paths.txt")
+for prog in $programs; do
+  need+=("/usr/share/man/man1/$prog.1.gz")
+done
 for p in "${need[@]}"; do
   grep -qxF "$p" "$work/paths.txt" || fail "the package lacks $p"
 done
-if grep -v -e '^/usr$' -e '^/usr/' "$work/paths.txt" | grep -q .; then fail "files outside /usr"; fi
+if grep -v -e '^/usr$' -e '^/usr/' "$work/paths.txt" | grep . >/dev/null; then fail "files outside /usr"; fi
 if grep -q '^/usr/local' "$work/paths.txt"; then fail "files in /usr/local"; fi
 
 dpkg-deb -I "$deb" >"$work/info.txt"
 cat "$work/info.txt"
 for script in preinst postinst prerm postrm config; do
-  if dpkg-deb --ctrl-tarfile "$deb" | tar -t | grep -qx "\./$script"; then fail "maintainer script $script"; fi
+  if dpkg-deb --ctrl-tarfile "$deb" | tar -t | grep -x "\./$script" >/dev/null; then fail "maintainer script $script"; fi
 done
 depends=$(dpkg-deb -f "$deb" Depends)
 grep -q 'libc6' <<<"$depends" || fail "Depends has no libc6 (dpkg-shlibdeps?): '$depends'"
 [ "$(dpkg-deb -f "$deb" Package)" = "$pkg" ] || fail "Package field"
 [ "$(dpkg-deb -f "$deb" Version)" = "${version}-1" ] || fail "Version field"
-dpkg-deb --fsys-tarfile "$deb" | tar -xO ./usr/share/doc/leptrino/copyright | grep -q '^License: MIT' \
+dpkg-deb --fsys-tarfile "$deb" | tar -xO ./usr/share/doc/leptrino/copyright | grep '^License: MIT' >/dev/null \
   || fail "copyright file without License: MIT"
 echo "deb: Depends: $depends"
 
@@ -91,12 +103,12 @@ snapshot >"$work/before.txt"
 installed=1
 # --path-include: a minimal image's dpkg may exclude /usr/share/man.
 dpkg -i --path-include='/usr/share/man/man1/leptrino*' "$deb"
-dpkg-query -W -f='${Status}\n' "$pkg" | grep -qx 'install ok installed' || fail "not installed"
+dpkg-query -W -f='${Status}\n' "$pkg" | grep -x 'install ok installed' >/dev/null || fail "not installed"
 dpkg -V "$pkg" || fail "dpkg -V: installed files differ from the package"
 lib=$(readlink -f "/usr/lib/$multiarch/libleptrino.so")
 soname=$(readelf -d "$lib" | sed -n 's/.*(SONAME).*\[\(.*\)\]/\1/p')
 [ -n "$soname" ] && [ -L "/usr/lib/$multiarch/$soname" ] || fail "no SONAME link '$soname'"
-ldconfig -p | grep -qF "$soname" || fail "$soname not in the ld.so cache (ldconfig trigger)"
+ldconfig -p | grep -F "$soname" >/dev/null || fail "$soname not in the ld.so cache (ldconfig trigger)"
 echo "deb: installed; library $lib, SONAME $soname"
 
 # The udev rule parses: udevadm test reads every rules file and names any
@@ -131,12 +143,12 @@ if [ -x /usr/bin/leptrino-soak ]; then
   leptrino-soak --help >/dev/null || fail "leptrino-soak --help"
 fi
 
-for prog in leptrino leptrino-sim $( [ -x /usr/bin/leptrino-soak ] && echo leptrino-soak ); do
+for prog in $programs; do
   page=$(man -w "$prog") || fail "man -w $prog"
   [ "$page" = "/usr/share/man/man1/$prog.1.gz" ] || fail "man -w $prog gives $page"
-  MANPAGER=cat MANWIDTH=80 man "$prog" 2>/dev/null | grep -q "^NAME" || fail "man $prog does not render"
+  MANPAGER=cat MANWIDTH=80 man "$prog" 2>/dev/null | grep "^NAME" >/dev/null || fail "man $prog does not render"
 done
-echo "deb: man pages found by man -w"
+echo "deb: man pages of" $programs "found by man -w"
 
 # 5. C, against the installed files only (no build tree, no rpath).
 consumer=$root/test/package/consumer
@@ -151,8 +163,9 @@ cmake -S "$consumer" -B cmake-consumer -G Ninja >/dev/null
 cmake --build cmake-consumer >/dev/null
 ./cmake-consumer/consumer "$version"
 # (/lib is /usr/lib on a merged-/usr system.)
-ldd ./cmake-consumer/consumer | grep -qE "libleptrino\.so[.0-9]* => (/usr)?/lib/$multiarch/libleptrino" \
-  || { ldd ./cmake-consumer/consumer; fail "the find_package consumer does not load the package's library"; }
+deps=$(ldd ./cmake-consumer/consumer)
+grep -qE "libleptrino\.so[.0-9]* => (/usr)?/lib/$multiarch/libleptrino" <<<"$deps" \
+  || { echo "$deps"; fail "the find_package consumer does not load the package's library"; }
 # The README's C example, compiled as the README says, run against leptrino-sim.
 # shellcheck disable=SC2046
 bash "$root/test/package/readme_c_example.sh" "$root/README.md" cc /usr/bin/leptrino-sim $(pkg-config --cflags --libs leptrino)
@@ -165,13 +178,14 @@ sim_pid=
 # 6. Remove; nothing of it may be left.
 dpkg -r "$pkg"
 installed=0
-if dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q 'installed\|config-files'; then
-  fail "still known to dpkg after dpkg -r: $(dpkg-query -W -f='${Status}' "$pkg")"
-fi
+case "$(state "$pkg")" in
+  ""|not-installed) ;;
+  *) fail "dpkg still has $pkg after dpkg -r: $(state "$pkg")" ;;
+esac
 snapshot >"$work/after.txt"
 if ! diff -u "$work/before.txt" "$work/after.txt"; then fail "the file system differs after dpkg -r (above)"; fi
 while read -r p; do
   if [ -e "$p" ] && [ ! -d "$p" ]; then fail "$p left behind"; fi
 done <"$work/paths.txt"
-if ldconfig -p | grep -q libleptrino; then fail "libleptrino still in the ld.so cache"; fi
+if ldconfig -p | grep libleptrino >/dev/null; then fail "libleptrino still in the ld.so cache"; fi
 echo "deb: removed; nothing left behind ($(wc -l <"$work/before.txt") paths compared)"

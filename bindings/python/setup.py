@@ -44,6 +44,7 @@ SDIST_SOURCES = "csrc"
 TREE = [
     ("CMakeLists.txt", True),
     ("LICENSE", False),
+    ("README.md", False),  # CPack's description
     ("cmake", True),
     ("include", True),
     ("src", True),

@@ -3,9 +3,10 @@
  *
  * It drives leptrino's step API from the main loop: bytes come from the UART
  * RX ring buffer, time from the board's millisecond tick. At start-up, and
- * whenever the stream stalls or a transaction fails, it recovers the line
- * (stop a stale stream, drain, identify), reads the rated values and starts
- * the stream again. */
+ * whenever the stream stalls (the client's watchdog: LEP_E_STALLED) or a
+ * transaction fails, it runs the client's non-blocking recovery
+ * (lep_client_recover: stop a stale stream, drain, identify), reads the rated
+ * values and starts the stream again. */
 #ifndef MCU_GATEWAY_H
 #define MCU_GATEWAY_H
 
@@ -13,9 +14,10 @@
 
 #include "leptrino/leptrino.h"
 
-/* No sample for this long while streaming: the stream is taken as stalled. */
+/* No sample for this long while streaming: the stream is taken as stalled
+ * (lep_client_set_watchdog). */
 #define GATEWAY_WATCHDOG_MS 100u
-/* Start-up recovery: the line must stay quiet this long after the stop. */
+/* Recovery: the line must stay quiet this long after the stop (lep_client_recover). */
 #define GATEWAY_QUIET_MS 20u
 
 typedef struct gateway_counts {
@@ -30,7 +32,6 @@ typedef struct gateway {
     lep_rated rated;
     gateway_counts counts;
     uint8_t state;
-    uint32_t since_ms; /* when the drain's quiet time or the last sample began */
 } gateway;
 
 /* Bind the client to the board's UART and tick, and begin the recovery. */

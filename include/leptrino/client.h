@@ -205,7 +205,8 @@ LEP_API int lep_client_recover(lep_client *c, uint16_t quiet_ms);
  * copy), LEP_E_NO_SYNC (recovery), a write error from a retransmission; or
  * LEP_E_STALLED from the watchdog. A NAK or a timed-out attempt is answered by
  * sending the command again; messages of the wrong type are skipped and
- * counted. The clock (io.now_ms) is read on every call with len != 1 and at
+ * counted. LEP_E_STALLED does not end a transaction that is under way (it
+ * goes on; lep_client_busy says so). The clock (io.now_ms) is read on every call with len != 1 and at
  * least every 32 calls with len == 1 (every call during a recovery), so
  * timeouts are noticed within 32 bytes when input never pauses; feed len 0
  * when the line is idle (e.g. on each tick). */
@@ -218,7 +219,8 @@ LEP_API bool lep_client_busy(const lep_client *c);
 
 /* Send cmd and wait for its answer (resending after NAKs and timeouts);
  * *resp may be NULL. While streaming, samples that arrive meanwhile are
- * skipped (counted as unexpected). LEP_E_ARG without io.read. */
+ * skipped (counted as unexpected), and a watchdog stall is counted but does
+ * not end the wait. LEP_E_ARG without io.read. */
 LEP_API int lep_client_transact(lep_client *c, const lep_command *cmd, lep_response *resp);
 
 /* Start-up recovery (lep_client_recover, run to its end): stop any running

@@ -53,7 +53,8 @@ typedef struct lep_session_options {
     int data_timeout_ms;     /* no sample for this long while streaming: a disconnect
                                 (reconnect) or LEP_E_TIMEOUT, default 2000 */
     double gap_periods;      /* a hole longer than this many nominal periods is a gap, default 3 */
-    double nominal_hz;       /* 0 (default): the sensor's output-rate field, else 1200 */
+    double nominal_hz;       /* 0 (default): the sensor's output-rate field, else the virtual
+                                sensor's rate_hz with use_sim, else 1200 */
     bool reconnect;          /* after a disconnect or data timeout, reopen with backoff,
                                 re-sync and restart the stream (default false) */
     int reconnect_min_ms;    /* backoff from ... (default 100) */
@@ -110,11 +111,13 @@ typedef struct lep_session_event {
     uint64_t sample;       /* index (count of samples delivered before it) where it applies */
     double t_mono;         /* when, monotonic s */
     double t_utc;          /* when, UTC s */
-    double gap_from;       /* GAP/RECONNECTED: arrival of the last sample before (mono s) */
+    double gap_from;       /* GAP/RECONNECTED: arrival of the last sample before (mono s);
+                              DISCONNECTED: the same, the last sample received */
     double gap_to;         /* ... and of the first after */
     uint32_t lost;         /* GAP: samples estimated lost (from sequence numbers on the
                               virtual sensor, from arrival times otherwise) */
-    int error;             /* DISCONNECTED: LEP_E_DISCONNECTED or LEP_E_TIMEOUT */
+    int error;             /* DISCONNECTED, and RECONNECTED (what caused the loss):
+                              LEP_E_DISCONNECTED or LEP_E_TIMEOUT; 0 otherwise */
     uint8_t axes;          /* OVERLOAD_*: bit i = axis i saturated; status bits in status */
     uint8_t status;
     double tare[LEP_AXES]; /* TARE: the offsets now in force (counts; zeros when untared) */
@@ -124,7 +127,7 @@ typedef struct lep_session_event {
 typedef struct lep_session_health {
     double elapsed_s;       /* from the first sample to the last */
     double nominal_hz;      /* 1200, or the sensor's output-rate field */
-    double measured_hz;     /* samples received / elapsed (decimation not applied) */
+    double measured_hz;     /* (samples received - 1) / elapsed (decimation not applied) */
     double recent_hz;       /* over the last second or so */
     bool shortfall;         /* measured_hz below 98 % of nominal over at least 1 s */
     uint64_t received;      /* samples received (tare samples included) */
@@ -201,6 +204,16 @@ LEP_API int lep_session_stop(lep_session *s);
  * queued for the next call. With reconnect the session reconnects inside this
  * call and reports it as events. */
 LEP_API int lep_session_read(lep_session *s, lep_session_batch *b, int timeout_ms);
+/* With reconnect, a port that comes back with another sensor (model or
+ * serial number differ) is not streamed from: LEP_E_UNEXPECTED, then and on
+ * later calls. Whatever it returns, b->n counts the samples appended (LEP_E_END and the
+ * errors may come with samples: write them). A b already full returns LEP_OK
+ * at once. t_mono of samples that one read brought together is reconstructed
+ * (docs/session.md): the last at the read's time, earlier ones a nominal
+ * period apart, never before the previous sample or the previous read. On a
+ * port (not the in-process virtual sensor) a read that leaves the stream
+ * late by more than gap_periods is held back until the next read confirms
+ * the hole or sees the late samples arrive. */
 
 /* Pop the oldest queued event into *ev; false when none. */
 LEP_API bool lep_session_next_event(lep_session *s, lep_session_event *ev);
@@ -220,10 +233,23 @@ LEP_API bool lep_session_get_tare(lep_session *s, double offset[LEP_AXES]);
 LEP_API bool lep_session_taring(lep_session *s);
 
 /* Change the host low-pass (0 = off; LEP_E_VALUE above 0.45 x nominal rate)
- * and the output frame; take effect from the next sample. */
+ * and the output frame (rotation NULL = identity, shift_m NULL = 0; LEP_E_VALUE
+ * for a matrix that is not orthonormal to 1e-6, or non-finite values). They
+ * apply to samples received after the call: up to one read's worth already
+ * received (at most the latency budget) keeps the old setting. The low-pass
+ * is a 2nd-order Butterworth (docs/session.md: group delay, settling). */
 LEP_API int lep_session_set_lowpass(lep_session *s, double cutoff_hz);
 LEP_API int lep_session_set_rotation(lep_session *s, const double rotation[9],
                                      const double shift_m[3]);
+
+/* Change the latency budget (0..10000 ms, as latency_ms at open); it applies
+ * from the next lep_session_read. Call it from the thread that reads (not
+ * one of the any-thread calls). A recording that only returns at its end can
+ * raise the budget and save wake-ups; a control loop keeps it at 0.
+ * LEP_E_ARG out of range or NULL. */
+LEP_API int lep_session_set_latency(lep_session *s, int latency_ms);
+/* The latency budget in force, ms (0 for NULL). */
+LEP_API int lep_session_latency(const lep_session *s);
 
 LEP_API void lep_session_get_health(lep_session *s, lep_session_health *out);
 LEP_API void lep_session_get_metadata(lep_session *s, lep_session_metadata *out);

@@ -132,15 +132,15 @@ bool lep_client_busy(const lep_client *c)
 
 int lep_client_response(const lep_client *c, lep_response *out)
 {
-    int rc;
     if (c == NULL || out == NULL) {
         return LEP_E_ARG;
     }
     if (c->msg == NULL) {
         return LEP_E_STATE;
     }
-    rc = lep_response_decode(c->msg, c->msg_len, out);
-    return rc == LEP_E_SENSOR ? LEP_OK : rc; /* validated when it arrived */
+    (void)lep_response_decode(c->msg, c->msg_len, out); /* validated when it arrived; a
+                                                           refusal (0x04) gives LEP_E_SENSOR */
+    return LEP_OK;
 }
 
 int lep_client_get_sample(const lep_client *c, lep_sample *out)
@@ -175,7 +175,7 @@ static void end_wait(lep_client *c)
 /* Write the pending command (again) and restart the attempt's clock. */
 static int write_pending(lep_client *c)
 {
-    uint8_t frame[LEP_MAX_FRAME];
+    uint8_t frame[2u * LEP_LEN_FILTER_SET_CMD + 5u]; /* the longest command, every byte stuffed */
     lep_command cmd;
     size_t n;
     int rc;
@@ -468,34 +468,33 @@ int lep_client_step(lep_client *c, const uint8_t *data, size_t len, size_t *cons
 
 /* ---- Blocking calls ---- */
 
+/* What is left of span once elapsed has passed (0 when it is over). */
+static uint32_t left_of(uint32_t elapsed, uint32_t span)
+{
+    return elapsed >= span ? 0u : span - elapsed;
+}
+
+static uint32_t min_u32(uint32_t a, uint32_t b)
+{
+    return a < b ? a : b;
+}
+
 /* Milliseconds until the next deadline (>= 0), or -1 when none is armed. */
 static int32_t next_deadline(const lep_client *c)
 {
     uint32_t t = now(c);
     uint32_t left = 0xFFFFFFFFu;
     if (c->phase == PH_DRAIN_SYNC || c->phase == PH_DRAIN_START) {
-        uint32_t q = (uint32_t)(t - c->t_start);
-        uint32_t a = (uint32_t)(t - c->t_aux);
-        uint32_t lim = drain_limit(c);
-        left = q >= c->quiet_ms ? 0u : c->quiet_ms - q;
-        if (a >= lim) {
-            left = 0;
-        } else if (lim - a < left) {
-            left = lim - a;
-        }
+        left = min_u32(left_of(t - c->t_start, c->quiet_ms), left_of(t - c->t_aux, drain_limit(c)));
     } else if ((c->state & ST_WAIT) != 0u) {
-        uint32_t e = (uint32_t)(t - c->t_start);
-        left = e >= c->timeout_ms ? 0u : c->timeout_ms - e;
+        left = left_of(t - c->t_start, c->timeout_ms);
     }
     if ((c->state & ST_STREAM) != 0u && c->watchdog_ms != 0u) {
-        uint32_t e = (c->state & ST_FRESH) != 0u ? 0u : (uint32_t)(t - c->t_aux);
-        uint32_t w = e >= c->watchdog_ms ? 0u : c->watchdog_ms - e;
-        left = w < left ? w : left;
+        /* (the clock check just before took any fresh sample into t_aux) */
+        left = min_u32(left, left_of(t - c->t_aux, c->watchdog_ms));
     }
-    if (left == 0xFFFFFFFFu) {
-        return -1;
-    }
-    return left > 0x7FFFFFFFu ? 0x7FFFFFFF : (int32_t)left;
+    /* Every span is at most 0x7FFFFFFF (timeout_ms comes from an int). */
+    return left == 0xFFFFFFFFu ? -1 : (int32_t)left;
 }
 
 /* v as an int (16 bits on some MCUs), saturated. */
@@ -533,7 +532,7 @@ static int step_buffered(lep_client *c, const reader *rd)
         rc = lep_client_step(c, rx->buf + rx->pos, (size_t)(rx->len - rx->pos), &used);
         rx->pos = (uint16_t)(rx->pos + used);
     }
-    if (rc == LEP_STEP_NONE && rx->pos == rx->len) {
+    if (rc == LEP_STEP_NONE) { /* (all of it was consumed) */
         rc = lep_client_step(c, NULL, 0, &used);
     }
     return rc;
@@ -564,6 +563,9 @@ static int run(lep_client *c)
     for (;;) {
         int rc = step_buffered(c, &rd);
         int32_t wait;
+        if (rc == LEP_E_STALLED) {
+            continue; /* counted; the transaction goes on (found by fuzz_client) */
+        }
         if (rc == LEP_STEP_RESPONSE || rc < 0) {
             return rc < 0 ? rc : LEP_OK;
         }
@@ -574,10 +576,7 @@ static int run(lep_client *c)
         if (rd.rx->pos < rd.rx->len) {
             continue;
         }
-        if ((c->state & ST_WAIT) == 0u) {
-            return LEP_E_STATE; /* nothing pending (cannot happen after a send) */
-        }
-        wait = next_deadline(c);
+        wait = next_deadline(c); /* >= 0: a transaction or recovery is under way */
         rc = fill(c, &rd, clamp_int(wait));
         if (rc < 0) {
             end_wait(c);

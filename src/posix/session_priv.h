@@ -17,6 +17,10 @@
 /* Bytes taken from the port per read: 16 KiB is 0.55 s of a 1.2 kHz stream,
  * so a latency budget of up to half a second needs one read per wake-up. */
 #define SESSION_RBUF 16384u
+/* What a latency budget may leave in the kernel between reads: half of the
+ * 64 KiB a Linux tty buffers before the sender blocks (1.1 s at 1.2 kHz,
+ * 131 ms at 10 kHz). */
+#define SESSION_KERNEL_BYTES 32768.0
 /* Smallest wire size of a data frame (DLE STX, 20 bytes, DLE ETX, BCC). */
 #define SESSION_MIN_FRAME 25u
 /* Samples one read can complete: every byte in whole frames, plus the frame
@@ -24,6 +28,8 @@
 #define SESSION_PENDING (SESSION_RBUF / SESSION_MIN_FRAME + 2u)
 /* How soon a read judges a suspected hole when a latency budget would wait longer. */
 #define SESSION_CONFIRM_S 0.02
+/* How often a vanished port is looked for while reconnecting. */
+#define SESSION_WATCH_S 0.02
 /* Events kept until lep_session_next_event takes them; beyond, the oldest go. */
 #define SESSION_EVENTS 1024u
 
@@ -60,7 +66,8 @@ struct lep_session {
     lep_sim *sim;
     lep_serial *serial;       /* NULL while disconnected */
     lep_client client;
-    lep_product_info info;
+    lep_product_info info;    /* [mu] of the current connection */
+    lep_product_info first_info; /* of the connection at open (a reconnect must find the same) */
     lep_rated rated;
     int sensor_filter;        /* -1: refused or unanswered */
     double nominal_hz;
@@ -77,6 +84,7 @@ struct lep_session {
     uint8_t rbuf[SESSION_RBUF];
     session_row pending[SESSION_PENDING];
     size_t pend_head, pend_len;
+    bool backlog;             /* more may be waiting: read again before sleeping */
     double last_read_t;       /* when the last read returned */
     double last_data_read_t;  /* when the last read that completed a sample returned */
     double last_sample_t;     /* reconstructed arrival of the last sample */
@@ -89,6 +97,7 @@ struct lep_session {
     int gap_error;            /* what caused the disconnect before a reconnect */
     double down_since;
     double next_attempt;
+    bool port_missing;        /* the last reconnect attempt found no port */
     int backoff_ms;
     uint32_t dec_phase;
     double first_delivered_t;

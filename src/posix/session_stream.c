@@ -11,6 +11,7 @@
 #include <math.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "leptrino/error.h"
 #include "posix_clock.h"
@@ -20,15 +21,27 @@
 
 double lep_priv_utc_offset(void)
 {
-    struct timespec a, r, b;
-    double ma, mb, rt;
-    (void)clock_gettime(CLOCK_MONOTONIC, &a);
-    (void)clock_gettime(CLOCK_REALTIME, &r);
-    (void)clock_gettime(CLOCK_MONOTONIC, &b);
-    ma = (double)a.tv_sec + (double)a.tv_nsec / 1e9;
-    mb = (double)b.tv_sec + (double)b.tv_nsec / 1e9;
-    rt = (double)r.tv_sec + (double)r.tv_nsec / 1e9;
-    return rt - (ma + mb) / 2.0;
+    /* The wall clock read between two monotonic reads; of three tries, the
+     * one with the narrowest bracket wins, so a thread descheduled between
+     * the reads (which skews one try by the time it lost) does not move the
+     * offset: UTC intervals then equal monotonic ones to well under 1 ms. */
+    double best = 0.0, best_width = -1.0;
+    int i;
+    for (i = 0; i < 3; ++i) {
+        struct timespec a, r, b;
+        double ma, mb, rt;
+        (void)clock_gettime(CLOCK_MONOTONIC, &a);
+        (void)clock_gettime(CLOCK_REALTIME, &r);
+        (void)clock_gettime(CLOCK_MONOTONIC, &b);
+        ma = (double)a.tv_sec + (double)a.tv_nsec / 1e9;
+        mb = (double)b.tv_sec + (double)b.tv_nsec / 1e9;
+        rt = (double)r.tv_sec + (double)r.tv_nsec / 1e9;
+        if (best_width < 0.0 || mb - ma < best_width) {
+            best_width = mb - ma;
+            best = rt - (ma + mb) / 2.0;
+        }
+    }
+    return best;
 }
 
 /* Sleep until monotonic time t (one nanosleep; a signal ends it early). */
@@ -145,6 +158,7 @@ static void gap_event(lep_session *s, int type, uint64_t sample, double from, do
     ev.lost = lost;
     ev.error = error;
     lep_priv_session_push_event(s, &ev);
+    s->lp.settle = s->lp.settle_n; /* the filter's output after a hole is a transient */
     s->h.gaps++;
     s->h.lost += lost;
     if (to - from > s->h.max_gap_s)
@@ -301,13 +315,13 @@ void lep_priv_session_feed(lep_session *s, const uint8_t *data, size_t len, doub
 void lep_priv_session_stream_reset(lep_session *s, double now)
 {
     uint8_t left[LEP_CLIENT_RX_SIZE];
+    lep_client_rx *rx = s->client.rx; /* the serial port's, attached by lep_serial_client_init */
     size_t n = 0;
     s->last_read_t = now;
     s->last_data_read_t = now;
     if (s->last_sample_t > now)
         s->last_sample_t = now;
     /* Bytes the client read past the start command's answer are stream data. */
-    lep_client_rx *rx = s->client.rx; /* the serial port's, attached by lep_serial_client_init */
     if (rx != NULL && rx->pos < rx->len) {
         n = (size_t)(rx->len - rx->pos);
         memcpy(left, rx->buf + rx->pos, n);
@@ -345,20 +359,41 @@ static void stream_lost(lep_session *s, int error, double now)
     }
     lep_priv_session_disconnect(s);
     s->down_since = now;
+    s->port_missing = access(s->opt.port, F_OK) != 0;
     s->backoff_ms = s->opt.reconnect_min_ms;
     s->next_attempt = now + (double)s->backoff_ms / 1000.0;
     s->gap_from = s->last_sample_t;
     s->gap_error = error;
 }
 
+/* The sensor that answered a reconnect is the one the session opened. */
+static bool same_sensor(lep_session *s)
+{
+    bool same;
+    pthread_mutex_lock(&s->mu);
+    same = strcmp(s->info.model, s->first_info.model) == 0 &&
+           strcmp(s->info.serial, s->first_info.serial) == 0;
+    pthread_mutex_unlock(&s->mu);
+    return same;
+}
+
 /* One reconnection attempt: open, recover, restart the stream. */
-static int reconnect_once(lep_session *s, double now)
+static int reconnect_once(lep_session *s)
 {
     char err[256];
     int rc = lep_priv_session_connect(s, err, sizeof err);
+    if (rc == LEP_OK && !same_sensor(s)) {
+        /* Another sensor on the port: its data is not this recording's
+         * (other rated values, other frame). Stop here, clearly. */
+        lep_priv_session_disconnect(s);
+        s->failed = LEP_E_UNEXPECTED;
+        return LEP_E_UNEXPECTED;
+    }
     if (rc == LEP_OK)
         rc = lep_client_start(&s->client);
     if (rc != LEP_OK) {
+        /* a port that is not there: watch for it to come back (a replug) */
+        s->port_missing = rc == LEP_E_NOT_FOUND;
         lep_priv_session_disconnect(s);
         s->backoff_ms = s->backoff_ms * 2 > s->opt.reconnect_max_ms ? s->opt.reconnect_max_ms
                                                                       : s->backoff_ms * 2;
@@ -373,7 +408,8 @@ static int reconnect_once(lep_session *s, double now)
     s->have_seq = false;
     s->gap_next = true;
     s->tm_started = false;
-    lep_priv_session_stream_reset(s, now);
+    s->port_missing = false;
+    lep_priv_session_stream_reset(s, lep_monotonic_seconds());
     return LEP_OK;
 }
 
@@ -420,7 +456,7 @@ static void deliver(lep_session *s, lep_session_batch *b, double *first)
 
 int lep_session_read(lep_session *s, lep_session_batch *b, int timeout_ms)
 {
-    const double budget = s != NULL ? (double)s->opt.latency_ms / 1000.0 : 0.0;
+    double budget = s != NULL ? (double)s->opt.latency_ms / 1000.0 : 0.0;
     double deadline, first = -1.0;
     bool budget_read = false; /* a read after sleeping out the budget was made */
     size_t n0;
@@ -430,6 +466,9 @@ int lep_session_read(lep_session *s, lep_session_batch *b, int timeout_ms)
         return LEP_E_ARG;
     if (!s->streaming)
         return LEP_E_STATE;
+    /* Never sleep longer than the kernel can buffer for us. */
+    if (budget > SESSION_KERNEL_BYTES / (s->nominal_hz * SESSION_MIN_FRAME))
+        budget = SESSION_KERNEL_BYTES / (s->nominal_hz * SESSION_MIN_FRAME);
     n0 = b->n;
     ev0 = events_pushed(s);
     deadline = timeout_ms < 0 ? INFINITY : lep_monotonic_seconds() + (double)timeout_ms / 1000.0;
@@ -451,7 +490,8 @@ int lep_session_read(lep_session *s, lep_session_batch *b, int timeout_ms)
         if (s->failed != 0)
             return got ? LEP_OK : s->failed;
         now = lep_monotonic_seconds();
-        if (got && (budget <= 0.0 || b->n == n0 || budget_read || now >= first + budget))
+        if (got && !s->backlog &&
+            (budget <= 0.0 || b->n == n0 || budget_read || now >= first + budget))
             return LEP_OK;
 
         if (s->conn == CONN_DOWN) {
@@ -460,19 +500,27 @@ int lep_session_read(lep_session *s, lep_session_batch *b, int timeout_ms)
                 s->failed = LEP_E_DISCONNECTED;
                 continue;
             }
-            if (now < s->next_attempt) {
+            /* Attempt when the backoff is over, or at once when a port that
+             * had vanished is back (checked every SESSION_WATCH_S). */
+            if (now < s->next_attempt &&
+                !(s->port_missing && access(s->opt.port, F_OK) == 0)) {
                 wake = s->next_attempt < deadline ? s->next_attempt : deadline;
+                if (s->port_missing && wake > now + SESSION_WATCH_S)
+                    wake = now + SESSION_WATCH_S;
                 sleep_until(wake);
-                if (s->next_attempt > deadline)
+                if (lep_monotonic_seconds() >= deadline)
                     return got ? LEP_OK : LEP_E_TIMEOUT;
                 continue;
             }
-            (void)reconnect_once(s, now);
+            (void)reconnect_once(s);
             continue;
         }
 
         data_deadline = s->last_data_read_t + (double)s->opt.data_timeout_ms / 1000.0;
-        if (budget > 0.0) {
+        if (s->backlog) {
+            /* the last read filled the buffer: more is waiting, take it now */
+            wait = 0;
+        } else if (budget > 0.0) {
             /* Save wake-ups: sleep until the budget is spent, then take
              * everything in one read that does not wait. */
             wake = got ? first + budget : s->last_read_t + budget;
@@ -490,6 +538,10 @@ int lep_session_read(lep_session *s, lep_session_batch *b, int timeout_ms)
         }
         rc = s->client.io.read(s->client.io.user, s->rbuf, sizeof s->rbuf, wait);
         now = lep_monotonic_seconds();
+        /* More may be waiting: a read returns at most what the tty layer
+         * holds (4 KiB on Linux), so with a budget, read until one comes back
+         * empty; without, only after a read that filled the buffer. */
+        s->backlog = rc == (int)sizeof s->rbuf || (budget > 0.0 && rc > 0);
         if (rc > 0) {
             lep_priv_session_feed(s, s->rbuf, (size_t)rc, now);
             continue;

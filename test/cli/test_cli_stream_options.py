@@ -9,7 +9,7 @@ import subprocess
 import time
 from pathlib import Path
 
-from conftest import AXES, RAW, Csv, cli_path, parse_jsonl, run
+from conftest import AXES, RAW, Csv, SimProcess, cli_path, parse_jsonl, run
 
 
 def mean(values: list[float]) -> float:
@@ -182,6 +182,35 @@ def test_split_one_file_per_sensor_jsonl(tmp_path: Path) -> None:
         assert "sensor" not in rows[0]
 
 
+def test_replay_of_own_raw_recording_gives_the_same_counts(tmp_path: Path) -> None:
+    rec = tmp_path / "rec.csv"
+    r = run(["stream", "--sim", "--sim-seed", "5", "--count", "600", "--columns", "raw,seq",
+             "-o", str(rec)])
+    assert r.returncode == 0, r.stderr
+    original = Csv(rec.read_text())
+    seq = original.column("seq")
+    assert all(b - a == 1 for a, b in zip(seq, seq[1:]))  # a recording with no loss
+    r = run(["stream", "--sim", "--sim-replay", str(rec), "--count", "600", "--columns", "raw"])
+    assert r.returncode == 0, r.stderr
+    replayed = Csv(r.stdout)
+    assert [[row[a] for a in RAW] for row in replayed.rows] == \
+        [[row[a] for a in RAW] for row in original.rows]
+
+
+def test_replay_of_a_two_sensor_recording_takes_the_first_rows_sensor(tmp_path: Path) -> None:
+    rec = tmp_path / "two.csv"
+    r = run(["stream", "--sim", "--sim-seed", "8", "--sim", "--sim-seed", "9", "--count", "300",
+             "--columns", "raw,status", "-o", str(rec)])
+    assert r.returncode == 0, r.stderr
+    rows = Csv(rec.read_text()).rows
+    first = [row for row in rows if row["sensor"] == rows[0]["sensor"]]  # the first row's sensor
+    assert len(first) == 300
+    r = run(["stream", "--sim", "--sim-replay", str(rec), "--count", "300", "--columns", "raw"])
+    assert r.returncode == 0, r.stderr
+    assert [[row[a] for a in RAW] for row in Csv(r.stdout).rows] == \
+        [[row[a] for a in RAW] for row in first]
+
+
 def test_sim_option_ranges_come_from_the_simulator() -> None:
     # leptrino-sim accepts an amplitude up to 4 x rated: so does --sim-amplitude.
     r = run(["stream", "--sim", "--sim-amplitude", "3.5", "--count", "5"])
@@ -189,3 +218,46 @@ def test_sim_option_ranges_come_from_the_simulator() -> None:
     help_text = run(["stream", "--help"]).stdout
     for name in ("--sim-amplitude", "--sim-output-rate-field", "--sim-replay", "--sim-link"):
         assert name in help_text
+
+
+def test_two_ports_and_a_virtual_sensor_split_by_name(tmp_path: Path) -> None:
+    a, b = SimProcess(), SimProcess()
+    try:
+        pattern = str(tmp_path / "{sensor}.csv")
+        r = run(["stream", a.port, b.port, "--sim", "--count", "200", "--split", pattern])
+        assert r.returncode == 0, r.stderr
+        # Ports are named by their path ('/' as '_', no leading '_'), virtual ones sim1...
+        for name in (a.port, b.port, "sim1"):
+            path = tmp_path / (name.strip("/").replace("/", "_") + ".csv")
+            csv = Csv(path.read_text())
+            assert len(csv.rows) == 200 and csv.header[0] == "t_s"
+            assert f"leptrino: stream: {name}: 200 samples" in r.stderr
+        # The sensors were left quiet.
+        assert a.stats()["streaming"] == 0 and b.stats()["streaming"] == 0
+    finally:
+        a.close()
+        b.close()
+
+
+def test_data_timeout_ends_with_exit_3_and_keeps_the_rows(tmp_path: Path) -> None:
+    out = tmp_path / "t.csv"
+    r = run(["stream", "--sim", "--sim-stall", "4000", "--sim-stall-after", "0.5",
+             "--data-timeout", "1", "-o", str(out)], timeout=60)
+    assert r.returncode == 3, r.stderr
+    assert "timed out" in r.stderr or "timeout" in r.stderr
+    csv = Csv(out.read_text())
+    assert len(csv.rows) > 300
+    assert [e["reason"] for e in csv.events("disconnected")] == ["no-data"], csv.comments
+
+
+def test_stall_longer_than_data_timeout_with_reconnect_resumes(tmp_path: Path) -> None:
+    out = tmp_path / "r.csv"
+    r = run(["stream", "--sim", "--sim-stall", "1500", "--sim-stall-after", "0.5",
+             "--data-timeout", "0.5", "--reconnect", "--duration", "3.5", "-o", str(out)],
+            timeout=60)
+    assert r.returncode == 0, r.stderr
+    assert "no data" in r.stderr and "resumed" in r.stderr
+    csv = Csv(out.read_text())
+    gaps = csv.events("gap")
+    assert len(gaps) == 1 and gaps[0]["reason"] == "no-data", csv.comments
+    assert float(gaps[0]["to"]) - float(gaps[0]["from"]) > 1.0

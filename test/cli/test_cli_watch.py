@@ -47,7 +47,7 @@ class Tmux:
         return r.stdout
 
     def screen(self) -> str:
-        return self._tmux("capture-pane", "-p", "-t", self.name)
+        return self._tmux("capture-pane", "-p", "-J", "-t", self.name)  # -J: wrapped lines joined
 
     def keys(self, *keys: str) -> None:
         self._tmux("send-keys", "-t", self.name, *keys)
@@ -152,6 +152,10 @@ def test_watch_tare_untare_resize_quit(marker: str) -> None:
         t.resize(70, 24)
         screen = t.wait_for(lambda s: has_all_axes(s) and bar_width(s) < wide)
         assert all(len(line) <= 70 for line in screen.splitlines())
+        t.resize(30, 10)
+        t.wait_for(lambda s: "too small" in s)
+        t.resize(100, 30)
+        t.wait_for(lambda s: has_all_axes(s) and bar_width(s) == wide)
 
         t.keys("q")
         screen = t.wait_for(lambda s: marker in s)
@@ -220,3 +224,20 @@ def test_stream_keys_tare_and_untare_in_a_terminal(marker: str, tmp_path: Path) 
     fx = csv.column("fx_N")
     assert abs(fx[0] - 100.0) < 1.0 and abs(fx[-1] - 100.0) < 1.0
     assert len([v for v in fx if abs(v) < 0.05]) > 400
+
+
+def test_stream_as_a_background_job_is_not_stopped(tmp_path: Path) -> None:
+    # An interactive shell with job control: a background job that touched
+    # the terminal would be stopped (SIGTTOU) instead of finishing.
+    out = tmp_path / "bg.csv"
+    t = Tmux("bash --norc --noprofile -i")
+    try:
+        t.keys(" ".join(shlex.quote(a) for a in [cli_path(), "stream", "--sim", "--duration",
+                                                 "1", "-o", str(out)]) + " &", "Enter")
+        t.keys("sleep 3; jobs; echo BG-DONE", "Enter")
+        screen = t.wait_for(lambda s: re.search(r"^BG-DONE\s*$", s, re.M) is not None)
+        assert "Stopped" not in screen, screen
+        assert "samples in" in screen  # the summary, on the terminal
+    finally:
+        t.close()
+    assert len(Csv(out.read_text()).rows) > 500

@@ -1,10 +1,17 @@
-/* Without libFuzzer: run the fuzz entry over a fixed pseudo-random corpus and
- * over mutations of valid frames, so every ctest run (and the sanitizer run)
- * exercises it. */
+/* Without libFuzzer: run the fuzz entry over the inputs of earlier finds
+ * (FUZZ_REGRESSIONS: test/fuzz/regressions/<target>), then over a fixed
+ * pseudo-random corpus of mutated valid frames, so every ctest run (and the
+ * sanitizer run) exercises it. */
+#define _POSIX_C_SOURCE 200809L
+#include <dirent.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "leptrino/leptrino.h"
+
+#ifndef FUZZ_SMOKE_ITERATIONS
+#define FUZZ_SMOKE_ITERATIONS 20000u
+#endif
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
@@ -18,12 +25,48 @@ static uint32_t next(void)
     return (uint32_t)(state >> 32);
 }
 
+#ifdef FUZZ_REGRESSIONS
+/* Replay every file of the regression directory (none is fine). */
+static unsigned replay(const char *dir)
+{
+    static uint8_t data[1u << 16];
+    char path[4096];
+    unsigned count = 0;
+    struct dirent *e;
+    DIR *d = opendir(dir);
+    if (d == NULL) {
+        return 0;
+    }
+    while ((e = readdir(d)) != NULL) {
+        FILE *f;
+        size_t n;
+        if (e->d_name[0] == '.') {
+            continue;
+        }
+        snprintf(path, sizeof(path), "%s/%s", dir, e->d_name);
+        f = fopen(path, "rb");
+        if (f == NULL) {
+            continue;
+        }
+        n = fread(data, 1, sizeof(data), f);
+        fclose(f);
+        LLVMFuzzerTestOneInput(data, n);
+        count++;
+    }
+    closedir(d);
+    return count;
+}
+#endif
+
 int main(void)
 {
     static uint8_t buf[4096];
     unsigned iter;
     unsigned long bytes = 0;
-    for (iter = 0; iter < 20000u; iter++) {
+#ifdef FUZZ_REGRESSIONS
+    printf("fuzz smoke: %u regression inputs replayed\n", replay(FUZZ_REGRESSIONS));
+#endif
+    for (iter = 0; iter < (unsigned)FUZZ_SMOKE_ITERATIONS; iter++) {
         size_t len = 0;
         size_t target = next() % sizeof(buf);
         /* Mostly valid frames with a few flipped, dropped or inserted bytes. */
@@ -52,6 +95,6 @@ int main(void)
         LLVMFuzzerTestOneInput(buf, len);
         bytes += (unsigned long)len;
     }
-    printf("fuzz smoke: 20000 inputs, %lu bytes, invariants held\n", bytes);
+    printf("fuzz smoke: %u inputs, %lu bytes, invariants held\n", (unsigned)FUZZ_SMOKE_ITERATIONS, bytes);
     return 0;
 }

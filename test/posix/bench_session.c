@@ -5,7 +5,7 @@
  * sample. Syscalls per sample: run it on a port served by another process
  * under `strace -c -f` (docs/session.md).
  *
- * usage: bench_session [--latency MS] [--seconds S] [PORT]
+ * usage: bench_session [--latency MS] [--seconds S] [--rate HZ] [PORT]
  *   without PORT an in-process virtual sensor serves it (its own thread's CPU
  *   is not counted where RUSAGE_THREAD exists). */
 #if defined(__APPLE__)
@@ -63,11 +63,13 @@ int main(int argc, char **argv)
             o.latency_ms = atoi(argv[++i]);
         else if (strcmp(argv[i], "--seconds") == 0 && i + 1 < argc)
             seconds = atof(argv[++i]);
+        else if (strcmp(argv[i], "--rate") == 0 && i + 1 < argc)
+            o.sim.rate_hz = atof(argv[++i]); /* the in-process virtual sensor's rate */
         else if (argv[i][0] != '-') {
             o.port = argv[i];
             o.use_sim = false;
         } else {
-            fprintf(stderr, "usage: bench_session [--latency MS] [--seconds S] [PORT]\n");
+            fprintf(stderr, "usage: bench_session [--latency MS] [--seconds S] [--rate HZ] [PORT]\n");
             return 2;
         }
     }
@@ -101,9 +103,9 @@ int main(int argc, char **argv)
     lep_session_close(s);
     cpu = tv(r1.ru_utime) - tv(r0.ru_utime) + tv(r1.ru_stime) - tv(r0.ru_stime);
     sw = (r1.ru_nvcsw - r0.ru_nvcsw) + (r1.ru_nivcsw - r0.ru_nivcsw);
-    printf("{\"latency_ms\":%d,\"seconds\":%.3f,\"samples\":%llu,\"lost\":%llu,\"cpu_s\":%.4f,"
+    printf("{\"rate_hz\":%g,\"latency_ms\":%d,\"seconds\":%.3f,\"samples\":%llu,\"lost\":%llu,\"cpu_s\":%.4f,"
            "\"cpu_percent\":%.3f,\"us_per_sample\":%.3f,\"switches_per_sample\":%.4f}\n",
-           o.latency_ms, seconds, (unsigned long long)samples, (unsigned long long)h.lost, cpu,
+           h.nominal_hz, o.latency_ms, seconds, (unsigned long long)samples, (unsigned long long)h.lost, cpu,
            100.0 * cpu / seconds, samples > 0 ? 1e6 * cpu / (double)samples : 0.0,
            samples > 0 ? (double)sw / (double)samples : 0.0);
     return 0;

@@ -10,6 +10,7 @@
 
 #include "leptrino/error.h"
 #include "leptrino/session.h"
+#include "leptrino/sim.h"
 #include "unity.h"
 
 typedef struct st_batch {
@@ -96,6 +97,26 @@ static lep_session *open_sim(lep_session_options *o, const lep_session_options *
     o->use_sim = true;
     TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_session_open(o, &s, err, sizeof err), err);
     TEST_ASSERT_NOT_NULL(s);
+    return s;
+}
+
+/* A virtual sensor started on its own (options *so, defaults when NULL) and
+ * a session opened on its port path with options *o (reconnect etc. kept;
+ * the port is set): the session sees a port, not the in-process sensor. */
+static inline lep_session *open_on_port(lep_sim **sim, const lep_sim_options *so,
+                                        lep_session_options *o)
+{
+    lep_sim_options d;
+    lep_session *s = NULL;
+    char err[256] = "";
+    if (so == NULL) {
+        lep_sim_options_init(&d);
+        so = &d;
+    }
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_sim_start(so, sim, err, sizeof err), err);
+    o->use_sim = false;
+    o->port = lep_sim_port(*sim);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_session_open(o, &s, err, sizeof err), err);
     return s;
 }
 

@@ -6,7 +6,8 @@
 3. For the wheel and for the sdist: a fresh virtual environment in a
    temporary directory, `pip install <file>`, then from that directory: import,
    the version, both backends (ctypes and cffi) reading the Simulator through
-   a Sensor, the bundled library loaded from the installed package, and the
+   a Sensor and recording from a session's virtual sensor (tare, record, save
+   CSV), the bundled library loaded from the installed package, and the
    console scripts `leptrino --version`, `leptrino-sim --help`,
    `leptrino stream --sim -c 5`, `python -m leptrino --version`.
 4. `auditwheel show` on the wheel: prints the manylinux tag it is consistent
@@ -53,6 +54,13 @@ for be in ("ctypes", "cffi"):
         rec = s.record(count=100)
         assert len(rec) == 100 and rec.si.shape == (100, 6) and rec.missing() == 0
     print(f"{be}: {s.product_info.model} read {x.force}, recorded {len(rec)} samples")
+    with leptrino.Sensor(sim={"constant": True}, backend=be) as s:  # the session
+        s.tare(20)
+        rec = s.record(count=50)
+        assert abs(rec.si).max() < 1e-9 and rec.metadata["library_version"] == expected
+        rec.save(f"smoke-{be}.csv")
+    rows = open(f"smoke-{be}.csv").read().splitlines()
+    assert rows[0].startswith("# leptrino-metadata: {") and len(rows) == 52, rows[:3]
 """
 
 
@@ -89,7 +97,7 @@ def check_sdist(sdist: Path, version: str) -> None:
     top = f"leptrino-{version}"
     need = ["build_backend/leptrino_build.py", "setup.py", "pyproject.toml",
             "csrc/CMakeLists.txt", "csrc/include/leptrino/leptrino.h",
-            "csrc/src/CMakeLists.txt", "csrc/cmake/version.h.in",
+            "csrc/src/CMakeLists.txt", "csrc/include/leptrino/session.h",
             "csrc/tools/leptrino/CMakeLists.txt", "csrc/tools/leptrino-sim/main.c"]
     if (ROOT / "LICENSE").is_file():
         need.append("csrc/LICENSE")

@@ -55,7 +55,9 @@ size_t script_pending(const script_io *s)
 
 static uint32_t script_now(void *user)
 {
-    return ((script_io *)user)->now;
+    script_io *s = user;
+    s->now += s->tick;
+    return s->now;
 }
 
 static int script_write(void *user, const uint8_t *data, size_t len)

@@ -43,6 +43,7 @@ typedef struct script_io {
     size_t total_read;        /* bytes handed to the host by all reads */
     unsigned lose_answers;    /* the next N commands are executed but their answers are lost */
     unsigned lose_commands;   /* the next N commands never reach the device */
+    uint32_t tick;            /* the clock advances this many ms at every now_ms call */
     lep_device dev;
 } script_io;
 

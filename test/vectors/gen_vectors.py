@@ -490,6 +490,10 @@ def messages_vectors() -> dict[str, Any]:
         bad_cmd("reserved byte 3 not 0x00", "04 FF 30 01", "reserved", 3, 0x30),
         bad_cmd("filter set reserved tail not zero", "08 FF A6 00 01 00 00 01", "reserved", 3,
                 0xA6),
+        bad_cmd("filter set reserved byte 5 not zero", "08 FF A6 00 01 01 00 00", "reserved", 3,
+                0xA6),
+        bad_cmd("filter set reserved byte 6 not zero", "08 FF A6 00 01 00 01 00", "reserved", 3,
+                0xA6),
     ]
     command_encode_errors = [
         {"name": "unknown code", "code": 0x40, "error": "unexpected"},
@@ -517,6 +521,9 @@ def messages_vectors() -> dict[str, Any]:
         ("PFS080YS102U6", "00012345", "1.31", "1200", 1200),
         ("CFS018CA201U", "20230001", "1.31", "1000", 1000),
         ("PFS055YA501U6", "00000042", "1.31", "N/A", 0),
+        ("PFS055YA501U6", "00000043", "1.31", " 1200", 1200),
+        ("PFS055YA501U6", "00000044", "1.31", "1200Hz", 0),
+        ("PFS055YA501U6", "00000045", "1.31", "12 00", 0),
     ]:
         label = "38-byte" if rate is not None else "32-byte"
         add(f"product info {label} {model}" + (f" rate {rate}" if rate else ""),
@@ -602,6 +609,8 @@ def messages_vectors() -> dict[str, Any]:
         bad("rated negative zero", rated_with(4, bytes.fromhex("00000080")), "value"),
         bad("filter code 4", response(0xB6, 0, bytes([4, 0, 0, 0])), "value"),
         bad("filter reserved byte not zero", response(0xB6, 0, bytes([1, 0, 1, 0])), "reserved"),
+        bad("filter reserved byte 5 not zero", response(0xB6, 0, bytes([1, 1, 0, 0])), "reserved"),
+        bad("filter reserved byte 7 not zero", response(0xB6, 0, bytes([1, 0, 0, 1])), "reserved"),
         bad("sample raw 32001 (beyond the v1.13 saturation)",
             response(0x30, 0, sample_data([0, 0, 32001, 0, 0, 0])), "value"),
         bad("sample raw -32001", response(0x30, 0, sample_data([0, 0, 0, 0, 0, -32001])), "value"),

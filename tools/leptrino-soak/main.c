@@ -49,7 +49,8 @@ static const char usage[] =
     "  --check-filter C  check samples against filter code C instead of the sensor's (a\n"
     "                    test of the check itself: a wrong code must fail the run)\n"
     "  --bit-errors N    instead: flip two random bits in N random valid frames of each\n"
-    "                    kind and count those the BCC and the message checks accept\n";
+    "                    kind and count those the BCC and the message checks accept\n"
+    "  --help, --version\n";
 
 typedef struct soak {
     lep_sim_options opt;
@@ -66,7 +67,8 @@ typedef struct soak {
     /* results */
     uint64_t delivered, duplicated, out_of_order, wrong, answers_wrong;
     uint64_t commands, failed, reconnects, streams, stalls, hangups, timeouts;
-    uint64_t resent; /* client retries, summed over connections */
+    /* client counters, summed over connections */
+    uint64_t resent_nak, resent_timeout, resent_confirmed, recoveries;
     double max_gap_s;
 } soak;
 
@@ -119,7 +121,10 @@ static void close_port(soak *k)
     if (k->port != NULL) {
         lep_client_stats cs;
         lep_client_get_stats(&k->client, &cs);
-        k->resent += cs.retries;
+        k->resent_nak += cs.retries;
+        k->resent_timeout += cs.resent_after_timeout;
+        k->resent_confirmed += cs.resent_confirmed;
+        k->recoveries += cs.recoveries;
         lep_serial_close(k->port);
         k->port = NULL;
     }
@@ -305,7 +310,9 @@ static void report(const soak *k, const lep_sim_stats *st, double elapsed, doubl
     printf("{\"duration_s\":%.3f,\"seed\":%llu,\"generated\":%llu,\"sent\":%llu,"
            "\"delivered\":%llu,\"lost\":{\"dropped\":%llu,\"stalled\":%llu,\"blocked\":%llu,"
            "\"line\":%llu},\"duplicated\":%llu,\"out_of_order\":%llu,\"delivered_wrong\":%llu,"
-           "\"answers_wrong\":%llu,\"commands\":%llu,\"resent\":%llu,\"failed\":%llu,"
+           "\"answers_wrong\":%llu,\"commands\":%llu,\"resent\":%llu,"
+           "\"resent_by_cause\":{\"nak\":%llu,\"timeout\":%llu},\"resent_confirmed\":%llu,"
+           "\"start_recoveries\":%llu,\"failed\":%llu,"
            "\"timeouts\":%llu,\"reconnects\":%llu,\"max_gap_ms\":%.1f,\"streams\":%llu,"
            "\"faults\":{\"corrupted\":%llu,\"naks\":%llu,\"garbage_bytes\":%llu,"
            "\"stalls\":%llu,\"hangups\":%llu,\"reopens\":%llu},\"cpu_s\":%.3f}\n",
@@ -316,7 +323,10 @@ static void report(const soak *k, const lep_sim_stats *st, double elapsed, doubl
            (unsigned long long)(st->samples_sent > unique ? st->samples_sent - unique : 0u),
            (unsigned long long)k->duplicated, (unsigned long long)k->out_of_order,
            (unsigned long long)k->wrong, (unsigned long long)k->answers_wrong,
-           (unsigned long long)k->commands, (unsigned long long)k->resent,
+           (unsigned long long)k->commands,
+           (unsigned long long)(k->resent_nak + k->resent_timeout),
+           (unsigned long long)k->resent_nak, (unsigned long long)k->resent_timeout,
+           (unsigned long long)k->resent_confirmed, (unsigned long long)k->recoveries,
            (unsigned long long)k->failed, (unsigned long long)k->timeouts,
            (unsigned long long)k->reconnects, k->max_gap_s * 1000.0,
            (unsigned long long)k->streams, (unsigned long long)st->bytes_corrupted,
@@ -358,12 +368,18 @@ static int parse(int argc, char **argv, soak *k)
     k->check_filter = -1;
     k->stall_every_s = 3;
     k->hangup_every_s = 15;
-    for (a = 1; a < argc; a++) {
+    a = 1;
+    while (a < argc) {
         const char *name = argv[a], *val = a + 1 < argc ? argv[a + 1] : NULL;
+        int used = 2; /* the option and its value */
         const lep_sim_option_info *in;
         int rc = -1;
         if (strcmp(name, "--help") == 0) {
             fputs(usage, stdout);
+            return 0;
+        }
+        if (strcmp(name, "--version") == 0) {
+            printf("leptrino-soak %s\n", lep_version());
             return 0;
         }
         if (strcmp(name, "--duration") == 0)
@@ -388,7 +404,7 @@ static int parse(int argc, char **argv, soak *k)
                  strcmp(in->name, name + 2) == 0) {
             if (in->type == LEP_SIM_OPT_FLAG) {
                 val = NULL;
-                a--;
+                used = 1;
             }
             if (lep_sim_option_set(&k->opt, in->name, val, err, sizeof err) != LEP_OK) {
                 fprintf(stderr, "leptrino-soak: --%s (see --help)\n", err);
@@ -399,7 +415,7 @@ static int parse(int argc, char **argv, soak *k)
         }
         if (rc >= 0)
             return rc;
-        a++;
+        a += used;
     }
     if (k->duration_s <= 0)
         return bad("--duration", "expected more than 0 s");

@@ -121,7 +121,8 @@ int cli_session_fail(lep_session *s, const char *cmd, const char *port, const ch
 int cli_exit_code(int err);
 
 /* ---- term.c: the user's terminal ---- */
-/* Single keys from stdin without echo (stdin a terminal); false otherwise. */
+/* Single keys from stdin without echo when stdin is a terminal and we are in
+ * its foreground process group; false otherwise (no change made). */
 bool cli_term_keys_begin(void);
 void cli_term_keys_end(void);
 /* A key pressed, or -1 (none waiting, or keys not begun). Never blocks. */

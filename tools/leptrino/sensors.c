@@ -160,6 +160,36 @@ bool cli_port_check(cli_port_opts *po, cli_args *a)
     return true;
 }
 
+/* "  LEFT   TEXT" with TEXT wrapped at 79 columns under column 27 (LEFT on
+ * a line of its own when it is too wide), as help2man expects options. */
+static void help_line(FILE *f, const char *left, const char *text)
+{
+    const int col = 27, width = 79;
+    const char *p = text;
+    bool first = true;
+    if ((int)strlen(left) > col - 4) {
+        fprintf(f, "  %s\n", left);
+        first = false;
+    }
+    while (*p != '\0') {
+        int room = width - col, len = (int)strlen(p), cut = len;
+        if (len > room) {
+            for (cut = room; cut > 0 && p[cut] != ' '; --cut) {
+            }
+            if (cut == 0)
+                cut = room; /* one long word: cut it */
+        }
+        if (first)
+            fprintf(f, "  %-*s%.*s\n", col - 2, left, cut, p);
+        else
+            fprintf(f, "%*s%.*s\n", col, "", cut, p);
+        first = false;
+        p += cut;
+        while (*p == ' ')
+            p++;
+    }
+}
+
 void cli_port_help(FILE *f, bool several)
 {
     size_t i, n = lep_sim_option_count();
@@ -182,23 +212,23 @@ void cli_port_help(FILE *f, bool several)
           f);
     for (i = 0; i < n; ++i) {
         const lep_sim_option_info *o = lep_sim_option_at(i);
-        char left[80], range[64] = "", dflt[64] = "";
+        char left[80], text[512], range[80] = "", dflt[80] = "";
         bool number = o->type == LEP_SIM_OPT_INT || o->type == LEP_SIM_OPT_UINT ||
                       o->type == LEP_SIM_OPT_DOUBLE;
-        int len = snprintf(left, sizeof left, "--sim-%s%s%s", o->name,
-                           o->arg != NULL ? " " : "", o->arg != NULL ? o->arg : "");
-        if (number)
-            snprintf(range, sizeof range, "%s%g..%g", o->min_exclusive ? ">" : "", o->min,
-                     o->max);
+        const char *num = o->type == LEP_SIM_OPT_DOUBLE ? "%s%g..%g" : "%s%.0f..%.0f";
+        snprintf(left, sizeof left, "--sim-%s%s%s", o->name, o->arg != NULL ? " " : "",
+                 o->arg != NULL ? o->arg : "");
+        if (number && o->type != LEP_SIM_OPT_DOUBLE && o->max >= 9007199254740992.0)
+            snprintf(range, sizeof range, "%.0f or more", o->min); /* a 64-bit whole number */
+        else if (number)
+            snprintf(range, sizeof range, num, o->min_exclusive ? ">" : "", o->min, o->max);
         if (o->default_text != NULL && o->default_text[0] != '\0')
             snprintf(dflt, sizeof dflt, "%sdefault %s", number ? ", " : "", o->default_text);
-        if (len > 23)
-            fprintf(f, "  %s\n  %-24s %s", left, "", o->help);
-        else
-            fprintf(f, "  %-24s %s", left, o->help);
         if (range[0] != '\0' || dflt[0] != '\0')
-            fprintf(f, " (%s%s)", range, dflt);
-        fputc('\n', f);
+            snprintf(text, sizeof text, "%s (%s%s)", o->help, range, dflt);
+        else
+            snprintf(text, sizeof text, "%s", o->help);
+        help_line(f, left, text);
     }
 }
 
@@ -209,6 +239,7 @@ int cli_exit_code(int err)
         return CLI_OK;
     case LEP_E_TIMEOUT:
     case LEP_E_NO_SYNC:
+    case LEP_E_STALLED:
         return CLI_TIMEOUT;
     case LEP_E_DISCONNECTED:
         return CLI_DISCONNECTED;

@@ -4,7 +4,8 @@
  * It is drawn only when stderr is a terminal that the data does not go to:
  * when stdout and stderr are the same terminal (`make demo`), a line
  * rewritten with \r would land in the middle of the data rows, so there is
- * none, and only the summary is printed after the last row. */
+ * none, and only the summary is printed after the last row. Nor is there
+ * one for a background job, which would draw over the shell's prompt. */
 #define _POSIX_C_SOURCE 200809L
 
 #include <unistd.h>
@@ -15,7 +16,8 @@
 
 void cli_status_init(cli_status *st, int out_fd)
 {
-    st->enabled = isatty(STDERR_FILENO) == 1 &&
+    pid_t fg = tcgetpgrp(STDERR_FILENO); /* -1: not our controlling terminal */
+    st->enabled = isatty(STDERR_FILENO) == 1 && (fg < 0 || fg == getpgrp()) &&
                   (out_fd < 0 || !cli_term_same_tty(out_fd, STDERR_FILENO));
     st->drawn = false;
     st->last_draw = -1.0;

@@ -27,9 +27,15 @@ static const char SCREEN_LEAVE[] = "\033[0m\033[?25h\033[?1049l";
 bool cli_term_keys_begin(void)
 {
     struct termios t;
+    pid_t fg;
     if (keys_on)
         return true;
     if (isatty(STDIN_FILENO) != 1 || tcgetattr(STDIN_FILENO, &saved_termios) != 0)
+        return false;
+    /* Only in the foreground: a background job (`leptrino stream ... &`)
+     * that changed the terminal would be stopped by SIGTTOU. */
+    fg = tcgetpgrp(STDIN_FILENO); /* -1: not our controlling terminal, no job control */
+    if (fg >= 0 && fg != getpgrp())
         return false;
     t = saved_termios;
     /* No line buffering, no echo; ISIG stays so Ctrl-C is still SIGINT, and

@@ -1,7 +1,7 @@
 /* The screen of `leptrino watch`: one frame drawn from a cli_watch_view into
  * a buffer and written with one write(), so it never flickers or tears.
  *
- * Layout (shrinks to the window; below 40x14 only a "too small" line):
+ * Layout (shrinks to the window; below 40x17 only a "too small" line):
  *   title: model, serial, firmware, port
  *   rated values, sensor filter, host processing
  *   six rows: axis, value, unit, a bar centred on zero against the rated
@@ -141,8 +141,8 @@ void cli_watch_draw(int fd, const cli_watch_view *v, int cols, int rows)
     s.cols = cols < 1 ? 1 : (cols > 400 ? 400 : cols);
     s.rows = rows < 1 ? 1 : rows;
     puts_s(&s, "\033[H");
-    if (cols < 40 || rows < 14) {
-        line(&s, "leptrino watch: window too small (%dx%d, need 40x14); q quits", cols, rows);
+    if (cols < 40 || rows < 17) {
+        line(&s, "too small: %dx%d, need 40x17 (q quits)", cols, rows);
         puts_s(&s, "\033[J");
         write_all(fd, s.buf, s.used);
         return;

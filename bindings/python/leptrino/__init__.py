@@ -5,9 +5,11 @@ through ctypes (default) or cffi in ABI mode; choose with the environment
 variable LEPTRINO_BACKEND=ctypes|cffi or the backend= argument.
 
     import leptrino
-    with leptrino.Simulator() as port, leptrino.Sensor(port) as sensor:
+    with leptrino.Sensor(sim=True) as sensor:  # or Sensor("/dev/ttyACM0")
         print(sensor.product_info.model, sensor.rated)
+        sensor.tare(100)                       # in C, in raw counts
         rec = sensor.record(seconds=1.0)       # numpy arrays, filled by C
+        rec.save("forces.csv")                 # the leptrino tool's CSV
 
 Importing loads the library of the default backend and raises ImportError,
 listing what was tried, when it cannot be found.
@@ -44,14 +46,16 @@ from .errors import (
     TimeoutError,
 )
 from .sensor import PowerCycleWarning, Sensor, Stream, list_ports
-from .simulator import Simulator
+from .simulator import SimOption, Simulator
 from .values import (
     ClientStats,
+    Health,
     PortInfo,
     ProductInfo,
     Rated,
     Recording,
     Sample,
+    SessionEvent,
     SimStats,
 )
 
@@ -59,6 +63,7 @@ __all__ = [
     "BACKENDS",
     "BusyError",
     "ClientStats",
+    "Health",
     "Decoder",
     "DisconnectedError",
     "Event",
@@ -78,6 +83,8 @@ __all__ = [
     "Recording",
     "Sample",
     "Sensor",
+    "SessionEvent",
+    "SimOption",
     "SensorError",
     "SimStats",
     "Simulator",

@@ -32,7 +32,10 @@ def test_commands_are_the_c_tool(backend: str) -> None:
         py, c = run(backend, *args), tool("leptrino", *args)
         assert py.returncode == c.returncode, (args, py.stderr, c.stderr)
         if args[0] != "read":  # read prints the host time of each sample
-            assert py.stdout == c.stdout, args
+            def same(out: str) -> list:  # each run has a virtual sensor of its own
+                return [ln for ln in out.splitlines() if not ln.startswith("port:")]
+
+            assert same(py.stdout) == same(c.stdout), args
     assert "CFS034CA301U" in run(backend, "info", "--sim", "--sim-model",
                                  "CFS034CA301U").stdout
     r = run(backend, "--help")

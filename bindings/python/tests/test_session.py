@@ -32,6 +32,15 @@ def test_session_runs_its_own_virtual_sensor(backend: str) -> None:
         leptrino.Sensor(sim={"no_such": 1}, backend=backend)
     with pytest.raises(ValueError):
         leptrino.Sensor(backend=backend)  # neither a port nor sim
+    sim = leptrino.Simulator(backend=backend, model="CFS018CA201U")
+    try:
+        with pytest.raises(ValueError):
+            leptrino.Sensor(sim, sim=True, backend=backend)  # both
+        with leptrino.Sensor(sim, backend=backend) as s:  # a Simulator is its port
+            assert s.port == sim.port and s.product_info.model == "CFS018CA201U"
+            assert s.metadata["sim"] is False  # the session sees a serial port
+    finally:
+        sim.stop()
 
 
 def test_tare_mid_stream_never_stalls(backend: str) -> None:
@@ -65,9 +74,11 @@ def test_tare_over_seconds_and_untare(backend: str) -> None:
         s.untare()
         rec = s.record(count=50)
         assert np.all(rec.zeroed == 1000.0)
-        # the tare's event (held since tare() read the stream), then the untare's
-        assert [e.type for e in rec.events] == ["tare", "tare"]
-        assert rec.events[0].tare == (1000.0,) * 6 and rec.events[1].tare == (0.0,) * 6
+        # the untare (done while stopped) applies from the recording's first row;
+        # the tare's own event stayed with the stream tare() ran for it
+        tares = [e for e in rec.events if e.type == "tare"]
+        assert len(tares) == 1 and tares[0].tare == (0.0,) * 6 and tares[0].sample == 0
+        assert [e.tare for e in s.events if e.type == "tare"] == [(1000.0,) * 6]
 
 
 def test_lowpass_and_decimate(backend: str) -> None:
@@ -178,7 +189,11 @@ def test_save_csv_through_the_c_writer(backend: str, tmp_path: Path) -> None:
                           "my_counts", "mz_counts", "fx_zeroed_counts"]
     assert header[-3:] == ["status", "flags", "seq"]
     assert len(rows) == 120
-    assert any(c.startswith("# tare ") for c in comments)  # the event, in place
+    # the tare's event sits where the new offsets start: after the last taring row
+    lines = [ln for ln in every.read_text().splitlines()[2:]]
+    at = next(i for i, ln in enumerate(lines) if ln.startswith("# tare "))
+    assert int(lines[at - 1].split(",")[-2]) & K.LEP_SF_TARING
+    assert not int(lines[at + 1].split(",")[-2]) & K.LEP_SF_TARING
     assert [int(r[-1]) for r in rows] == [int(v) for v in rec2.seq]
     assert [int(r[-2]) for r in rows] == [int(v) for v in rec2.flags]
     assert json.loads(comments[0].split(": ", 1)[1])["model"] == json.loads(meta_json)["model"]
@@ -221,3 +236,77 @@ def test_record_arrays_come_from_the_session(backend: str) -> None:
     assert rec.metadata["start_utc"] > 1.6e9
     assert 0 <= rec.t[0] - rec.start_mono < 1.0
     assert not (rec.flags & K.LEP_SF_TARING).any()
+
+
+def _normalised(path: Path) -> list:
+    """The file without what differs between two runs: times and the start."""
+    import re
+
+    out = []
+    for line in path.read_text().splitlines():
+        if line.startswith("# leptrino-metadata: "):
+            meta = json.loads(line.split(": ", 1)[1])
+            for k in ("start_utc", "start_utc_iso", "port"):
+                meta.pop(k)
+            out.append(meta)
+        elif line.startswith("#"):
+            out.append(re.sub(r"\b(at|from|to)=[0-9.]+", r"\1=T", line))
+        else:
+            out.append(line.split(",", 1)[1])  # drop the time column
+    return out
+
+
+@pytest.mark.parametrize("cli_args,kwargs", [
+    (["--tare", "50"], {"tare": 50}),
+    (["--lowpass", "50", "--decimate", "2", "--rotate", "0,0,90"],
+     {"lowpass": 50.0, "decimate": 2, "rotation": (0.0, 0.0, math.pi / 2)}),
+])
+def test_same_rows_as_the_c_tool(backend: str, tmp_path: Path, cli_args: list,
+                                 kwargs: dict) -> None:
+    """The same options give the same file from `leptrino stream` and from
+    Recording.save, but for the arrival times and the start time."""
+    import subprocess
+
+    from leptrino import _tools
+
+    cols = "raw,zeroed,si,status,flags,seq"
+    c_file, py_file = tmp_path / "c.csv", tmp_path / "py.csv"
+    r = subprocess.run([str(_tools.program_path("leptrino")), "stream", "--sim", "--sim-seed",
+                        "4", "-c", "300", "--columns", cols, "-o", str(c_file), *cli_args],
+                       capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0, r.stderr
+    with leptrino.Sensor(sim={"seed": 4}, backend=backend, **kwargs) as s:
+        rec = s.record(count=300)
+    rec.save(py_file, columns=tuple(cols.split(",")))
+    c, py = _normalised(c_file), _normalised(py_file)
+    assert len(c) == len(py) >= 302
+    assert c == py
+
+
+def test_stall_shorter_than_the_data_timeout_is_a_gap(backend: str) -> None:
+    with leptrino.Sensor(sim={"stall": 300, "stall_after": 0.3}, timeout=0.1,
+                         backend=backend) as s:
+        n, gap_events = 0, 0
+        with s.stream(seconds=1.2) as st:
+            for x in st:  # a 0.3 s hole, three times the answer timeout: no error
+                n += 1
+            gap_events = sum(1 for e in st.events if e.type == "gap")
+        assert n > 500 and gap_events >= 1
+        assert s.health.gaps >= 1 and s.health.max_gap_s >= 0.25
+
+
+def test_data_timeout_ends_the_stream(backend: str) -> None:
+    import time
+
+    with leptrino.Sensor(sim={"stall": 2500, "stall_after": 0.2}, data_timeout=0.5,
+                         backend=backend) as s:
+        t0 = time.monotonic()
+        with pytest.raises(leptrino.TimeoutError) as info:
+            s.record(seconds=10.0)
+        # given up after the data timeout, not the 10 s (the stop then waits for
+        # the stalled sensor's answer)
+        assert time.monotonic() - t0 < 6.0
+        partial = info.value.recording  # type: ignore[attr-defined]
+        assert 100 < len(partial) and partial.t[-1] - partial.t[0] < 1.0
+        lost = [e for e in partial.events if e.type == "disconnected"]
+        assert lost and lost[0].error == K.LEP_E_TIMEOUT

@@ -1,0 +1,152 @@
+"""The bridge: a Zenoh session and/or an MCAP file, and one SensorNode per sensor."""
+
+from __future__ import annotations
+
+import itertools
+import json
+import logging
+import os
+import threading
+import time
+from dataclasses import dataclass, field
+from typing import Any, List, Optional
+
+from .mcap_out import FileExistsRefused, McapRecorder
+from .node import NodeOptions, SensorNode, SensorSpec
+
+log = logging.getLogger("leptrino.bridge")
+
+
+@dataclass
+class ZenohOptions:
+    """How the Zenoh session is opened. Multicast scouting stays off unless
+    scout; with no endpoints a peer connects to a router on
+    tcp/127.0.0.1:7447, as rmw_zenoh's sessions do."""
+
+    mode: str = "peer"
+    connect: List[str] = field(default_factory=list)
+    listen: List[str] = field(default_factory=list)
+    scout: bool = False
+
+    def config(self) -> Any:
+        import zenoh
+
+        if self.mode not in ("peer", "client"):
+            raise ValueError(f"mode {self.mode!r}: peer or client")
+        conf = zenoh.Config()
+        conf.insert_json5("mode", json.dumps(self.mode))
+        connect = self.connect or (["tcp/127.0.0.1:7447"] if not self.scout else [])
+        conf.insert_json5("connect/endpoints", json.dumps(connect))
+        if self.mode == "peer":
+            conf.insert_json5("listen/endpoints", json.dumps(self.listen))
+        elif self.listen:
+            raise ValueError("--listen needs --mode peer (a client does not listen)")
+        conf.insert_json5("scouting/multicast/enabled", json.dumps(bool(self.scout)))
+        return conf
+
+
+def open_session(zopts: ZenohOptions) -> Any:
+    import zenoh
+
+    return zenoh.open(zopts.config())
+
+
+class Bridge:
+    """Sensors to Zenoh (rmw_zenoh layout) and/or MCAP.
+
+    zenoh_opts None: no network at all. mcap_path: record there (refusing
+    an existing file unless force). Construction opens everything (and undoes
+    it on a failure); start() starts the streams and the 1 Hz diagnostics;
+    close() stops every stream, undeclares, closes the session and finishes
+    the MCAP file. Also a context manager.
+    """
+
+    def __init__(self, sensors: List[SensorSpec], node_opts: Optional[NodeOptions] = None,
+                 zenoh_opts: Optional[ZenohOptions] = None, mcap_path: Optional[str] = None,
+                 force: bool = False, diagnostics_period_s: float = 1.0) -> None:
+        if not sensors:
+            raise ValueError("no sensors: give --sensor NAME=PORT or --sim NAME")
+        names = [s.name for s in sensors]
+        dup = {n for n in names if names.count(n) > 1}
+        if dup:
+            raise ValueError(f"sensor names must differ: {', '.join(sorted(dup))}")
+        if zenoh_opts is None and mcap_path is None:
+            raise ValueError("nothing to do: no Zenoh session and no MCAP file")
+        self.opts = node_opts or NodeOptions()
+        self.period = diagnostics_period_s
+        self.session: Any = None
+        self.mcap: Optional[McapRecorder] = None
+        self.nodes: List[SensorNode] = []
+        self._stop = threading.Event()
+        self._diag: Optional[threading.Thread] = None
+        if mcap_path is not None and not force and os.path.lexists(mcap_path):
+            raise FileExistsRefused(f"{mcap_path}: already exists (give --force to replace it)")
+        ids = itertools.count(100)
+        try:
+            # the sensors first: a sensor that cannot be opened leaves no file
+            for spec in sensors:
+                self.nodes.append(SensorNode(spec, self.opts))
+            if zenoh_opts is not None:
+                self.session = open_session(zenoh_opts)
+            if mcap_path is not None:
+                self.mcap = McapRecorder(mcap_path, force)
+            for i, node in enumerate(self.nodes):
+                node.declare(i, lambda: next(ids), self.session, self.mcap)
+        except BaseException:
+            self.close()
+            raise
+
+    def __enter__(self) -> "Bridge":
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        self.close()
+
+    @property
+    def zid(self) -> str:
+        return str(self.session.zid()) if self.session is not None else ""
+
+    def start(self) -> None:
+        for n in self.nodes:
+            n.start()
+        self._diag = threading.Thread(target=self._diagnostics, name="bridge-diagnostics",
+                                      daemon=True)
+        self._diag.start()
+
+    def _diagnostics(self) -> None:
+        next_t = time.monotonic() + self.period
+        while not self._stop.wait(max(0.0, next_t - time.monotonic())):
+            next_t += self.period
+            for n in self.nodes:
+                try:
+                    n.publish_diagnostics()
+                except Exception as e:  # one sensor's trouble must not stop the others'
+                    log.warning("%s: diagnostics: %s", n.spec.name, e)
+
+    def wait(self, duration: Optional[float] = None) -> None:
+        """Block until stop() (e.g. from a signal handler) or duration s."""
+        self._stop.wait(duration)
+
+    def stop(self) -> None:
+        """Ask everything to stop (safe from a signal handler or another thread)."""
+        self._stop.set()
+
+    def close(self) -> None:
+        """Stop the streams, undeclare, close the session, finish the MCAP. Idempotent."""
+        self._stop.set()
+        if self._diag is not None:
+            self._diag.join(3.0)
+            self._diag = None
+        for n in self.nodes:
+            n.stop()
+        for n in self.nodes:
+            n.close()
+        self.nodes = []
+        if self.session is not None:
+            try:
+                self.session.close()
+            except Exception:
+                pass
+            self.session = None
+        if self.mcap is not None:
+            self.mcap.close()

@@ -1,0 +1,201 @@
+"""leptrino-bridge: Leptrino sensors on Zenoh in ROS 2's layout (rmw_zenoh), and to MCAP.
+
+    leptrino-bridge --sim a --sim b                       # two virtual sensors, router on :7447
+    leptrino-bridge --sensor left=/dev/ttyACM0 --connect tcp/192.0.2.10:7447
+    leptrino-bridge --sim a --mcap out.mcap --duration 10 # no network at all
+
+Exit status: 0 after a clean stop (Ctrl-C, SIGTERM, --duration), 2 for a bad
+argument or a sensor/file that cannot be opened.
+"""
+
+from __future__ import annotations
+
+import argparse
+import logging
+import math
+import os
+import signal
+import sys
+from typing import Any, Dict, List, Optional, Sequence
+
+from . import rmw_zenoh as rz
+from .node import NodeOptions, SensorSpec
+
+PROG = "leptrino-bridge"
+
+
+def _parse_sensor(text: str) -> SensorSpec:
+    name, sep, port = text.partition("=")
+    if not sep or not name or not port:
+        raise argparse.ArgumentTypeError(f"{text!r}: expected NAME=PORT")
+    try:
+        return SensorSpec(name, port=port)
+    except ValueError as e:
+        raise argparse.ArgumentTypeError(str(e)) from None
+
+
+def _parse_sim(text: str) -> SensorSpec:
+    """NAME or NAME,option=value,... (the virtual sensor's options, as
+    leptrino-sim names them, dashes or underscores)."""
+    name, *opts = text.split(",")
+    sim: Dict[str, Any] = {}
+    for o in opts:
+        k, sep, v = o.partition("=")
+        if not k:
+            raise argparse.ArgumentTypeError(f"{text!r}: empty option")
+        sim[k.strip().replace("-", "_")] = v if sep else True
+    try:
+        return SensorSpec(name, sim=sim)
+    except ValueError as e:
+        raise argparse.ArgumentTypeError(str(e)) from None
+
+
+def _parse_rpy(text: str) -> List[float]:
+    try:
+        v = [float(x) for x in text.split(",")]
+    except ValueError:
+        v = []
+    if len(v) != 3 or not all(math.isfinite(x) for x in v):
+        raise argparse.ArgumentTypeError(f"{text!r}: expected R,P,Y in degrees")
+    return [math.radians(x) for x in v]
+
+
+def _positive(text: str) -> float:
+    try:
+        v = float(text)
+    except ValueError:
+        v = -1.0
+    if not (v > 0 and math.isfinite(v)):
+        raise argparse.ArgumentTypeError(f"{text!r}: expected a number > 0")
+    return v
+
+
+def _count(text: str) -> int:
+    try:
+        v = int(text)
+    except ValueError:
+        v = -1
+    if v < 0:
+        raise argparse.ArgumentTypeError(f"{text!r}: expected a whole number >= 0")
+    return v
+
+
+def build_parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(
+        prog=PROG, description=__doc__.split("\n")[0],
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+        epilog="Topics per sensor NAME: <ns>/NAME/wrench, <ns>/NAME/wrench_raw "
+               "(geometry_msgs/msg/WrenchStamped), <ns>/NAME/diagnostics "
+               "(diagnostic_msgs/msg/DiagnosticArray, 1 Hz); services <ns>/NAME/tare and "
+               "<ns>/NAME/untare (std_srvs/srv/Trigger). See docs/bridge.md.")
+    s = p.add_argument_group("sensors")
+    s.add_argument("--sensor", action="append", type=_parse_sensor, default=[],
+                   metavar="NAME=PORT", help="a sensor on a serial port (repeatable)")
+    s.add_argument("--sim", action="append", type=_parse_sim, default=[],
+                   metavar="NAME[,OPT=VAL...]",
+                   help="a virtual sensor, with leptrino-sim's options (repeatable)")
+    s.add_argument("--frame-id", action="append", default=[], metavar="NAME=FRAME",
+                   help="header.frame_id of a sensor's messages (default: its NAME)")
+    s.add_argument("--tare", type=_count, default=0, metavar="N",
+                   help="zero on the mean of the first N samples after the start")
+    s.add_argument("--retare", type=_count, default=100, metavar="N",
+                   help="samples the tare service averages (default 100)")
+    s.add_argument("--lowpass", type=float, default=0.0, metavar="HZ",
+                   help="the session's low-pass cut-off on `wrench` (0: off)")
+    s.add_argument("--rotate", type=_parse_rpy, default=None, metavar="R,P,Y",
+                   help="express `wrench` in a frame rotated by roll, pitch, yaw (degrees)")
+    s.add_argument("--latency", type=float, default=0.002, metavar="S",
+                   help="how long the session may hold samples back (default 0.002)")
+    z = p.add_argument_group("zenoh")
+    z.add_argument("--connect", action="append", default=[], metavar="ENDPOINT",
+                   help="connect to this endpoint, e.g. tcp/127.0.0.1:7447 (repeatable; "
+                        "default: a router on tcp/127.0.0.1:7447)")
+    z.add_argument("--listen", action="append", default=[], metavar="ENDPOINT",
+                   help="listen on this endpoint (peer mode; repeatable)")
+    z.add_argument("--mode", choices=("peer", "client"), default="peer")
+    z.add_argument("--scout", action="store_true", help="enable multicast scouting (off)")
+    z.add_argument("--no-zenoh", action="store_true",
+                   help="no network (implied by --mcap without --connect/--listen/--scout)")
+    z.add_argument("--domain", type=_count, default=None, metavar="ID",
+                   help="ROS domain id (default: $ROS_DOMAIN_ID, else 0)")
+    z.add_argument("--namespace", default="/", metavar="NS", help="ROS namespace (default /)")
+    o = p.add_argument_group("output and run")
+    o.add_argument("--mcap", metavar="FILE", help="record the same messages to a ROS 2 MCAP file")
+    o.add_argument("--force", action="store_true", help="replace an existing --mcap file")
+    o.add_argument("--duration", type=_positive, default=None, metavar="S",
+                   help="stop after S seconds (default: run until Ctrl-C or SIGTERM)")
+    o.add_argument("-v", "--verbose", action="store_true")
+    return p
+
+
+def main(argv: Optional[Sequence[str]] = None) -> int:
+    p = build_parser()
+    a = p.parse_args(argv)
+    logging.basicConfig(level=logging.INFO if a.verbose else logging.WARNING,
+                        format=f"{PROG}: %(message)s")
+    specs: List[SensorSpec] = list(a.sensor) + list(a.sim)
+    if not specs:
+        p.error("no sensors: give --sensor NAME=PORT or --sim NAME")
+    by_name = {s.name: s for s in specs}
+    for f in a.frame_id:
+        name, sep, frame = f.partition("=")
+        if not sep or name not in by_name or not frame:
+            p.error(f"--frame-id {f!r}: expected NAME=FRAME for a sensor given")
+        by_name[name].frame_id = frame
+    domain = a.domain
+    if domain is None:
+        env = os.environ.get("ROS_DOMAIN_ID", "0") or "0"
+        if not env.isdigit():
+            p.error(f"ROS_DOMAIN_ID={env!r} is not a number")
+        domain = int(env)
+    try:
+        namespace = rz.normalize_namespace(a.namespace)
+    except ValueError as e:
+        p.error(str(e))
+    wants_net = bool(a.connect or a.listen or a.scout)
+    if a.no_zenoh and wants_net:
+        p.error("--no-zenoh with --connect/--listen/--scout")
+    zopts = None
+    if not a.no_zenoh and (wants_net or a.mcap is None):
+        from .bridge import ZenohOptions
+
+        zopts = ZenohOptions(mode=a.mode, connect=a.connect, listen=a.listen, scout=a.scout)
+    if a.mcap is None and zopts is None:
+        p.error("--no-zenoh needs --mcap FILE")
+    opts = NodeOptions(domain=domain, namespace=namespace, tare_samples=a.retare or 100,
+                       tare_at_start=a.tare, lowpass_hz=a.lowpass, rotation=a.rotate,
+                       latency_s=a.latency)
+
+    from ..errors import LeptrinoError
+    from .bridge import Bridge
+
+    try:
+        bridge = Bridge(specs, opts, zopts, a.mcap, a.force)
+    except (LeptrinoError, OSError, ValueError, TypeError) as e:
+        print(f"{PROG}: {e}", file=sys.stderr)
+        return 2
+    except Exception as e:  # zenoh.ZError: a bad endpoint, a port in use
+        print(f"{PROG}: zenoh: {e}", file=sys.stderr)
+        return 2
+
+    def on_signal(signum: int, frame: Any) -> None:
+        bridge.stop()
+
+    old = {sig: signal.signal(sig, on_signal) for sig in (signal.SIGINT, signal.SIGTERM)}
+    try:
+        bridge.start()
+        if bridge.session is not None:
+            print(f"{PROG}: zenoh session {bridge.zid}, domain {domain}, namespace "
+                  f"{namespace}: " + ", ".join(s.name for s in specs), file=sys.stderr)
+        bridge.wait(a.duration)
+    finally:
+        bridge.close()
+        for sig, h in old.items():
+            signal.signal(sig, h)
+    if bridge.mcap is not None:
+        print(f"{PROG}: {bridge.mcap.path}: {bridge.mcap.messages} messages", file=sys.stderr)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,378 @@
+"""One sensor on the network: a ROS 2 node with its topics and services.
+
+A SensorNode opens a leptrino.Sensor (the library's session does the tare,
+the low-pass, the rotation, the reconnects, the health and the timestamps)
+and runs one thread that turns each sample the session delivers into two
+geometry_msgs/WrenchStamped messages (`wrench`: the session's processed
+values; `wrench_raw`: the raw counts in N and N·m) and hands them to the
+outputs: Zenoh publishers in rmw_zenoh's layout and/or an MCAP file. The
+bridge calls publish_diagnostics() once a second, and the tare/untare
+services call tare()/untare() from Zenoh's threads (the session allows
+that beside the reading thread).
+"""
+
+from __future__ import annotations
+
+import logging
+import threading
+import time
+from dataclasses import dataclass, field
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
+
+from .. import _constants as K
+from ..errors import LeptrinoError
+from ..sensor import Sensor
+from . import cdr
+from . import rmw_zenoh as rz
+from .mcap_out import McapRecorder
+from .typehash import rihs01
+
+log = logging.getLogger("leptrino.bridge")
+
+WRENCH = "geometry_msgs/msg/WrenchStamped"
+DIAGNOSTICS = "diagnostic_msgs/msg/DiagnosticArray"
+TRIGGER = "std_srvs/srv/Trigger"
+
+
+@dataclass
+class SensorSpec:
+    """What to bridge: a name (the node name, the topics' prefix), a serial
+    port or virtual sensor options, and the frame_id of its messages."""
+
+    name: str
+    port: Optional[str] = None
+    sim: Optional[Dict[str, Any]] = None
+    frame_id: str = ""
+
+    def __post_init__(self) -> None:
+        rz.check_name(self.name, "sensor name")
+        if (self.port is None) == (self.sim is None):
+            raise ValueError(f"sensor {self.name}: give a port or virtual sensor options")
+        if not self.frame_id:
+            self.frame_id = self.name
+
+
+@dataclass
+class NodeOptions:
+    """Per-sensor processing (done by the session) and ROS naming."""
+
+    domain: int = 0
+    namespace: str = "/"
+    tare_samples: int = 100  # the tare service averages this many samples
+    tare_at_start: int = 0  # tare over the first N samples of the stream
+    lowpass_hz: float = 0.0
+    rotation: Optional[Sequence[float]] = None  # roll, pitch, yaw (rad)
+    latency_s: float = 0.002  # how long the session may hold samples back
+    qos_depth: int = 10
+    timeout_s: float = 0.5
+    data_timeout_s: float = 1.0
+
+
+class Topic:
+    """One publisher: its graph entity, its Zenoh publisher and/or MCAP
+    channel, and its sequence number."""
+
+    __slots__ = ("entity", "gid", "pub", "cid", "mcap", "seq", "name")
+
+    def __init__(self, entity: rz.Entity, session: Any, mcap: Optional[McapRecorder]) -> None:
+        self.entity = entity
+        self.name = entity.name
+        self.gid = entity.gid()
+        self.seq = 0
+        self.pub: Any = None
+        self.mcap = mcap
+        self.cid = mcap.channel(entity.name, entity.ros_type) if mcap is not None else -1
+        if session is not None:
+            import zenoh
+
+            self.pub = session.declare_publisher(
+                entity.key(), congestion_control=zenoh.CongestionControl.DROP,
+                reliability=zenoh.Reliability.RELIABLE)
+
+    def send(self, payload: bytes, stamp_ns: int) -> None:
+        self.seq += 1
+        now = time.time_ns()
+        if self.pub is not None:
+            self.pub.put(payload, attachment=rz.attachment(self.seq, now, self.gid))
+        if self.mcap is not None:
+            self.mcap.write(self.cid, payload, stamp_ns, now)
+
+    def close(self) -> None:
+        if self.pub is not None:
+            try:
+                self.pub.undeclare()
+            except Exception:  # the session may be closing
+                pass
+            self.pub = None
+
+
+@dataclass
+class Counters:
+    """What the node itself saw (the session's health has the sensor's side)."""
+
+    samples: int = 0
+    read_errors: int = 0
+    last_error: str = ""
+    events: Dict[str, int] = field(default_factory=dict)
+    tare_requests: int = 0
+    last_sample_mono: float = 0.0
+
+
+class SensorNode:
+    """A sensor, its ROS 2 node (liveliness), topics and services.
+
+    Construction opens the sensor (raises what leptrino.Sensor raises);
+    declare() declares the node, topics and services on the outputs; start()
+    starts the stream and the reading thread; stop() ends the thread; close()
+    stops the stream, undeclares and closes the sensor.
+    """
+
+    def __init__(self, spec: SensorSpec, opts: NodeOptions) -> None:
+        self.spec = spec
+        self.opts = opts
+        self.counters = Counters()
+        self._stop = threading.Event()
+        self._thread: Optional[threading.Thread] = None
+        self._lock = threading.Lock()  # tare/untare from service threads
+        self._tokens: List[Any] = []
+        self._queryables: List[Any] = []
+        self.wrench: Optional[Topic] = None
+        self.wrench_raw: Optional[Topic] = None
+        self.diagnostics: Optional[Topic] = None
+        self.sensor = Sensor(
+            spec.port, opts.timeout_s, sim=spec.sim, tare=opts.tare_at_start,
+            lowpass=opts.lowpass_hz, rotation=opts.rotation, reconnect=True,
+            latency=opts.latency_s, data_timeout=opts.data_timeout_s)
+        # wrench_raw: counts * rated / full scale, the operations of
+        # lep_sample_to_si in its order (bit-identical to the session's SI
+        # values when nothing is applied; the tests compare them)
+        self._rated = tuple(float(v) for v in self.sensor.rated)
+        try:
+            self._enc = cdr.WrenchStampedEncoder(spec.frame_id)
+        except ValueError:
+            self.sensor.close()
+            raise
+
+    def declare(self, node_id: int, next_entity_id: Callable[[], int], session: Any = None,
+                mcap: Optional[McapRecorder] = None) -> None:
+        """Declare the node, its topics and services on session (a
+        zenoh.Session, or None) and its channels in mcap (or None)."""
+        spec, opts = self.spec, self.opts
+        ns = rz.normalize_namespace(opts.namespace)
+        zid = str(session.zid()) if session is not None else "0"
+        qos = rz.qos_keyexpr(True, opts.qos_depth)
+
+        def entity(kind: str, topic: str = "", ros_type: str = "") -> rz.Entity:
+            eid = node_id if kind == rz.NODE else next_entity_id()
+            name = rz.fully_qualified(ns, spec.name, topic) if topic else ""
+            return rz.Entity(opts.domain, zid, node_id, eid, kind, ns, spec.name, name,
+                             ros_type, rihs01(ros_type) if ros_type else "",
+                             qos if ros_type else "")
+
+        self.node_entity = entity(rz.NODE)
+        self.wrench = Topic(entity(rz.PUBLISHER, "wrench", WRENCH), session, mcap)
+        self.wrench_raw = Topic(entity(rz.PUBLISHER, "wrench_raw", WRENCH), session, mcap)
+        self.diagnostics = Topic(entity(rz.PUBLISHER, "diagnostics", DIAGNOSTICS),
+                                 session, mcap)
+        self.services = {
+            "tare": entity(rz.SERVICE, "tare", TRIGGER),
+            "untare": entity(rz.SERVICE, "untare", TRIGGER),
+        }
+        if session is not None:
+            for svc, ent in self.services.items():
+                self._queryables.append(session.declare_queryable(
+                    ent.key(), self._service_handler(svc), complete=True))
+            for ent in [self.node_entity, self.wrench.entity, self.wrench_raw.entity,
+                        self.diagnostics.entity, *self.services.values()]:
+                self._tokens.append(session.liveliness().declare_token(ent.token()))
+
+    # -- life cycle ----------------------------------------------------------
+    def start(self) -> None:
+        """Start the stream and the reading thread (after declare())."""
+        if self.wrench is None:
+            raise RuntimeError("declare() first")
+        self.sensor.start()
+        self._thread = threading.Thread(target=self._run, name=f"bridge-{self.spec.name}",
+                                        daemon=True)
+        self._thread.start()
+
+    def stop(self, timeout: float = 5.0) -> None:
+        """Ask the thread to end and wait for it (up to timeout s)."""
+        self._stop.set()
+        if self._thread is not None:
+            self._thread.join(timeout)
+
+    def close(self) -> None:
+        """Undeclare the services, topics and tokens; stop and close the sensor."""
+        self._stop.set()
+        for q in self._queryables:
+            try:
+                q.undeclare()
+            except Exception:
+                pass
+        self._queryables = []
+        for t in self.wrench, self.wrench_raw, self.diagnostics:
+            if t is not None:
+                t.close()
+        for tok in self._tokens:
+            try:
+                tok.undeclare()
+            except Exception:
+                pass
+        self._tokens = []
+        try:
+            if not self.sensor.closed and self.sensor.streaming:
+                self.sensor.stop()
+        except LeptrinoError:
+            pass
+        self.sensor.close()
+
+    @property
+    def alive(self) -> bool:
+        return self._thread is not None and self._thread.is_alive()
+
+    # -- data ----------------------------------------------------------------
+    def _run(self) -> None:
+        stream = self.sensor.stream()
+        it = iter(stream)
+        enc = self._enc.encode
+        rx, ry, rz_, qx, qy, qz = self._rated
+        full = float(K.LEP_RAW_FULL_SCALE)
+        wrench, wrench_raw, c = self.wrench, self.wrench_raw, self.counters
+        assert wrench is not None and wrench_raw is not None
+        failing = False
+        last_ns = 0
+        while not self._stop.is_set():
+            try:
+                s = next(it)
+            except StopIteration:
+                break
+            except LeptrinoError as e:
+                # The session reconnects inside its reads; until it is back
+                # each read times out. Count it, say it once, go on.
+                c.read_errors += 1
+                c.last_error = str(e)
+                if not failing:
+                    log.warning("%s: %s (the session keeps trying)", self.spec.name, e)
+                    failing = True
+                self._take_events(stream)
+                continue
+            if failing:
+                log.warning("%s: data again", self.spec.name)
+                failing = False
+            # The session's t_utc (a double: 238 ns steps today) can step back
+            # by a step or a few us when it re-reads the wall clock; a ROS
+            # stream's stamps should not: hold the previous one then.
+            ns = int(round(s.t_utc * 1e9))
+            if ns < last_ns:
+                ns = last_ns
+            last_ns = ns
+            sec, nsec = divmod(ns, 1_000_000_000)
+            wrench.send(enc(sec, nsec, s.si), ns)
+            r = s.raw
+            wrench_raw.send(enc(sec, nsec, (r[0] * rx / full, r[1] * ry / full,
+                                            r[2] * rz_ / full, r[3] * qx / full,
+                                            r[4] * qy / full, r[5] * qz / full)), ns)
+            c.samples += 1
+            c.last_sample_mono = s.t
+            if stream.events:
+                self._take_events(stream)
+        stream.close()
+
+    def _take_events(self, stream: Any) -> None:
+        evs, stream.events = stream.events, []
+        for ev in evs:
+            self.counters.events[ev.type] = self.counters.events.get(ev.type, 0) + 1
+            if ev.type in ("disconnected", "reconnected"):
+                log.warning("%s: %s", self.spec.name, ev.type)
+
+    # -- diagnostics -----------------------------------------------------------
+    def diagnostic_status(self) -> cdr.DiagStatus:
+        """This sensor's DiagnosticStatus, from the session's health and tare."""
+        h = self.sensor.health
+        offsets = self.sensor.tare_offsets
+        c = self.counters
+        now = time.monotonic()
+        silent = c.last_sample_mono == 0.0 or now - c.last_sample_mono > 1.0
+        if silent:
+            level, msg = cdr.ERROR, "no data (disconnected or stalled)"
+        elif h.shortfall:
+            level, msg = cdr.WARN, "rate below nominal"
+        else:
+            level, msg = cdr.OK, "streaming"
+        info = self.sensor.product_info
+        values = [
+            ("measured_rate_hz", f"{h.measured_hz:.2f}"),
+            ("recent_rate_hz", f"{h.recent_hz:.2f}"),
+            ("nominal_rate_hz", f"{h.nominal_hz:.2f}"),
+            ("received", str(h.received)),
+            ("published", str(c.samples)),
+            ("lost", str(h.lost)),
+            ("gaps", str(h.gaps)),
+            ("max_gap_s", f"{h.max_gap_s:.4f}"),
+            ("errors", str(h.errors)),
+            ("overloads", str(h.overloads)),
+            ("disconnects", str(h.disconnects)),
+            ("reconnects", str(h.reconnects)),
+            ("tared", "true" if any(offsets) else "false"),
+        ]
+        values += [(f"tare_offset_{a}", f"{v:g}") for a, v in
+                   zip(("fx", "fy", "fz", "mx", "my", "mz"), offsets)]
+        values += [("model", info.model), ("serial", info.serial),
+                   ("firmware", info.firmware), ("port", self.sensor.port)]
+        return (level, f"leptrino: {self.spec.name}", msg, info.serial or self.spec.name,
+                values)
+
+    def publish_diagnostics(self) -> None:
+        ns = time.time_ns()
+        sec, nsec = divmod(ns, 1_000_000_000)
+        payload = cdr.encode_diagnostic_array(sec, nsec, self.spec.frame_id,
+                                              [self.diagnostic_status()])
+        if self.diagnostics is not None:
+            self.diagnostics.send(payload, ns)
+
+    # -- services ------------------------------------------------------------
+    def tare(self) -> Tuple[bool, str]:
+        """Tare over opts.tare_samples samples of the running stream; waits
+        (at most 3 s) for the average and returns (success, message)."""
+        with self._lock:
+            self.counters.tare_requests += 1
+            if not self.alive:
+                return False, "the sensor is not streaming"
+            try:
+                self.sensor.tare(self.opts.tare_samples, wait=False)
+            except (LeptrinoError, ValueError) as e:
+                return False, f"tare failed: {e}"
+            end = time.monotonic() + 3.0
+            while self.sensor.taring and time.monotonic() < end:
+                time.sleep(0.005)
+            if self.sensor.taring:
+                return False, "tare started but no samples came within 3 s"
+            offs = ", ".join(f"{v:g}" for v in self.sensor.tare_offsets)
+            return True, f"tared over {self.opts.tare_samples} samples; offsets (counts): {offs}"
+
+    def untare(self) -> Tuple[bool, str]:
+        with self._lock:
+            try:
+                self.sensor.untare()
+            except LeptrinoError as e:
+                return False, f"untare failed: {e}"
+            return True, "tare removed"
+
+    def _service_handler(self, which: str) -> Callable[[Any], None]:
+        def handle(query: Any) -> None:
+            try:
+                att = query.attachment
+                seq, _ts, client_gid = rz.parse_attachment(
+                    bytes(att.to_bytes()) if att is not None else b"")
+                payload = query.payload
+                if payload is not None:
+                    cdr.check_encapsulation(bytes(payload.to_bytes()))
+            except ValueError as e:
+                log.warning("%s/%s: request refused: %s", self.spec.name, which, e)
+                query.reply_err(f"malformed request: {e}".encode())
+                return
+            ok, message = self.tare() if which == "tare" else self.untare()
+            query.reply(query.key_expr, cdr.encode_trigger_response(ok, message),
+                        attachment=rz.attachment(seq, time.time_ns(), client_gid))
+        return handle
