@@ -269,7 +269,8 @@ int lep_session_start(lep_session *s)
     s->errors_before = 0;
     s->data_timeouts = 0;
     s->start_mono = now;
-    s->start_utc = now + lep_priv_utc_offset();
+    s->utc_off = lep_priv_utc_offset();
+    s->start_utc = now + s->utc_off;
     if (s->opt.tare_samples > 0)
         lep_priv_session_begin_tare(s, s->opt.tare_samples, 0.0, true);
     lep_priv_lowpass_restart(&s->lp);
