@@ -561,9 +561,13 @@ class Sensor:
         base = self._delivered
         try:
             now = float(lib.lep_monotonic_seconds())
-            end = now + seconds if seconds is not None else math.inf
+            # seconds count from the first sample's arrival, as the session's
+            # duration_s (`leptrino stream --duration`): a tare's samples before
+            # it are not part of the recording's time.
+            end = math.inf
             last_data = now
             lost_seen = False
+            cut = False
             while True:
                 n = arrays.n
                 if count is not None:
@@ -572,22 +576,33 @@ class Sensor:
                         break
                     wait_s = min(_RECORD_SLICE_S, self._timeout_ms / 1000)
                 else:
-                    left = end - now
-                    if left <= 0:
-                        break
-                    room = max(1, int(math.ceil(left * rate)))
-                    wait_s = min(_RECORD_SLICE_S, left, self._timeout_ms / 1000)
+                    assert seconds is not None
+                    # past the end by the clock, read on while samples that
+                    # arrived before it come (held back by the latency budget)
+                    left = end - now if n > 0 else seconds
+                    room = max(1, int(math.ceil(max(left, 0.0) * rate)) + 1)
+                    wait_s = min(_RECORD_SLICE_S, max(left, 0.001), self._timeout_ms / 1000)
                 arrays.reserve(n + room)
                 arrays.c.cap = n + room
                 rc = lib.lep_session_read(s, arrays.c, max(1, int(wait_s * 1000)))
-                self._delivered += arrays.n - n
+                got = arrays.n
+                if seconds is not None and got > 0:
+                    # the session's rule: a sample belongs while t - first < seconds
+                    end = float(arrays.t_mono[0]) + seconds
+                    keep = n + int(np.searchsorted(arrays.t_mono[n:got], end, "left"))
+                    if keep < got:
+                        arrays.c.n = keep
+                        cut = True
+                self._delivered += got - n
                 new = self._drain_events(base)
+                if cut:  # nothing after the last row belongs to this recording
+                    new = [e for e in new if e.sample < arrays.n]
                 events += new
                 now = float(lib.lep_monotonic_seconds())
                 if arrays.n > n:
                     last_data = now
                 lost_seen = self._lost_state(lost_seen, new, arrays.n > n)
-                if rc == K.LEP_E_END:
+                if rc == K.LEP_E_END or cut or (seconds is not None and got == n and now >= end):
                     break
                 if rc == K.LEP_E_TIMEOUT and not self._stream_lost(lost_seen, now - last_data):
                     continue  # nothing in this slice of the wait
@@ -720,8 +735,6 @@ class Stream:
             self._started = True
         self._open = True
         self._base = s._delivered
-        if self._seconds is not None:
-            self._end = float(lib.lep_monotonic_seconds()) + self._seconds
 
     def close(self) -> None:
         """Stop the stream if this iterator started it (best effort when the port is gone)."""
@@ -746,9 +759,13 @@ class Stream:
             sample = next(self._pending)
         except StopIteration:
             sample = self._fill()
-        if self._end is not None and sample.t > self._end:
-            self.close()
-            raise StopIteration
+        if self._seconds is not None:
+            # seconds from the first sample's arrival (the session's duration_s rule)
+            if self._end is None:
+                self._end = sample.t + self._seconds
+            elif sample.t >= self._end:
+                self.close()
+                raise StopIteration
         self._n += 1
         return sample
 
@@ -763,14 +780,15 @@ class Stream:
             a.c.n = 0
             a.c.cap = room
             wait = s._timeout_ms
+            left = math.inf
             if self._end is not None:
                 left = self._end - float(lib.lep_monotonic_seconds())
-                if left <= 0:
-                    self.close()
-                    raise StopIteration
                 wait = max(1, min(wait, int(math.ceil(left * 1000))))
             rc = lib.lep_session_read(s._live(), a.c, wait)
             now = float(lib.lep_monotonic_seconds())
+            if a.n == 0 and left <= 0:
+                self.close()  # past the end and nothing more arrived before it
+                raise StopIteration
             s._delivered += a.n
             new = s._drain_events(self._base)
             self.events += new
