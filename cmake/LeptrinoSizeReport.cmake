@@ -1,7 +1,7 @@
 # Size report of a bare-metal Arm build (cmake/size_report.py), as JSON:
 #   cmake --build --preset cortex-m0plus --target size-report   # prints it
 #   cmake --build --preset cortex-m0plus --target size-check    # and checks the budgets
-# The budgets (Cortex-M0+, -Os): the core <= 5 KiB of flash, 0 bytes of
+# The budgets (Cortex-M0+, -Os; targets and enforced ceilings in size_report.py): the core <= 5 KiB of flash, 0 bytes of
 # .data/.bss, a host-client firmware (examples/mcu) <= 2 KiB of leptrino code,
 # a client context <= 256 bytes.
 find_package(Python3 COMPONENTS Interpreter)

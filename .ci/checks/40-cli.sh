@@ -6,16 +6,17 @@
 # the same tests only when the system python has pytest.
 set -euo pipefail
 ci_apt tmux
-cli=build/dev/tools/leptrino/leptrino
-helper=build/dev/test/cli/lep_cli_sim
+root=$(pwd)
+cli=$root/build/dev/tools/leptrino/leptrino
+helper=$root/build/dev/test/cli/lep_cli_sim
 if ! [ -x "$cli" ] || ! [ -x "$helper" ]; then
   cmake --preset dev >/dev/null && cmake --build --preset dev
 fi
-py=build/venv/bin/python   # made by `make test`, with pytest
+py=$root/build/venv/bin/python   # made by `make test`, with pytest
 if ! [ -x "$py" ] || ! "$py" -c "import pytest" 2>/dev/null; then
   ci_apt python3-pytest
   py=python3
 fi
 cd test/cli
-LEPTRINO_REQUIRE_TMUX=1 LEPTRINO_CLI="$OLDPWD/$cli" LEPTRINO_CLI_SIM="$OLDPWD/$helper" \
+LEPTRINO_REQUIRE_TMUX=1 LEPTRINO_CLI="$cli" LEPTRINO_CLI_SIM="$helper" \
   PYTHONDONTWRITEBYTECODE=1 "$py" -m pytest -q -p no:cacheprovider .

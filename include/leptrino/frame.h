@@ -70,12 +70,13 @@ typedef struct lep_frame_stats {
     uint32_t bytes_discarded; /* wire bytes not part of a delivered message or NAK */
 } lep_frame_stats;
 
-/* Push decoder state. Caller-allocated; fields are private. */
+/* Push decoder state. Caller-allocated; fields are private (their layout is
+ * kept stable for bindings that allocate it). */
 typedef struct lep_frame_decoder {
     uint8_t state;
-    uint8_t bcc;
-    uint16_t len;
-    uint16_t raw; /* wire bytes of the frame in progress */
+    uint8_t bcc;  /* XOR of the message bytes so far */
+    uint16_t len; /* message bytes so far */
+    uint16_t raw; /* the frame's other wire bytes so far (DLE STX, stuffing, DLE ETX) */
     uint8_t buf[LEP_MAX_MESSAGE];
     lep_frame_stats stats;
 } lep_frame_decoder;

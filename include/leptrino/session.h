@@ -242,6 +242,15 @@ LEP_API int lep_session_set_lowpass(lep_session *s, double cutoff_hz);
 LEP_API int lep_session_set_rotation(lep_session *s, const double rotation[9],
                                      const double shift_m[3]);
 
+/* Change the latency budget (0..10000 ms, as latency_ms at open); it applies
+ * from the next lep_session_read. Call it from the thread that reads (not
+ * one of the any-thread calls). A recording that only returns at its end can
+ * raise the budget and save wake-ups; a control loop keeps it at 0.
+ * LEP_E_ARG out of range or NULL. */
+LEP_API int lep_session_set_latency(lep_session *s, int latency_ms);
+/* The latency budget in force, ms (0 for NULL). */
+LEP_API int lep_session_latency(const lep_session *s);
+
 LEP_API void lep_session_get_health(lep_session *s, lep_session_health *out);
 LEP_API void lep_session_get_metadata(lep_session *s, lep_session_metadata *out);
 

@@ -26,6 +26,14 @@ enum {
                     also have been the DLE of a following DLE STX / DLE NAK */
 };
 
+/* The word-at-a-time machine (decode below) is built unless the build
+ * optimises for size or defines LEPTRINO_FRAME_SMALL: then every entry point
+ * runs the one-byte machine (feed_byte), for about a third of the flash and
+ * several times the instructions per byte. The tests run both builds. */
+#if !defined(LEPTRINO_FRAME_SMALL) && !defined(__OPTIMIZE_SIZE__)
+#define FRAME_FAST 1
+#endif
+
 uint8_t lep_bcc(const uint8_t *msg, size_t len)
 {
     uint8_t bcc = LEP_ETX;
@@ -96,6 +104,7 @@ bool lep_frame_decoder_busy(const lep_frame_decoder *d)
     return d != NULL && d->state != S_IDLE && d->state != S_IDLE_DLE && d->state != S_BCC_DLE;
 }
 
+#ifdef FRAME_FAST
 /* A machine word of bytes for the fast path: size_t is the register width on
  * the targets we know (8 bytes on x86-64, 4 on a Cortex-M0+). */
 typedef size_t word_t;
@@ -151,6 +160,8 @@ static uint8_t fold(word_t acc)
     }
     return (uint8_t)acc;
 }
+
+#endif /* FRAME_FAST */
 
 /* Wrong arguments (kept out of the decoding path). */
 static size_t feed_bad_call(const lep_frame_decoder *d, size_t len, lep_frame_event *ev)
@@ -337,6 +348,7 @@ nak:
     return 1;
 }
 
+#ifdef FRAME_FAST
 /* The decoder runs on local copies of its state and writes them back when it
  * returns. n is the message length so far, acc the XOR of its bytes (any byte
  * lanes; folded to d->bcc between calls), x the frame's wire bytes that are not
@@ -677,25 +689,45 @@ LEP_NOINLINE static void decode_all(lep_frame_decoder *d, const uint8_t *data, s
     (void)decode(d, data, len, &ev, on_event, user);
 }
 
+#endif /* FRAME_FAST */
+
 size_t lep_frame_decoder_feed(lep_frame_decoder *d, const uint8_t *data, size_t len,
                               lep_frame_event *ev)
 {
+#ifndef FRAME_FAST
+    size_t i;
+#endif
     if (d == NULL || ev == NULL || data == NULL) {
         return feed_bad_call(d, len, ev);
     }
+#ifdef FRAME_FAST
     if (len == 1) {
         return feed_byte(d, data[0], ev);
     }
     return decode_one_event(d, data, len, ev);
+#else
+    ev->type = LEP_FRAME_NONE;
+    for (i = 0; i < len; i++) {
+        (void)feed_byte(d, data[i], ev);
+        if (ev->type != LEP_FRAME_NONE) {
+            return i + 1u;
+        }
+    }
+    return len;
+#endif
 }
 
 int lep_frame_decoder_feed_all(lep_frame_decoder *d, const uint8_t *data, size_t len,
                                lep_frame_handler on_event, void *user)
 {
     lep_frame_event ev;
+#ifndef FRAME_FAST
+    size_t i;
+#endif
     if (d == NULL || on_event == NULL || (data == NULL && len > 0)) {
         return LEP_E_ARG;
     }
+#ifdef FRAME_FAST
     if (len == 1) {
         (void)feed_byte(d, data[0], &ev);
         if (ev.type != LEP_FRAME_NONE) {
@@ -704,5 +736,13 @@ int lep_frame_decoder_feed_all(lep_frame_decoder *d, const uint8_t *data, size_t
     } else if (len > 1) {
         decode_all(d, data, len, on_event, user);
     }
+#else
+    for (i = 0; i < len; i++) {
+        (void)feed_byte(d, data[i], &ev);
+        if (ev.type != LEP_FRAME_NONE) {
+            on_event(user, &ev);
+        }
+    }
+#endif
     return LEP_OK;
 }

@@ -300,6 +300,19 @@ int lep_session_start(lep_session *s)
     return LEP_OK;
 }
 
+int lep_session_set_latency(lep_session *s, int latency_ms)
+{
+    if (s == NULL || latency_ms < 0 || latency_ms > 10000)
+        return LEP_E_ARG;
+    s->opt.latency_ms = latency_ms;
+    return LEP_OK;
+}
+
+int lep_session_latency(const lep_session *s)
+{
+    return s != NULL ? s->opt.latency_ms : 0;
+}
+
 int lep_session_stop(lep_session *s)
 {
     int rc = LEP_OK;

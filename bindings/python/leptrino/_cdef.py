@@ -363,6 +363,8 @@ int lep_session_set_tare(lep_session *s, const double *offset);
 bool lep_session_get_tare(lep_session *s, double *offset);
 bool lep_session_taring(lep_session *s);
 int lep_session_set_lowpass(lep_session *s, double cutoff_hz);
+int lep_session_set_latency(lep_session *s, int latency_ms);
+int lep_session_latency(const lep_session *s);
 int lep_session_set_rotation(lep_session *s, const double *rotation, const double *shift_m);
 void lep_session_get_health(lep_session *s, lep_session_health *out);
 void lep_session_get_metadata(lep_session *s, lep_session_metadata *out);

@@ -484,6 +484,8 @@ FUNCTIONS: Dict[str, Tuple[Any, List[Any]]] = {
     "lep_session_get_tare": (c_bool, [_P(lep_session), _P(c_double)]),
     "lep_session_taring": (c_bool, [_P(lep_session)]),
     "lep_session_set_lowpass": (c_int, [_P(lep_session), c_double]),
+    "lep_session_set_latency": (c_int, [_P(lep_session), c_int]),
+    "lep_session_latency": (c_int, [_P(lep_session)]),
     "lep_session_set_rotation": (c_int, [_P(lep_session), _P(c_double), _P(c_double)]),
     "lep_session_get_health": (None, [_P(lep_session), _P(lep_session_health)]),
     "lep_session_get_metadata": (None, [_P(lep_session), _P(lep_session_metadata)]),
