@@ -571,13 +571,12 @@ class Sensor:
             lib.lep_session_set_latency(s, _RECORD_LATENCY_MS)
         try:
             now = float(lib.lep_monotonic_seconds())
-            # seconds count from the first sample's arrival, as the session's
-            # duration_s (`leptrino stream --duration`): a tare's samples before
-            # it are not part of the recording's time.
+            # seconds count from the first row's arrival, as `leptrino stream
+            # --duration` (the session's duration_s) does: a tare's samples
+            # before it are not part of the recording's time
             end = math.inf
             last_data = now
             lost_seen = False
-            cut = False
             final_reads = 0
             while True:
                 n = arrays.n
@@ -592,8 +591,9 @@ class Sensor:
                     if left <= 0:
                         # Time is up, but the latency budget may still hold
                         # samples that arrived before the end: take them with
-                        # reads that do not wait, up to the first one after it
-                        # (cut below), or give up after a few.
+                        # reads that do not wait, up to the first one after it.
+                        if n > 0 and arrays.t_mono[n - 1] >= end:
+                            break
                         if final_reads >= _RECORD_FINAL_READS:
                             break
                         if final_reads == 0:
@@ -604,24 +604,16 @@ class Sensor:
                 arrays.reserve(n + room)
                 arrays.c.cap = n + room
                 rc = lib.lep_session_read(s, arrays.c, max(1, int(wait_s * 1000)))
-                got = arrays.n
-                if seconds is not None and got > 0:
-                    # the session's rule: a sample belongs while t - first < seconds
+                if seconds is not None and n == 0 and arrays.n > 0:
                     end = float(arrays.t_mono[0]) + seconds
-                    keep = n + int(np.searchsorted(arrays.t_mono[n:got], end, "left"))
-                    if keep < got:
-                        arrays.c.n = keep
-                        cut = True
-                self._delivered += got - n
+                self._delivered += arrays.n - n
                 new = self._drain_events(base)
-                if cut:  # nothing after the last row belongs to this recording
-                    new = [e for e in new if e.sample < arrays.n]
                 events += new
                 now = float(lib.lep_monotonic_seconds())
                 if arrays.n > n:
                     last_data = now
                 lost_seen = self._lost_state(lost_seen, new, arrays.n > n)
-                if rc == K.LEP_E_END or cut:
+                if rc == K.LEP_E_END:
                     break
                 if rc == K.LEP_E_TIMEOUT and not self._stream_lost(lost_seen, now - last_data):
                     continue  # nothing in this slice of the wait

@@ -302,8 +302,10 @@ def test_seconds_count_as_the_c_tools_duration(backend: str, tmp_path: Path) -> 
     with leptrino.Sensor(sim={}, tare=240, backend=backend) as s:
         rec = s.record(seconds=1.0)
     period = 1 / 1200
-    assert 1.0 - 6 * period < rec.t[-1] - rec.t[0] < 1.0
-    assert abs(len(rec) - c_rows) <= 6, (len(rec), c_rows)
+    # record() keeps the last read whole (samples the latency budget held back)
+    assert 1.0 - 6 * period < rec.t[-1] - rec.t[0] < 1.05
+    # the 240 tare samples are not part of either's second (a 2 % margin for a loaded machine)
+    assert abs(len(rec) - c_rows) <= 24, (len(rec), c_rows)
     with leptrino.Sensor(sim={}, tare=240, backend=backend) as s:
         with s.stream(seconds=0.5) as st:
             t = [x.t for x in st]
