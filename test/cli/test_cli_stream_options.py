@@ -182,6 +182,17 @@ def test_split_one_file_per_sensor_jsonl(tmp_path: Path) -> None:
         assert "sensor" not in rows[0]
 
 
+def test_split_refuses_before_creating_any_file(tmp_path: Path) -> None:
+    kept = tmp_path / "rec-sim2.csv"
+    kept.write_text("precious\n")
+    r = run(["stream", "--sim", "--sim", "--duration", "0.3",
+             "--split", str(tmp_path / "rec-{sensor}.csv")])
+    assert r.returncode == 1
+    assert "rec-sim2.csv: already exists" in r.stderr and "samples in" not in r.stderr
+    assert kept.read_text() == "precious\n"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["rec-sim2.csv"]  # no stray rec-sim1.csv
+
+
 def test_replay_of_own_raw_recording_gives_the_same_counts(tmp_path: Path) -> None:
     rec = tmp_path / "rec.csv"
     r = run(["stream", "--sim", "--sim-seed", "5", "--count", "600", "--columns", "raw,seq",
