@@ -208,6 +208,20 @@ def test_replay_of_own_raw_recording_gives_the_same_counts(tmp_path: Path) -> No
         [[row[a] for a in RAW] for row in original.rows]
 
 
+def test_replay_of_own_raw_jsonl_recording_gives_the_same_counts(tmp_path: Path) -> None:
+    rec = tmp_path / "rec.jsonl"
+    r = run(["stream", "--sim", "--sim-seed", "6", "--count", "300", "--columns", "raw,status",
+             "-f", "jsonl", "-o", str(rec)])
+    assert r.returncode == 0, r.stderr
+    _, original, _ = parse_jsonl(rec.read_text())
+    r = run(["stream", "--sim", "--sim-replay", str(rec), "--count", "300", "--columns", "raw",
+             "-f", "jsonl"])
+    assert r.returncode == 0, r.stderr
+    _, replayed, _ = parse_jsonl(r.stdout)
+    assert [[row[a] for a in RAW] for row in replayed] == \
+        [[row[a] for a in RAW] for row in original]
+
+
 def test_replay_of_a_two_sensor_recording_takes_the_first_rows_sensor(tmp_path: Path) -> None:
     rec = tmp_path / "two.csv"
     r = run(["stream", "--sim", "--sim-seed", "8", "--sim", "--sim-seed", "9", "--count", "300",
