@@ -182,6 +182,15 @@ def test_split_one_file_per_sensor_jsonl(tmp_path: Path) -> None:
         assert "sensor" not in rows[0]
 
 
+def test_several_virtual_sensors_send_different_data() -> None:
+    r = run(["stream", "--sim", "--sim", "--count", "5", "--columns", "sensor,raw"])
+    assert r.returncode == 0, r.stderr
+    rows = Csv(r.stdout).rows
+    first = {row["sensor"]: [row[a] for a in RAW] for row in reversed(rows)}
+    assert first["sim1"] != first["sim2"]
+    assert '"serial":"00000001"' in r.stdout and '"serial":"00000002"' in r.stdout
+
+
 def test_split_refuses_before_creating_any_file(tmp_path: Path) -> None:
     kept = tmp_path / "rec-sim2.csv"
     kept.write_text("precious\n")

@@ -105,6 +105,16 @@ bool cli_port_option(cli_port_opts *po, cli_args *a)
         s->sim = po->sim_defaults;
         po->sims++;
         snprintf(s->name, sizeof s->name, "sim%lu", (unsigned long)po->sims);
+        if (po->sims > 1) {
+            /* Two virtual sensors with one seed would send the same data:
+             * each further one starts from the next seed and serial (its own
+             * --sim-seed / --sim-serial after it still set them). */
+            char serial[24];
+            snprintf(serial, sizeof serial, "%08lu", (unsigned long)po->sims);
+            s->sim.seed += po->sims - 1;
+            if (strcmp(s->sim.serial, "00000001") == 0)
+                (void)lep_sim_option_set(&s->sim, "serial", serial, NULL, 0);
+        }
         return true;
     }
     if (cli_args_is(a, "-t", "--timeout")) {
