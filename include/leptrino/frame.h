@@ -113,6 +113,27 @@ typedef void (*lep_frame_handler)(void *user, const lep_frame_event *ev);
 LEP_API int lep_frame_decoder_feed_all(lep_frame_decoder *d, const uint8_t *data, size_t len,
                                        lep_frame_handler on_event, void *user);
 
+/* The decoder's state number for "inside a frame body" (private: for
+ * lep_frame_decoder_push1 below only). */
+#define LEP_FRAME_STATE_BODY_ 2u
+
+/* The one-byte fast path, inline for a caller fed one byte at a time (an ISR
+ * ring buffer): when d is inside a frame body with room and b is not a DLE,
+ * take b as a message byte and return true (no event can follow from it).
+ * Otherwise change nothing and return false: the caller then feeds b with
+ * lep_frame_decoder_feed. Mixing both gives exactly the events and counters
+ * of lep_frame_decoder_feed alone. d must not be NULL. */
+static inline bool lep_frame_decoder_push1(lep_frame_decoder *d, uint8_t b)
+{
+    if (d->state == LEP_FRAME_STATE_BODY_ && b != LEP_DLE && d->len < LEP_MAX_MESSAGE) {
+        d->buf[d->len] = b;
+        d->len = (uint16_t)(d->len + 1u);
+        d->bcc = (uint8_t)(d->bcc ^ b);
+        return true;
+    }
+    return false;
+}
+
 /* True when the decoder is inside a frame (between DLE STX and its BCC). */
 LEP_API bool lep_frame_decoder_busy(const lep_frame_decoder *d);
 

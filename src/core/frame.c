@@ -16,7 +16,7 @@
 enum {
     S_IDLE = 0,  /* between frames: hunting for DLE STX */
     S_IDLE_DLE,  /* between frames, after a DLE */
-    S_MSG,       /* inside a frame */
+    S_MSG = LEP_FRAME_STATE_BODY_, /* inside a frame (frame.h's push1 tests this number) */
     S_MSG_DLE,   /* inside a frame, after a DLE */
     S_BCC,       /* after DLE ETX: the next byte is the BCC */
     S_SKIP,      /* inside a rejected (over-long) frame: track escapes to its end */
@@ -206,10 +206,8 @@ static size_t feed_byte(lep_frame_decoder *d, uint8_t b, lep_frame_event *ev)
 {
     size_t nx;
     ev->type = LEP_FRAME_NONE; /* the other fields only with the events that use them */
-    if (d->state == S_MSG && b != LEP_DLE && d->len < LEP_MAX_MESSAGE) {
-        d->buf[d->len++] = b; /* the usual byte: a message byte */
-        d->bcc ^= b;
-        return 1;
+    if (lep_frame_decoder_push1(d, b)) {
+        return 1; /* the usual byte: a message byte */
     }
     nx = (size_t)d->len + d->raw; /* wire bytes of the frame so far */
     switch (d->state) {
