@@ -123,6 +123,22 @@ NOINLINE static size_t region_client_step(lep_client *c, const uint8_t *in, size
 {
     size_t off = 0;
     size_t samples = 0;
+    if (chunk == 1) { /* the loop of an ISR ring's consumer, as lean as region_plain's */
+        for (off = 0; off < len; off++) {
+            size_t used;
+            int rc = lep_client_step(c, in + off, 1, &used);
+            if (rc == LEP_STEP_SAMPLE) {
+                lep_sample smp;
+                if (lep_client_get_sample(c, &smp) == LEP_OK)
+                    *sink += (uint32_t)(uint16_t)smp.raw[0];
+                samples++;
+            }
+            if (used == 0) {
+                return samples;
+            }
+        }
+        return samples;
+    }
     while (off < len) {
         const uint8_t *p = in + off;
         size_t n = len - off < chunk ? len - off : chunk;
