@@ -76,8 +76,15 @@ static int check_options(const lep_session_options *o, char *err, size_t errlen)
         lep_priv_set_err(err, errlen, "session: decimate must be >= 1");
         return LEP_E_ARG;
     }
-    if (!finite_nonneg(o->lowpass_hz) || !finite_nonneg(o->duration_s)) {
-        lep_priv_set_err(err, errlen, "session: lowpass_hz and duration_s must be finite and >= 0");
+    /* name the option that is wrong, and its value, not a list of suspects */
+    if (!finite_nonneg(o->lowpass_hz)) {
+        lep_priv_set_err(err, errlen, "session: lowpass_hz %g: must be 0 (off) or a cut-off in Hz > 0",
+                         o->lowpass_hz);
+        return LEP_E_ARG;
+    }
+    if (!finite_nonneg(o->duration_s)) {
+        lep_priv_set_err(err, errlen, "session: duration_s %g: must be 0 (none) or seconds > 0",
+                         o->duration_s);
         return LEP_E_ARG;
     }
     return LEP_OK;
@@ -269,7 +276,8 @@ int lep_session_start(lep_session *s)
     s->errors_before = 0;
     s->data_timeouts = 0;
     s->start_mono = now;
-    s->start_utc = now + lep_priv_utc_offset();
+    s->utc_off = lep_priv_utc_offset();
+    s->start_utc = now + s->utc_off;
     if (s->opt.tare_samples > 0)
         lep_priv_session_begin_tare(s, s->opt.tare_samples, 0.0, true);
     lep_priv_lowpass_restart(&s->lp);

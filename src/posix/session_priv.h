@@ -135,6 +135,11 @@ struct lep_session {
     uint64_t errors_before;   /* errors counted on earlier connections */
     uint64_t data_timeouts;
 
+    /* UTC - monotonic offset the samples are stamped with (the reading thread
+     * only): held between batches so UTC intervals equal monotonic ones, and
+     * moved only when the wall clock steps by more than SESSION_UTC_STEP_S. */
+    double utc_off;
+
     /* ---- [mu] metadata ---- */
     double start_utc;
     double start_mono;
@@ -156,6 +161,8 @@ void lep_priv_session_stream_reset(lep_session *s, double now);
 void lep_priv_session_push_event(lep_session *s, const lep_session_event *ev); /* [mu] held */
 void lep_priv_session_event_init(lep_session_event *ev, int type, uint64_t sample, double t_mono);
 double lep_priv_utc_offset(void);
+/* A wall-clock step smaller than this is measurement jitter, not a step. */
+#define SESSION_UTC_STEP_S 1e-3
 /* Step bytes through the client and process the samples they complete,
  * stamped as arriving by t_read. [mu] not held. */
 void lep_priv_session_feed(lep_session *s, const uint8_t *data, size_t len, double t_read);

@@ -256,7 +256,12 @@ void lep_priv_session_feed(lep_session *s, const uint8_t *data, size_t len, doub
             break;
     }
     lep_client_get_stats(&s->client, &st);
-    t_utc_off = n > 0 ? lep_priv_utc_offset() : 0.0;
+    if (n > 0) {
+        double fresh = lep_priv_utc_offset();
+        if (fabs(fresh - s->utc_off) > SESSION_UTC_STEP_S)
+            s->utc_off = fresh; /* the wall clock was set (NTP step, by hand) */
+    }
+    t_utc_off = s->utc_off;
 
     pthread_mutex_lock(&s->mu);
     s->h.client = st;

@@ -1,6 +1,7 @@
 /* The virtual sensor's replay file: raw counts per line, from the leptrino
- * tool's own raw recordings (comment lines, a header naming the columns) or
- * a plain headerless fx,fy,fz,mx,my,mz[,status] list. */
+ * tool's own raw recordings (CSV: comment lines, a header naming the
+ * columns; JSON lines: a metadata object, then flat objects whose names are
+ * the columns) or a plain headerless fx,fy,fz,mx,my,mz[,status] list. */
 #if defined(__APPLE__)
 #define _DARWIN_C_SOURCE
 #else
@@ -106,6 +107,64 @@ static int read_header(layout *l, char **field, int n, const char *file, size_t 
     }
     l->seen_header = true;
     return LEP_OK;
+}
+
+/* A line of the tool's JSON-lines recordings, split in place into names and
+ * values (strings unquoted). Returns the count for a data row (a flat
+ * object), 0 for a line that is not one ({"metadata":{...}}, an
+ * {"event":...} mark), or -1 when it is not such a JSON object. */
+static int split_json(char *p, char *name[MAX_FIELDS], char *value[MAX_FIELDS])
+{
+    int n = 0;
+    while (*p == ' ' || *p == '\t')
+        p++;
+    if (*p++ != '{')
+        return -1;
+    for (;;) {
+        while (*p == ' ' || *p == '\t')
+            p++;
+        if (*p == '}')
+            return n;
+        if (*p++ != '"' || n == MAX_FIELDS)
+            return -1;
+        name[n] = p;
+        while (*p != '"' && *p != '\0' && *p != '\\')
+            p++;
+        if (*p != '"')
+            return -1;
+        *p++ = '\0';
+        while (*p == ' ' || *p == '\t')
+            p++;
+        if (*p++ != ':')
+            return -1;
+        while (*p == ' ' || *p == '\t')
+            p++;
+        if (*p == '{' || *p == '[' || strcmp(name[n], "event") == 0)
+            return 0; /* metadata (nested), or an event mark */
+        if (*p == '"') {
+            value[n] = ++p;
+            while (*p != '"' && *p != '\0' && *p != '\\')
+                p++;
+            if (*p != '"')
+                return -1;
+            *p++ = '\0';
+        } else {
+            value[n] = p;
+            while (*p != ',' && *p != '}' && *p != ' ' && *p != '\0')
+                p++;
+        }
+        n++;
+        while (*p == ' ' || *p == '\t')
+            p++;
+        if (*p == ',') {
+            *p++ = '\0';
+        } else if (*p == '}') {
+            *p = '\0';
+            return n;
+        } else {
+            return -1;
+        }
+    }
 }
 
 static bool parse_int(const char *s, long lo, long hi, long *out)
@@ -238,14 +297,33 @@ int lep_priv_replay_load(lep_sim_signal *g, const char *file, char *err, size_t 
             p++;
         if (*p == '\0' || *p == '\n' || *p == '\r' || *p == '#')
             continue; /* blank, or a comment (metadata, events) */
-        n = split(buf, field);
+        if (*p == '{') { /* JSON lines: the names make the header, the values a row */
+            char *value[MAX_FIELDS];
+            n = split_json(buf, field, value);
+            if (n < 0) {
+                lep_priv_set_err(err, errlen, "%s:%zu: not a flat JSON object of the leptrino "
+                                 "tool's recordings", file, lineno);
+                rc = LEP_E_VALUE;
+                break;
+            }
+            if (n == 0)
+                continue;
+            if (!l.seen_header) {
+                rc = read_header(&l, field, n, file, lineno, err, errlen);
+                if (rc != LEP_OK)
+                    break;
+            }
+            memcpy(field, value, (size_t)n * sizeof field[0]);
+        } else {
+            n = split(buf, field);
+        }
         if (n < 0) {
             lep_priv_set_err(err, errlen, "%s:%zu: more than %d columns", file, lineno,
                              MAX_FIELDS);
             rc = LEP_E_VALUE;
             break;
         }
-        if (isalpha((unsigned char)*p) || *p == '"') {
+        if (*p != '{' && (isalpha((unsigned char)*p) || *p == '"')) {
             if (l.seen_header || g->replay_rows > 0) {
                 lep_priv_set_err(err, errlen, "%s:%zu: a second header line", file, lineno);
                 rc = LEP_E_VALUE;

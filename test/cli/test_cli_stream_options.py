@@ -182,6 +182,17 @@ def test_split_one_file_per_sensor_jsonl(tmp_path: Path) -> None:
         assert "sensor" not in rows[0]
 
 
+def test_split_refuses_before_creating_any_file(tmp_path: Path) -> None:
+    kept = tmp_path / "rec-sim2.csv"
+    kept.write_text("precious\n")
+    r = run(["stream", "--sim", "--sim", "--duration", "0.3",
+             "--split", str(tmp_path / "rec-{sensor}.csv")])
+    assert r.returncode == 1
+    assert "rec-sim2.csv: already exists" in r.stderr and "samples in" not in r.stderr
+    assert kept.read_text() == "precious\n"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["rec-sim2.csv"]  # no stray rec-sim1.csv
+
+
 def test_replay_of_own_raw_recording_gives_the_same_counts(tmp_path: Path) -> None:
     rec = tmp_path / "rec.csv"
     r = run(["stream", "--sim", "--sim-seed", "5", "--count", "600", "--columns", "raw,seq",
@@ -195,6 +206,20 @@ def test_replay_of_own_raw_recording_gives_the_same_counts(tmp_path: Path) -> No
     replayed = Csv(r.stdout)
     assert [[row[a] for a in RAW] for row in replayed.rows] == \
         [[row[a] for a in RAW] for row in original.rows]
+
+
+def test_replay_of_own_raw_jsonl_recording_gives_the_same_counts(tmp_path: Path) -> None:
+    rec = tmp_path / "rec.jsonl"
+    r = run(["stream", "--sim", "--sim-seed", "6", "--count", "300", "--columns", "raw,status",
+             "-f", "jsonl", "-o", str(rec)])
+    assert r.returncode == 0, r.stderr
+    _, original, _ = parse_jsonl(rec.read_text())
+    r = run(["stream", "--sim", "--sim-replay", str(rec), "--count", "300", "--columns", "raw",
+             "-f", "jsonl"])
+    assert r.returncode == 0, r.stderr
+    _, replayed, _ = parse_jsonl(r.stdout)
+    assert [[row[a] for a in RAW] for row in replayed] == \
+        [[row[a] for a in RAW] for row in original]
 
 
 def test_replay_of_a_two_sensor_recording_takes_the_first_rows_sensor(tmp_path: Path) -> None:

@@ -78,7 +78,7 @@ static void help(void)
           "A metadata header comes first (CSV: '# leptrino-metadata: {...}' lines; JSON\n"
           "lines: a first {\"metadata\": ...} object): sensor, rated values, filters, tare,\n"
           "frame, start time. Gaps are marked where they happen: CSV '# gap ...' lines,\n"
-          "JSON lines {\"gap\": ...} objects.\n"
+          "JSON lines {\"event\":\"gap\", ...} objects.\n"
           "\n"
           "Run:\n"
           "  -d, --duration S         stop after S seconds of data\n"
@@ -502,9 +502,33 @@ static void summary(stream_state *st)
 }
 
 /* Writers: one for every sensor (--split) or one shared. */
+/* With --split, refuse before creating any file when one of them already
+ * holds a regular file: no metadata-only file is left behind for a run that
+ * does not happen (the writer's own exclusive open still guards each file). */
+static int check_split_targets(stream_state *st)
+{
+    size_t i;
+    if (st->o.split == NULL || st->o.out.overwrite)
+        return CLI_OK;
+    for (i = 0; i < st->n; ++i) {
+        char path[1024];
+        struct stat sb;
+        if (!split_path(st->o.split, st->run[i].sensor, i, path, sizeof path))
+            continue; /* reported by open_outputs */
+        if (stat(path, &sb) == 0 && (S_ISREG(sb.st_mode) || S_ISDIR(sb.st_mode))) {
+            fprintf(stderr, "leptrino: stream: %s: already exists; not overwritten (choose another "
+                            "name, or --overwrite); no file was written\n", path);
+            return CLI_FAIL;
+        }
+    }
+    return CLI_OK;
+}
+
 static int open_outputs(stream_state *st)
 {
     size_t i;
+    if (check_split_targets(st) != CLI_OK)
+        return CLI_FAIL;
     for (i = 0; i < st->n; ++i) {
         sensor_run *r = &st->run[i];
         char path[1024], err[512];
@@ -560,6 +584,7 @@ static void close_outputs(stream_state *st)
 int cli_cmd_stream(int argc, char **argv)
 {
     static stream_state st;
+    bool ran = false; /* the stream ran (a summary is due) */
     int code, rc;
     size_t i;
 
@@ -600,6 +625,7 @@ int cli_cmd_stream(int argc, char **argv)
                          (st.o.output == NULL || strcmp(st.o.output, "-") == 0);
         cli_status_init(&st.st, to_stdout ? STDOUT_FILENO : -1);
         st.keys = cli_term_keys_begin();
+        ran = true;
         code = loop(&st);
         cli_term_keys_end();
     }
@@ -619,7 +645,7 @@ int cli_cmd_stream(int argc, char **argv)
                 strerror(st.write_error));
         code = CLI_FAIL;
     }
-    if (st.t0 > 0.0 && st.t0 < INFINITY)
+    if (ran && st.t0 > 0.0 && st.t0 < INFINITY)
         summary(&st);
     cli_sensors_close(&st.o.po);
     return code;

@@ -571,7 +571,10 @@ class Sensor:
             lib.lep_session_set_latency(s, _RECORD_LATENCY_MS)
         try:
             now = float(lib.lep_monotonic_seconds())
-            end = now + seconds if seconds is not None else math.inf
+            # seconds count from the first row's arrival, as `leptrino stream
+            # --duration` (the session's duration_s) does: a tare's samples
+            # before it are not part of the recording's time
+            end = math.inf
             last_data = now
             lost_seen = False
             final_reads = 0
@@ -583,7 +586,8 @@ class Sensor:
                         break
                     wait_s = min(_RECORD_SLICE_S, self._timeout_ms / 1000)
                 else:
-                    left = end - now
+                    assert seconds is not None
+                    left = end - now if n > 0 else seconds
                     if left <= 0:
                         # Time is up, but the latency budget may still hold
                         # samples that arrived before the end: take them with
@@ -600,6 +604,8 @@ class Sensor:
                 arrays.reserve(n + room)
                 arrays.c.cap = n + room
                 rc = lib.lep_session_read(s, arrays.c, max(1, int(wait_s * 1000)))
+                if seconds is not None and n == 0 and arrays.n > 0:
+                    end = float(arrays.t_mono[0]) + seconds
                 self._delivered += arrays.n - n
                 new = self._drain_events(base)
                 events += new
@@ -742,8 +748,6 @@ class Stream:
             self._started = True
         self._open = True
         self._base = s._delivered
-        if self._seconds is not None:
-            self._end = float(lib.lep_monotonic_seconds()) + self._seconds
 
     def close(self) -> None:
         """Stop the stream if this iterator started it (best effort when the port is gone)."""
@@ -768,9 +772,13 @@ class Stream:
             sample = next(self._pending)
         except StopIteration:
             sample = self._fill()
-        if self._end is not None and sample.t > self._end:
-            self.close()
-            raise StopIteration
+        if self._seconds is not None:
+            # seconds from the first sample's arrival (the session's duration_s rule)
+            if self._end is None:
+                self._end = sample.t + self._seconds
+            elif sample.t >= self._end:
+                self.close()
+                raise StopIteration
         self._n += 1
         return sample
 
@@ -785,14 +793,15 @@ class Stream:
             a.c.n = 0
             a.c.cap = room
             wait = s._timeout_ms
+            left = math.inf
             if self._end is not None:
                 left = self._end - float(lib.lep_monotonic_seconds())
-                if left <= 0:
-                    self.close()
-                    raise StopIteration
                 wait = max(1, min(wait, int(math.ceil(left * 1000))))
             rc = lib.lep_session_read(s._live(), a.c, wait)
             now = float(lib.lep_monotonic_seconds())
+            if a.n == 0 and left <= 0:
+                self.close()  # past the end and nothing more arrived before it
+                raise StopIteration
             s._delivered += a.n
             new = s._drain_events(self._base)
             self.events += new

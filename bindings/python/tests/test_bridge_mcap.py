@@ -15,8 +15,6 @@ from typing import Any, Dict, List, Tuple
 import pytest
 from conftest import subprocess_env
 
-pytest.importorskip("mcap", reason="needs the bridge extra (mcap)")
-
 
 def bridge(*args: str, timeout: float = 60) -> subprocess.CompletedProcess:
     return subprocess.run([sys.executable, "-m", "leptrino.bridge", *args],

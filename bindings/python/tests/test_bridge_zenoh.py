@@ -14,13 +14,12 @@ from pathlib import Path
 from typing import Any, Dict, Iterator, List, Tuple
 
 import pytest
+import zenoh  # the "bridge" extra (make test and .ci/checks/60-bridge.sh install it)
 
-zenoh = pytest.importorskip("zenoh", reason="needs the bridge extra (eclipse-zenoh)")
-
-import leptrino  # noqa: E402
-from leptrino.bridge import Bridge, NodeOptions, SensorSpec, ZenohOptions  # noqa: E402
-from leptrino.bridge import cdr  # noqa: E402
-from leptrino.bridge import rmw_zenoh as rz  # noqa: E402
+import leptrino
+from leptrino.bridge import Bridge, NodeOptions, SensorSpec, ZenohOptions
+from leptrino.bridge import cdr
+from leptrino.bridge import rmw_zenoh as rz
 
 WRENCH_HASH = "RIHS01_8dc3deaf06b2ab281f9f9a742a8961c328ca7cec16e3fd6586d3a5c83fa78f77"
 TRIGGER_HASH = "RIHS01_eeff2cd6fa5ad9d27cdf4dec64818317839b62f212a91e6b5304b634b2062c5f"

@@ -145,7 +145,9 @@ def test_record_grows_past_its_estimate(backend: str) -> None:
     with leptrino.Simulator(rate_hz=3000, backend=backend) as port:
         with leptrino.Sensor(port, backend=backend) as s:
             rec = s.record(seconds=0.5)  # no output-rate field: sized for 1200 Hz
-            assert 1400 <= len(rec) <= 1600
+            # The arrays start sized for 0.5 s at 1200 Hz (694 rows) and must grow;
+            # 3000 Hz for 0.5 s is 1500, less what a loaded machine delays.
+            assert 1000 <= len(rec) <= 1600
             assert rec.missing() == 0
 
 
@@ -239,11 +241,11 @@ def test_ctrl_c_during_record_keeps_the_samples(backend: str) -> None:
         timer.start()
         try:
             with pytest.raises(KeyboardInterrupt) as info:
-                s.record(seconds=10.0)
+                s.record(seconds=60.0)  # ends by the interrupt long before
         finally:
             timer.cancel()
         partial = info.value.recording  # type: ignore[attr-defined]
-        assert 100 <= len(partial) <= 12000 and partial.missing() == 0
+        assert 100 <= len(partial) <= 72000 and partial.missing() == 0
         assert not s.streaming  # and the stream was stopped
 
 

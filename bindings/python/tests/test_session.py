@@ -283,6 +283,35 @@ def test_same_rows_as_the_c_tool(backend: str, tmp_path: Path, cli_args: list,
     assert c == py
 
 
+def test_seconds_count_as_the_c_tools_duration(backend: str, tmp_path: Path) -> None:
+    """record(seconds=S) and stream(seconds=S) with a tare hold S seconds of
+    rows, from the first row's arrival, as `leptrino stream --duration S
+    --tare N` does (the tare's samples are not part of the time): the same
+    number of rows from both, give or take the clock's jitter."""
+    import subprocess
+
+    from leptrino import _tools
+
+    c_file = tmp_path / "c.csv"
+    r = subprocess.run([str(_tools.program_path("leptrino")), "stream", "--sim", "--tare",
+                        "240", "-d", "1", "-o", str(c_file)],
+                       capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0, r.stderr
+    c_rows = sum(1 for line in c_file.read_text().splitlines()
+                 if line and not line.startswith(("#", "t_s")))
+    with leptrino.Sensor(sim={}, tare=240, backend=backend) as s:
+        rec = s.record(seconds=1.0)
+    period = 1 / 1200
+    # record() keeps the last read whole (samples the latency budget held back)
+    assert 1.0 - 6 * period < rec.t[-1] - rec.t[0] < 1.05
+    # the 240 tare samples are not part of either's second (a 2 % margin for a loaded machine)
+    assert abs(len(rec) - c_rows) <= 24, (len(rec), c_rows)
+    with leptrino.Sensor(sim={}, tare=240, backend=backend) as s:
+        with s.stream(seconds=0.5) as st:
+            t = [x.t for x in st]
+    assert 0.5 - 6 * period < t[-1] - t[0] < 0.5
+
+
 def test_stall_shorter_than_the_data_timeout_is_a_gap(backend: str) -> None:
     with leptrino.Sensor(sim={"stall": 300, "stall_after": 0.3}, timeout=0.1,
                          backend=backend) as s:

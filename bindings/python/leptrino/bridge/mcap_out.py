@@ -91,7 +91,7 @@ class McapRecorder:
             if self._f is None:
                 return
             try:
-                self._w.finish()
+                self._w.finish()  # type: ignore[no-untyped-call]
             finally:
                 self._f.close()
                 self._f = None

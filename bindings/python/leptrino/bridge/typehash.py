@@ -15,7 +15,9 @@ from __future__ import annotations
 import hashlib
 import json
 import re
-from typing import Dict, List, Optional, Tuple
+from typing import Any, Dict, List, Optional, Set, Tuple
+
+Description = Dict[str, Any]
 
 #: Field type ids of type_description_interfaces/msg/FieldType.
 _BASIC_IDS: Dict[str, int] = {
@@ -114,7 +116,7 @@ def parse_fields(text: str, package: str) -> List[Field]:
     return out
 
 
-def _individual(type_name: str, fields: List[Field]) -> dict:
+def _individual(type_name: str, fields: List[Field]) -> Description:
     return {
         "type_name": type_name,
         "fields": [
@@ -125,10 +127,10 @@ def _individual(type_name: str, fields: List[Field]) -> dict:
     }
 
 
-def _catalogue() -> Dict[str, dict]:
+def _catalogue() -> Dict[str, Description]:
     """Every individual description known here, services expanded as rosidl
     does (the service type, its request, response and event messages)."""
-    cat: Dict[str, dict] = {}
+    cat: Dict[str, Description] = {}
     for name, text in MESSAGES.items():
         cat[name] = _individual(name, parse_fields(text, name.split("/")[0]))
     for name, text in SERVICES.items():
@@ -150,12 +152,13 @@ def _catalogue() -> Dict[str, dict]:
     return cat
 
 
-def type_description(type_name: str, catalogue: Optional[Dict[str, dict]] = None) -> dict:
+def type_description(type_name: str,
+                     catalogue: Optional[Dict[str, Description]] = None) -> Description:
     """The full TypeDescription of a type: itself and every type it reaches,
     the referenced ones sorted by name. KeyError for an unknown type."""
     cat = catalogue if catalogue is not None else _catalogue()
     top = cat[type_name]
-    seen: set = set()
+    seen: Set[str] = set()
     queue = [f["type"]["nested_type_name"] for f in top["fields"] if f["type"]["nested_type_name"]]
     while queue:
         t = queue.pop()
@@ -168,7 +171,7 @@ def type_description(type_name: str, catalogue: Optional[Dict[str, dict]] = None
             "referenced_type_descriptions": [cat[t] for t in sorted(seen)]}
 
 
-def canonical_json(description: dict) -> str:
+def canonical_json(description: Description) -> str:
     """The text REP 2016 hashes: compact JSON with ", " and ": " separators,
     keys in the order above, ASCII only."""
     return json.dumps(description, ensure_ascii=True, allow_nan=False,
