@@ -116,6 +116,17 @@ static uint32_t zero_clock(void *user)
     return 0;
 }
 
+/* One outcome of lep_client_step: a sample is read out (counted in *samples). */
+static void take_outcome(lep_client *c, int rc, size_t *samples, uint32_t *sink)
+{
+    if (rc == LEP_STEP_SAMPLE) {
+        lep_sample smp;
+        if (lep_client_get_sample(c, &smp) == LEP_OK)
+            *sink += (uint32_t)(uint16_t)smp.raw[0];
+        (*samples)++;
+    }
+}
+
 /* The client's step API fed chunk bytes per call (an ISR ring buffer on an
  * MCU), already streaming; every outcome drained. */
 NOINLINE static size_t region_client_step(lep_client *c, const uint8_t *in, size_t len, size_t chunk,
@@ -123,21 +134,25 @@ NOINLINE static size_t region_client_step(lep_client *c, const uint8_t *in, size
 {
     size_t off = 0;
     size_t samples = 0;
+    if (chunk == 1) { /* the loop of an ISR ring's consumer, as lean as region_plain's */
+        for (off = 0; off < len; off++) {
+            size_t used;
+            take_outcome(c, lep_client_step(c, in + off, 1, &used), &samples, sink);
+            if (used == 0) {
+                return samples;
+            }
+        }
+        return samples;
+    }
     while (off < len) {
         const uint8_t *p = in + off;
         size_t n = len - off < chunk ? len - off : chunk;
         off += n;
         while (n > 0) {
             size_t used = 0;
-            int rc = lep_client_step(c, p, n, &used);
+            take_outcome(c, lep_client_step(c, p, n, &used), &samples, sink);
             p += used;
             n -= used;
-            if (rc == LEP_STEP_SAMPLE) {
-                lep_sample smp;
-                if (lep_client_get_sample(c, &smp) == LEP_OK)
-                    *sink += (uint32_t)(uint16_t)smp.raw[0];
-                samples++;
-            }
             if (used == 0) {
                 return samples;
             }

@@ -1242,6 +1242,11 @@ static void test_null_arguments(void)
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_step(NULL, NULL, 0, &used));
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_step(&client, NULL, 0, NULL));
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_step(&client, NULL, 1, &used));
+    {   /* the one-byte fast path checks its arguments too */
+        const uint8_t one = 0x41;
+        TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_step(NULL, &one, 1, &used));
+        TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_step(&client, &one, 1, NULL));
+    }
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_transact(NULL, &cmd, NULL));
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_transact(&client, NULL, NULL));
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_product_info(&client, NULL));

@@ -53,7 +53,8 @@ static uint32_t rng_next(uint32_t *s)
 }
 
 /* Which entry point run() feeds chunks through. */
-enum api { API_FEED, API_FEED_ALL, API_MIXED };
+enum api { API_FEED, API_FEED_ALL, API_MIXED, API_PUSH1 }; /* API_PUSH1: one-byte chunks
+                                                          try lep_frame_decoder_push1 first */
 static enum api g_api = API_FEED;
 
 static void record_event(run_result *r, const lep_frame_event *ev)
@@ -88,6 +89,9 @@ static void feed_chunk(lep_frame_decoder *d, const uint8_t *p, size_t len, run_r
     if (g_api == API_FEED_ALL || (g_api == API_MIXED && calls % 2u == 0u)) {
         TEST_ASSERT_EQUAL_INT(LEP_OK, lep_frame_decoder_feed_all(d, p, len, on_event, r));
         return;
+    }
+    if (g_api == API_PUSH1 && len == 1u && lep_frame_decoder_push1(d, p[0])) {
+        return; /* taken inline: no event */
     }
     do {
         lep_frame_event ev;
@@ -318,10 +322,11 @@ static void check_stream_api(const lep_json *v, enum split_mode mode, const char
 /* Every stream through feed, through feed_all, and through both in turn. */
 static void check_stream(const lep_json *v, enum split_mode mode, const char *how)
 {
-    static const char *const names[] = {"feed", "feed_all", "feed and feed_all in turn"};
+    static const char *const names[] = {"feed", "feed_all", "feed and feed_all in turn",
+                                        "push1, else feed"};
     char what[128];
     int api;
-    for (api = API_FEED; api <= API_MIXED; api++) {
+    for (api = API_FEED; api <= API_PUSH1; api++) {
         g_api = (enum api)api;
         snprintf(what, sizeof what, "%s, %s", how, names[api]);
         check_stream_api(v, mode, what);

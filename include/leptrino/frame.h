@@ -113,6 +113,59 @@ typedef void (*lep_frame_handler)(void *user, const lep_frame_event *ev);
 LEP_API int lep_frame_decoder_feed_all(lep_frame_decoder *d, const uint8_t *data, size_t len,
                                        lep_frame_handler on_event, void *user);
 
+/* The decoder's state numbers that lep_frame_decoder_push1 below handles
+ * (private: frame.c's enum uses the same numbers). */
+#define LEP_FRAME_ST_IDLE_ 0u     /* between frames */
+#define LEP_FRAME_ST_IDLE_DLE_ 1u /* between frames, after a DLE */
+#define LEP_FRAME_ST_BODY_ 2u     /* inside a frame body */
+#define LEP_FRAME_ST_BODY_DLE_ 3u /* inside a frame body, after a DLE */
+#define LEP_FRAME_ST_BCC_ 4u      /* after DLE ETX */
+
+/* The one-byte fast path, inline for a caller fed one byte at a time (an ISR
+ * ring buffer). When b completes no event and changes no counter (a message
+ * byte with room for it, a DLE inside a body, or the DLE STX / DLE ETX of a
+ * frame after a plain idle line or a body) it takes b and returns true.
+ * Otherwise it changes nothing and returns false: the caller then feeds b with
+ * lep_frame_decoder_feed. Mixing both gives exactly the events and counters
+ * of lep_frame_decoder_feed alone. d must not be NULL. */
+static inline bool lep_frame_decoder_push1(lep_frame_decoder *d, uint8_t b)
+{
+    uint8_t st = d->state;
+    if (st == LEP_FRAME_ST_BODY_) {
+        if (b == LEP_DLE) {
+            d->state = LEP_FRAME_ST_BODY_DLE_;
+            return true;
+        }
+        if (d->len < LEP_MAX_MESSAGE) { /* the usual byte */
+            d->buf[d->len] = b;
+            d->len = (uint16_t)(d->len + 1u);
+            d->bcc = (uint8_t)(d->bcc ^ b);
+            return true;
+        }
+        return false;
+    }
+    if (b == LEP_DLE) {
+        if (st == LEP_FRAME_ST_IDLE_) {
+            d->state = LEP_FRAME_ST_IDLE_DLE_;
+            return true;
+        }
+        return false;
+    }
+    if (st == LEP_FRAME_ST_IDLE_DLE_ && b == LEP_STX) { /* a frame begins */
+        d->raw = 2;
+        d->len = 0;
+        d->bcc = 0;
+        d->state = LEP_FRAME_ST_BODY_;
+        return true;
+    }
+    if (st == LEP_FRAME_ST_BODY_DLE_ && b == LEP_ETX) { /* the body ends: the BCC follows */
+        d->raw = (uint16_t)(d->raw + 2u);
+        d->state = LEP_FRAME_ST_BCC_;
+        return true;
+    }
+    return false;
+}
+
 /* True when the decoder is inside a frame (between DLE STX and its BCC). */
 LEP_API bool lep_frame_decoder_busy(const lep_frame_decoder *d);
 

@@ -444,10 +444,19 @@ SLOW_PATH static int step_events(lep_client *c, const uint8_t *data, size_t len,
     }
 }
 
-/* The per-byte path is short on purpose (an ISR-fed firmware calls it once a
- * byte): one feed (it consumes everything up to the first event), and
- * everything else in step_events / step_clock. */
+/* The inline one-byte path of lep_client_step below is left out of builds
+ * optimised for size (-Os), like the decoder's word-at-a-time machine: there
+ * every byte takes the general path, which gives the same results. */
+#if !defined(__OPTIMIZE_SIZE__)
+#define CLIENT_FAST 1
+#endif
+
+#ifdef CLIENT_FAST
+/* lep_client_step for any input but the usual single byte (below). */
+SLOW_PATH static int step_input(lep_client *c, const uint8_t *data, size_t len, size_t *consumed)
+#else
 int lep_client_step(lep_client *c, const uint8_t *data, size_t len, size_t *consumed)
+#endif
 {
     lep_frame_event ev;
     size_t pos;
@@ -465,6 +474,26 @@ int lep_client_step(lep_client *c, const uint8_t *data, size_t len, size_t *cons
     }
     return step_clock(c, *consumed);
 }
+
+/* The per-byte path is short on purpose (an ISR-fed firmware calls it once a
+ * byte): a message byte inside a frame body is taken inline (no call, no
+ * event possible); everything else goes through one feed (it consumes
+ * everything up to the first event) in step_input / step_events / step_clock. */
+#ifdef CLIENT_FAST
+int lep_client_step(lep_client *c, const uint8_t *data, size_t len, size_t *consumed)
+{
+    if (len == 1u && c != NULL && consumed != NULL && data != NULL &&
+        lep_frame_decoder_push1(&c->dec, data[0])) {
+        c->msg = NULL;
+        *consumed = 1;
+        if ((c->state & (ST_WAIT | ST_WATCH)) == 0u) {
+            return LEP_STEP_NONE;
+        }
+        return step_clock(c, 1u);
+    }
+    return step_input(c, data, len, consumed);
+}
+#endif
 
 /* ---- Blocking calls ---- */
 

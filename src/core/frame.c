@@ -13,12 +13,16 @@
 
 #include "leptrino/error.h"
 
+/* The first five are frame.h's LEP_FRAME_ST_*_: lep_frame_decoder_push1 there
+ * is the inline copy of feed_byte's transitions that raise no event and count
+ * nothing (the client's one-byte path; the client tests hold it to the same
+ * events at every chunking). */
 enum {
-    S_IDLE = 0,  /* between frames: hunting for DLE STX */
-    S_IDLE_DLE,  /* between frames, after a DLE */
-    S_MSG,       /* inside a frame */
-    S_MSG_DLE,   /* inside a frame, after a DLE */
-    S_BCC,       /* after DLE ETX: the next byte is the BCC */
+    S_IDLE = LEP_FRAME_ST_IDLE_,         /* between frames: hunting for DLE STX */
+    S_IDLE_DLE = LEP_FRAME_ST_IDLE_DLE_, /* between frames, after a DLE */
+    S_MSG = LEP_FRAME_ST_BODY_,          /* inside a frame */
+    S_MSG_DLE = LEP_FRAME_ST_BODY_DLE_,  /* inside a frame, after a DLE */
+    S_BCC = LEP_FRAME_ST_BCC_,           /* after DLE ETX: the next byte is the BCC */
     S_SKIP,      /* inside a rejected (over-long) frame: track escapes to its end */
     S_SKIP_DLE,  /* same, after a DLE */
     S_SKIP_BCC,  /* same, the BCC byte */
