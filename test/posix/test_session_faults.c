@@ -136,12 +136,21 @@ typedef struct thief {
     size_t stolen;
 } thief;
 
+/* Steals in bursts: races the session for every byte during 50 ms of each
+ * 150 ms and leaves the port alone otherwise. A thief that never paused could
+ * win nearly every race on a loaded machine, so that the session saw no
+ * sample for its whole data timeout (a lost stream, not the holes tested). */
 static void *steal(void *arg)
 {
     thief *t = arg;
     uint8_t buf[256];
+    unsigned tick = 0;
     while (!st_flag_is_up(&t->stop)) {
         struct pollfd p;
+        if (tick++ % 15u >= 5u) {
+            (void)poll(NULL, 0, 10); /* idle for 10 ms */
+            continue;
+        }
         p.fd = t->fd;
         p.events = POLLIN;
         p.revents = 0;
