@@ -1,20 +1,26 @@
 /* End-to-end measurements of leptrino-bench: the client against leptrino-sim
  * in another process over a pseudo-terminal, as a user's program runs it.
  *
- * Latency of sample k: the time next_sample returned it minus the time the
- * virtual sensor was due to write it, t0 + (k+1)/rate (its absolute deadline,
- * docs/simulator.md), where k comes from the sequence number the sim puts in
- * the reserved bytes. The sim sets t0 when it handles the start command; we
- * take t0 as the moment the start command was written, which is at most
- * t0_window_us earlier, so the latencies are upper bounds by at most that. */
+ * Latency of sample k, the headline: the time the read that returned it
+ * returned, minus the time the virtual sensor called the write() that handed
+ * it to the pty. The sim records that time for every data message
+ * (`--trace-writes FILE`, docs/simulator.md), keyed by k, the index of the
+ * sample in its stream (the sequence number in the reserved bytes, unwrapped);
+ * both are CLOCK_MONOTONIC of one machine. Kept as a second figure: the
+ * latency from the sample's deadline t0 + (k+1)/rate (t0 from the trace's
+ * start record), which adds the sim's own wake-up lateness; that lateness is
+ * reported as well (write call minus deadline). */
 #define _DEFAULT_SOURCE
 #include "e2e.h"
 
+#include <dirent.h>
+#include <errno.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/resource.h>
+#include <sys/stat.h>
 #include <sys/time.h>
 #include <sys/wait.h>
 #include <time.h>
@@ -24,12 +30,16 @@
 #include "leptrino/leptrino.h"
 #include "leptrino/serial.h"
 #include "leptrino/session.h"
+#include "leptrino/sim.h"
 
 #define LAT_MAX 200000u
 
 typedef struct sim_proc {
     pid_t pid;
     char port[256];
+    char dir[64];    /* temporary directory of the trace, "" when none */
+    char trace[96];  /* the sim's --trace-writes file */
+    long trace_off;  /* bytes of it already taken */
 } sim_proc;
 
 void e2e_defaults(e2e_options *o, const char *self)
@@ -86,13 +96,23 @@ static long long proc_rw_syscalls(void)
     return r >= 0 && w >= 0 ? r + w : -1;
 }
 
-static int sim_start(const e2e_options *o, double rate, sim_proc *sp)
+/* Start leptrino-sim at rate; with trace, it records its writes into a new
+ * file in a new temporary directory (removed by sim_stop). */
+static int sim_start(const e2e_options *o, double rate, int trace, sim_proc *sp)
 {
     int fds[2];
     char a_rate[32];
     FILE *f;
     memset(sp, 0, sizeof(*sp));
     snprintf(a_rate, sizeof a_rate, "%g", rate);
+    if (trace) {
+        snprintf(sp->dir, sizeof sp->dir, "/tmp/leptrino-bench-XXXXXX");
+        if (mkdtemp(sp->dir) == NULL) {
+            sp->dir[0] = '\0';
+        } else {
+            snprintf(sp->trace, sizeof sp->trace, "%s/writes.bin", sp->dir);
+        }
+    }
     if (pipe(fds) != 0) {
         return -1;
     }
@@ -101,7 +121,10 @@ static int sim_start(const e2e_options *o, double rate, sim_proc *sp)
         return -1;
     }
     if (sp->pid == 0) {
-        char *argv[] = {(char *)o->sim, "--rate", a_rate, NULL};
+        char *argv[] = {(char *)o->sim, "--rate", a_rate, "--trace-writes", sp->trace, NULL};
+        if (sp->trace[0] == '\0') {
+            argv[3] = NULL;
+        }
         dup2(fds[1], 1);
         close(fds[0]);
         close(fds[1]);
@@ -123,30 +146,88 @@ static int sim_start(const e2e_options *o, double rate, sim_proc *sp)
     return 0;
 }
 
-/* Stop the sim; its CPU seconds (user + sys) over its life. */
+/* Stop the sim, remove its trace; its CPU seconds (user + sys) over its life. */
 static double sim_stop(sim_proc *sp)
 {
     struct rusage ru;
     int status;
+    int w;
     memset(&ru, 0, sizeof(ru));
     kill(sp->pid, SIGTERM);
-    if (wait4(sp->pid, &status, 0, &ru) < 0) {
+    w = (int)wait4(sp->pid, &status, 0, &ru);
+    if (sp->trace[0] != '\0') {
+        remove(sp->trace);
+    }
+    if (sp->dir[0] != '\0') {
+        rmdir(sp->dir);
+    }
+    if (w < 0) {
         return 0.0 / 0.0;
     }
     return (double)ru.ru_utime.tv_sec + (double)ru.ru_utime.tv_usec * 1e-6 + (double)ru.ru_stime.tv_sec +
            (double)ru.ru_stime.tv_usec * 1e-6;
 }
 
+/* CPU nanoseconds of every thread of process pid so far (the sum of
+ * /proc/PID/task/TID/schedstat's first field: time on a CPU, exact for a
+ * thread that is asleep when read), or -1 where that is not available. */
+static long long proc_cpu_ns(pid_t pid)
+{
+    char path[64];
+    long long sum = 0;
+    struct dirent *e;
+    DIR *d;
+    snprintf(path, sizeof path, "/proc/%ld/task", (long)pid);
+    d = opendir(path);
+    if (d == NULL) {
+        return -1;
+    }
+    while ((e = readdir(d)) != NULL) {
+        char stat_path[128];
+        long long ns = -1;
+        FILE *f;
+        if (e->d_name[0] == '.') {
+            continue;
+        }
+        snprintf(stat_path, sizeof stat_path, "%s/%.20s/schedstat", path, e->d_name);
+        f = fopen(stat_path, "r");
+        if (f != NULL) {
+            if (fscanf(f, "%lld", &ns) != 1) {
+                ns = -1;
+            }
+            fclose(f);
+        }
+        if (ns < 0) {
+            sum = -1;
+            break;
+        }
+        sum += ns;
+    }
+    closedir(d);
+    return sum;
+}
+
 typedef struct stream_result {
     int rc;
     size_t samples;
-    size_t lost;       /* sequence numbers skipped */
+    size_t lost;        /* sequence numbers skipped */
     double wall_s;
     double cpu_s;
+    double sim_cpu_s;   /* the sim's threads over the same window, or NaN */
     long long rw_syscalls;
+    int64_t t_start;    /* just before the start command was written */
     double t0_window_us;
-    double *lat_us;    /* [samples] */
+    uint64_t *k;        /* [min(samples, LAT_MAX)]: stream index of each sample */
+    int64_t *t_recv;    /* when the read that returned it returned */
 } stream_result;
+
+static void stream_free(stream_result *r)
+{
+    free(r->k);
+    free(r->t_recv);
+    r->k = NULL;
+    r->t_recv = NULL;
+}
 
 /* The client's own blocking call, and the session with two latency budgets. */
 enum mode { MODE_CLIENT = 0, MODE_LOW_LATENCY = 1, MODE_RECORDING = 2 };
@@ -158,25 +239,31 @@ static int budget_of(int mode)
 }
 
 /* Stream from port for `seconds` (or `count` samples) in mode: open, start-up
- * recovery, start, read, stop. Latency of each sample: the time the read that
- * returned it returned, minus its deadline at the virtual sensor. */
-static void stream_run(const char *port, int mode, double seconds, size_t count, double rate, stream_result *r)
+ * recovery, start, read, stop. Records each sample's stream index and the
+ * time the read that returned it returned; CPU of this process and of the
+ * sim (sim_pid, 0 for none) over the reading. */
+static void stream_run(const char *port, int mode, double seconds, size_t count, pid_t sim_pid,
+                       stream_result *r)
 {
     static lep_client c;
     lep_serial *sp = NULL;
     lep_session *ss = NULL;
     lep_product_info info;
     char err[256];
-    int64_t t_start;
-    double period_ns = 1e9 / rate;
     uint64_t k = 0;
     int have_k = 0;
     double t_end;
     double c0;
     long long s0;
+    long long sim0 = sim_pid > 0 ? proc_cpu_ns(sim_pid) : -1;
     double w0;
     memset(r, 0, sizeof(*r));
-    r->lat_us = malloc(LAT_MAX * sizeof(double));
+    r->k = malloc(LAT_MAX * sizeof(uint64_t));
+    r->t_recv = malloc(LAT_MAX * sizeof(int64_t));
+    if (r->k == NULL || r->t_recv == NULL) {
+        r->rc = LEP_E_ARG;
+        return;
+    }
     if (mode == MODE_CLIENT) {
         r->rc = lep_serial_open(port, &sp, err, sizeof err);
         if (r->rc == LEP_OK) {
@@ -190,11 +277,12 @@ static void stream_run(const char *port, int mode, double seconds, size_t count,
         o.latency_ms = budget_of(mode);
         r->rc = lep_session_open(&o, &ss, err, sizeof err);
     }
-    t_start = now_ns();
+    r->t_start = now_ns();
     if (r->rc == LEP_OK) {
         r->rc = mode == MODE_CLIENT ? lep_client_start(&c) : lep_session_start(ss);
     }
-    r->t0_window_us = (double)(now_ns() - t_start) / 1e3;
+    r->t0_window_us = (double)(now_ns() - r->t_start) / 1e3;
+    sim0 = sim_pid > 0 ? proc_cpu_ns(sim_pid) : -1;
     c0 = cpu_s(RUSAGE_SELF);
     s0 = proc_rw_syscalls();
     w0 = bench_now_s();
@@ -229,7 +317,8 @@ static void stream_run(const char *port, int mode, double seconds, size_t count,
                 have_k = 1;
             }
             if (r->samples < LAT_MAX) {
-                r->lat_us[r->samples] = ((double)(t_recv - t_start) - (double)(k + 1u) * period_ns) / 1e3;
+                r->k[r->samples] = k;
+                r->t_recv[r->samples] = t_recv;
             }
             r->samples++;
         }
@@ -237,6 +326,10 @@ static void stream_run(const char *port, int mode, double seconds, size_t count,
     r->wall_s = bench_now_s() - w0;
     r->cpu_s = cpu_s(RUSAGE_SELF) - c0;
     r->rw_syscalls = s0 >= 0 ? proc_rw_syscalls() - s0 : -1;
+    {
+        long long sim1 = sim0 >= 0 ? proc_cpu_ns(sim_pid) : -1;
+        r->sim_cpu_s = sim0 >= 0 && sim1 >= sim0 ? (double)(sim1 - sim0) / 1e9 : 0.0 / 0.0;
+    }
     if (mode == MODE_CLIENT) {
         if (sp != NULL) {
             (void)lep_client_stop(&c);
@@ -247,14 +340,146 @@ static void stream_run(const char *port, int mode, double seconds, size_t count,
     }
 }
 
+/* The sim's write trace of the stream just stopped: records from where the
+ * last call left off up to the stream's end record (waited for up to 2 s;
+ * the sim writes it out before it answers the stop). On return *t0 is the
+ * stream's start (0 when not seen), write_ns[k] the write() call of sample k
+ * (0: none), *kn the size of write_ns (malloc'd; free it). 0, or -1 without
+ * a trace. */
+static int trace_take(sim_proc *sp, int64_t *t0, int64_t **write_ns, size_t *kn)
+{
+    lep_sim_trace_record rec;
+    int64_t *w = NULL;
+    size_t cap = 0;
+    int ended = 0;
+    int tries;
+    FILE *f;
+    *t0 = 0;
+    *write_ns = NULL;
+    *kn = 0;
+    if (sp->trace[0] == '\0' || (f = fopen(sp->trace, "rb")) == NULL) {
+        return -1;
+    }
+    for (tries = 0; !ended && tries < 400; tries++) {
+        if (fseek(f, sp->trace_off, SEEK_SET) != 0) {
+            break;
+        }
+        while (!ended && fread(&rec, sizeof rec, 1, f) == 1) {
+            sp->trace_off += (long)sizeof rec;
+            if (rec.k == LEP_SIM_TRACE_START) {
+                *t0 = rec.t_call_ns;
+            } else if (rec.k == LEP_SIM_TRACE_END) {
+                ended = 1;
+            } else if (rec.k < (uint64_t)LAT_MAX * 4u) {
+                if (rec.k >= cap) {
+                    size_t ncap = cap == 0 ? 16384u : cap;
+                    int64_t *nw;
+                    while (ncap <= rec.k) {
+                        ncap *= 2u;
+                    }
+                    nw = realloc(w, ncap * sizeof(int64_t));
+                    if (nw == NULL) {
+                        break;
+                    }
+                    memset(nw + cap, 0, (ncap - cap) * sizeof(int64_t));
+                    w = nw;
+                    cap = ncap;
+                }
+                w[rec.k] = rec.t_call_ns;
+            }
+        }
+        if (!ended) {
+            struct timespec ts = {0, 5000000};
+            clearerr(f);
+            nanosleep(&ts, NULL);
+        }
+    }
+    fclose(f);
+    *write_ns = w;
+    *kn = cap;
+    return 0;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a;
+    double y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Sort v[0..n) and write p50, p99, max, min (nulls when n is 0). */
+static void json_spread(double *v, size_t n)
+{
+    qsort(v, n, sizeof(double), cmp_double);
+    json_num("p50", bench_percentile(v, n, 0.50));
+    json_num("p99", bench_percentile(v, n, 0.99));
+    json_num("max", n > 0 ? v[n - 1u] : 0.0 / 0.0);
+    json_num("min", n > 0 ? v[0] : 0.0 / 0.0);
+}
+
+/* Latency figures of r against the sim's trace (see the file's comment). */
+static void report_latency(sim_proc *sp, const stream_result *r)
+{
+    size_t n = r->samples < LAT_MAX ? r->samples : LAT_MAX;
+    size_t i, m = 0, d = 0, late_n = 0;
+    int64_t t0;
+    int64_t *w;
+    size_t kn;
+    double period_ns = 1e9 / 1200.0;
+    double *from_write = malloc((n + 1u) * sizeof(double));
+    double *from_deadline = malloc((n + 1u) * sizeof(double));
+    double *late = malloc((n + 1u) * sizeof(double));
+    int traced = trace_take(sp, &t0, &w, &kn) == 0;
+    if (from_write == NULL || from_deadline == NULL || late == NULL) {
+        n = 0;
+    }
+    for (i = 0; i < n; i++) {
+        uint64_t k = r->k[i];
+        double deadline = (double)(k + 1u) * period_ns;
+        if (traced && t0 != 0) {
+            from_deadline[d++] = ((double)(r->t_recv[i] - t0) - deadline) / 1e3;
+        } else { /* no trace: t0 taken as the start command's write, an upper bound */
+            from_deadline[d++] = ((double)(r->t_recv[i] - r->t_start) - deadline) / 1e3;
+        }
+        if (traced && k < kn && w[k] != 0) {
+            from_write[m++] = (double)(r->t_recv[i] - w[k]) / 1e3;
+            if (t0 != 0) {
+                late[late_n++] = ((double)(w[k] - t0) - deadline) / 1e3;
+            }
+        }
+    }
+    json_open("latency_us");
+    json_spread(from_write, m);
+    json_int("matched", (long long)m);
+    json_str("reference", traced ? "the sim's write() call of the sample (leptrino-sim --trace-writes), "
+                                   "to the return of the read that returned it"
+                                 : "no write trace: see latency_from_deadline_us");
+    json_close();
+    json_open("latency_from_deadline_us");
+    json_spread(from_deadline, d);
+    json_str("reference", traced && t0 != 0 ? "the sample's deadline at the sim, t0+(k+1)/rate, t0 from its trace"
+                                            : "sim deadline t0+(k+1)/rate, t0 = when the start command was "
+                                              "written (upper bounds by at most t0_window_us)");
+    json_num("t0_window_us", r->t0_window_us);
+    json_close();
+    json_open("sim_lateness_us");
+    json_spread(late, late_n);
+    json_str("reference", "the sim's write() call minus the sample's deadline: its own wake-up lateness");
+    json_close();
+    free(w);
+    free(from_write);
+    free(from_deadline);
+    free(late);
+}
+
 int e2e_child_main(int argc, char **argv)
 {
     stream_result r;
     if (argc < 3) {
         return 2;
     }
-    stream_run(argv[1], atoi(argv[0]), atof(argv[2]), 0, 1200.0, &r);
-    free(r.lat_us);
+    stream_run(argv[1], atoi(argv[0]), atof(argv[2]), 0, 0, &r);
+    stream_free(&r);
     return r.rc == LEP_OK ? 0 : 1;
 }
 
@@ -289,44 +514,33 @@ static long long strace_calls(const e2e_options *o, const char *port, int mode, 
     return calls;
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a;
-    double y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static void report_mode(const e2e_options *o, const char *key, int mode, const sim_proc *sp, size_t samples,
+static void report_mode(const e2e_options *o, const char *key, int mode, sim_proc *sp, size_t samples,
                         double stream_seconds)
 {
     stream_result r;
-    size_t n;
+    struct stat st;
     json_open(key);
-    stream_run(sp->port, mode, 0.0, samples, 1200.0, &r);
+    /* Streams of earlier paths (and of the strace children) are in the trace already. */
+    if (sp->trace[0] != '\0' && stat(sp->trace, &st) == 0) {
+        sp->trace_off = (long)st.st_size;
+    }
+    stream_run(sp->port, mode, 0.0, samples, sp->pid, &r);
     json_str("path", mode == MODE_CLIENT ? "lep_client_next_sample over lep_serial, one sample per call"
                                          : "lep_session_read over the port, batches of up to 512");
     json_int("latency_budget_ms", budget_of(mode));
     json_int("rc", r.rc);
     json_int("samples", (long long)r.samples);
     json_int("lost", (long long)r.lost);
-    n = r.samples < LAT_MAX ? r.samples : LAT_MAX;
-    qsort(r.lat_us, n, sizeof(double), cmp_double);
-    json_open("latency_us");
-    json_num("p50", bench_percentile(r.lat_us, n, 0.50));
-    json_num("p99", bench_percentile(r.lat_us, n, 0.99));
-    json_num("max", n > 0 ? r.lat_us[n - 1u] : 0.0 / 0.0);
-    json_num("min", n > 0 ? r.lat_us[0] : 0.0 / 0.0);
-    json_str("reference", "sim deadline t0+(k+1)/rate, t0 = when the start command was written "
-                          "(upper bounds by at most t0_window_us)");
-    json_num("t0_window_us", r.t0_window_us);
-    json_close();
+    report_latency(sp, &r);
     json_num("wall_s", r.wall_s);
     json_num("cpu_s", r.cpu_s);
     json_num("cpu_percent_of_one_core", 100.0 * r.cpu_s / r.wall_s);
     json_num("cpu_us_per_sample", r.samples ? r.cpu_s * 1e6 / (double)r.samples : 0.0 / 0.0);
+    json_num("sim_cpu_us_per_sample", r.samples ? r.sim_cpu_s * 1e6 / (double)r.samples : 0.0 / 0.0);
+    json_num("sim_over_client_cpu", r.sim_cpu_s / r.cpu_s);
     json_num("read_write_syscalls_per_sample_proc",
              r.rw_syscalls >= 0 && r.samples ? (double)r.rw_syscalls / (double)r.samples : 0.0 / 0.0);
-    free(r.lat_us);
+    stream_free(&r);
     if (bench_have("strace")) {
         long long base = strace_calls(o, sp->port, mode, 0.0);
         long long run = strace_calls(o, sp->port, mode, stream_seconds);
@@ -354,14 +568,14 @@ static void max_rate(const e2e_options *o)
         stream_result r;
         json_open(NULL);
         json_num("rate_hz", rates[i]);
-        if (sim_start(o, rates[i], &sp) != 0) {
+        if (sim_start(o, rates[i], 0, &sp) != 0) {
             json_str("error", "leptrino-sim did not start");
             json_close();
             break;
         }
-        stream_run(sp.port, MODE_LOW_LATENCY, o->smoke ? 0.3 : 2.0, 0, rates[i], &r);
+        stream_run(sp.port, MODE_LOW_LATENCY, o->smoke ? 0.3 : 2.0, 0, 0, &r);
         (void)sim_stop(&sp);
-        free(r.lat_us);
+        stream_free(&r);
         json_int("rc", r.rc);
         json_int("samples", (long long)r.samples);
         json_int("lost", (long long)r.lost);
@@ -428,7 +642,7 @@ void e2e_report(const e2e_options *o)
     size_t samples = o->smoke ? 400u : 12000u;
     json_open("end_to_end");
     json_str("sim", o->sim);
-    if (sim_start(o, 1200.0, &sp) != 0) {
+    if (sim_start(o, 1200.0, 1, &sp) != 0) {
         json_str("error", "leptrino-sim did not start (pass --sim PATH)");
         json_close();
         python_costs(o);
