@@ -24,6 +24,12 @@ HEADLINES = [
     ("decoder", "streams", "realistic", "chunks", "4096", "leptrino"),
     ("end_to_end", "low_latency", "latency_us", "p50"),
     ("end_to_end", "low_latency", "latency_us", "p99"),
+    ("end_to_end", "low_latency", "latency_from_deadline_us", "p50"),
+    ("end_to_end", "low_latency", "sim_lateness_us", "p50"),
+    ("end_to_end", "low_latency", "sim_over_client_cpu"),
+    ("end_to_end", "client", "latency_us", "p50"),
+    ("python", "record_us_cpu_per_sample"),
+    ("python", "stream_iter_us_cpu_per_sample"),
     ("end_to_end", "low_latency", "cpu_percent_of_one_core"),
     ("end_to_end", "recording", "cpu_percent_of_one_core"),
 ]

@@ -21,10 +21,12 @@ CHUNK_KEYS = [
     "plain_loop_ns_per_byte",
 ]
 MODE_KEYS = [
-    "path", "latency_budget_ms", "rc", "samples", "lost", "latency_us", "wall_s", "cpu_s", "cpu_percent_of_one_core",
-    "cpu_us_per_sample", "read_write_syscalls_per_sample_proc", "syscalls_per_s", "syscalls_per_sample",
+    "path", "latency_budget_ms", "rc", "samples", "lost", "latency_us", "latency_from_deadline_us",
+    "sim_lateness_us", "wall_s", "cpu_s", "cpu_percent_of_one_core", "cpu_us_per_sample", "sim_cpu_us_per_sample",
+    "sim_over_client_cpu", "read_write_syscalls_per_sample_proc", "syscalls_per_s", "syscalls_per_sample",
     "syscalls_method",
 ]
+SPREAD_KEYS = ["p50", "p99", "max", "min", "reference"]
 
 
 def need(obj: Any, path: str, keys: list[str]) -> list[str]:
@@ -59,7 +61,9 @@ def main() -> int:
     for mode in ("low_latency", "recording", "client"):
         m = e2e.get(mode)
         errs += need(m, f"end_to_end.{mode}", MODE_KEYS)
-        errs += need((m or {}).get("latency_us"), f"end_to_end.{mode}.latency_us", ["p50", "p99", "max"])
+        for lat in ("latency_us", "latency_from_deadline_us", "sim_lateness_us"):
+            errs += need((m or {}).get(lat), f"end_to_end.{mode}.{lat}", SPREAD_KEYS)
+        errs += need((m or {}).get("latency_us"), f"end_to_end.{mode}.latency_us", ["matched"])
     errs += need(d.get("python"), "python", ["record_us_cpu_per_sample", "stream_iter_us_cpu_per_sample",
                                              "reason"])
     for e in errs:
