@@ -64,8 +64,10 @@ def main() -> int:
         for lat in ("latency_us", "latency_from_deadline_us", "sim_lateness_us"):
             errs += need((m or {}).get(lat), f"end_to_end.{mode}.{lat}", SPREAD_KEYS)
         errs += need((m or {}).get("latency_us"), f"end_to_end.{mode}.latency_us", ["matched"])
-    errs += need(d.get("python"), "python", ["record_us_cpu_per_sample", "stream_iter_us_cpu_per_sample",
-                                             "reason"])
+    py_keys = ["record_us_cpu_per_sample", "stream_iter_us_cpu_per_sample", "session_read_only_us_cpu_per_sample",
+               "reason"]
+    errs += need(d.get("python"), "python", py_keys + ["backend", "latency_budget_s", "latency_budget_0"])
+    errs += need((d.get("python") or {}).get("latency_budget_0"), "python.latency_budget_0", py_keys)
     for e in errs:
         print("bench smoke:", e, file=sys.stderr)
     if not errs:
