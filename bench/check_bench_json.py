@@ -58,6 +58,8 @@ def main() -> int:
     e2e = d.get("end_to_end", {})
     errs += need(e2e, "end_to_end", ["sim", "low_latency", "recording", "client", "session_latency_budget_ms",
                                      "rates", "max_rate_without_loss_hz"])
+    errs += need(e2e.get("sender_floor"), "end_to_end.sender_floor",
+                 ["sleep_us_cpu_per_period", "sleep_and_pty_write_us_cpu_per_period", "method"])
     for mode in ("low_latency", "recording", "client"):
         m = e2e.get(mode)
         errs += need(m, f"end_to_end.{mode}", MODE_KEYS)

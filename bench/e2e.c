@@ -11,10 +11,12 @@
  * start record), which adds the sim's own wake-up lateness; that lateness is
  * reported as well (write call minus deadline). */
 #define _DEFAULT_SOURCE
+#define _XOPEN_SOURCE 600 /* posix_openpt, ptsname */
 #include "e2e.h"
 
 #include <dirent.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -23,6 +25,7 @@
 #include <sys/stat.h>
 #include <sys/time.h>
 #include <sys/wait.h>
+#include <termios.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -670,6 +673,61 @@ static void python_costs(const e2e_options *o)
     json_close();
 }
 
+/* The least CPU any virtual sensor can spend per sample here: a thread that
+ * sleeps to each absolute deadline (clock_nanosleep TIMER_ABSTIME) at 1200
+ * Hz and, with write_pty, writes one 25-byte message to a pty master (the
+ * slave drained every 50 periods, so the pty never fills). CPU per period
+ * (getrusage of this thread's process; nothing else runs in it meanwhile),
+ * or NaN. */
+static double sender_floor_us(size_t periods, int write_pty)
+{
+    static const uint8_t msg[25] = {0x10, 0x02};
+    uint8_t drain[4096];
+    const int64_t period = 833333;
+    int m = -1;
+    int sl = -1;
+    int64_t t0;
+    double c0;
+    size_t k;
+    if (write_pty) {
+        struct termios t;
+        m = posix_openpt(O_RDWR | O_NOCTTY);
+        if (m < 0 || grantpt(m) != 0 || unlockpt(m) != 0 || ptsname(m) == NULL ||
+            fcntl(m, F_SETFL, O_NONBLOCK) != 0 ||
+            (sl = open(ptsname(m), O_RDWR | O_NOCTTY | O_NONBLOCK)) < 0 || tcgetattr(sl, &t) != 0) {
+            if (m >= 0) {
+                close(m);
+            }
+            return 0.0 / 0.0;
+        }
+        cfmakeraw(&t);
+        (void)tcsetattr(sl, TCSANOW, &t);
+    }
+    t0 = now_ns();
+    c0 = cpu_s(RUSAGE_SELF);
+    for (k = 0; k < periods; k++) {
+        int64_t due = t0 + (int64_t)(k + 1u) * period;
+        struct timespec ts;
+        ts.tv_sec = (time_t)(due / 1000000000);
+        ts.tv_nsec = (long)(due % 1000000000);
+        while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, NULL) == EINTR) {
+        }
+        if (write_pty) {
+            (void)!write(m, msg, sizeof msg);
+            if (k % 50u == 49u) {
+                while (read(sl, drain, sizeof drain) > 0) {
+                }
+            }
+        }
+    }
+    c0 = cpu_s(RUSAGE_SELF) - c0;
+    if (write_pty) {
+        close(sl);
+        close(m);
+    }
+    return c0 * 1e6 / (double)periods;
+}
+
 void e2e_report(const e2e_options *o)
 {
     sim_proc sp;
@@ -688,6 +746,13 @@ void e2e_report(const e2e_options *o)
     report_mode(o, "client", MODE_CLIENT, &sp, samples, o->smoke ? 0.5 : 3.0);
     sim_cpu = sim_stop(&sp);
     json_num("sim_cpu_s_whole_life", sim_cpu);
+    json_open("sender_floor");
+    json_num("sleep_us_cpu_per_period", sender_floor_us(o->smoke ? 240u : 2400u, 0));
+    json_num("sleep_and_pty_write_us_cpu_per_period", sender_floor_us(o->smoke ? 240u : 2400u, 1));
+    json_str("method", "this process alone, 1200 Hz: clock_nanosleep(TIMER_ABSTIME) to each deadline, "
+                       "then one 25-byte write() to a pty master (slave drained every 50 periods); "
+                       "getrusage CPU per period: the least a virtual sensor can cost here");
+    json_close();
     json_int("session_latency_budget_ms", RECORDING_BUDGET_MS);
     max_rate(o);
     json_close();
