@@ -91,18 +91,7 @@ typedef struct lep_client_rx {
 /* Client context. Caller-allocated; fields are private. At most 256 bytes
  * on a 32-bit MCU (the read buffer of the blocking calls is not in it). */
 typedef struct lep_client {
-    lep_io io;
-    lep_frame_decoder dec;
-    lep_client_rx *rx;      /* read buffer of the blocking calls, or NULL */
-    const uint8_t *msg;     /* message of the last outcome (in dec), or NULL */
-    uint32_t t_start;       /* when the transaction attempt or the quiet time began */
-    uint32_t t_aux;         /* when the drain began, or the watchdog's reference time */
-    uint32_t timeout_ms;
-    uint32_t count[10];     /* the client's own counters: lep_client_stats from retries on */
-    uint16_t watchdog_ms;
-    uint16_t quiet_ms;
-    uint16_t fast;          /* counts single-byte steps up to the next look at the clock */
-    uint16_t msg_at;        /* fast when msg was stored: msg is current while they agree */
+    /* (Small fields first: short offsets make small code on Thumb-1 and AVR.) */
     uint8_t state;
     uint8_t phase;
     uint8_t tries;
@@ -111,6 +100,18 @@ typedef struct lep_client {
     uint8_t code;           /* pending command */
     uint8_t filter;
     uint8_t msg_len;
+    uint16_t watchdog_ms;
+    uint16_t quiet_ms;
+    uint16_t fast;          /* counts single-byte steps up to the next look at the clock */
+    uint16_t msg_at;        /* fast when msg was stored: msg is current while they agree */
+    uint32_t t_start;       /* when the transaction attempt or the quiet time began */
+    uint32_t t_aux;         /* when the drain began, or the watchdog's reference time */
+    uint32_t timeout_ms;
+    const uint8_t *msg;     /* message of the last outcome (in dec), or NULL */
+    lep_client_rx *rx;      /* read buffer of the blocking calls, or NULL */
+    lep_io io;
+    uint32_t count[10];     /* the client's own counters: lep_client_stats from retries on */
+    lep_frame_decoder dec;
 } lep_client;
 
 /* sizeof(lep_client), for FFI callers that allocate it as bytes. */

@@ -9,7 +9,6 @@
 #define ST_WAIT 0x01u   /* a transaction or a recovery waits */
 #define ST_STREAM 0x02u /* continuous output is on */
 #define ST_FRESH 0x04u  /* a sample arrived since the watchdog last looked */
-#define ST_WATCH 0x08u  /* a watchdog time is set (lep_client_set_watchdog) */
 
 /* Phases of a transaction. Numbered so that a recovery's stop phase + 2 is
  * its drain, the drains are the phases >= PH_DRAIN_SYNC, and bit 0 says a
@@ -58,6 +57,13 @@ typedef char lep_client_counters_fit[(sizeof(((lep_client *)0)->count) == N_COUN
 #define HOT static inline __attribute__((always_inline))
 #else
 #define HOT static
+#endif
+
+/* Helpers called from several places stay out of line in size builds. */
+#if defined(__GNUC__) && defined(__OPTIMIZE_SIZE__)
+#define SHARED static __attribute__((noinline))
+#else
+#define SHARED static
 #endif
 
 /* A deadline that is not armed. */
@@ -121,12 +127,10 @@ int lep_client_set_watchdog(lep_client *c, uint16_t ms)
         return LEP_E_ARG;
     }
     c->watchdog_ms = ms;
-    if (c->msg_at == c->fast) {
-        c->msg_at = (uint16_t)FAST_LOOK_NEXT; /* the last outcome's message stays current */
-    }
+    /* The next step looks at the clock (the last outcome's message stays current). */
+    c->msg_at = (uint16_t)(c->msg_at - c->fast + FAST_LOOK_NEXT);
     c->fast = (uint16_t)FAST_LOOK_NEXT;
-    c->state = (uint8_t)(ms != 0u ? c->state | ST_FRESH | ST_WATCH /* the time runs from the next check */
-                                  : c->state & ~ST_WATCH);
+    c->state = (uint8_t)(c->state | ST_FRESH); /* the watchdog's time runs from the next check */
     return LEP_OK;
 }
 
@@ -175,10 +179,10 @@ int lep_client_get_sample(const lep_client *c, lep_sample *out)
 {
     lep_response r;
     int rc = out == NULL ? LEP_E_ARG : lep_client_response(c, &r);
+    if (rc == LEP_OK && c->msg_len != LEP_LEN_SAMPLE) {
+        rc = LEP_E_STATE; /* (a sample is the only 20-byte message that makes an outcome) */
+    }
     if (rc == LEP_OK) {
-        if (!r.stream && (r.code != LEP_CMD_SAMPLE || r.result != LEP_RESULT_OK)) {
-            return LEP_E_STATE;
-        }
         *out = r.u.sample;
     }
     return rc;
@@ -189,7 +193,7 @@ static uint32_t now(const lep_client *c)
     return c->io.now_ms(c->io.user);
 }
 
-static void end_wait(lep_client *c)
+SHARED void end_wait(lep_client *c)
 {
     c->state = (uint8_t)(c->state & ~ST_WAIT);
     c->phase = PH_NONE;
@@ -218,7 +222,7 @@ static int write_pending(lep_client *c)
 }
 
 /* Begin sending code (a new transaction or the next step of a recovery). */
-static int begin(lep_client *c, uint8_t code, uint8_t filter, uint8_t phase)
+SHARED int begin(lep_client *c, uint8_t code, uint8_t filter, uint8_t phase)
 {
     c->code = code;
     c->filter = filter;
@@ -301,14 +305,6 @@ static int on_answer(lep_client *c, uint8_t result)
     return LEP_E_SENSOR;
 }
 
-/* A sample message was accepted: count a non-zero last reserved byte. */
-static void check_reserved(lep_client *c, const lep_frame_event *ev)
-{
-    if (ev->len == LEP_LEN_SAMPLE && ev->msg[LEP_LEN_SAMPLE - 1u] != 0u) {
-        c->count[N_RESERVED]++;
-    }
-}
-
 /* Handle one good frame; returns an outcome, or LEP_STEP_NONE to go on.
  * A delivered stream sample is also stored in *out when out is not NULL. */
 HOT int on_message(lep_client *c, const lep_frame_event *ev, lep_sample *out)
@@ -330,7 +326,6 @@ HOT int on_message(lep_client *c, const lep_frame_event *ev, lep_sample *out)
         } else if (waiting && c->code == LEP_CMD_STOP) {
             return LEP_STEP_NONE; /* our data still in flight before the stop answer */
         } else {
-            check_reserved(c, ev);
             c->count[N_SAMPLES]++;
             c->state = (uint8_t)(c->state | ST_FRESH);
             if (out != NULL) {
@@ -339,9 +334,6 @@ HOT int on_message(lep_client *c, const lep_frame_event *ev, lep_sample *out)
             return LEP_STEP_SAMPLE;
         }
     } else if (waiting && r.code == c->code) {
-        if (r.code == LEP_CMD_SAMPLE) {
-            check_reserved(c, ev);
-        }
         return on_answer(c, r.result);
     }
     c->count[N_UNEXPECTED]++; /* e.g. a stream we did not start (a stale one), a late answer */
@@ -350,7 +342,7 @@ HOT int on_message(lep_client *c, const lep_frame_event *ev, lep_sample *out)
 
 /* The attempt failed (NAK or timeout): send again (counted in count[which]),
  * or give up with err. */
-static int attempt_failed(lep_client *c, int err, unsigned which)
+SHARED int attempt_failed(lep_client *c, int err, unsigned which)
 {
     if (c->tries < c->max_retries) {
         c->tries++;
@@ -477,6 +469,9 @@ HOT int take(lep_client *c, const lep_frame_event *ev, lep_sample *out)
         c->msg = ev->msg;
         c->msg_len = (uint8_t)ev->len;
         c->msg_at = c->fast;
+        if (ev->len == LEP_LEN_SAMPLE && ev->msg[LEP_LEN_SAMPLE - 1u] != 0u) {
+            c->count[N_RESERVED]++; /* a sample's last reserved byte (unspecified) */
+        }
     }
     return rc;
 }
@@ -487,10 +482,14 @@ int lep_client_step(lep_client *c, const uint8_t *data, size_t len, size_t *cons
     if (c == NULL || consumed == NULL || (data == NULL && len > 0)) {
         return LEP_E_ARG;
     }
-    if (len == 1u) { /* (counted in c->fast like any single-byte step) */
+#if defined(__OPTIMIZE_SIZE__)
+    c->fast = (uint16_t)(c->fast + (len == 1u)); /* counted like lep_client_step_byte */
+#else
+    if (len == 1u) { /* the same, without the loop */
         *consumed = 1;
         return lep_client_step_byte(c, data[0], NULL);
     }
+#endif
     c->msg = NULL;
     while (pos < len) {
         lep_frame_event ev;
