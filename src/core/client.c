@@ -193,10 +193,18 @@ static uint32_t now(const lep_client *c)
     return c->io.now_ms(c->io.user);
 }
 
-SHARED void end_wait(lep_client *c)
+/* The transaction or recovery is over; returns rc, its outcome. */
+SHARED int finish(lep_client *c, int rc)
 {
     c->state = (uint8_t)(c->state & ~ST_WAIT);
     c->phase = PH_NONE;
+    return rc;
+}
+
+/* A transaction (or a recovery's stop) waits for its answer. */
+SHARED bool waiting(const lep_client *c)
+{
+    return (c->state & ST_WAIT) != 0u && c->phase < PH_DRAIN_SYNC;
 }
 
 /* Write the pending command (again) and restart the attempt's clock. */
@@ -214,8 +222,7 @@ static int write_pending(lep_client *c)
         rc = c->io.write(c->io.user, frame, n);
     }
     if (rc < 0) {
-        end_wait(c);
-        return rc;
+        return finish(c, rc);
     }
     c->t_start = now(c);
     return LEP_OK;
@@ -276,8 +283,7 @@ static int done(lep_client *c)
     } else if (c->code == LEP_CMD_STOP) {
         c->state = (uint8_t)(c->state & ~ST_STREAM);
     }
-    end_wait(c);
-    return LEP_STEP_RESPONSE;
+    return finish(c, LEP_STEP_RESPONSE);
 }
 
 /* The answer to the pending command arrived; result is its result code. */
@@ -297,12 +303,10 @@ static int on_answer(lep_client *c, uint8_t result)
         }
         if (c->code == LEP_CMD_START && c->phase == PH_NONE && (c->state & ST_STREAM) == 0u) {
             /* A stream we did not start (a stale one) already runs. */
-            int rc = begin(c, LEP_CMD_STOP, 0, PH_STOP_START);
-            return rc < 0 ? rc : LEP_STEP_NONE;
+            return begin(c, LEP_CMD_STOP, 0, PH_STOP_START); /* LEP_OK is LEP_STEP_NONE */
         }
     }
-    end_wait(c);
-    return LEP_E_SENSOR;
+    return finish(c, LEP_E_SENSOR);
 }
 
 /* Handle one good frame; returns an outcome, or LEP_STEP_NONE to go on.
@@ -311,30 +315,31 @@ HOT int on_message(lep_client *c, const lep_frame_event *ev, lep_sample *out)
 {
     lep_response r;
     int rc = lep_response_decode(ev->msg, ev->len, &r);
-    bool waiting = (c->state & ST_WAIT) != 0u && c->phase < PH_DRAIN_SYNC;
+    bool mine = waiting(c) && r.code == c->code; /* (a data message's code is the start's) */
     if (rc != LEP_OK && rc != LEP_E_SENSOR) {
         c->count[N_INVALID]++;
         return LEP_STEP_NONE;
     }
-    if (r.stream) {
-        if ((c->state & ST_STREAM) == 0u) {
-            if (waiting && c->code == LEP_CMD_START && c->tries > 0u) {
-                c->count[N_RESENT_CONFIRMED]++; /* our resent start's first copy was executed */
-                c->last_result = LEP_RESULT_OK;
-                return done(c);
-            }
-        } else if (waiting && c->code == LEP_CMD_STOP) {
+    if (r.stream && (c->state & ST_STREAM) != 0u) {
+        if (waiting(c) && c->code == LEP_CMD_STOP) {
             return LEP_STEP_NONE; /* our data still in flight before the stop answer */
-        } else {
-            c->count[N_SAMPLES]++;
-            c->state = (uint8_t)(c->state | ST_FRESH);
-            if (out != NULL) {
-                *out = r.u.sample;
-            }
-            return LEP_STEP_SAMPLE;
         }
-    } else if (waiting && r.code == c->code) {
+        c->count[N_SAMPLES]++;
+        c->state = (uint8_t)(c->state | ST_FRESH);
+        if (out != NULL) {
+            *out = r.u.sample;
+        }
+        return LEP_STEP_SAMPLE;
+    }
+    if (mine && !r.stream) {
         return on_answer(c, r.result);
+    }
+    if (mine && c->tries > 0u) {
+        /* Data of a stream we are starting: the first copy of our resent start
+         * was executed, as if a copy were refused with 0x04. */
+        rc = on_answer(c, LEP_RESULT_STATE);
+        c->last_result = LEP_RESULT_OK;
+        return rc;
     }
     c->count[N_UNEXPECTED]++; /* e.g. a stream we did not start (a stale one), a late answer */
     return LEP_STEP_NONE;
@@ -352,11 +357,10 @@ SHARED int attempt_failed(lep_client *c, int err, unsigned which)
     if (stop_over(c)) {
         return LEP_STEP_NONE; /* a stop that never got through does not end the recovery */
     }
-    end_wait(c);
     if (err == LEP_E_TIMEOUT) {
         c->count[N_TIMEOUTS]++;
     }
-    return err;
+    return finish(c, err);
 }
 
 HOT int on_event(lep_client *c, const lep_frame_event *ev, lep_sample *out)
@@ -365,7 +369,7 @@ HOT int on_event(lep_client *c, const lep_frame_event *ev, lep_sample *out)
         return on_message(c, ev, out);
     }
     if (ev->type == LEP_FRAME_NAK) {
-        if ((c->state & ST_WAIT) != 0u && c->phase < PH_DRAIN_SYNC) {
+        if (waiting(c)) {
             return attempt_failed(c, LEP_E_NAK, N_RETRIES);
         }
     } else if (ev->error == LEP_E_LENGTH) {
@@ -387,20 +391,15 @@ static uint32_t left_of(uint32_t t, uint32_t t0, uint32_t span)
  * time; or the stream watchdog); NEVER for a timer that is not armed. */
 static uint32_t timers(const lep_client *c, uint32_t t, uint32_t *aux)
 {
-    uint32_t attempt = NEVER;
-    *aux = NEVER;
-    if (c->phase >= PH_DRAIN_SYNC) {
-        uint32_t span = c->timeout_ms < DRAIN_TIMEOUT_CAP ? c->timeout_ms : DRAIN_TIMEOUT_CAP;
-        *aux = left_of(t, c->t_aux, span * LEP_CLIENT_DRAIN_TIMEOUTS + c->quiet_ms);
-        return left_of(t, c->t_start, c->quiet_ms);
+    uint32_t span = (c->state & ST_WAIT) != 0u ? c->timeout_ms : 0u; /* 0: not armed */
+    uint32_t other = (c->state & ST_STREAM) != 0u ? c->watchdog_ms : 0u;
+    if (c->phase >= PH_DRAIN_SYNC) { /* (a drain waits, and streaming is off) */
+        other = (span < DRAIN_TIMEOUT_CAP ? span : DRAIN_TIMEOUT_CAP) * LEP_CLIENT_DRAIN_TIMEOUTS +
+                c->quiet_ms;
+        span = c->quiet_ms;
     }
-    if ((c->state & ST_WAIT) != 0u) {
-        attempt = left_of(t, c->t_start, c->timeout_ms);
-    }
-    if ((c->state & ST_STREAM) != 0u && c->watchdog_ms != 0u) {
-        *aux = left_of(t, c->t_aux, c->watchdog_ms);
-    }
-    return attempt;
+    *aux = other != 0u ? left_of(t, c->t_aux, other) : NEVER;
+    return span != 0u ? left_of(t, c->t_start, span) : NEVER;
 }
 
 /* Deadlines: attempt timeout, drain, watchdog. fed says bytes came in. */
@@ -419,8 +418,7 @@ static int check_clock(lep_client *c, bool fed)
     }
     attempt = timers(c, t, &aux);
     if (draining && aux == 0u) {
-        end_wait(c);
-        return LEP_E_NO_SYNC;
+        return finish(c, LEP_E_NO_SYNC);
     }
     if (attempt == 0u) {
         int rc;
@@ -615,8 +613,7 @@ static int run(lep_client *c)
         wait = next_deadline(c); /* >= 0: a transaction or recovery is under way */
         rc = fill(c, &rd, clamp_int(wait));
         if (rc < 0) {
-            end_wait(c);
-            return rc;
+            return finish(c, rc);
         }
     }
 }
@@ -715,53 +712,48 @@ int lep_client_next_samples(lep_client *c, lep_sample *out, size_t max, size_t *
     return LEP_OK;
 }
 
-/* A transaction of code; its answer decoded into *r when r is not NULL. */
-static int query(lep_client *c, uint8_t code, uint8_t filter, lep_response *r)
+/* A transaction of code; the member of its answer's union (every member
+ * begins at the union's start) copied into out[0..size) when out is not
+ * NULL. LEP_E_ARG when the query needs out (size > 0) and it is NULL. */
+static int query(lep_client *c, uint8_t code, uint8_t filter, void *out, size_t size)
 {
     lep_command cmd;
+    lep_response r;
+    int rc = LEP_E_ARG;
     cmd.code = code;
     cmd.filter = filter;
-    return lep_client_transact(c, &cmd, r);
+    if (out != NULL || size == 0u) {
+        rc = lep_client_transact(c, &cmd, &r);
+    }
+    if (rc == LEP_OK && out != NULL) {
+        memcpy(out, &r.u, size);
+    }
+    return rc;
 }
 
 int lep_client_start(lep_client *c)
 {
-    return query(c, LEP_CMD_START, 0, NULL);
+    return query(c, LEP_CMD_START, 0, NULL, 0);
 }
 
 int lep_client_stop(lep_client *c)
 {
-    return query(c, LEP_CMD_STOP, 0, NULL);
+    return query(c, LEP_CMD_STOP, 0, NULL, 0);
 }
 
 int lep_client_product_info(lep_client *c, lep_product_info *out)
 {
-    lep_response r;
-    int rc = out == NULL ? LEP_E_ARG : query(c, LEP_CMD_PRODUCT_INFO, 0, &r);
-    if (rc == LEP_OK) {
-        *out = r.u.info;
-    }
-    return rc;
+    return query(c, LEP_CMD_PRODUCT_INFO, 0, out, sizeof(*out));
 }
 
 int lep_client_rated(lep_client *c, lep_rated *out)
 {
-    lep_response r;
-    int rc = out == NULL ? LEP_E_ARG : query(c, LEP_CMD_RATED, 0, &r);
-    if (rc == LEP_OK) {
-        *out = r.u.rated;
-    }
-    return rc;
+    return query(c, LEP_CMD_RATED, 0, out, sizeof(*out));
 }
 
 int lep_client_filter_get(lep_client *c, uint8_t *code)
 {
-    lep_response r;
-    int rc = code == NULL ? LEP_E_ARG : query(c, LEP_CMD_FILTER_GET, 0, &r);
-    if (rc == LEP_OK) {
-        *code = r.u.filter;
-    }
-    return rc;
+    return query(c, LEP_CMD_FILTER_GET, 0, code, sizeof(*code));
 }
 
 int lep_client_filter_set(lep_client *c, uint8_t code)
@@ -769,24 +761,15 @@ int lep_client_filter_set(lep_client *c, uint8_t code)
     if (code > LEP_FILTER_MAX) {
         return LEP_E_VALUE;
     }
-    return query(c, LEP_CMD_FILTER_SET, code, NULL);
+    return query(c, LEP_CMD_FILTER_SET, code, NULL, 0);
 }
 
 int lep_client_sample(lep_client *c, lep_sample *out)
 {
-    lep_response r;
-    int rc;
-    if (c == NULL || out == NULL) {
-        return LEP_E_ARG;
-    }
-    if ((c->state & ST_STREAM) != 0u) {
+    if (c != NULL && out != NULL && (c->state & ST_STREAM) != 0u) {
         return LEP_E_STATE;
     }
-    rc = query(c, LEP_CMD_SAMPLE, 0, &r);
-    if (rc == LEP_OK) {
-        *out = r.u.sample;
-    }
-    return rc;
+    return query(c, LEP_CMD_SAMPLE, 0, out, sizeof(*out));
 }
 
 int lep_client_sync(lep_client *c, int quiet_ms, lep_product_info *info)
