@@ -641,7 +641,7 @@ static void test_step_byte_message_lasts_until_the_next_step(void)
     lep_sample s;
     lep_response r;
     size_t len;
-    size_t i;
+    size_t i = 0;
     int rc = LEP_STEP_NONE;
     start_streaming(&client);
     sio.endless_stream = false;
@@ -650,22 +650,36 @@ static void test_step_byte_message_lasts_until_the_next_step(void)
     script_push_data(&sio);
     len = script_pending(&sio);
     memcpy(wire, sio.in, len);
-    for (i = 0; i < len && rc == LEP_STEP_NONE; i++) {
+    for (; i < len && rc == LEP_STEP_NONE; i++) {
         rc = lep_client_step_byte(&client, wire[i], NULL); /* out may be NULL */
     }
     TEST_ASSERT_EQUAL_INT(LEP_STEP_SAMPLE, rc);
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_get_sample(&client, &s));
     TEST_ASSERT_EQUAL_UINT16(0, s.reserved);
-    /* Settings leave it alone ... */
+    /* The next byte ends it (on the inline path too). */
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step_byte(&client, wire[i++], &s));
+    TEST_ASSERT_EQUAL_INT(LEP_E_STATE, lep_client_get_sample(&client, &s));
+    TEST_ASSERT_EQUAL_INT(LEP_E_STATE, lep_client_response(&client, &r));
+    for (rc = LEP_STEP_NONE; i < len && rc == LEP_STEP_NONE; i++) {
+        rc = lep_client_step_byte(&client, wire[i], &s);
+    }
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_SAMPLE, rc);
+    TEST_ASSERT_EQUAL_UINT16(1, s.reserved);
+    /* Settings leave it alone. */
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_watchdog(&client, 50));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_get_sample(&client, &s));
+    TEST_ASSERT_EQUAL_UINT16(1, s.reserved);
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_watchdog(&client, 0));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_response(&client, &r));
     TEST_ASSERT_TRUE(r.stream);
-    /* ... the next byte ends it, on the inline path too. */
-    TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step_byte(&client, wire[i], &s));
-    TEST_ASSERT_EQUAL_INT(LEP_E_STATE, lep_client_get_sample(&client, &s));
-    TEST_ASSERT_EQUAL_INT(LEP_E_STATE, lep_client_response(&client, &r));
+    /* A transaction without a place for its answer. */
+    {
+        lep_command stop = {LEP_CMD_STOP, 0};
+        sio.silent = false;
+        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_rx(&client, &rx));
+        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_transact(&client, &stop, NULL));
+        TEST_ASSERT_FALSE(lep_client_streaming(&client));
+    }
 }
 
 static void test_step_byte_reads_the_clock_every_32_bytes(void)
@@ -1228,6 +1242,27 @@ static void test_step_recovery_gives_up_on_endless_noise(void)
     TEST_ASSERT_FALSE(lep_client_busy(&c));
 }
 
+static void test_step_start_recovered_byte_by_byte(void)
+{
+    /* A start refused (a stale stream runs), recovered by stop, drain, start,
+     * every byte stepped alone: the clock is looked at on each one meanwhile. */
+    lep_io io = script_io_table(&sio);
+    lep_command start = {LEP_CMD_START, 0};
+    lep_client c;
+    lep_client_stats st;
+    io.read = NULL;
+    sio.endless_stream = false;
+    leave_stream_running();
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_init(&c, &io));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_send(&c, &start));
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_RESPONSE, pump(&c, 1000));
+    TEST_ASSERT_TRUE(lep_client_streaming(&c));
+    TEST_ASSERT_EQUAL_UINT(3, sio.writes); /* start, stop, start */
+    lep_client_get_stats(&c, &st);
+    TEST_ASSERT_EQUAL_UINT32(1, st.recoveries);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_response(&c, &(lep_response){0}));
+}
+
 static void test_recover_write_error(void)
 {
     sio.write_error = LEP_E_DISCONNECTED;
@@ -1662,6 +1697,7 @@ int main(void)
     RUN_TEST(test_step_recovery_stops_drains_and_identifies);
     RUN_TEST(test_step_recovery_waits_for_a_quiet_line);
     RUN_TEST(test_step_recovery_gives_up_on_endless_noise);
+    RUN_TEST(test_step_start_recovered_byte_by_byte);
     RUN_TEST(test_recover_write_error);
     RUN_TEST(test_watchdog_reports_a_stalled_stream);
     RUN_TEST(test_watchdog_in_blocking_next_sample);

@@ -53,7 +53,7 @@ typedef char lep_client_counters_fit[(sizeof(((lep_client *)0)->count) == N_COUN
 #define FAST_LOOK_NEXT 0xFFFFu              /* look at the clock on the next step */
 /* The event handling is inlined into both step entries when optimising for
  * speed (the one-byte entry then makes one call less per frame). */
-#if defined(__GNUC__) && !defined(__OPTIMIZE_SIZE__)
+#if defined(__GNUC__) && defined(__OPTIMIZE__) && !defined(__OPTIMIZE_SIZE__)
 #define HOT static inline __attribute__((always_inline))
 #else
 #define HOT static
@@ -474,20 +474,14 @@ HOT int take(lep_client *c, const lep_frame_event *ev, lep_sample *out)
     return rc;
 }
 
-int lep_client_step(lep_client *c, const uint8_t *data, size_t len, size_t *consumed)
+/* lep_client_step for any input but a single byte (at -Os: any input). Out
+ * of line when optimising for speed, so the one-byte path saves no registers. */
+#if defined(__GNUC__) && !defined(__OPTIMIZE_SIZE__)
+__attribute__((noinline))
+#endif
+static int step_input(lep_client *c, const uint8_t *data, size_t len, size_t *consumed)
 {
     size_t pos = 0;
-    if (c == NULL || consumed == NULL || (data == NULL && len > 0)) {
-        return LEP_E_ARG;
-    }
-#if defined(__OPTIMIZE_SIZE__)
-    c->fast = (uint16_t)(c->fast + (len == 1u)); /* counted like lep_client_step_byte */
-#else
-    if (len == 1u) { /* the same, without the loop */
-        *consumed = 1;
-        return lep_client_step_byte(c, data[0], NULL);
-    }
-#endif
     c->msg = NULL;
     while (pos < len) {
         lep_frame_event ev;
@@ -501,6 +495,22 @@ int lep_client_step(lep_client *c, const uint8_t *data, size_t len, size_t *cons
     }
     *consumed = len;
     return step_clock(c, len);
+}
+
+int lep_client_step(lep_client *c, const uint8_t *data, size_t len, size_t *consumed)
+{
+    if (c == NULL || consumed == NULL || (data == NULL && len > 0)) {
+        return LEP_E_ARG;
+    }
+#if defined(__OPTIMIZE_SIZE__)
+    c->fast = (uint16_t)(c->fast + (len == 1u)); /* counted like lep_client_step_byte */
+#else
+    if (len == 1u) { /* the same, without the loop */
+        *consumed = 1;
+        return lep_client_step_byte(c, data[0], NULL);
+    }
+#endif
+    return step_input(c, data, len, consumed);
 }
 
 int lep_client_step_byte_slow(lep_client *c, uint8_t b, lep_sample *out)
