@@ -7,19 +7,20 @@
 
 #if LEP_HAVE_DEVICE
 
-/* True when the answers to 0x2A and 0x2B can be encoded from info and rated. */
+/* True when the answers to 0x2A and 0x2B can be encoded from info and rated
+ * (the encoder reads only the member of u that the code selects). */
 static bool identity_ok(const lep_product_info *info, const lep_rated *rated)
 {
     lep_response r;
     uint8_t msg[LEP_LEN_PRODUCT_INFO_RATE];
     size_t n;
-    memset(&r, 0, sizeof(r));
+    r.result = LEP_RESULT_OK;
+    r.stream = false;
     r.code = LEP_CMD_RATED;
     r.u.rated = *rated;
     if (lep_response_encode(&r, msg, sizeof(msg), &n) != LEP_OK) {
         return false;
     }
-    memset(&r, 0, sizeof(r));
     r.code = LEP_CMD_PRODUCT_INFO;
     r.u.info = *info;
     return lep_response_encode(&r, msg, sizeof(msg), &n) == LEP_OK;
@@ -82,8 +83,8 @@ int lep_device_stream_frame(const lep_sample *s, uint8_t *out, size_t cap, size_
     if (s == NULL) {
         return LEP_E_ARG;
     }
-    memset(&r, 0, sizeof(r));
     r.code = LEP_CMD_START;
+    r.result = LEP_RESULT_OK;
     r.stream = true;
     r.u.sample = *s;
     return lep_response_frame(&r, out, cap, len);
@@ -92,26 +93,25 @@ int lep_device_stream_frame(const lep_sample *s, uint8_t *out, size_t cap, size_
 /* Apply a valid command to the state and fill its answer. */
 static void apply(lep_device *d, const lep_command *cmd, lep_response *r)
 {
+    const void *data = d;
+    size_t size = 0;
     switch (cmd->code) {
-    case LEP_CMD_PRODUCT_INFO: r->u.info = d->info; break;
-    case LEP_CMD_RATED: r->u.rated = d->rated; break;
-    case LEP_CMD_FILTER_GET: r->u.filter = d->filter_active; break;
-    case LEP_CMD_SAMPLE: r->u.sample = d->sample; break;
-    case LEP_CMD_START:
-        if (d->streaming) {
-            r->result = LEP_RESULT_STATE;
-        }
-        d->streaming = true;
-        break;
+    case LEP_CMD_PRODUCT_INFO: data = &d->info, size = sizeof(d->info); break;
+    case LEP_CMD_RATED: data = &d->rated, size = sizeof(d->rated); break;
+    case LEP_CMD_FILTER_GET: data = &d->filter_active, size = sizeof(d->filter_active); break;
+    case LEP_CMD_SAMPLE: data = &d->sample, size = sizeof(d->sample); break;
     case LEP_CMD_STOP: d->streaming = false; break;
-    default: /* LEP_CMD_FILTER_SET */
+    default: /* start, filter set: refused while streaming */
         if (d->streaming) {
             r->result = LEP_RESULT_STATE;
+        } else if (cmd->code == LEP_CMD_START) {
+            d->streaming = true;
         } else {
             d->filter_pending = cmd->filter;
         }
         break;
     }
+    memcpy(&r->u, data, size); /* the member of u that the code selects */
 }
 
 static void answer(lep_device *d, const uint8_t *msg, size_t len, lep_device_event *ev,
