@@ -125,9 +125,9 @@ static void answer(lep_device *d, const uint8_t *msg, size_t len, lep_device_eve
         ev->type = LEP_DEVICE_REJECTED; /* no command code to answer to */
         return;
     }
-    memset(&r, 0, sizeof(r));
-    r.code = cmd.code;
+    r.code = cmd.code; /* apply() fills the member of r.u that the code selects */
     r.result = result;
+    r.stream = false;
     if (rc == LEP_OK) {
         apply(d, &cmd, &r);
     }

@@ -136,10 +136,9 @@ int lep_command_encode(const lep_command *cmd, uint8_t *msg, size_t cap, size_t 
     if (cap < n) {
         return LEP_E_BUFFER;
     }
+    /* the filter code and three reserved 0x00 follow the header of a filter set */
+    put_le(msg + 4, cmd->filter, (unsigned)n - LEP_LEN_HEADER);
     put_header(msg, n, cmd->code, 0x00u);
-    if (n == LEP_LEN_FILTER_SET_CMD) {
-        put_le(msg + 4, cmd->filter, 4); /* the code, then three reserved 0x00 */
-    }
     *len = n;
     return LEP_OK;
 }
@@ -306,10 +305,12 @@ int lep_response_decode(const uint8_t *msg, size_t len, lep_response *r)
     case LEP_LEN_RATED:
         for (i = 0; i < LEP_AXES; i++) {
             uint32_t bits = get_le(msg + 4 + 4 * i, 4);
+            float f;
             if (!rating_bits_ok(bits)) {
                 return LEP_E_VALUE;
             }
-            memcpy(&r->u.rated.axis[i], &bits, sizeof(bits));
+            memcpy(&f, &bits, sizeof(f));
+            r->u.rated.axis[i] = f;
         }
         return LEP_OK;
     default: /* 32 or 38 */
