@@ -14,16 +14,15 @@ static bool identity_ok(const lep_product_info *info, const lep_rated *rated)
     lep_response r;
     uint8_t msg[LEP_LEN_PRODUCT_INFO_RATE];
     size_t n;
+    int rc;
     r.result = LEP_RESULT_OK;
     r.stream = false;
     r.code = LEP_CMD_RATED;
-    r.u.rated = *rated;
-    if (lep_response_encode(&r, msg, sizeof(msg), &n) != LEP_OK) {
-        return false;
-    }
+    memcpy(&r.u, rated, sizeof(*rated));
+    rc = lep_response_encode(&r, msg, sizeof(msg), &n);
     r.code = LEP_CMD_PRODUCT_INFO;
-    r.u.info = *info;
-    return lep_response_encode(&r, msg, sizeof(msg), &n) == LEP_OK;
+    memcpy(&r.u, info, sizeof(*info));
+    return rc == LEP_OK && lep_response_encode(&r, msg, sizeof(msg), &n) == LEP_OK;
 }
 
 int lep_device_init(lep_device *d, const lep_product_info *info, const lep_rated *rated,
@@ -37,8 +36,8 @@ int lep_device_init(lep_device *d, const lep_product_info *info, const lep_rated
     }
     memset(d, 0, sizeof(*d));
     lep_frame_decoder_init(&d->dec);
-    d->info = *info;
-    d->rated = *rated;
+    memcpy(&d->info, info, sizeof(*info));
+    memcpy(&d->rated, rated, sizeof(*rated));
     d->filter_active = filter;
     d->filter_pending = filter;
     return LEP_OK;
@@ -69,9 +68,10 @@ uint8_t lep_device_filter_pending(const lep_device *d)
 void lep_device_power_cycle(lep_device *d)
 {
     if (d != NULL) {
-        lep_frame_stats stats = d->dec.stats;
+        lep_frame_stats stats;
+        memcpy(&stats, &d->dec.stats, sizeof(stats));
         lep_frame_decoder_init(&d->dec);
-        d->dec.stats = stats;
+        memcpy(&d->dec.stats, &stats, sizeof(stats));
         d->streaming = false;
         d->filter_active = d->filter_pending;
     }
@@ -90,28 +90,36 @@ int lep_device_stream_frame(const lep_sample *s, uint8_t *out, size_t cap, size_
     return lep_response_frame(&r, out, cap, len);
 }
 
+/* The queries, answered with a copy of a member of lep_device. */
+static const struct query {
+    uint8_t code;
+    uint8_t size;
+    uint16_t at; /* offset in lep_device */
+} k_queries[] = {
+    {LEP_CMD_PRODUCT_INFO, sizeof(lep_product_info), offsetof(lep_device, info)},
+    {LEP_CMD_RATED, sizeof(lep_rated), offsetof(lep_device, rated)},
+    {LEP_CMD_FILTER_GET, 1, offsetof(lep_device, filter_active)},
+    {LEP_CMD_SAMPLE, sizeof(lep_sample), offsetof(lep_device, sample)}};
+
 /* Apply a valid command to the state and fill its answer. */
 static void apply(lep_device *d, const lep_command *cmd, lep_response *r)
 {
-    const void *data = d;
-    size_t size = 0;
-    switch (cmd->code) {
-    case LEP_CMD_PRODUCT_INFO: data = &d->info, size = sizeof(d->info); break;
-    case LEP_CMD_RATED: data = &d->rated, size = sizeof(d->rated); break;
-    case LEP_CMD_FILTER_GET: data = &d->filter_active, size = sizeof(d->filter_active); break;
-    case LEP_CMD_SAMPLE: data = &d->sample, size = sizeof(d->sample); break;
-    case LEP_CMD_STOP: d->streaming = false; break;
-    default: /* start, filter set: refused while streaming */
-        if (d->streaming) {
-            r->result = LEP_RESULT_STATE;
-        } else if (cmd->code == LEP_CMD_START) {
-            d->streaming = true;
-        } else {
-            d->filter_pending = cmd->filter;
+    size_t i;
+    for (i = 0; i < sizeof(k_queries) / sizeof(k_queries[0]); i++) {
+        if (cmd->code == k_queries[i].code) {
+            memcpy(&r->u, (const uint8_t *)d + k_queries[i].at, k_queries[i].size);
+            return;
         }
-        break;
     }
-    memcpy(&r->u, data, size); /* the member of u that the code selects */
+    if (cmd->code == LEP_CMD_STOP) {
+        d->streaming = false;
+    } else if (d->streaming) { /* start, filter set: refused while streaming */
+        r->result = LEP_RESULT_STATE;
+    } else if (cmd->code == LEP_CMD_START) {
+        d->streaming = true;
+    } else {
+        d->filter_pending = cmd->filter;
+    }
 }
 
 static void answer(lep_device *d, const uint8_t *msg, size_t len, lep_device_event *ev,
