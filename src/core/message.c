@@ -201,13 +201,13 @@ static bool get_text(char *dst, const uint8_t *src, size_t n)
     return true;
 }
 
-/* Write a C string of at most n characters into an n-byte field, space
- * padded; false when it is longer (its characters are checked by decoding). */
+/* Write a C string (at most n characters, printable ASCII) into an n-byte
+ * field, space padded. */
 static bool put_text(uint8_t *dst, const char *src, size_t n)
 {
     size_t len = 0;
     while (src[len] != '\0') { /* src has room for n characters and a NUL */
-        if (len == n) {
+        if (len == n || !printable((uint8_t)src[len])) {
             return false;
         }
         dst[len] = (uint8_t)src[len];
@@ -318,22 +318,60 @@ int lep_response_decode(const uint8_t *msg, size_t len, lep_response *r)
     }
 }
 
-static void encode_sample(uint8_t *msg, const lep_sample *s)
+static int encode_sample(uint8_t *msg, const lep_sample *s)
 {
     size_t i;
     for (i = 0; i < LEP_AXES; i++) {
+        if (!raw_ok(s->raw[i])) {
+            return LEP_E_VALUE;
+        }
         put_le(msg + 4 + 2 * i, (uint16_t)s->raw[i], 2);
     }
     put_le(msg + 16, s->reserved, 2);
     msg[18] = s->status;
+    return LEP_OK;
+}
+
+/* Each value is checked by the rule that decoding applies (rating_bits_ok,
+ * raw_ok, printable, LEP_FILTER_MAX), so what decoding would reject,
+ * encoding refuses (LEP_E_VALUE); the sensor side needs no decoder. */
+static int encode_data(uint8_t *msg, size_t n, const lep_response *r)
+{
+    size_t i;
+    switch (n) {
+    case LEP_LEN_HEADER:
+        return LEP_OK;
+    case LEP_LEN_FILTER:
+        msg[4] = r->u.filter;
+        return r->u.filter <= LEP_FILTER_MAX ? LEP_OK : LEP_E_VALUE;
+    case LEP_LEN_SAMPLE: /* the handshake sample or a stream data message */
+        return encode_sample(msg, &r->u.sample);
+    case LEP_LEN_RATED:
+        for (i = 0; i < LEP_AXES; i++) {
+            uint32_t bits;
+            memcpy(&bits, &r->u.rated.axis[i], sizeof(bits));
+            if (!rating_bits_ok(bits)) {
+                return LEP_E_VALUE;
+            }
+            put_le(msg + 4 + 4 * i, bits, 4);
+        }
+        return LEP_OK;
+    default: /* 32 or 38 */
+        for (i = 0; i < (n == LEP_LEN_PRODUCT_INFO_RATE ? 4u : 3u); i++) {
+            if (!put_text(msg + k_text[i].wire, (const char *)&r->u.info + k_text[i].at,
+                          k_text[i].width)) {
+                return LEP_E_VALUE;
+            }
+        }
+        return LEP_OK;
+    }
 }
 
 int lep_response_encode(const lep_response *r, uint8_t *msg, size_t cap, size_t *len)
 {
-    lep_response decoded;
     unsigned k;
     size_t n;
-    size_t i;
+    int rc;
     if (r == NULL || msg == NULL || len == NULL) {
         return LEP_E_ARG;
     }
@@ -352,36 +390,11 @@ int lep_response_encode(const lep_response *r, uint8_t *msg, size_t cap, size_t 
     }
     put_header(msg, n, r->code, r->result);
     memset(msg + LEP_LEN_HEADER, 0, n - LEP_LEN_HEADER); /* the reserved bytes */
-    switch (n) {
-    case LEP_LEN_HEADER:
-        return (*len = n, LEP_OK);
-    case LEP_LEN_FILTER:
-        msg[4] = r->u.filter;
-        break;
-    case LEP_LEN_SAMPLE: /* the handshake sample or a stream data message */
-        encode_sample(msg, &r->u.sample);
-        break;
-    case LEP_LEN_RATED:
-        for (i = 0; i < LEP_AXES; i++) {
-            uint32_t bits;
-            memcpy(&bits, &r->u.rated.axis[i], sizeof(bits));
-            put_le(msg + 4 + 4 * i, bits, 4);
-        }
-        break;
-    default: /* 32 or 38 */
-        for (i = 0; i < (n == LEP_LEN_PRODUCT_INFO_RATE ? 4u : 3u); i++) {
-            if (!put_text(msg + k_text[i].wire, (const char *)&r->u.info + k_text[i].at, k_text[i].width)) {
-                return LEP_E_VALUE;
-            }
-        }
-        break;
+    rc = encode_data(msg, n, r);
+    if (rc == LEP_OK) {
+        *len = n;
     }
-    /* what decoding would reject, encoding refuses */
-    if (lep_response_decode(msg, n, &decoded) != LEP_OK) {
-        return LEP_E_VALUE;
-    }
-    *len = n;
-    return LEP_OK;
+    return rc;
 }
 
 int lep_command_frame(const lep_command *cmd, uint8_t *out, size_t cap, size_t *len)
