@@ -16,7 +16,7 @@
 /* The rated values travel as IEEE-754 binary32. */
 typedef char lep_float_is_binary32[(sizeof(float) == 4u) ? 1 : -1];
 
-/* The known codes, in the order of k_response_len and k_names. */
+/* The known codes, in the order of k_response_len and of lep_command_name's list. */
 enum { I_INFO, I_RATED, I_FILTER_GET, I_SAMPLE, I_START, I_STOP, I_FILTER_SET, N_CODES };
 static const uint8_t k_codes[N_CODES] = {
     LEP_CMD_PRODUCT_INFO, LEP_CMD_RATED, LEP_CMD_FILTER_GET, LEP_CMD_SAMPLE,
@@ -79,7 +79,8 @@ static void put_le(uint8_t *p, uint32_t v, unsigned n)
     }
 }
 
-/* A rating must be finite and strictly positive. */
+/* A rating must be finite (exponent not all ones) and strictly positive
+ * (sign clear, not zero: 1 <= bits <= 0x7FFFFFFF). */
 static bool rating_bits_ok(uint32_t bits)
 {
     return ((bits >> 23) & 0xFFu) != 0xFFu && bits - 1u < 0x7FFFFFFFu;
@@ -90,7 +91,8 @@ static bool raw_ok(int16_t v)
     return v <= LEP_SATURATION_V113 && v >= -LEP_SATURATION_V113;
 }
 
-/* The filter field (code, then three reserved zero bytes) at msg[4..8). */
+/* The filter field (code, then three reserved zero bytes) at msg[4..8) of a
+ * filter set or a filter query's answer; the reserved bytes are checked first. */
 static int get_filter(const uint8_t *msg, uint8_t *filter)
 {
     if ((msg[5] | msg[6] | msg[7]) != 0u) {
