@@ -187,22 +187,14 @@ static size_t feed_bad_call(const lep_frame_decoder *d, size_t len, lep_frame_ev
     return 0;
 }
 
-/* What a byte completes: an event and the counter it adds to. */
+/* What a byte completes. The first three are the event types; the errors
+ * are the negated error codes (K_TOO_LONG is -LEP_E_TOO_LONG, and so on). */
 enum { K_NONE, K_MESSAGE, K_NAK, K_TOO_LONG, K_BCC, K_ESCAPE, K_LENGTH };
 #define STAT_(field) ((uint8_t)offsetof(lep_frame_stats, field))
-static const struct outcome {
-    int8_t type;     /* enum lep_frame_event_type */
-    int8_t error;    /* with LEP_FRAME_ERROR */
-    uint8_t counter; /* offset of the counter it adds one to in lep_frame_stats */
-} k_outcomes[] = {
-    {LEP_FRAME_NONE, LEP_OK, STAT_(bytes_discarded)},
-    {LEP_FRAME_MESSAGE, LEP_OK, STAT_(messages)},
-    {LEP_FRAME_NAK, LEP_OK, STAT_(naks)},
-    {LEP_FRAME_ERROR, LEP_E_TOO_LONG, STAT_(overruns)},
-    {LEP_FRAME_ERROR, LEP_E_BCC, STAT_(bcc_errors)},
-    {LEP_FRAME_ERROR, LEP_E_ESCAPE, STAT_(escape_errors)},
-    {LEP_FRAME_ERROR, LEP_E_LENGTH, STAT_(bytes_discarded)}, /* counted in bytes only */
-};
+/* The counter each adds one to (an empty frame is counted in bytes only). */
+static const uint8_t k_counter[] = {STAT_(bytes_discarded), STAT_(messages), STAT_(naks),
+                                    STAT_(overruns),        STAT_(bcc_errors), STAT_(escape_errors),
+                                    STAT_(bytes_discarded)};
 
 /* Add n to the counter at offset off of d's stats. */
 static void count(lep_frame_decoder *d, size_t off, size_t n)
@@ -211,15 +203,23 @@ static void count(lep_frame_decoder *d, size_t off, size_t n)
     *c += (uint32_t)n;
 }
 
+/* In the word-at-a-time build, feed_byte takes the usual bytes inline and
+ * calls step for the others (on one line with the name, so that both builds
+ * place the functions on the same lines for the coverage report). */
+#if defined(FRAME_FAST) && defined(__GNUC__) && defined(__OPTIMIZE__)
+#define STEP_ATTR __attribute__((noinline))
+#define FEED_BYTE_ATTR __attribute__((always_inline)) inline
+#else
+#define STEP_ATTR
+#define FEED_BYTE_ATTR
+#endif
+
 /* One byte (the path of a caller fed byte by byte, e.g. from an ISR ring
  * buffer): a switch on the state, and every outcome ends in one place that
  * counts the discarded bytes, makes the event and counts it, and stores the
  * next state. feed_byte below takes the usual byte (a message byte) inline
  * in the word-at-a-time build. */
-#if defined(FRAME_FAST) && defined(__GNUC__)
-__attribute__((noinline)) /* the usual byte below stays a few instructions */
-#endif
-static size_t step(lep_frame_decoder *d, uint8_t b, lep_frame_event *ev)
+STEP_ATTR static size_t step(lep_frame_decoder *d, uint8_t b, lep_frame_event *ev)
 {
     const unsigned st = d->state;
     size_t disc = (size_t)d->len + d->raw; /* wire bytes of the frame so far */
@@ -333,10 +333,10 @@ static size_t step(lep_frame_decoder *d, uint8_t b, lep_frame_event *ev)
     }
     d->state = (uint8_t)next;
     count(d, STAT_(bytes_discarded), disc);
-    ev->type = k_outcomes[kind].type;
+    ev->type = kind < K_TOO_LONG ? (int)kind : LEP_FRAME_ERROR;
     if (kind != K_NONE) {
-        count(d, k_outcomes[kind].counter, kind != K_LENGTH);
-        ev->error = k_outcomes[kind].error;
+        count(d, k_counter[kind], kind != K_LENGTH);
+        ev->error = kind < K_TOO_LONG ? LEP_OK : -(int)kind;
         ev->msg = NULL;
         ev->len = 0;
         if (kind == K_MESSAGE) {
@@ -347,10 +347,7 @@ static size_t step(lep_frame_decoder *d, uint8_t b, lep_frame_event *ev)
     return 1;
 }
 
-#if defined(FRAME_FAST) && defined(__GNUC__) && defined(__OPTIMIZE__)
-__attribute__((always_inline)) inline
-#endif
-static size_t feed_byte(lep_frame_decoder *d, uint8_t b, lep_frame_event *ev)
+FEED_BYTE_ATTR static size_t feed_byte(lep_frame_decoder *d, uint8_t b, lep_frame_event *ev)
 {
 #ifdef FRAME_FAST
     /* The usual bytes inside a frame: a message byte, a DLE, a stuffed DLE. */
@@ -756,7 +753,7 @@ size_t lep_frame_decoder_feed(lep_frame_decoder *d, const uint8_t *data, size_t 
                               lep_frame_event *ev)
 {
 #ifndef FRAME_FAST
-    size_t i = 0;
+    const uint8_t *p = data;
 #endif
     if (d == NULL || ev == NULL || data == NULL) {
         return feed_bad_call(d, len, ev);
@@ -768,13 +765,13 @@ size_t lep_frame_decoder_feed(lep_frame_decoder *d, const uint8_t *data, size_t 
     return decode_one_event(d, data, len, ev);
 #else
     ev->type = LEP_FRAME_NONE;
-    while (i < len) {
-        (void)feed_byte(d, data[i++], ev);
+    while (p < data + len) {
+        (void)feed_byte(d, *p++, ev);
         if (ev->type != LEP_FRAME_NONE) {
             break;
         }
     }
-    return i;
+    return (size_t)(p - data);
 #endif
 }
 
