@@ -350,7 +350,7 @@ STEP_ATTR static size_t step(lep_frame_decoder *d, uint8_t b, lep_frame_event *e
 FEED_BYTE_ATTR static size_t feed_byte(lep_frame_decoder *d, uint8_t b, lep_frame_event *ev)
 {
 #ifdef FRAME_FAST
-    /* The usual bytes inside a frame: a message byte, a DLE, a stuffed DLE. */
+    /* The usual bytes inside a frame: a message byte, a DLE, a stuffed DLE, the BCC. */
     ev->type = LEP_FRAME_NONE;
     if (d->state == S_MSG) {
         if (b == LEP_DLE) {
@@ -367,6 +367,14 @@ FEED_BYTE_ATTR static size_t feed_byte(lep_frame_decoder *d, uint8_t b, lep_fram
         d->bcc ^= b;
         d->raw++;
         d->state = S_MSG;
+        return 1;
+    } else if (d->state == S_BCC && b == (uint8_t)(d->bcc ^ LEP_ETX) && d->len != 0) {
+        d->stats.messages++; /* a correct BCC: the message */
+        ev->type = LEP_FRAME_MESSAGE;
+        ev->error = LEP_OK;
+        ev->msg = d->buf;
+        ev->len = d->len;
+        d->state = b == LEP_DLE ? S_BCC_DLE : S_IDLE;
         return 1;
     }
 #endif
