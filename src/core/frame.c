@@ -33,8 +33,9 @@ enum {
 
 /* The word-at-a-time machine (decode below) is built unless the build
  * optimises for size or defines LEPTRINO_FRAME_SMALL: then every entry point
- * runs the one-byte machine (feed_byte), for about a third of the flash and
- * several times the instructions per byte. The tests run both builds. */
+ * runs the one-byte machine (feed_byte), for about a fifth of the flash (739
+ * bytes against 3,872 on a Cortex-M0+) and several times the instructions per
+ * byte. The tests run both builds. */
 #if !defined(LEPTRINO_FRAME_SMALL) && !defined(__OPTIMIZE_SIZE__)
 #define FRAME_FAST 1
 #endif
@@ -187,16 +188,27 @@ static size_t feed_bad_call(const lep_frame_decoder *d, size_t len, lep_frame_ev
     return 0;
 }
 
-/* What a byte completes. The first three are the event types; the errors
- * are the negated error codes (K_TOO_LONG is -LEP_E_TOO_LONG, and so on). */
-enum { K_NONE, K_MESSAGE, K_NAK, K_TOO_LONG, K_BCC, K_ESCAPE, K_LENGTH };
+/* What a byte completes: the event types, then the errors as their negated
+ * codes (they index k_counter below, so they must run 0..6). */
+enum {
+    K_NONE = LEP_FRAME_NONE,
+    K_MESSAGE = LEP_FRAME_MESSAGE,
+    K_NAK = LEP_FRAME_NAK,
+    K_TOO_LONG = -LEP_E_TOO_LONG,
+    K_BCC = -LEP_E_BCC,
+    K_ESCAPE = -LEP_E_ESCAPE,
+    K_LENGTH = -LEP_E_LENGTH
+};
+typedef char k_kinds_run_0_to_6[(K_NAK == 2 && K_TOO_LONG == 3 && K_BCC == 4 && K_ESCAPE == 5 &&
+                                 K_LENGTH == 6) ? 1 : -1];
 #define STAT_(field) ((uint8_t)offsetof(lep_frame_stats, field))
 /* The counter each adds one to (an empty frame is counted in bytes only). */
 static const uint8_t k_counter[] = {STAT_(bytes_discarded), STAT_(messages), STAT_(naks),
                                     STAT_(overruns),        STAT_(bcc_errors), STAT_(escape_errors),
                                     STAT_(bytes_discarded)};
 
-/* Add n to the counter at offset off of d's stats. */
+/* Add n to the counter at offset off (an offsetof of one of its uint32_t
+ * members) of d's stats. */
 static void count(lep_frame_decoder *d, size_t off, size_t n)
 {
     uint32_t *c = (uint32_t *)(void *)((unsigned char *)&d->stats + off);
