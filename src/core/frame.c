@@ -362,7 +362,7 @@ STEP_ATTR static size_t step(lep_frame_decoder *d, uint8_t b, lep_frame_event *e
 FEED_BYTE_ATTR static size_t feed_byte(lep_frame_decoder *d, uint8_t b, lep_frame_event *ev)
 {
 #ifdef FRAME_FAST
-    /* The usual bytes inside a frame: a message byte, a DLE, a stuffed DLE, the BCC. */
+    /* The usual bytes: a message byte, a DLE, a stuffed DLE, the BCC, DLE STX. */
     ev->type = LEP_FRAME_NONE;
     if (d->state == S_MSG) {
         if (b == LEP_DLE) {
@@ -378,6 +378,15 @@ FEED_BYTE_ATTR static size_t feed_byte(lep_frame_decoder *d, uint8_t b, lep_fram
         d->buf[d->len++] = b;
         d->bcc ^= b;
         d->raw++;
+        d->state = S_MSG;
+        return 1;
+    } else if (d->state == S_IDLE && b == LEP_DLE) {
+        d->state = S_IDLE_DLE;
+        return 1;
+    } else if (d->state == S_IDLE_DLE && b == LEP_STX) { /* a frame begins */
+        d->raw = 2;
+        d->len = 0;
+        d->bcc = 0;
         d->state = S_MSG;
         return 1;
     } else if (d->state == S_BCC && b == (uint8_t)(d->bcc ^ LEP_ETX) && d->len != 0) {
