@@ -21,10 +21,12 @@ CHUNK_KEYS = [
     "plain_loop_ns_per_byte",
 ]
 MODE_KEYS = [
-    "path", "latency_budget_ms", "rc", "samples", "lost", "latency_us", "wall_s", "cpu_s", "cpu_percent_of_one_core",
-    "cpu_us_per_sample", "read_write_syscalls_per_sample_proc", "syscalls_per_s", "syscalls_per_sample",
+    "path", "latency_budget_ms", "rc", "samples", "lost", "latency_us", "latency_from_deadline_us",
+    "sim_lateness_us", "wall_s", "cpu_s", "cpu_percent_of_one_core", "cpu_us_per_sample", "sim_cpu_us_per_sample",
+    "sim_over_client_cpu", "read_write_syscalls_per_sample_proc", "syscalls_per_s", "syscalls_per_sample",
     "syscalls_method",
 ]
+SPREAD_KEYS = ["p50", "p99", "max", "min", "reference"]
 
 
 def need(obj: Any, path: str, keys: list[str]) -> list[str]:
@@ -56,12 +58,18 @@ def main() -> int:
     e2e = d.get("end_to_end", {})
     errs += need(e2e, "end_to_end", ["sim", "low_latency", "recording", "client", "session_latency_budget_ms",
                                      "rates", "max_rate_without_loss_hz"])
+    errs += need(e2e.get("sender_floor"), "end_to_end.sender_floor",
+                 ["sleep_us_cpu_per_period", "sleep_and_pty_write_us_cpu_per_period", "method"])
     for mode in ("low_latency", "recording", "client"):
         m = e2e.get(mode)
         errs += need(m, f"end_to_end.{mode}", MODE_KEYS)
-        errs += need((m or {}).get("latency_us"), f"end_to_end.{mode}.latency_us", ["p50", "p99", "max"])
-    errs += need(d.get("python"), "python", ["record_us_cpu_per_sample", "stream_iter_us_cpu_per_sample",
-                                             "reason"])
+        for lat in ("latency_us", "latency_from_deadline_us", "sim_lateness_us"):
+            errs += need((m or {}).get(lat), f"end_to_end.{mode}.{lat}", SPREAD_KEYS)
+        errs += need((m or {}).get("latency_us"), f"end_to_end.{mode}.latency_us", ["matched"])
+    py_keys = ["record_us_cpu_per_sample", "stream_iter_us_cpu_per_sample", "session_read_only_us_cpu_per_sample",
+               "reason"]
+    errs += need(d.get("python"), "python", py_keys + ["backend", "latency_budget_s", "latency_budget_0"])
+    errs += need((d.get("python") or {}).get("latency_budget_0"), "python.latency_budget_0", py_keys)
     for e in errs:
         print("bench smoke:", e, file=sys.stderr)
     if not errs:

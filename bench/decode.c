@@ -127,19 +127,20 @@ static void take_outcome(lep_client *c, int rc, size_t *samples, uint32_t *sink)
     }
 }
 
-/* The client's step API fed chunk bytes per call (an ISR ring buffer on an
- * MCU), already streaming; every outcome drained. */
+/* The client's step API fed chunk bytes per call, already streaming; every
+ * outcome drained. One byte at a time is lep_client_step_byte, as an MCU's
+ * ISR ring consumer calls it (the same outcomes as lep_client_step). */
 NOINLINE static size_t region_client_step(lep_client *c, const uint8_t *in, size_t len, size_t chunk,
                                           uint32_t *sink)
 {
     size_t off = 0;
     size_t samples = 0;
-    if (chunk == 1) { /* the loop of an ISR ring's consumer, as lean as region_plain's */
+    if (chunk == 1) { /* the loop of an ISR ring's consumer: pop a byte, step, act on the outcome */
         for (off = 0; off < len; off++) {
-            size_t used;
-            take_outcome(c, lep_client_step(c, in + off, 1, &used), &samples, sink);
-            if (used == 0) {
-                return samples;
+            lep_sample smp;
+            if (lep_client_step_byte(c, in[off], &smp) == LEP_STEP_SAMPLE) {
+                *sink += (uint32_t)(uint16_t)smp.raw[0];
+                samples++;
             }
         }
         return samples;

@@ -520,6 +520,199 @@ static void test_step_api_stops_at_each_sample(void)
     TEST_ASSERT_EQUAL_UINT(3, got);
 }
 
+/* ---- lep_client_step_byte ---- */
+
+/* A streaming client on the script's table (the start's answer stepped in by hand). */
+static void start_streaming(lep_client *c)
+{
+    static const uint8_t ack[] = {0x10, 0x02, 0x04, 0xFF, 0x32, 0x00, 0x10, 0x03, 0xCA};
+    lep_io io = script_io_table(&sio);
+    lep_command start = {LEP_CMD_START, 0};
+    size_t used;
+    sio.silent = true;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_init(c, &io));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_send(c, &start));
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_RESPONSE, lep_client_step(c, ack, sizeof(ack), &used));
+    TEST_ASSERT_TRUE(lep_client_streaming(c));
+}
+
+/* Data frames with stuffed bytes, and between them a frame with a bad BCC,
+ * noise, a NAK, an empty frame, a restart and a sample whose BCC is 0x10. */
+static size_t mixed_stream(uint8_t *wire, size_t cap)
+{
+    static const uint8_t junk[] = {0x55, 0x10, 0x10, 0x10, 0x15, 0x10, 0x02, 0x10, 0x03, 0x03,
+                                   0x10, 0x41, 0x10, 0x02, 0x04, 0x10, 0x02};
+    size_t n = 0;
+    unsigned i;
+    for (i = 0; i < 48u; i++) {
+        lep_sample smp;
+        size_t k = 0;
+        memset(&smp, 0, sizeof(smp));
+        smp.raw[LEP_FX] = (int16_t)(0x1010 + (int)i);
+        smp.raw[LEP_FZ] = (int16_t)(i * 37u);
+        smp.reserved = (uint16_t)(i * 0x0101u);
+        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_device_stream_frame(&smp, wire + n, cap - n, &k));
+        if (i == 5u) {
+            wire[n + k - 1u] = (uint8_t)(wire[n + k - 1u] ^ 0x5Au); /* a bad BCC */
+        }
+        n += k;
+        if (i % 16u == 9u) {
+            TEST_ASSERT_TRUE(n + sizeof(junk) <= cap);
+            memcpy(wire + n, junk, sizeof(junk));
+            n += sizeof(junk);
+        }
+    }
+    return n;
+}
+
+typedef struct outcomes {
+    int rc[128];
+    uint16_t reserved[128]; /* the sample's reserved field, for LEP_STEP_SAMPLE */
+    size_t n;
+} outcomes;
+
+static void note(outcomes *o, lep_client *c, int rc)
+{
+    lep_sample s;
+    TEST_ASSERT_TRUE(o->n < 128u);
+    o->rc[o->n] = rc;
+    o->reserved[o->n] = 0;
+    if (rc == LEP_STEP_SAMPLE) {
+        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_get_sample(c, &s));
+        o->reserved[o->n] = s.reserved;
+    }
+    o->n++;
+}
+
+static void test_step_byte_gives_what_step_gives_at_every_chunking(void)
+{
+    static const size_t chunks[] = {1, 2, 3, 7, 25, 64, 4096};
+    uint8_t wire[2048];
+    size_t len = mixed_stream(wire, sizeof(wire));
+    outcomes ref;
+    lep_client_stats want;
+    lep_client c;
+    size_t i;
+    memset(&ref, 0, sizeof(ref));
+    start_streaming(&client);
+    for (i = 0; i < len; i++) {
+        lep_sample s;
+        int rc = lep_client_step_byte(&client, wire[i], &s);
+        if (rc != LEP_STEP_NONE) {
+            note(&ref, &client, rc);
+        }
+        if (rc == LEP_STEP_SAMPLE) { /* out is what lep_client_get_sample gives */
+            TEST_ASSERT_EQUAL_UINT16(ref.reserved[ref.n - 1u], s.reserved);
+            TEST_ASSERT_EQUAL_INT16((int16_t)(0x1010 + (int)s.reserved % 256), s.raw[LEP_FX]);
+        }
+    }
+    lep_client_get_stats(&client, &want);
+    TEST_ASSERT_EQUAL_UINT32(47, want.samples); /* 48 less the bad BCC */
+    TEST_ASSERT_EQUAL_UINT32(1, want.bcc_errors);
+    TEST_ASSERT_TRUE(want.invalid >= 1u);
+    TEST_ASSERT_EQUAL_UINT32(6, want.frame_errors); /* two restarts in each junk */
+    TEST_ASSERT_EQUAL_size_t(47, ref.n);
+    for (i = 0; i < sizeof(chunks) / sizeof(chunks[0]); i++) {
+        outcomes got;
+        lep_client_stats st;
+        size_t pos = 0;
+        memset(&got, 0, sizeof(got));
+        start_streaming(&c);
+        while (pos < len) {
+            size_t used = 0;
+            size_t n = len - pos < chunks[i] ? len - pos : chunks[i];
+            int rc = lep_client_step(&c, wire + pos, n, &used);
+            pos += used;
+            if (rc != LEP_STEP_NONE) {
+                note(&got, &c, rc);
+            }
+        }
+        lep_client_get_stats(&c, &st);
+        TEST_ASSERT_EQUAL_size_t(ref.n, got.n);
+        TEST_ASSERT_EQUAL_INT_ARRAY(ref.rc, got.rc, ref.n);
+        TEST_ASSERT_EQUAL_UINT16_ARRAY(ref.reserved, got.reserved, ref.n);
+        TEST_ASSERT_EQUAL_MEMORY(&want, &st, sizeof(st));
+    }
+}
+
+static void test_step_byte_message_lasts_until_the_next_step(void)
+{
+    uint8_t wire[64];
+    lep_sample s;
+    lep_response r;
+    size_t len;
+    size_t i = 0;
+    int rc = LEP_STEP_NONE;
+    start_streaming(&client);
+    sio.endless_stream = false;
+    sio.in_len = sio.in_pos = 0;
+    script_push_data(&sio);
+    script_push_data(&sio);
+    len = script_pending(&sio);
+    memcpy(wire, sio.in, len);
+    for (; i < len && rc == LEP_STEP_NONE; i++) {
+        rc = lep_client_step_byte(&client, wire[i], NULL); /* out may be NULL */
+    }
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_SAMPLE, rc);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_get_sample(&client, &s));
+    TEST_ASSERT_EQUAL_UINT16(0, s.reserved);
+    /* The next byte ends it (on the inline path too). */
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step_byte(&client, wire[i++], &s));
+    TEST_ASSERT_EQUAL_INT(LEP_E_STATE, lep_client_get_sample(&client, &s));
+    TEST_ASSERT_EQUAL_INT(LEP_E_STATE, lep_client_response(&client, &r));
+    for (rc = LEP_STEP_NONE; i < len && rc == LEP_STEP_NONE; i++) {
+        rc = lep_client_step_byte(&client, wire[i], &s);
+    }
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_SAMPLE, rc);
+    TEST_ASSERT_EQUAL_UINT16(1, s.reserved);
+    /* Settings leave it alone. */
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_watchdog(&client, 50));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_get_sample(&client, &s));
+    TEST_ASSERT_EQUAL_UINT16(1, s.reserved);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_watchdog(&client, 0));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_response(&client, &r));
+    TEST_ASSERT_TRUE(r.stream);
+    /* A transaction without a place for its answer. */
+    {
+        lep_command stop = {LEP_CMD_STOP, 0};
+        sio.silent = false;
+        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_rx(&client, &rx));
+        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_transact(&client, &stop, NULL));
+        TEST_ASSERT_FALSE(lep_client_streaming(&client));
+    }
+}
+
+static void test_step_byte_reads_the_clock_every_32_bytes(void)
+{
+    lep_command cmd = {LEP_CMD_RATED, 0};
+    static const uint8_t open[] = {0x10, 0x02};
+    uint32_t t0;
+    unsigned i;
+    int rc = LEP_STEP_NONE;
+    sio.silent = true;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_timeout(&client, 1000));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_send(&client, &cmd));
+    sio.tick = 1; /* every clock read moves the clock 1 ms: it counts them */
+    t0 = sio.now;
+    for (i = 0; i < sizeof(open); i++) {
+        TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step_byte(&client, open[i], NULL));
+    }
+    for (i = 0; i < 96u; i++) { /* the body of a frame that never ends */
+        TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step_byte(&client, 0x41, NULL));
+    }
+    TEST_ASSERT_TRUE(sio.now - t0 >= 98u / 32u); /* at least every 32 steps */
+    TEST_ASSERT_TRUE(sio.now - t0 <= 98u / 32u + 1u);
+    /* The timeout passes mid-frame: the resend comes within 32 bytes. */
+    sio.tick = 0;
+    sio.now += 1000;
+    for (i = 0; i < 32u && sio.writes < 2u; i++) {
+        rc = lep_client_step_byte(&client, 0x42, NULL);
+    }
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, rc);
+    TEST_ASSERT_EQUAL_UINT(2, sio.writes);
+    TEST_ASSERT_EQUAL_UINT32(1, stats().resent_after_timeout);
+}
+
 static void test_two_clients_are_independent(void)
 {
     script_io other;
@@ -1049,6 +1242,27 @@ static void test_step_recovery_gives_up_on_endless_noise(void)
     TEST_ASSERT_FALSE(lep_client_busy(&c));
 }
 
+static void test_step_start_recovered_byte_by_byte(void)
+{
+    /* A start refused (a stale stream runs), recovered by stop, drain, start,
+     * every byte stepped alone: the clock is looked at on each one meanwhile. */
+    lep_io io = script_io_table(&sio);
+    lep_command start = {LEP_CMD_START, 0};
+    lep_client c;
+    lep_client_stats st;
+    io.read = NULL;
+    sio.endless_stream = false;
+    leave_stream_running();
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_init(&c, &io));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_send(&c, &start));
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_RESPONSE, pump(&c, 1000));
+    TEST_ASSERT_TRUE(lep_client_streaming(&c));
+    TEST_ASSERT_EQUAL_UINT(3, sio.writes); /* start, stop, start */
+    lep_client_get_stats(&c, &st);
+    TEST_ASSERT_EQUAL_UINT32(1, st.recoveries);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_response(&c, &(lep_response){0}));
+}
+
 static void test_recover_write_error(void)
 {
     sio.write_error = LEP_E_DISCONNECTED;
@@ -1454,6 +1668,9 @@ int main(void)
     RUN_TEST(test_step_api_without_read);
     RUN_TEST(test_step_api_deadline);
     RUN_TEST(test_step_api_stops_at_each_sample);
+    RUN_TEST(test_step_byte_gives_what_step_gives_at_every_chunking);
+    RUN_TEST(test_step_byte_message_lasts_until_the_next_step);
+    RUN_TEST(test_step_byte_reads_the_clock_every_32_bytes);
     RUN_TEST(test_two_clients_are_independent);
     RUN_TEST(test_transaction_timeout_across_clock_wrap);
     RUN_TEST(test_nak_retry_and_answer_across_clock_wrap);
@@ -1480,6 +1697,7 @@ int main(void)
     RUN_TEST(test_step_recovery_stops_drains_and_identifies);
     RUN_TEST(test_step_recovery_waits_for_a_quiet_line);
     RUN_TEST(test_step_recovery_gives_up_on_endless_noise);
+    RUN_TEST(test_step_start_recovered_byte_by_byte);
     RUN_TEST(test_recover_write_error);
     RUN_TEST(test_watchdog_reports_a_stalled_stream);
     RUN_TEST(test_watchdog_in_blocking_next_sample);

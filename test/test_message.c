@@ -591,7 +591,7 @@ static void test_strerror_every_code(void)
         LEP_E_ESCAPE,    LEP_E_LENGTH,       LEP_E_RESERVED,  LEP_E_UNEXPECTED, LEP_E_VALUE,
         LEP_E_SENSOR,    LEP_E_NAK,          LEP_E_TIMEOUT,   LEP_E_IO,        LEP_E_DISCONNECTED,
         LEP_E_BUSY,      LEP_E_NOT_FOUND,    LEP_E_PERMISSION, LEP_E_NOT_TTY,  LEP_E_STATE,
-        LEP_E_NO_SYNC,   LEP_E_UNSUPPORTED};
+        LEP_E_NO_SYNC,   LEP_E_UNSUPPORTED,  LEP_E_END,       LEP_E_STALLED};
     const char *s[sizeof(codes) / sizeof(codes[0]) + 1];
     size_t i;
     for (i = 0; i < sizeof(codes) / sizeof(codes[0]); i++) {
@@ -599,8 +599,12 @@ static void test_strerror_every_code(void)
     }
     s[i] = lep_strerror(-9999); /* the unknown text differs from every known one */
     expect_distinct(s, i + 1u, "lep_strerror");
-    TEST_ASSERT_NOT_NULL(lep_strerror(1));
-    TEST_ASSERT_NOT_NULL(lep_strerror(LEP_E_UNSUPPORTED - 1));
+    /* the ends of the packed list, and both sides of it */
+    TEST_ASSERT_EQUAL_STRING("success", lep_strerror(LEP_OK));
+    TEST_ASSERT_EQUAL_STRING("invalid argument", lep_strerror(LEP_E_ARG));
+    TEST_ASSERT_EQUAL_STRING("no stream data within the watchdog time", lep_strerror(LEP_E_STALLED));
+    TEST_ASSERT_EQUAL_STRING("unknown error", lep_strerror(1));
+    TEST_ASSERT_EQUAL_STRING("unknown error", lep_strerror(LEP_E_STALLED - 1));
 }
 
 static void test_result_str(void)
@@ -611,6 +615,10 @@ static void test_result_str(void)
         s[i] = lep_result_str(i); /* 5 is not a result code of the spec */
     }
     expect_distinct(s, 6, "lep_result_str");
+    TEST_ASSERT_EQUAL_STRING("success", lep_result_str(LEP_RESULT_OK));
+    TEST_ASSERT_EQUAL_STRING("length error", lep_result_str(LEP_RESULT_LENGTH));
+    TEST_ASSERT_EQUAL_STRING("state error", lep_result_str(LEP_RESULT_STATE));
+    TEST_ASSERT_EQUAL_STRING("unknown result code", lep_result_str(5));
     TEST_ASSERT_EQUAL_STRING(lep_result_str(5), lep_result_str(0xFF));
 }
 

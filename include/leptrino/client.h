@@ -91,25 +91,7 @@ typedef struct lep_client_rx {
 /* Client context. Caller-allocated; fields are private. At most 256 bytes
  * on a 32-bit MCU (the read buffer of the blocking calls is not in it). */
 typedef struct lep_client {
-    lep_io io;
-    lep_frame_decoder dec;
-    lep_client_rx *rx;      /* read buffer of the blocking calls, or NULL */
-    const uint8_t *msg;     /* message of the last outcome (in dec), or NULL */
-    uint32_t t_start;       /* when the transaction attempt or the quiet time began */
-    uint32_t t_aux;         /* when the drain began, or the watchdog's reference time */
-    uint32_t timeout_ms;
-    uint32_t unexpected;    /* the client's own counters (see lep_client_stats) */
-    uint32_t invalid;
-    uint32_t timeouts;
-    uint32_t samples;
-    uint32_t retries;
-    uint32_t resent_after_timeout;
-    uint32_t resent_confirmed;
-    uint32_t recoveries;
-    uint32_t reserved_nonzero;
-    uint32_t stalls;
-    uint16_t watchdog_ms;
-    uint16_t quiet_ms;
+    /* (Small fields first: short offsets make small code on Thumb-1 and AVR.) */
     uint8_t state;
     uint8_t phase;
     uint8_t tries;
@@ -118,7 +100,18 @@ typedef struct lep_client {
     uint8_t code;           /* pending command */
     uint8_t filter;
     uint8_t msg_len;
-    uint8_t unchecked;      /* single-byte steps since the clock was last read */
+    uint16_t watchdog_ms;
+    uint16_t quiet_ms;
+    uint16_t fast;          /* counts single-byte steps up to the next look at the clock */
+    uint16_t msg_at;        /* fast when msg was stored: msg is current while they agree */
+    uint32_t t_start;       /* when the transaction attempt or the quiet time began */
+    uint32_t t_aux;         /* when the drain began, or the watchdog's reference time */
+    uint32_t timeout_ms;
+    const uint8_t *msg;     /* message of the last outcome (in dec), or NULL */
+    lep_client_rx *rx;      /* read buffer of the blocking calls, or NULL */
+    lep_io io;
+    uint32_t count[10];     /* the client's own counters: lep_client_stats from retries on */
+    lep_frame_decoder dec;
 } lep_client;
 
 /* sizeof(lep_client), for FFI callers that allocate it as bytes. */
@@ -206,11 +199,37 @@ LEP_API int lep_client_recover(lep_client *c, uint16_t quiet_ms);
  * LEP_E_STALLED from the watchdog. A NAK or a timed-out attempt is answered by
  * sending the command again; messages of the wrong type are skipped and
  * counted. LEP_E_STALLED does not end a transaction that is under way (it
- * goes on; lep_client_busy says so). The clock (io.now_ms) is read on every call with len != 1 and at
- * least every 32 calls with len == 1 (every call during a recovery), so
- * timeouts are noticed within 32 bytes when input never pauses; feed len 0
- * when the line is idle (e.g. on each tick). */
+ * goes on; lep_client_busy says so). The clock (io.now_ms) is read on every
+ * call with len != 1 and at least every 32 single-byte steps (len == 1, or
+ * lep_client_step_byte; every one during a recovery), so timeouts are noticed
+ * within 32 bytes when input never pauses; feed len 0 when the line is idle
+ * (e.g. on each tick). */
 LEP_API int lep_client_step(lep_client *c, const uint8_t *data, size_t len, size_t *consumed);
+
+/* The out-of-line rest of lep_client_step_byte, which has already counted
+ * the step: call lep_client_step_byte (or lep_client_step), not this. */
+LEP_API int lep_client_step_byte_slow(lep_client *c, uint8_t b, lep_sample *out);
+
+/* One received byte b: lep_client_step(c, &b, 1, &used) in effect (the same
+ * outcomes, counters and clock reads; the two may be mixed), for a caller fed
+ * one byte at a time (an ISR-fed ring buffer): pop a byte, step, act on the
+ * outcome. When it returns LEP_STEP_SAMPLE and out is not NULL, *out also
+ * receives the sample (what lep_client_get_sample gives, without decoding the
+ * message again). c must not be NULL. Not re-entrant for one c (like every
+ * call here). Inline: a byte that completes nothing while the clock is not due
+ * costs a few instructions (no call); builds optimised for size (-Os) keep
+ * only the count and the call. */
+static inline int lep_client_step_byte(lep_client *c, uint8_t b, lep_sample *out)
+{
+    /* Count the step (0: look at the clock); that also ends the last outcome's message. */
+    c->fast = (uint16_t)(c->fast + 1u);
+#if !defined(__OPTIMIZE_SIZE__)
+    if (c->fast != 0u && lep_frame_decoder_push1(&c->dec, b)) {
+        return LEP_STEP_NONE;
+    }
+#endif
+    return lep_client_step_byte_slow(c, b, out);
+}
 
 /* True while a transaction or a recovery waits for its answer. */
 LEP_API bool lep_client_busy(const lep_client *c);

@@ -123,8 +123,9 @@ LEP_API int lep_frame_decoder_feed_all(lep_frame_decoder *d, const uint8_t *data
 
 /* The one-byte fast path, inline for a caller fed one byte at a time (an ISR
  * ring buffer). When b completes no event and changes no counter (a message
- * byte with room for it, a DLE inside a body, or the DLE STX / DLE ETX of a
- * frame after a plain idle line or a body) it takes b and returns true.
+ * byte with room for it, stuffed or not, a DLE inside a body, or the DLE STX /
+ * DLE ETX of a frame after a plain idle line or a body) it takes b and returns
+ * true.
  * Otherwise it changes nothing and returns false: the caller then feeds b with
  * lep_frame_decoder_feed. Mixing both gives exactly the events and counters
  * of lep_frame_decoder_feed alone. d must not be NULL. */
@@ -147,6 +148,14 @@ static inline bool lep_frame_decoder_push1(lep_frame_decoder *d, uint8_t b)
     if (b == LEP_DLE) {
         if (st == LEP_FRAME_ST_IDLE_) {
             d->state = LEP_FRAME_ST_IDLE_DLE_;
+            return true;
+        }
+        if (st == LEP_FRAME_ST_BODY_DLE_ && d->len < LEP_MAX_MESSAGE) { /* a stuffed DLE */
+            d->buf[d->len] = LEP_DLE;
+            d->len = (uint16_t)(d->len + 1u);
+            d->bcc = (uint8_t)(d->bcc ^ LEP_DLE);
+            d->raw = (uint16_t)(d->raw + 1u);
+            d->state = LEP_FRAME_ST_BODY_;
             return true;
         }
         return false;

@@ -210,6 +210,35 @@ LEP_API void lep_sim_stall(lep_sim *s, int ms);
 
 LEP_API void lep_sim_get_stats(lep_sim *s, lep_sim_stats *out);
 
+/* ---- Write trace (for benchmarks; added after the first release) ----
+ *
+ * lep_sim_trace_writes() makes s record, for every continuous data message
+ * it writes to the port from then on, one lep_sim_trace_record: the stream
+ * index k of the sample (k mod 65536 is its sequence number) and the
+ * CLOCK_MONOTONIC times just before the write() that handed the message's
+ * last byte to the pty was called and just after it returned. A stream's
+ * start (its start command, t = the t0 of its deadlines t0 + (k+1)/rate) and
+ * end (stop, power cycle, hang-up) are records with k = LEP_SIM_TRACE_START
+ * and LEP_SIM_TRACE_END (also written for a stream still running at
+ * lep_sim_stop). Records are native-endian, 24 bytes, in the order
+ * written, buffered and written in blocks of 256; the end of a stream writes
+ * the buffer out before the stop command is answered, and lep_sim_stop()
+ * writes the rest. The file is created (an existing path is never replaced:
+ * LEP_E_BUSY) before the call returns; tracing starts before the next
+ * input the sensor reads. Call at most once per s (LEP_E_STATE after).
+ * Thread-safe. Errors: LEP_E_ARG (NULL), LEP_E_BUSY, LEP_E_IO, with a
+ * one-line message in err. A failed write to the file stops tracing. */
+typedef struct lep_sim_trace_record {
+    uint64_t k;          /* stream index, or LEP_SIM_TRACE_START / LEP_SIM_TRACE_END */
+    int64_t t_call_ns;   /* CLOCK_MONOTONIC before the write() (markers: the event) */
+    int64_t t_return_ns; /* CLOCK_MONOTONIC after it returned (markers: the same) */
+} lep_sim_trace_record;
+
+#define LEP_SIM_TRACE_START UINT64_MAX
+#define LEP_SIM_TRACE_END (UINT64_MAX - 1u)
+
+LEP_API int lep_sim_trace_writes(lep_sim *s, const char *path, char *err, size_t errlen);
+
 /* Stop the thread, close the pty, remove the link, free. NULL is fine. */
 LEP_API void lep_sim_stop(lep_sim *s);
 

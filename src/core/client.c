@@ -1,6 +1,7 @@
 /* Host-side client: transactions with resending, streaming, recovery, watchdog. */
 #include "leptrino/client.h"
 
+#include <stddef.h>
 #include <string.h>
 
 #include "leptrino/error.h"
@@ -8,26 +9,67 @@
 #define ST_WAIT 0x01u   /* a transaction or a recovery waits */
 #define ST_STREAM 0x02u /* continuous output is on */
 #define ST_FRESH 0x04u  /* a sample arrived since the watchdog last looked */
-#define ST_WATCH 0x08u  /* a watchdog time is set (lep_client_set_watchdog) */
 
+/* Phases of a transaction. Numbered so that a recovery's stop phase + 2 is
+ * its drain, the drains are the phases >= PH_DRAIN_SYNC, and bit 0 says a
+ * start is being recovered (the phase after its drain is PH_RESTARTED). */
 enum {
-    PH_NONE = 0,    /* a plain transaction (or nothing) */
-    PH_STOP_SYNC,   /* recovery: its stop is out */
-    PH_STOP_START,  /* a start refused with 0x04: the stop is out */
-    PH_DRAIN_SYNC,  /* recovery: waiting for a quiet line, then identify */
-    PH_DRAIN_START, /* start recovery: waiting for a quiet line, then start again */
-    PH_RESTARTED    /* the start sent after a recovery (not recovered twice) */
+    PH_NONE = 0,       /* a plain transaction (or nothing) */
+    PH_RESTARTED = 1,  /* the start sent after a recovery (not recovered twice) */
+    PH_STOP_SYNC = 2,  /* recovery: its stop is out */
+    PH_STOP_START = 3, /* a start refused with 0x04: the stop is out */
+    PH_DRAIN_SYNC = 4, /* recovery: waiting for a quiet line, then identify */
+    PH_DRAIN_START = 5 /* start recovery: waiting for a quiet line, then start again */
 };
 
-/* Keep a slow path out of line, so the per-byte path saves few registers. */
-#if defined(__GNUC__)
-#define SLOW_PATH __attribute__((noinline))
+/* The client's own counters (lep_client.count), in lep_client_stats order from retries on. */
+enum {
+    N_RETRIES,
+    N_UNEXPECTED,
+    N_INVALID,
+    N_TIMEOUTS,
+    N_SAMPLES,
+    N_RESENT_TIMEOUT,
+    N_RESENT_CONFIRMED,
+    N_RECOVERIES,
+    N_RESERVED,
+    N_STALLS,
+    N_COUNTERS
+};
+
+/* get_stats copies the counters as one block: the layouts must agree. */
+typedef char lep_client_counters_fit[(sizeof(((lep_client *)0)->count) == N_COUNTERS * sizeof(uint32_t) &&
+                                      offsetof(lep_client_stats, stalls) - offsetof(lep_client_stats, retries) ==
+                                          (N_COUNTERS - 1) * sizeof(uint32_t))
+                                         ? 1
+                                         : -1];
+
+/* lep_client.fast counts single-byte steps up (lep_client_step_byte adds 1
+ * first); the step that brings it to 0 looks at the clock (and at the state).
+ * Its values after a look: */
+#define CHECK_EVERY 32u                     /* single-byte steps between two clock reads */
+#define FAST_CHECKED (0x10000u - CHECK_EVERY) /* a deadline is armed */
+#define FAST_NO_DEADLINE 1u                 /* none is: look at the state again now and then */
+#define FAST_LOOK_NEXT 0xFFFFu              /* look at the clock on the next step */
+/* The event handling is inlined into both step entries when optimising for
+ * speed (the one-byte entry then makes one call less per frame). */
+#if defined(__GNUC__) && defined(__OPTIMIZE__) && !defined(__OPTIMIZE_SIZE__)
+#define HOT static inline __attribute__((always_inline))
 #else
-#define SLOW_PATH
+#define HOT static
 #endif
 
-/* Single-byte steps between two clock reads. */
-#define CHECK_EVERY 32u
+/* Helpers called from several places stay out of line in size builds. */
+#if defined(__GNUC__) && defined(__OPTIMIZE_SIZE__)
+#define SHARED static __attribute__((noinline))
+#else
+#define SHARED static
+#endif
+
+/* A deadline that is not armed. */
+#define NEVER 0xFFFFFFFFu
+/* The drain's timeout part is capped so the limit stays below 2^31 ms. */
+#define DRAIN_TIMEOUT_CAP ((0x7FFFFFFFu - 0xFFFFu) / LEP_CLIENT_DRAIN_TIMEOUTS)
 
 size_t lep_client_size(void)
 {
@@ -85,11 +127,10 @@ int lep_client_set_watchdog(lep_client *c, uint16_t ms)
         return LEP_E_ARG;
     }
     c->watchdog_ms = ms;
-    if (ms != 0u) {
-        c->state = (uint8_t)(c->state | ST_FRESH | ST_WATCH); /* the time runs from the next check */
-    } else {
-        c->state = (uint8_t)(c->state & ~ST_WATCH);
-    }
+    /* The next step looks at the clock (the last outcome's message stays current). */
+    c->msg_at = (uint16_t)(c->msg_at - c->fast + FAST_LOOK_NEXT);
+    c->fast = (uint16_t)FAST_LOOK_NEXT;
+    c->state = (uint8_t)(c->state | ST_FRESH); /* the watchdog's time runs from the next check */
     return LEP_OK;
 }
 
@@ -103,16 +144,7 @@ void lep_client_get_stats(const lep_client *c, lep_client_stats *out)
     out->frame_errors = c->dec.stats.escape_errors + c->dec.stats.overruns + c->dec.stats.restarts;
     out->bytes_discarded = c->dec.stats.bytes_discarded;
     out->naks = c->dec.stats.naks;
-    out->retries = c->retries;
-    out->unexpected = c->unexpected;
-    out->invalid = c->invalid;
-    out->timeouts = c->timeouts;
-    out->samples = c->samples;
-    out->resent_after_timeout = c->resent_after_timeout;
-    out->resent_confirmed = c->resent_confirmed;
-    out->recoveries = c->recoveries;
-    out->reserved_nonzero = c->reserved_nonzero;
-    out->stalls = c->stalls;
+    memcpy((unsigned char *)out + offsetof(lep_client_stats, retries), c->count, sizeof(c->count));
 }
 
 uint8_t lep_client_last_result(const lep_client *c)
@@ -135,7 +167,7 @@ int lep_client_response(const lep_client *c, lep_response *out)
     if (c == NULL || out == NULL) {
         return LEP_E_ARG;
     }
-    if (c->msg == NULL) {
+    if (c->msg == NULL || c->msg_at != c->fast) { /* none, or a single-byte step came since */
         return LEP_E_STATE;
     }
     (void)lep_response_decode(c->msg, c->msg_len, out); /* validated when it arrived; a
@@ -146,19 +178,14 @@ int lep_client_response(const lep_client *c, lep_response *out)
 int lep_client_get_sample(const lep_client *c, lep_sample *out)
 {
     lep_response r;
-    int rc;
-    if (out == NULL) {
-        return LEP_E_ARG;
+    int rc = out == NULL ? LEP_E_ARG : lep_client_response(c, &r);
+    if (rc == LEP_OK && c->msg_len != LEP_LEN_SAMPLE) {
+        rc = LEP_E_STATE; /* (a sample is the only 20-byte message that makes an outcome) */
     }
-    rc = lep_client_response(c, &r);
-    if (rc != LEP_OK) {
-        return rc;
+    if (rc == LEP_OK) {
+        *out = r.u.sample;
     }
-    if (r.result != LEP_RESULT_OK || r.code != (r.stream ? LEP_CMD_START : LEP_CMD_SAMPLE)) {
-        return LEP_E_STATE;
-    }
-    *out = r.u.sample;
-    return LEP_OK;
+    return rc;
 }
 
 static uint32_t now(const lep_client *c)
@@ -166,10 +193,18 @@ static uint32_t now(const lep_client *c)
     return c->io.now_ms(c->io.user);
 }
 
-static void end_wait(lep_client *c)
+/* The transaction or recovery is over; returns rc, its outcome. */
+SHARED int finish(lep_client *c, int rc)
 {
     c->state = (uint8_t)(c->state & ~ST_WAIT);
     c->phase = PH_NONE;
+    return rc;
+}
+
+/* A transaction (or a recovery's stop) waits for its answer. */
+SHARED bool waiting(const lep_client *c)
+{
+    return (c->state & ST_WAIT) != 0u && c->phase < PH_DRAIN_SYNC;
 }
 
 /* Write the pending command (again) and restart the attempt's clock. */
@@ -181,20 +216,20 @@ static int write_pending(lep_client *c)
     int rc;
     cmd.code = c->code;
     cmd.filter = c->filter;
+    c->fast = (uint16_t)FAST_LOOK_NEXT; /* a deadline is armed */
     rc = lep_command_frame(&cmd, frame, sizeof(frame), &n);
     if (rc == LEP_OK) {
         rc = c->io.write(c->io.user, frame, n);
     }
     if (rc < 0) {
-        end_wait(c);
-        return rc;
+        return finish(c, rc);
     }
     c->t_start = now(c);
     return LEP_OK;
 }
 
 /* Begin sending code (a new transaction or the next step of a recovery). */
-static int begin(lep_client *c, uint8_t code, uint8_t filter, uint8_t phase)
+SHARED int begin(lep_client *c, uint8_t code, uint8_t filter, uint8_t phase)
 {
     c->code = code;
     c->filter = filter;
@@ -209,7 +244,6 @@ int lep_client_send(lep_client *c, const lep_command *cmd)
     if (c == NULL || cmd == NULL) {
         return LEP_E_ARG;
     }
-    end_wait(c);
     c->msg = NULL;
     return begin(c, cmd->code, cmd->filter, PH_NONE);
 }
@@ -219,19 +253,23 @@ int lep_client_recover(lep_client *c, uint16_t quiet_ms)
     if (c == NULL) {
         return LEP_E_ARG;
     }
-    end_wait(c);
     c->msg = NULL;
     c->quiet_ms = quiet_ms == 0u ? (uint16_t)LEP_CLIENT_DEFAULT_QUIET_MS : quiet_ms;
     c->state = (uint8_t)(c->state & ~ST_STREAM); /* a stream's data is stale from here on */
     return begin(c, LEP_CMD_STOP, 0, PH_STOP_SYNC);
 }
 
-static void begin_drain(lep_client *c, uint8_t phase)
+/* A recovery's stop is over (answered, refused or never got through): the
+ * drain begins. False when no recovery's stop was pending. */
+static bool stop_over(lep_client *c)
 {
-    c->state = (uint8_t)((c->state | ST_WAIT) & ~ST_STREAM);
-    c->phase = phase;
+    if (c->phase != PH_STOP_SYNC && c->phase != PH_STOP_START) {
+        return false;
+    }
+    c->phase = (uint8_t)(c->phase + 2u); /* (streaming is already off) */
     c->t_start = now(c);
     c->t_aux = c->t_start;
+    return true;
 }
 
 /* The transaction ended well: streaming follows the command. */
@@ -239,22 +277,20 @@ static int done(lep_client *c)
 {
     if (c->code == LEP_CMD_START) {
         if (c->phase == PH_RESTARTED) {
-            c->recoveries++;
+            c->count[N_RECOVERIES]++;
         }
         c->state = (uint8_t)(c->state | ST_STREAM | ST_FRESH);
     } else if (c->code == LEP_CMD_STOP) {
         c->state = (uint8_t)(c->state & ~ST_STREAM);
     }
-    end_wait(c);
-    return LEP_STEP_RESPONSE;
+    return finish(c, LEP_STEP_RESPONSE);
 }
 
 /* The answer to the pending command arrived; result is its result code. */
 static int on_answer(lep_client *c, uint8_t result)
 {
     c->last_result = result;
-    if (c->phase == PH_STOP_SYNC || c->phase == PH_STOP_START) {
-        begin_drain(c, c->phase == PH_STOP_SYNC ? PH_DRAIN_SYNC : PH_DRAIN_START);
+    if (stop_over(c)) {
         return LEP_STEP_NONE; /* any answer to the recovery's stop will do */
     }
     if (result == LEP_RESULT_OK) {
@@ -262,268 +298,247 @@ static int on_answer(lep_client *c, uint8_t result)
     }
     if (result == LEP_RESULT_STATE && (c->code == LEP_CMD_START || c->code == LEP_CMD_STOP)) {
         if (c->tries > 0u) {
-            c->resent_confirmed++; /* an earlier copy was executed */
+            c->count[N_RESENT_CONFIRMED]++; /* an earlier copy was executed */
             return done(c);
         }
         if (c->code == LEP_CMD_START && c->phase == PH_NONE && (c->state & ST_STREAM) == 0u) {
             /* A stream we did not start (a stale one) already runs. */
-            int rc = begin(c, LEP_CMD_STOP, 0, PH_STOP_START);
-            return rc < 0 ? rc : LEP_STEP_NONE;
+            return begin(c, LEP_CMD_STOP, 0, PH_STOP_START); /* LEP_OK is LEP_STEP_NONE */
         }
     }
-    end_wait(c);
-    return LEP_E_SENSOR;
+    return finish(c, LEP_E_SENSOR);
 }
 
-/* Handle one good frame; returns an outcome, or LEP_STEP_NONE to go on. */
-static int on_message(lep_client *c, const lep_frame_event *ev)
+/* Handle one good frame; returns an outcome, or LEP_STEP_NONE to go on.
+ * A delivered stream sample is also stored in *out when out is not NULL. */
+HOT int on_message(lep_client *c, const lep_frame_event *ev, lep_sample *out)
 {
     lep_response r;
     int rc = lep_response_decode(ev->msg, ev->len, &r);
-    bool waiting = (c->state & ST_WAIT) != 0u && c->phase != PH_DRAIN_SYNC &&
-                   c->phase != PH_DRAIN_START;
+    bool mine = waiting(c) && r.code == c->code; /* (a data message's code is the start's) */
     if (rc != LEP_OK && rc != LEP_E_SENSOR) {
-        c->invalid++;
+        c->count[N_INVALID]++;
         return LEP_STEP_NONE;
     }
-    if (r.stream) {
-        if ((c->state & ST_STREAM) == 0u) {
-            if (waiting && c->code == LEP_CMD_START && c->tries > 0u) {
-                c->resent_confirmed++; /* our resent start's first copy was executed */
-                c->last_result = LEP_RESULT_OK;
-                return done(c);
-            }
-            c->unexpected++; /* a stream we did not start (e.g. a stale one) */
-            return LEP_STEP_NONE;
-        }
-        if (waiting && c->code == LEP_CMD_STOP) {
+    if (r.stream && (c->state & ST_STREAM) != 0u) {
+        if (waiting(c) && c->code == LEP_CMD_STOP) {
             return LEP_STEP_NONE; /* our data still in flight before the stop answer */
         }
-        if (ev->msg[LEP_LEN_SAMPLE - 1u] != 0u) {
-            c->reserved_nonzero++;
-        }
-        c->samples++;
+        c->count[N_SAMPLES]++;
         c->state = (uint8_t)(c->state | ST_FRESH);
+        if (out != NULL) {
+            *out = r.u.sample;
+        }
         return LEP_STEP_SAMPLE;
     }
-    if (waiting && r.code == c->code) {
-        if (r.code == LEP_CMD_SAMPLE && ev->msg[LEP_LEN_SAMPLE - 1u] != 0u) {
-            c->reserved_nonzero++;
-        }
+    if (mine && !r.stream) {
         return on_answer(c, r.result);
     }
-    c->unexpected++;
+    if (mine && c->tries > 0u) {
+        /* Data of a stream we are starting: the first copy of our resent start
+         * was executed, as if a copy were refused with 0x04. */
+        rc = on_answer(c, LEP_RESULT_STATE);
+        c->last_result = LEP_RESULT_OK;
+        return rc;
+    }
+    c->count[N_UNEXPECTED]++; /* e.g. a stream we did not start (a stale one), a late answer */
     return LEP_STEP_NONE;
 }
 
-/* The attempt failed (NAK or timeout): send again, or give up with err. */
-static int attempt_failed(lep_client *c, int err, uint32_t *counter)
+/* The attempt failed (NAK or timeout): send again (counted in count[which]),
+ * or give up with err. */
+SHARED int attempt_failed(lep_client *c, int err, unsigned which)
 {
     if (c->tries < c->max_retries) {
         c->tries++;
-        (*counter)++;
+        c->count[which]++;
         return write_pending(c);
     }
-    if (c->phase == PH_STOP_SYNC || c->phase == PH_STOP_START) {
-        begin_drain(c, c->phase == PH_STOP_SYNC ? PH_DRAIN_SYNC : PH_DRAIN_START);
+    if (stop_over(c)) {
         return LEP_STEP_NONE; /* a stop that never got through does not end the recovery */
     }
-    end_wait(c);
     if (err == LEP_E_TIMEOUT) {
-        c->timeouts++;
+        c->count[N_TIMEOUTS]++;
     }
-    return err;
+    return finish(c, err);
 }
 
-static int on_event(lep_client *c, const lep_frame_event *ev)
+HOT int on_event(lep_client *c, const lep_frame_event *ev, lep_sample *out)
 {
     if (ev->type == LEP_FRAME_MESSAGE) {
-        return on_message(c, ev);
+        return on_message(c, ev, out);
     }
     if (ev->type == LEP_FRAME_NAK) {
-        if ((c->state & ST_WAIT) == 0u || c->phase == PH_DRAIN_SYNC || c->phase == PH_DRAIN_START) {
-            return LEP_STEP_NONE;
+        if (waiting(c)) {
+            return attempt_failed(c, LEP_E_NAK, N_RETRIES);
         }
-        return attempt_failed(c, LEP_E_NAK, &c->retries);
-    }
-    if (ev->error == LEP_E_LENGTH) {
-        c->invalid++; /* an empty frame */
+    } else if (ev->error == LEP_E_LENGTH) {
+        c->count[N_INVALID]++; /* an empty frame */
     }
     return LEP_STEP_NONE;
 }
 
-/* Milliseconds from t0 + span on, as seen at t (>= 0 once it has passed). */
-static bool passed(uint32_t t, uint32_t t0, uint32_t span)
+/* What is left at t of span begun at t0 (0 once it has passed). */
+static uint32_t left_of(uint32_t t, uint32_t t0, uint32_t span)
 {
-    return (uint32_t)(t - t0) >= span;
+    uint32_t spent = t - t0;
+    return spent >= span ? 0u : span - spent;
 }
 
-/* The drain's limit: LEP_CLIENT_DRAIN_TIMEOUTS timeouts plus the quiet time. */
-static uint32_t drain_limit(const lep_client *c)
+/* The two timers at t. Returns what is left of the attempt (the answer's
+ * timeout, or the drain's quiet time) and stores in *aux what is left of the
+ * other (the drain's limit, LEP_CLIENT_DRAIN_TIMEOUTS timeouts plus the quiet
+ * time; or the stream watchdog); NEVER for a timer that is not armed. */
+static uint32_t timers(const lep_client *c, uint32_t t, uint32_t *aux)
 {
-    uint32_t cap = (0x7FFFFFFFu - c->quiet_ms) / LEP_CLIENT_DRAIN_TIMEOUTS;
-    uint32_t t = c->timeout_ms < cap ? c->timeout_ms : cap;
-    return t * LEP_CLIENT_DRAIN_TIMEOUTS + c->quiet_ms;
+    uint32_t span = (c->state & ST_WAIT) != 0u ? c->timeout_ms : 0u; /* 0: not armed */
+    uint32_t other = (c->state & ST_STREAM) != 0u ? c->watchdog_ms : 0u;
+    if (c->phase >= PH_DRAIN_SYNC) { /* (a drain waits, and streaming is off) */
+        other = (span < DRAIN_TIMEOUT_CAP ? span : DRAIN_TIMEOUT_CAP) * LEP_CLIENT_DRAIN_TIMEOUTS +
+                c->quiet_ms;
+        span = c->quiet_ms;
+    }
+    *aux = other != 0u ? left_of(t, c->t_aux, other) : NEVER;
+    return span != 0u ? left_of(t, c->t_start, span) : NEVER;
 }
 
 /* Deadlines: attempt timeout, drain, watchdog. fed says bytes came in. */
 static int check_clock(lep_client *c, bool fed)
 {
     uint32_t t = now(c);
-    if (c->phase == PH_DRAIN_SYNC || c->phase == PH_DRAIN_START) {
-        if (passed(t, c->t_aux, drain_limit(c))) {
-            end_wait(c);
-            return LEP_E_NO_SYNC;
-        }
-        if (fed) {
-            c->t_start = t; /* not quiet yet */
-            return LEP_STEP_NONE;
-        }
-        if (!passed(t, c->t_start, c->quiet_ms)) {
-            return LEP_STEP_NONE;
-        }
-        if (c->phase == PH_DRAIN_SYNC) {
-            return begin(c, LEP_CMD_PRODUCT_INFO, 0, PH_NONE);
-        }
-        return begin(c, LEP_CMD_START, 0, PH_RESTARTED);
+    uint32_t aux;
+    uint32_t attempt;
+    bool draining = c->phase >= PH_DRAIN_SYNC;
+    if (draining && fed) {
+        c->t_start = t; /* not quiet yet */
     }
-    if ((c->state & ST_WAIT) != 0u && passed(t, c->t_start, c->timeout_ms)) {
-        int rc = attempt_failed(c, LEP_E_TIMEOUT, &c->resent_after_timeout);
+    if ((c->state & (ST_STREAM | ST_FRESH)) == (ST_STREAM | ST_FRESH)) {
+        c->state = (uint8_t)(c->state & ~ST_FRESH); /* the watchdog's time runs from here */
+        c->t_aux = t;
+    }
+    attempt = timers(c, t, &aux);
+    if (draining && aux == 0u) {
+        return finish(c, LEP_E_NO_SYNC);
+    }
+    if (attempt == 0u) {
+        int rc;
+        if (draining) {
+            uint8_t start = (uint8_t)(c->phase & 1u);
+            return begin(c, start ? LEP_CMD_START : LEP_CMD_PRODUCT_INFO, 0, start);
+        }
+        rc = attempt_failed(c, LEP_E_TIMEOUT, N_RESENT_TIMEOUT);
         if (rc != LEP_STEP_NONE) {
             return rc;
         }
     }
-    if ((c->state & ST_STREAM) != 0u && c->watchdog_ms != 0u) {
-        if ((c->state & ST_FRESH) != 0u) {
-            c->state = (uint8_t)(c->state & ~ST_FRESH);
-            c->t_aux = t;
-        } else if (passed(t, c->t_aux, c->watchdog_ms)) {
-            c->t_aux = t;
-            c->stalls++;
-            return LEP_E_STALLED;
-        }
+    if (aux == 0u) {
+        c->t_aux = t;
+        c->count[N_STALLS]++;
+        return LEP_E_STALLED;
     }
     return LEP_STEP_NONE;
 }
 
-/* After the input data[0..len) is consumed without an outcome: watch the clock. */
-SLOW_PATH static int step_clock(lep_client *c, size_t len)
+/* After the input (len bytes) is consumed without an outcome: watch the
+ * clock, on single-byte steps only when c->fast has come round to 0 (every
+ * CHECK_EVERY steps, every step during a recovery). */
+static int step_clock(lep_client *c, size_t len)
 {
     if ((c->state & ST_WAIT) == 0u && ((c->state & ST_STREAM) == 0u || c->watchdog_ms == 0u)) {
-        return LEP_STEP_NONE; /* no deadline to watch */
-    }
-    if (len == 1u && c->phase == PH_NONE && ++c->unchecked < CHECK_EVERY) {
+        c->fast = (uint16_t)FAST_NO_DEADLINE; /* no deadline to watch */
         return LEP_STEP_NONE;
     }
-    c->unchecked = 0;
+    if (len == 1u && c->fast != 0u) {
+        return LEP_STEP_NONE;
+    }
+    c->fast = (uint16_t)(c->phase == PH_NONE ? FAST_CHECKED : FAST_LOOK_NEXT);
     return check_clock(c, len > 0u);
 }
 
-/* The rest of lep_client_step once the decoder reported an event: handle it
- * and go on with the remaining input. Kept out of the per-byte path. */
-SLOW_PATH static int step_events(lep_client *c, const uint8_t *data, size_t len, size_t pos,
-                       lep_frame_event *ev, size_t *consumed)
+/* Handle the decoder's event ev (LEP_FRAME_NONE: nothing): an outcome, or
+ * LEP_STEP_NONE to go on. out as on_message. */
+HOT int take(lep_client *c, const lep_frame_event *ev, lep_sample *out)
 {
-    for (;;) {
-        if (ev->type != LEP_FRAME_NONE) {
-            int rc = on_event(c, ev);
-            if (rc != LEP_STEP_NONE) {
-                if (rc > 0) { /* a response or a sample: keep where its message is */
-                    c->msg = ev->msg;
-                    c->msg_len = (uint8_t)ev->len;
-                }
-                *consumed = pos;
-                return rc;
-            }
-        }
-        if (pos == len) {
-            *consumed = pos;
-            return step_clock(c, len);
-        }
-        pos += lep_frame_decoder_feed(&c->dec, data + pos, len - pos, ev);
+    int rc = ev->type == LEP_FRAME_NONE ? LEP_STEP_NONE : on_event(c, ev, out);
+    if (rc != LEP_STEP_NONE && c->fast == 0u) {
+        c->fast = (uint16_t)FAST_LOOK_NEXT; /* the clock was due: look on the next step */
     }
+    if (rc > 0) { /* a response or a sample: keep where its message is */
+        c->msg = ev->msg;
+        c->msg_len = (uint8_t)ev->len;
+        c->msg_at = c->fast;
+        if (ev->len == LEP_LEN_SAMPLE && ev->msg[LEP_LEN_SAMPLE - 1u] != 0u) {
+            c->count[N_RESERVED]++; /* a sample's last reserved byte (unspecified) */
+        }
+    }
+    return rc;
 }
 
-/* The inline one-byte path of lep_client_step below is left out of builds
- * optimised for size (-Os), like the decoder's word-at-a-time machine: there
- * every byte takes the general path, which gives the same results. */
-#if !defined(__OPTIMIZE_SIZE__)
-#define CLIENT_FAST 1
+/* lep_client_step for any input but a single byte (at -Os: any input). Out
+ * of line when optimising for speed, so the one-byte path saves no registers. */
+#if defined(__GNUC__) && !defined(__OPTIMIZE_SIZE__)
+__attribute__((noinline))
 #endif
-
-#ifdef CLIENT_FAST
-/* lep_client_step for any input but the usual single byte (below). */
-SLOW_PATH static int step_input(lep_client *c, const uint8_t *data, size_t len, size_t *consumed)
-#else
-int lep_client_step(lep_client *c, const uint8_t *data, size_t len, size_t *consumed)
-#endif
+static int step_input(lep_client *c, const uint8_t *data, size_t len, size_t *consumed)
 {
-    lep_frame_event ev;
-    size_t pos;
+    size_t pos = 0;
+    c->msg = NULL;
+    while (pos < len) {
+        lep_frame_event ev;
+        int rc;
+        pos += lep_frame_decoder_feed(&c->dec, data + pos, len - pos, &ev);
+        rc = take(c, &ev, NULL);
+        if (rc != LEP_STEP_NONE) {
+            *consumed = pos;
+            return rc;
+        }
+    }
+    *consumed = len;
+    return step_clock(c, len);
+}
+
+int lep_client_step(lep_client *c, const uint8_t *data, size_t len, size_t *consumed)
+{
     if (c == NULL || consumed == NULL || (data == NULL && len > 0)) {
         return LEP_E_ARG;
     }
-    c->msg = NULL;
-    *consumed = len; /* (few values live across the call: the slow paths read len back) */
-    pos = lep_frame_decoder_feed(&c->dec, data, len, &ev);
-    if (ev.type != LEP_FRAME_NONE) {
-        return step_events(c, data, *consumed, pos, &ev, consumed);
-    }
-    if ((c->state & (ST_WAIT | ST_WATCH)) == 0u) {
-        return LEP_STEP_NONE;
-    }
-    return step_clock(c, *consumed);
-}
-
-/* The per-byte path is short on purpose (an ISR-fed firmware calls it once a
- * byte): a message byte inside a frame body is taken inline (no call, no
- * event possible); everything else goes through one feed (it consumes
- * everything up to the first event) in step_input / step_events / step_clock. */
-#ifdef CLIENT_FAST
-int lep_client_step(lep_client *c, const uint8_t *data, size_t len, size_t *consumed)
-{
-    if (len == 1u && c != NULL && consumed != NULL && data != NULL &&
-        lep_frame_decoder_push1(&c->dec, data[0])) {
-        c->msg = NULL;
+#if defined(__OPTIMIZE_SIZE__)
+    c->fast = (uint16_t)(c->fast + (len == 1u)); /* counted like lep_client_step_byte */
+#else
+    if (len == 1u) { /* the same, without the loop */
         *consumed = 1;
-        if ((c->state & (ST_WAIT | ST_WATCH)) == 0u) {
-            return LEP_STEP_NONE;
-        }
-        return step_clock(c, 1u);
+        return lep_client_step_byte(c, data[0], NULL);
     }
+#endif
     return step_input(c, data, len, consumed);
 }
+
+int lep_client_step_byte_slow(lep_client *c, uint8_t b, lep_sample *out)
+{
+    lep_frame_event ev;
+    int rc;
+    c->msg = NULL; /* (lep_client_step_byte counted the step in c->fast) */
+#if !defined(__OPTIMIZE_SIZE__)
+    if (c->fast == 0u && lep_frame_decoder_push1(&c->dec, b)) {
+        return step_clock(c, 1); /* only the clock was due (the inline path left b alone) */
+    }
 #endif
+    (void)lep_frame_decoder_feed(&c->dec, &b, 1, &ev);
+    rc = take(c, &ev, out);
+    return rc != LEP_STEP_NONE ? rc : step_clock(c, 1);
+}
 
 /* ---- Blocking calls ---- */
 
-/* What is left of span once elapsed has passed (0 when it is over). */
-static uint32_t left_of(uint32_t elapsed, uint32_t span)
-{
-    return elapsed >= span ? 0u : span - elapsed;
-}
-
-static uint32_t min_u32(uint32_t a, uint32_t b)
-{
-    return a < b ? a : b;
-}
-
-/* Milliseconds until the next deadline (>= 0), or -1 when none is armed. */
+/* Milliseconds until the next deadline (>= 0), or -1 when none is armed.
+ * (The clock check just before took any fresh sample into the watchdog.) */
 static int32_t next_deadline(const lep_client *c)
 {
-    uint32_t t = now(c);
-    uint32_t left = 0xFFFFFFFFu;
-    if (c->phase == PH_DRAIN_SYNC || c->phase == PH_DRAIN_START) {
-        left = min_u32(left_of(t - c->t_start, c->quiet_ms), left_of(t - c->t_aux, drain_limit(c)));
-    } else if ((c->state & ST_WAIT) != 0u) {
-        left = left_of(t - c->t_start, c->timeout_ms);
-    }
-    if ((c->state & ST_STREAM) != 0u && c->watchdog_ms != 0u) {
-        /* (the clock check just before took any fresh sample into t_aux) */
-        left = min_u32(left, left_of(t - c->t_aux, c->watchdog_ms));
-    }
+    uint32_t aux;
+    uint32_t left = timers(c, now(c), &aux);
+    left = aux < left ? aux : left;
     /* Every span is at most 0x7FFFFFFF (timeout_ms comes from an int). */
-    return left == 0xFFFFFFFFu ? -1 : (int32_t)left;
+    return left == NEVER ? -1 : (int32_t)left;
 }
 
 /* v as an int (16 bits on some MCUs), saturated. */
@@ -599,8 +614,8 @@ static int run(lep_client *c)
             return rc < 0 ? rc : LEP_OK;
         }
         if (rc == LEP_STEP_SAMPLE) {
-            c->samples--; /* not delivered: skipped while waiting for another answer */
-            c->unexpected++;
+            c->count[N_SAMPLES]--; /* not delivered: skipped while waiting for another answer */
+            c->count[N_UNEXPECTED]++;
         }
         if (rd.rx->pos < rd.rx->len) {
             continue;
@@ -608,8 +623,7 @@ static int run(lep_client *c)
         wait = next_deadline(c); /* >= 0: a transaction or recovery is under way */
         rc = fill(c, &rd, clamp_int(wait));
         if (rc < 0) {
-            end_wait(c);
-            return rc;
+            return finish(c, rc);
         }
     }
 }
@@ -672,7 +686,7 @@ static int next_sample(lep_client *c, lep_sample *out, int timeout_ms, bool coun
         }
     }
     if (count_timeout) {
-        c->timeouts++;
+        c->count[N_TIMEOUTS]++;
     }
     return LEP_E_TIMEOUT;
 }
@@ -708,53 +722,48 @@ int lep_client_next_samples(lep_client *c, lep_sample *out, size_t max, size_t *
     return LEP_OK;
 }
 
-/* A transaction of code; its answer decoded into *r when r is not NULL. */
-static int query(lep_client *c, uint8_t code, uint8_t filter, lep_response *r)
+/* A transaction of code; the member of its answer's union (every member
+ * begins at the union's start) copied into out[0..size) when out is not
+ * NULL. LEP_E_ARG when the query needs out (size > 0) and it is NULL. */
+static int query(lep_client *c, uint8_t code, uint8_t filter, void *out, size_t size)
 {
     lep_command cmd;
+    lep_response r;
+    int rc = LEP_E_ARG;
     cmd.code = code;
     cmd.filter = filter;
-    return lep_client_transact(c, &cmd, r);
+    if (out != NULL || size == 0u) {
+        rc = lep_client_transact(c, &cmd, &r);
+    }
+    if (rc == LEP_OK && out != NULL) {
+        memcpy(out, &r.u, size);
+    }
+    return rc;
 }
 
 int lep_client_start(lep_client *c)
 {
-    return query(c, LEP_CMD_START, 0, NULL);
+    return query(c, LEP_CMD_START, 0, NULL, 0);
 }
 
 int lep_client_stop(lep_client *c)
 {
-    return query(c, LEP_CMD_STOP, 0, NULL);
+    return query(c, LEP_CMD_STOP, 0, NULL, 0);
 }
 
 int lep_client_product_info(lep_client *c, lep_product_info *out)
 {
-    lep_response r;
-    int rc = out == NULL ? LEP_E_ARG : query(c, LEP_CMD_PRODUCT_INFO, 0, &r);
-    if (rc == LEP_OK) {
-        *out = r.u.info;
-    }
-    return rc;
+    return query(c, LEP_CMD_PRODUCT_INFO, 0, out, sizeof(*out));
 }
 
 int lep_client_rated(lep_client *c, lep_rated *out)
 {
-    lep_response r;
-    int rc = out == NULL ? LEP_E_ARG : query(c, LEP_CMD_RATED, 0, &r);
-    if (rc == LEP_OK) {
-        *out = r.u.rated;
-    }
-    return rc;
+    return query(c, LEP_CMD_RATED, 0, out, sizeof(*out));
 }
 
 int lep_client_filter_get(lep_client *c, uint8_t *code)
 {
-    lep_response r;
-    int rc = code == NULL ? LEP_E_ARG : query(c, LEP_CMD_FILTER_GET, 0, &r);
-    if (rc == LEP_OK) {
-        *code = r.u.filter;
-    }
-    return rc;
+    return query(c, LEP_CMD_FILTER_GET, 0, code, sizeof(*code));
 }
 
 int lep_client_filter_set(lep_client *c, uint8_t code)
@@ -762,24 +771,15 @@ int lep_client_filter_set(lep_client *c, uint8_t code)
     if (code > LEP_FILTER_MAX) {
         return LEP_E_VALUE;
     }
-    return query(c, LEP_CMD_FILTER_SET, code, NULL);
+    return query(c, LEP_CMD_FILTER_SET, code, NULL, 0);
 }
 
 int lep_client_sample(lep_client *c, lep_sample *out)
 {
-    lep_response r;
-    int rc;
-    if (c == NULL || out == NULL) {
-        return LEP_E_ARG;
-    }
-    if ((c->state & ST_STREAM) != 0u) {
+    if (c != NULL && out != NULL && (c->state & ST_STREAM) != 0u) {
         return LEP_E_STATE;
     }
-    rc = query(c, LEP_CMD_SAMPLE, 0, &r);
-    if (rc == LEP_OK) {
-        *out = r.u.sample;
-    }
-    return rc;
+    return query(c, LEP_CMD_SAMPLE, 0, out, sizeof(*out));
 }
 
 int lep_client_sync(lep_client *c, int quiet_ms, lep_product_info *info)

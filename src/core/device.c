@@ -1,4 +1,7 @@
-/* Sensor side: answer commands and keep the protocol state of a sensor. */
+/* Sensor side: answer commands and keep the protocol state of a sensor.
+ *
+ * Structures are copied with memcpy where that is smaller than an assignment
+ * on Thumb-1 at -Os (the size budgets of docs/embedded.md). */
 #include "leptrino/device.h"
 
 #include <string.h>
@@ -7,22 +10,22 @@
 
 #if LEP_HAVE_DEVICE
 
-/* True when the answers to 0x2A and 0x2B can be encoded from info and rated. */
+/* True when the answers to 0x2A and 0x2B can be encoded from info and rated
+ * (the encoder reads only the member of u that the code selects). */
 static bool identity_ok(const lep_product_info *info, const lep_rated *rated)
 {
     lep_response r;
     uint8_t msg[LEP_LEN_PRODUCT_INFO_RATE];
     size_t n;
-    memset(&r, 0, sizeof(r));
+    int rc;
+    r.result = LEP_RESULT_OK;
+    r.stream = false;
     r.code = LEP_CMD_RATED;
-    r.u.rated = *rated;
-    if (lep_response_encode(&r, msg, sizeof(msg), &n) != LEP_OK) {
-        return false;
-    }
-    memset(&r, 0, sizeof(r));
+    memcpy(&r.u, rated, sizeof(*rated));
+    rc = lep_response_encode(&r, msg, sizeof(msg), &n);
     r.code = LEP_CMD_PRODUCT_INFO;
-    r.u.info = *info;
-    return lep_response_encode(&r, msg, sizeof(msg), &n) == LEP_OK;
+    memcpy(&r.u, info, sizeof(*info));
+    return rc == LEP_OK && lep_response_encode(&r, msg, sizeof(msg), &n) == LEP_OK;
 }
 
 int lep_device_init(lep_device *d, const lep_product_info *info, const lep_rated *rated,
@@ -36,8 +39,8 @@ int lep_device_init(lep_device *d, const lep_product_info *info, const lep_rated
     }
     memset(d, 0, sizeof(*d));
     lep_frame_decoder_init(&d->dec);
-    d->info = *info;
-    d->rated = *rated;
+    memcpy(&d->info, info, sizeof(*info));
+    memcpy(&d->rated, rated, sizeof(*rated));
     d->filter_active = filter;
     d->filter_pending = filter;
     return LEP_OK;
@@ -68,9 +71,10 @@ uint8_t lep_device_filter_pending(const lep_device *d)
 void lep_device_power_cycle(lep_device *d)
 {
     if (d != NULL) {
-        lep_frame_stats stats = d->dec.stats;
+        lep_frame_stats stats;
+        memcpy(&stats, &d->dec.stats, sizeof(stats));
         lep_frame_decoder_init(&d->dec);
-        d->dec.stats = stats;
+        memcpy(&d->dec.stats, &stats, sizeof(stats));
         d->streaming = false;
         d->filter_active = d->filter_pending;
     }
@@ -82,35 +86,42 @@ int lep_device_stream_frame(const lep_sample *s, uint8_t *out, size_t cap, size_
     if (s == NULL) {
         return LEP_E_ARG;
     }
-    memset(&r, 0, sizeof(r));
     r.code = LEP_CMD_START;
+    r.result = LEP_RESULT_OK;
     r.stream = true;
     r.u.sample = *s;
     return lep_response_frame(&r, out, cap, len);
 }
 
+/* The queries, answered with a copy of a member of lep_device. */
+static const struct query {
+    uint8_t code;
+    uint8_t size;
+    uint16_t at; /* offset in lep_device */
+} k_queries[] = {
+    {LEP_CMD_PRODUCT_INFO, sizeof(lep_product_info), offsetof(lep_device, info)},
+    {LEP_CMD_RATED, sizeof(lep_rated), offsetof(lep_device, rated)},
+    {LEP_CMD_FILTER_GET, 1, offsetof(lep_device, filter_active)},
+    {LEP_CMD_SAMPLE, sizeof(lep_sample), offsetof(lep_device, sample)}};
+
 /* Apply a valid command to the state and fill its answer. */
 static void apply(lep_device *d, const lep_command *cmd, lep_response *r)
 {
-    switch (cmd->code) {
-    case LEP_CMD_PRODUCT_INFO: r->u.info = d->info; break;
-    case LEP_CMD_RATED: r->u.rated = d->rated; break;
-    case LEP_CMD_FILTER_GET: r->u.filter = d->filter_active; break;
-    case LEP_CMD_SAMPLE: r->u.sample = d->sample; break;
-    case LEP_CMD_START:
-        if (d->streaming) {
-            r->result = LEP_RESULT_STATE;
+    size_t i;
+    for (i = 0; i < sizeof(k_queries) / sizeof(k_queries[0]); i++) {
+        if (cmd->code == k_queries[i].code) {
+            memcpy(&r->u, (const uint8_t *)d + k_queries[i].at, k_queries[i].size);
+            return;
         }
+    }
+    if (cmd->code == LEP_CMD_STOP) {
+        d->streaming = false;
+    } else if (d->streaming) { /* start, filter set: refused while streaming */
+        r->result = LEP_RESULT_STATE;
+    } else if (cmd->code == LEP_CMD_START) {
         d->streaming = true;
-        break;
-    case LEP_CMD_STOP: d->streaming = false; break;
-    default: /* LEP_CMD_FILTER_SET */
-        if (d->streaming) {
-            r->result = LEP_RESULT_STATE;
-        } else {
-            d->filter_pending = cmd->filter;
-        }
-        break;
+    } else {
+        d->filter_pending = cmd->filter;
     }
 }
 
@@ -125,9 +136,9 @@ static void answer(lep_device *d, const uint8_t *msg, size_t len, lep_device_eve
         ev->type = LEP_DEVICE_REJECTED; /* no command code to answer to */
         return;
     }
-    memset(&r, 0, sizeof(r));
-    r.code = cmd.code;
+    r.code = cmd.code; /* apply() fills the member of r.u that the code selects */
     r.result = result;
+    r.stream = false;
     if (rc == LEP_OK) {
         apply(d, &cmd, &r);
     }
@@ -135,9 +146,8 @@ static void answer(lep_device *d, const uint8_t *msg, size_t len, lep_device_eve
     ev->code = cmd.code;
     ev->result = r.result;
     ev->filter = cmd.filter;
-    if (lep_response_frame(&r, out, cap, out_len) != LEP_OK) {
-        *out_len = 0;
-    }
+    /* a cap too small drops the answer: lep_response_frame leaves *out_len 0 */
+    (void)lep_response_frame(&r, out, cap, out_len);
 }
 
 size_t lep_device_feed(lep_device *d, const uint8_t *in, size_t len, lep_device_event *ev,

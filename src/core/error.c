@@ -1,55 +1,56 @@
 /* Descriptions of library errors and sensor result codes.
  *
- * Each list is one string of NUL-separated texts in code order (the codes are
- * contiguous), so flash holds the text and no table of pointers; the last
- * entry is the text for a code outside the list. */
+ * One string of NUL-separated texts holds both lists in code order (the codes
+ * are contiguous), so flash holds the text and no table of pointers; each
+ * list ends with the text for a code outside it, and "success" serves both. */
 #include "leptrino/error.h"
 
 #if LEP_HAVE_ERROR_STRINGS
-/* LEP_OK, then LEP_E_ARG (-1) .. LEP_E_STALLED (-23), then unknown. */
-static const char k_errors[] = "success\0"
-                               "invalid argument\0"
-                               "buffer too small\0"
-                               "message longer than 128 bytes\0"
-                               "frame check (BCC) mismatch\0"
-                               "illegal byte after DLE in a frame\0"
-                               "wrong message length\0"
-                               "reserved byte does not hold its fixed value\0"
-                               "unexpected or unknown message\0"
-                               "invalid field value\0"
-                               "sensor reported an error\0"
-                               "sensor rejected the command (NAK) after all retries\0"
-                               "timed out waiting for the sensor\0"
-                               "input/output error\0"
-                               "port disconnected\0"
-                               "port in use by another program\0"
-                               "no such port\0"
-                               "permission denied\0"
-                               "not a terminal device\0"
-                               "not allowed in the current state\0"
-                               "line never went quiet during recovery\0"
-                               "not supported\0"
-                               "end of the requested duration or count\0"
-                               "no stream data within the watchdog time\0"
-                               "unknown error";
+/* LEP_OK, LEP_E_ARG (-1) .. LEP_E_STALLED (-23), unknown error; then
+ * LEP_RESULT_LENGTH (1) .. LEP_RESULT_STATE (4), unknown result code. */
+#define UNKNOWN_ERROR ((unsigned)-LEP_E_STALLED + 1u)
+#define RESULTS UNKNOWN_ERROR /* result code r (1..4) is at RESULTS + r */
+static const char k_texts[] = "success\0"
+                              "invalid argument\0"
+                              "buffer too small\0"
+                              "message over 128 bytes\0"
+                              "bad frame check (BCC)\0"
+                              "bad byte after DLE\0"
+                              "wrong message length\0"
+                              "bad reserved byte\0"
+                              "unexpected or unknown message\0"
+                              "invalid field value\0"
+                              "sensor reported an error\0"
+                              "sensor kept answering NAK\0"
+                              "timed out waiting for the sensor\0"
+                              "I/O error\0"
+                              "port disconnected\0"
+                              "port in use elsewhere\0"
+                              "no such port\0"
+                              "permission denied\0"
+                              "not a terminal\0"
+                              "not allowed in this state\0"
+                              "line never went quiet\0"
+                              "not supported\0"
+                              "duration or count reached\0"
+                              "no stream data within the watchdog time\0"
+                              "unknown error\0"
+                              "length error\0"
+                              "undefined command\0"
+                              "invalid setting value\0"
+                              "state error\0"
+                              "unknown result code";
 
-/* LEP_RESULT_OK (0) .. LEP_RESULT_STATE (4), then unknown. */
-static const char k_results[] = "success\0"
-                                "length error\0"
-                                "undefined command\0"
-                                "invalid setting value\0"
-                                "state error\0"
-                                "unknown result code";
-
-/* The text at index i of a NUL-separated list (i within the list). */
-static const char *nth(const char *list, unsigned i)
+/* The text at index i of k_texts. */
+static const char *nth(unsigned i)
 {
+    const char *s = k_texts;
     while (i > 0u) {
-        while (*list++ != '\0') {
+        while (*s++ != '\0') {
         }
         i--;
     }
-    return list;
+    return s;
 }
 #endif
 
@@ -59,8 +60,7 @@ const char *lep_strerror(int err)
     (void)err;
     return "";
 #else
-    unsigned i = err > 0 || err < LEP_E_STALLED ? (unsigned)-LEP_E_STALLED + 1u : (unsigned)-err;
-    return nth(k_errors, i);
+    return nth(err > 0 || err < LEP_E_STALLED ? UNKNOWN_ERROR : (unsigned)-err);
 #endif
 }
 
@@ -70,6 +70,8 @@ const char *lep_result_str(uint8_t result)
     (void)result;
     return "";
 #else
-    return nth(k_results, result > LEP_RESULT_STATE ? LEP_RESULT_STATE + 1u : result);
+    return nth(result == LEP_RESULT_OK      ? 0u
+               : result > LEP_RESULT_STATE ? RESULTS + LEP_RESULT_STATE + 1u
+                                            : RESULTS + result);
 #endif
 }

@@ -1,4 +1,9 @@
-/* Message codec: commands and responses of spec sections 3-7, both directions. */
+/* Message codec: commands and responses of spec sections 3-7, both directions.
+ *
+ * One table describes the seven command codes; every response length, and so
+ * every data layout, belongs to exactly one layout (4 none, 8 filter, 20
+ * sample, 28 ratings, 32/38 product info), so decoding and encoding dispatch
+ * on the length once the code has allowed it. */
 #include "leptrino/message.h"
 
 #include <string.h>
@@ -11,67 +16,93 @@
 /* The rated values travel as IEEE-754 binary32. */
 typedef char lep_float_is_binary32[(sizeof(float) == 4u) ? 1 : -1];
 
-/* Shifts are done on unsigned types at least as wide as the result: a 16-bit
- * int (AVR) must not see p[1] << 8 overflow into its sign bit. */
-static uint16_t get_u16(const uint8_t *p)
+/* The known codes, in the order of k_response_len and of lep_command_name's list. */
+enum { I_INFO, I_RATED, I_FILTER_GET, I_SAMPLE, I_START, I_STOP, I_FILTER_SET, N_CODES };
+static const uint8_t k_codes[N_CODES] = {
+    LEP_CMD_PRODUCT_INFO, LEP_CMD_RATED, LEP_CMD_FILTER_GET, LEP_CMD_SAMPLE,
+    LEP_CMD_START,        LEP_CMD_STOP,  LEP_CMD_FILTER_SET};
+
+/* Lengths of a successful answer per code: the usual one, then the other
+ * (the 38-byte product info with output rate, start's first data message). */
+static const uint8_t k_response_len[N_CODES][2] = {
+    {LEP_LEN_PRODUCT_INFO, LEP_LEN_PRODUCT_INFO_RATE},
+    {LEP_LEN_RATED, LEP_LEN_RATED},
+    {LEP_LEN_FILTER, LEP_LEN_FILTER},
+    {LEP_LEN_SAMPLE, LEP_LEN_SAMPLE},
+    {LEP_LEN_HEADER, LEP_LEN_SAMPLE},
+    {LEP_LEN_HEADER, LEP_LEN_HEADER},
+    {LEP_LEN_HEADER, LEP_LEN_HEADER}};
+
+/* The text fields of the product info, in wire order from byte 4. */
+static const struct text_field {
+    uint8_t wire;  /* offset in the message */
+    uint8_t width; /* bytes on the wire */
+    uint8_t at;    /* offset of the C string in lep_product_info */
+} k_text[] = {{4, LEP_MODEL_LEN, offsetof(lep_product_info, model)},
+              {20, LEP_SERIAL_LEN, offsetof(lep_product_info, serial)},
+              {28, LEP_FIRMWARE_LEN, offsetof(lep_product_info, firmware)},
+              {32, LEP_RATE_LEN, offsetof(lep_product_info, output_rate)}};
+
+/* Index of a code in k_codes, N_CODES when unknown. */
+static unsigned code_index(uint8_t code)
 {
-    return (uint16_t)((uint16_t)p[0] | (uint16_t)((uint16_t)p[1] << 8));
+    unsigned i = 0;
+    while (i < N_CODES && k_codes[i] != code) {
+        i++;
+    }
+    return i;
 }
 
-static int16_t get_i16(const uint8_t *p)
+static size_t command_length(unsigned k)
 {
-    uint16_t u = get_u16(p);
-    return u >= 0x8000u ? (int16_t)((int32_t)u - (int32_t)65536L) : (int16_t)u;
+    return k == I_FILTER_SET ? LEP_LEN_FILTER_SET_CMD : LEP_LEN_HEADER;
 }
 
-static void put_u16(uint8_t *p, uint16_t v)
+/* n little-endian bytes. Shifts are done on uint32_t: a 16-bit int (AVR)
+ * must not see p[1] << 8 overflow into its sign bit. */
+static uint32_t get_le(const uint8_t *p, unsigned n)
 {
-    p[0] = (uint8_t)(v & 0xFFu);
-    p[1] = (uint8_t)(v >> 8);
+    uint32_t v = 0;
+    while (n > 0u) {
+        n--;
+        v = (v << 8) | p[n];
+    }
+    return v;
 }
 
-static uint32_t get_u32(const uint8_t *p)
+static void put_le(uint8_t *p, uint32_t v, unsigned n)
 {
-    return (uint32_t)p[0] | ((uint32_t)p[1] << 8) | ((uint32_t)p[2] << 16) | ((uint32_t)p[3] << 24);
+    unsigned i;
+    for (i = 0; i < n; i++) {
+        p[i] = (uint8_t)(v & 0xFFu);
+        v >>= 8;
+    }
 }
 
-static void put_u32(uint8_t *p, uint32_t v)
-{
-    p[0] = (uint8_t)(v & 0xFFu);
-    p[1] = (uint8_t)((v >> 8) & 0xFFu);
-    p[2] = (uint8_t)((v >> 16) & 0xFFu);
-    p[3] = (uint8_t)(v >> 24);
-}
-
-/* A rating must be finite and strictly positive. */
+/* A rating must be finite (exponent not all ones) and strictly positive
+ * (sign clear, not zero: 1 <= bits <= 0x7FFFFFFF). */
 static bool rating_bits_ok(uint32_t bits)
 {
-    bool finite = ((bits >> 23) & 0xFFu) != 0xFFu;
-    bool positive = (bits & 0x80000000u) == 0u && (bits & 0x7FFFFFFFu) != 0u;
-    return finite && positive;
+    return ((bits >> 23) & 0xFFu) != 0xFFu && bits - 1u < 0x7FFFFFFFu;
 }
 
-static uint32_t float_bits(float f)
+static bool raw_ok(int16_t v)
 {
-    uint32_t bits;
-    memcpy(&bits, &f, sizeof(bits));
-    return bits;
+    return v <= LEP_SATURATION_V113 && v >= -LEP_SATURATION_V113;
 }
 
-static bool known_code(uint8_t code)
+/* The filter field (code, then three reserved zero bytes) at msg[4..8) of a
+ * filter set or a filter query's answer; the reserved bytes are checked first. */
+static int get_filter(const uint8_t *msg, uint8_t *filter)
 {
-    switch (code) {
-    case LEP_CMD_PRODUCT_INFO:
-    case LEP_CMD_RATED:
-    case LEP_CMD_FILTER_GET:
-    case LEP_CMD_SAMPLE:
-    case LEP_CMD_START:
-    case LEP_CMD_STOP:
-    case LEP_CMD_FILTER_SET:
-        return true;
-    default:
-        return false;
+    if ((msg[5] | msg[6] | msg[7]) != 0u) {
+        return LEP_E_RESERVED;
     }
+    if (msg[4] > LEP_FILTER_MAX) {
+        return LEP_E_VALUE;
+    }
+    *filter = msg[4];
+    return LEP_OK;
 }
 
 static void put_header(uint8_t *msg, size_t len, uint8_t code, uint8_t fourth)
@@ -82,28 +113,34 @@ static void put_header(uint8_t *msg, size_t len, uint8_t code, uint8_t fourth)
     msg[3] = fourth;
 }
 
+/* A message's own Length field agrees with its size. */
+static bool length_ok(const uint8_t *msg, size_t len)
+{
+    return len >= LEP_LEN_HEADER && msg[0] == len;
+}
+
 int lep_command_encode(const lep_command *cmd, uint8_t *msg, size_t cap, size_t *len)
 {
+    unsigned k;
     size_t n;
     if (cmd == NULL || msg == NULL || len == NULL) {
         return LEP_E_ARG;
     }
     *len = 0;
-    if (!known_code(cmd->code)) {
+    k = code_index(cmd->code);
+    if (k == N_CODES) {
         return LEP_E_UNEXPECTED;
     }
-    n = cmd->code == LEP_CMD_FILTER_SET ? LEP_LEN_FILTER_SET_CMD : LEP_LEN_HEADER;
-    if (cmd->code == LEP_CMD_FILTER_SET && cmd->filter > LEP_FILTER_MAX) {
+    n = command_length(k);
+    if (k == I_FILTER_SET && cmd->filter > LEP_FILTER_MAX) {
         return LEP_E_VALUE;
     }
     if (cap < n) {
         return LEP_E_BUFFER;
     }
+    /* the filter code and three reserved 0x00 follow the header of a filter set */
+    put_le(msg + 4, cmd->filter, (unsigned)n - LEP_LEN_HEADER);
     put_header(msg, n, cmd->code, 0x00u);
-    if (cmd->code == LEP_CMD_FILTER_SET) {
-        msg[4] = cmd->filter;
-        msg[5] = msg[6] = msg[7] = 0x00u;
-    }
     *len = n;
     return LEP_OK;
 }
@@ -116,36 +153,29 @@ static int command_fail(uint8_t *result, uint8_t code, int err)
 
 int lep_command_decode(const uint8_t *msg, size_t len, lep_command *cmd, uint8_t *result)
 {
-    size_t want;
+    unsigned k;
+    int rc;
     if (msg == NULL || cmd == NULL || result == NULL) {
         return LEP_E_ARG;
     }
     cmd->code = len >= 3u ? msg[2] : 0u;
     cmd->filter = 0;
     *result = LEP_RESULT_OK;
-    if (len < LEP_LEN_HEADER || msg[0] != len) {
+    if (!length_ok(msg, len)) {
         return command_fail(result, LEP_RESULT_LENGTH, LEP_E_LENGTH);
     }
-    if (!known_code(cmd->code)) {
+    k = code_index(cmd->code);
+    if (k == N_CODES) {
         return command_fail(result, LEP_RESULT_UNDEFINED, LEP_E_UNEXPECTED);
     }
-    want = cmd->code == LEP_CMD_FILTER_SET ? LEP_LEN_FILTER_SET_CMD : LEP_LEN_HEADER;
-    if (len != want) {
+    if (len != command_length(k)) {
         return command_fail(result, LEP_RESULT_LENGTH, LEP_E_LENGTH);
     }
     if (msg[1] != RESERVED_FF || msg[3] != 0x00u) {
         return command_fail(result, LEP_RESULT_VALUE, LEP_E_RESERVED);
     }
-    if (cmd->code == LEP_CMD_FILTER_SET) {
-        if (msg[5] != 0u || msg[6] != 0u || msg[7] != 0u) {
-            return command_fail(result, LEP_RESULT_VALUE, LEP_E_RESERVED);
-        }
-        if (msg[4] > LEP_FILTER_MAX) {
-            return command_fail(result, LEP_RESULT_VALUE, LEP_E_VALUE);
-        }
-        cmd->filter = msg[4];
-    }
-    return LEP_OK;
+    rc = len == LEP_LEN_FILTER_SET_CMD ? get_filter(msg, &cmd->filter) : LEP_OK;
+    return rc == LEP_OK ? LEP_OK : command_fail(result, LEP_RESULT_VALUE, rc);
 }
 
 static bool printable(uint8_t b)
@@ -154,9 +184,9 @@ static bool printable(uint8_t b)
 }
 
 /* Copy an ASCII field into a C string without its padding (trailing spaces
- * and NULs). LEP_E_VALUE for anything but printable ASCII before the padding
+ * and NULs). False for anything but printable ASCII before the padding
  * (a control byte, a byte >= 0x80, a NUL followed by text). */
-static int get_text(char *dst, const uint8_t *src, size_t n)
+static bool get_text(char *dst, const uint8_t *src, size_t n)
 {
     size_t end = n;
     size_t i;
@@ -165,28 +195,28 @@ static int get_text(char *dst, const uint8_t *src, size_t n)
     }
     for (i = 0; i < end; i++) {
         if (!printable(src[i])) {
-            return LEP_E_VALUE;
+            return false;
         }
         dst[i] = (char)src[i];
     }
     dst[end] = '\0';
-    return LEP_OK;
+    return true;
 }
 
 /* Write a C string (at most n characters, printable ASCII) into an n-byte
  * field, space padded. */
-static int put_text(uint8_t *dst, const char *src, size_t n)
+static bool put_text(uint8_t *dst, const char *src, size_t n)
 {
     size_t len = 0;
     while (src[len] != '\0') { /* src has room for n characters and a NUL */
         if (len == n || !printable((uint8_t)src[len])) {
-            return LEP_E_VALUE;
+            return false;
         }
         dst[len] = (uint8_t)src[len];
         len++;
     }
     memset(dst + len, ' ', n - len);
-    return LEP_OK;
+    return true;
 }
 
 static uint32_t parse_rate(const char *s)
@@ -205,6 +235,22 @@ static uint32_t parse_rate(const char *s)
     return (digits > 0u && s[i] == '\0') ? v : 0u;
 }
 
+/* The product info's text fields of a len-byte message (32: three, 38: four). */
+static int decode_info(const uint8_t *msg, size_t len, lep_product_info *info)
+{
+    size_t i;
+    size_t fields = len == LEP_LEN_PRODUCT_INFO_RATE ? 4u : 3u;
+    for (i = 0; i < fields; i++) {
+        if (!get_text((char *)info + k_text[i].at, msg + k_text[i].wire, k_text[i].width)) {
+            memset(info, 0, sizeof(*info));
+            return LEP_E_VALUE;
+        }
+    }
+    info->has_output_rate = fields == 4u;
+    info->output_rate_hz = parse_rate(info->output_rate);
+    return LEP_OK;
+}
+
 /* The last reserved byte (msg[19], "0x00 fixed" in v1.13) is accepted with
  * any value: later firmware leaves it unspecified. |raw| > 32000 is
  * impossible on every firmware: LEP_E_VALUE. */
@@ -212,80 +258,27 @@ static int decode_sample(const uint8_t *msg, lep_sample *s)
 {
     size_t i;
     for (i = 0; i < LEP_AXES; i++) {
-        int16_t v = get_i16(msg + 4 + 2 * i);
-        if (v > LEP_SATURATION_V113 || v < -LEP_SATURATION_V113) {
+        uint32_t u = get_le(msg + 4 + 2 * i, 2);
+        int16_t v = u >= 0x8000u ? (int16_t)((int32_t)u - (int32_t)65536L) : (int16_t)u;
+        if (!raw_ok(v)) {
             return LEP_E_VALUE;
         }
         s->raw[i] = v;
     }
-    s->reserved = get_u16(msg + 16);
+    s->reserved = (uint16_t)get_le(msg + 16, 2);
     s->status = msg[18];
     return LEP_OK;
 }
 
-static int decode_data(const uint8_t *msg, size_t len, lep_response *r)
-{
-    size_t i;
-    switch (r->code) {
-    case LEP_CMD_PRODUCT_INFO:
-        if (len != LEP_LEN_PRODUCT_INFO && len != LEP_LEN_PRODUCT_INFO_RATE) {
-            return LEP_E_LENGTH;
-        }
-        r->u.info.has_output_rate = len == LEP_LEN_PRODUCT_INFO_RATE;
-        if (get_text(r->u.info.model, msg + 4, LEP_MODEL_LEN) != LEP_OK ||
-            get_text(r->u.info.serial, msg + 20, LEP_SERIAL_LEN) != LEP_OK ||
-            get_text(r->u.info.firmware, msg + 28, LEP_FIRMWARE_LEN) != LEP_OK ||
-            (r->u.info.has_output_rate &&
-             get_text(r->u.info.output_rate, msg + 32, LEP_RATE_LEN) != LEP_OK)) {
-            memset(&r->u.info, 0, sizeof(r->u.info));
-            return LEP_E_VALUE;
-        }
-        r->u.info.output_rate_hz = parse_rate(r->u.info.output_rate);
-        return LEP_OK;
-    case LEP_CMD_RATED:
-        if (len != LEP_LEN_RATED) {
-            return LEP_E_LENGTH;
-        }
-        for (i = 0; i < LEP_AXES; i++) {
-            uint32_t bits = get_u32(msg + 4 + 4 * i);
-            if (!rating_bits_ok(bits)) {
-                return LEP_E_VALUE;
-            }
-            memcpy(&r->u.rated.axis[i], &bits, sizeof(bits));
-        }
-        return LEP_OK;
-    case LEP_CMD_FILTER_GET:
-        if (len != LEP_LEN_FILTER) {
-            return LEP_E_LENGTH;
-        }
-        if (msg[5] != 0u || msg[6] != 0u || msg[7] != 0u) {
-            return LEP_E_RESERVED;
-        }
-        if (msg[4] > LEP_FILTER_MAX) {
-            return LEP_E_VALUE;
-        }
-        r->u.filter = msg[4];
-        return LEP_OK;
-    case LEP_CMD_SAMPLE:
-        return len == LEP_LEN_SAMPLE ? decode_sample(msg, &r->u.sample) : LEP_E_LENGTH;
-    case LEP_CMD_START:
-        if (len == LEP_LEN_SAMPLE) {
-            r->stream = true;
-            return decode_sample(msg, &r->u.sample);
-        }
-        return len == LEP_LEN_HEADER ? LEP_OK : LEP_E_LENGTH;
-    default: /* stop, filter set: acknowledgement only */
-        return len == LEP_LEN_HEADER ? LEP_OK : LEP_E_LENGTH;
-    }
-}
-
 int lep_response_decode(const uint8_t *msg, size_t len, lep_response *r)
 {
+    unsigned k;
+    size_t i;
     if (msg == NULL || r == NULL) {
         return LEP_E_ARG;
     }
     memset(r, 0, sizeof(*r));
-    if (len < LEP_LEN_HEADER || msg[0] != len) {
+    if (!length_ok(msg, len)) {
         return LEP_E_LENGTH;
     }
     if (msg[1] != RESERVED_FF) {
@@ -293,104 +286,113 @@ int lep_response_decode(const uint8_t *msg, size_t len, lep_response *r)
     }
     r->code = msg[2];
     r->result = msg[3];
-    if (!known_code(r->code)) {
+    k = code_index(r->code);
+    if (k == N_CODES) {
         return LEP_E_UNEXPECTED;
     }
     if (r->result != LEP_RESULT_OK) {
         return len == LEP_LEN_HEADER ? LEP_E_SENSOR : LEP_E_LENGTH;
     }
-    return decode_data(msg, len, r);
+    if (len != k_response_len[k][0] && len != k_response_len[k][1]) {
+        return LEP_E_LENGTH;
+    }
+    switch (len) {
+    case LEP_LEN_HEADER: /* acknowledgement only */
+        return LEP_OK;
+    case LEP_LEN_FILTER:
+        return get_filter(msg, &r->u.filter);
+    case LEP_LEN_SAMPLE: /* the handshake sample, or start's first data message */
+        r->stream = k == I_START;
+        return decode_sample(msg, &r->u.sample);
+    case LEP_LEN_RATED:
+        for (i = 0; i < LEP_AXES; i++) {
+            uint32_t bits = get_le(msg + 4 + 4 * i, 4);
+            float f;
+            if (!rating_bits_ok(bits)) {
+                return LEP_E_VALUE;
+            }
+            memcpy(&f, &bits, sizeof(f));
+            r->u.rated.axis[i] = f;
+        }
+        return LEP_OK;
+    default: /* 32 or 38 */
+        return decode_info(msg, len, &r->u.info);
+    }
 }
 
 static int encode_sample(uint8_t *msg, const lep_sample *s)
 {
     size_t i;
     for (i = 0; i < LEP_AXES; i++) {
-        if (s->raw[i] > LEP_SATURATION_V113 || s->raw[i] < -LEP_SATURATION_V113) {
+        if (!raw_ok(s->raw[i])) {
             return LEP_E_VALUE;
         }
-        put_u16(msg + 4 + 2 * i, (uint16_t)s->raw[i]);
+        put_le(msg + 4 + 2 * i, (uint16_t)s->raw[i], 2);
     }
-    put_u16(msg + 16, s->reserved);
+    put_le(msg + 16, s->reserved, 2);
     msg[18] = s->status;
-    msg[19] = 0x00u;
     return LEP_OK;
 }
 
-/* Length of the encoded response r, or 0 when r cannot be encoded. */
-static size_t response_length(const lep_response *r)
+/* Each value is checked by the rule that decoding applies (rating_bits_ok,
+ * raw_ok, printable, LEP_FILTER_MAX), so what decoding would reject,
+ * encoding refuses (LEP_E_VALUE); the sensor side needs no decoder. */
+static int encode_data(uint8_t *msg, size_t n, const lep_response *r)
 {
-    if (r->result != LEP_RESULT_OK) {
-        return LEP_LEN_HEADER; /* any code: a sensor answers unknown commands with 0x02 */
+    size_t i;
+    switch (n) {
+    case LEP_LEN_HEADER:
+        return LEP_OK;
+    case LEP_LEN_FILTER:
+        msg[4] = r->u.filter;
+        return r->u.filter <= LEP_FILTER_MAX ? LEP_OK : LEP_E_VALUE;
+    case LEP_LEN_SAMPLE: /* the handshake sample or a stream data message */
+        return encode_sample(msg, &r->u.sample);
+    case LEP_LEN_RATED:
+        for (i = 0; i < LEP_AXES; i++) {
+            uint32_t bits;
+            memcpy(&bits, &r->u.rated.axis[i], sizeof(bits));
+            if (!rating_bits_ok(bits)) {
+                return LEP_E_VALUE;
+            }
+            put_le(msg + 4 + 4 * i, bits, 4);
+        }
+        return LEP_OK;
+    default: /* 32 or 38 */
+        for (i = 0; i < (n == LEP_LEN_PRODUCT_INFO_RATE ? 4u : 3u); i++) {
+            if (!put_text(msg + k_text[i].wire, (const char *)&r->u.info + k_text[i].at,
+                          k_text[i].width)) {
+                return LEP_E_VALUE;
+            }
+        }
+        return LEP_OK;
     }
-    if (!known_code(r->code)) {
-        return 0;
-    }
-    switch (r->code) {
-    case LEP_CMD_PRODUCT_INFO:
-        return r->u.info.has_output_rate ? LEP_LEN_PRODUCT_INFO_RATE : LEP_LEN_PRODUCT_INFO;
-    case LEP_CMD_RATED: return LEP_LEN_RATED;
-    case LEP_CMD_FILTER_GET: return LEP_LEN_FILTER;
-    case LEP_CMD_SAMPLE: return LEP_LEN_SAMPLE;
-    case LEP_CMD_START: return r->stream ? LEP_LEN_SAMPLE : LEP_LEN_HEADER;
-    default: return LEP_LEN_HEADER;
-    }
-}
-
-static int encode_info(uint8_t *msg, const lep_product_info *info)
-{
-    int rc = put_text(msg + 4, info->model, LEP_MODEL_LEN);
-    if (rc == LEP_OK) {
-        rc = put_text(msg + 20, info->serial, LEP_SERIAL_LEN);
-    }
-    if (rc == LEP_OK) {
-        rc = put_text(msg + 28, info->firmware, LEP_FIRMWARE_LEN);
-    }
-    if (rc == LEP_OK && info->has_output_rate) {
-        rc = put_text(msg + 32, info->output_rate, LEP_RATE_LEN);
-    }
-    return rc;
 }
 
 int lep_response_encode(const lep_response *r, uint8_t *msg, size_t cap, size_t *len)
 {
+    unsigned k;
     size_t n;
-    size_t i;
-    int rc = LEP_OK;
+    int rc;
     if (r == NULL || msg == NULL || len == NULL) {
         return LEP_E_ARG;
     }
     *len = 0;
-    n = response_length(r);
-    if (n == 0) {
+    k = code_index(r->code);
+    if (r->result != LEP_RESULT_OK) {
+        n = LEP_LEN_HEADER; /* any code: a sensor answers unknown commands with 0x02 */
+    } else if (k == N_CODES) {
         return LEP_E_UNEXPECTED;
+    } else {
+        bool other = k == I_INFO ? r->u.info.has_output_rate : (k == I_START && r->stream);
+        n = k_response_len[k][other ? 1 : 0];
     }
     if (cap < n) {
         return LEP_E_BUFFER;
     }
     put_header(msg, n, r->code, r->result);
-    if (n > LEP_LEN_HEADER) {
-        switch (r->code) {
-        case LEP_CMD_PRODUCT_INFO:
-            rc = encode_info(msg, &r->u.info);
-            break;
-        case LEP_CMD_RATED:
-            for (i = 0; i < LEP_AXES && rc == LEP_OK; i++) {
-                uint32_t bits = float_bits(r->u.rated.axis[i]);
-                rc = rating_bits_ok(bits) ? LEP_OK : LEP_E_VALUE;
-                put_u32(msg + 4 + 4 * i, bits);
-            }
-            break;
-        case LEP_CMD_FILTER_GET:
-            rc = r->u.filter <= LEP_FILTER_MAX ? LEP_OK : LEP_E_VALUE;
-            msg[4] = r->u.filter;
-            msg[5] = msg[6] = msg[7] = 0x00u;
-            break;
-        default: /* the handshake sample or a stream data message */
-            rc = encode_sample(msg, &r->u.sample);
-            break;
-        }
-    }
+    memset(msg + LEP_LEN_HEADER, 0, n - LEP_LEN_HEADER); /* the reserved bytes */
+    rc = encode_data(msg, n, r);
     if (rc == LEP_OK) {
         *len = n;
     }
@@ -461,27 +463,26 @@ uint8_t lep_sample_saturated(const lep_sample *s, int16_t limit)
     return mask;
 }
 
+/* Entry i of a list of NUL-separated texts. */
+static const char *text_at(const char *list, unsigned i)
+{
+    for (; i > 0u; i--) {
+        list += strlen(list) + 1u;
+    }
+    return list;
+}
+
 const char *lep_filter_label(uint8_t code)
 {
-    switch (code) {
-    case 0: return "off";
-    case 1: return "10 Hz";
-    case 2: return "100 Hz";
-    case 3: return "200 Hz";
-    default: return "invalid";
-    }
+    return text_at("off\0" "10 Hz\0" "100 Hz\0" "200 Hz\0" "invalid",
+                   code > LEP_FILTER_MAX ? LEP_FILTER_MAX + 1u : code);
 }
 
 const char *lep_command_name(uint8_t code)
 {
-    switch (code) {
-    case LEP_CMD_PRODUCT_INFO: return "product info";
-    case LEP_CMD_RATED: return "rated values";
-    case LEP_CMD_FILTER_GET: return "filter query";
-    case LEP_CMD_SAMPLE: return "handshake sample";
-    case LEP_CMD_START: return "start continuous output";
-    case LEP_CMD_STOP: return "stop continuous output";
-    case LEP_CMD_FILTER_SET: return "set filter";
-    default: return "unknown";
-    }
+    /* in the order of k_codes, then the text for an unknown code */
+    return text_at("product info\0" "rated values\0" "filter query\0" "handshake sample\0"
+                   "start continuous output\0" "stop continuous output\0" "set filter\0"
+                   "unknown",
+                   code_index(code));
 }

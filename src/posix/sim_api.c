@@ -158,6 +158,37 @@ void lep_sim_stall(lep_sim *s, int ms)
         request(s, NULL, ms < 0 ? 0 : ms);
 }
 
+int lep_sim_trace_writes(lep_sim *s, const char *path, char *err, size_t errlen)
+{
+    lep_sim_trace *t = NULL;
+    bool taken;
+    int rc;
+    if (s == NULL || path == NULL || path[0] == '\0') {
+        lep_priv_set_err(err, errlen, "write trace: no sensor or no path");
+        return LEP_E_ARG;
+    }
+    pthread_mutex_lock(&s->lock);
+    taken = s->trace_requested;
+    s->trace_requested = true;
+    pthread_mutex_unlock(&s->lock);
+    if (taken) {
+        lep_priv_set_err(err, errlen, "write trace: this sensor already traces its writes");
+        return LEP_E_STATE;
+    }
+    rc = lep_priv_sim_trace_open(path, &t, err, errlen);
+    if (rc != LEP_OK) {
+        pthread_mutex_lock(&s->lock);
+        s->trace_requested = false;
+        pthread_mutex_unlock(&s->lock);
+        return rc;
+    }
+    pthread_mutex_lock(&s->lock);
+    s->req_trace = t;
+    pthread_mutex_unlock(&s->lock);
+    request(s, NULL, -1);
+    return LEP_OK;
+}
+
 void lep_sim_get_stats(lep_sim *s, lep_sim_stats *out)
 {
     if (out == NULL)
@@ -179,6 +210,8 @@ void lep_sim_stop(lep_sim *s)
         request(s, &s->req_stop, -1);
         pthread_join(s->thread, NULL);
     }
+    lep_priv_sim_trace_close(s->trace);
+    lep_priv_sim_trace_close(s->req_trace); /* never picked up */
     lep_priv_sim_remove_link(s);
     lep_priv_sim_link_release(s);
     lep_priv_sim_close_pty(s);

@@ -61,6 +61,7 @@ void lep_priv_sim_power_cycle(lep_sim *s)
     s->pend_len = 0;
     s->streaming = false;
     s->out_len = 0; /* bytes in flight die with the power */
+    lep_priv_sim_trace_discard(s->trace);
     s->power_on = lep_priv_monotonic_ns();
     s->st.power_cycles++;
     lep_priv_sim_publish(s);

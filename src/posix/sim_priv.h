@@ -23,12 +23,18 @@
  * are skipped instead of sent in a burst. A stall skips what it covered. */
 #define MAX_LAG_NS 500000000
 #define NS_PER_S 1000000000.0
+/* Write-trace records buffered before one write to the trace file. */
+#define LEP_SIM_TRACE_BUF 256u
+
+typedef struct lep_sim_trace lep_sim_trace;
 
 struct lep_sim {
     /* shared with callers, under lock */
     pthread_mutex_t lock;
     bool req_stop, req_power_cycle, req_hangup;
     int req_stall_ms; /* -1: none */
+    lep_sim_trace *req_trace; /* lep_sim_trace_writes: handed to the serving thread */
+    bool trace_requested;     /* lep_sim_trace_writes was called (once only) */
     lep_sim_stats stats;
     int wake[2];
     pthread_t thread;
@@ -65,6 +71,8 @@ struct lep_sim {
     int64_t power_on;
     int64_t stall_until, stall_at, hangup_at, reopen_at; /* 0: none */
     bool hung;
+    lep_sim_trace *trace;       /* write trace, or NULL (sim_trace.c) */
+    bool trace_was_streaming;   /* to mark the end of a stream in the trace */
 };
 
 /* sim_pty.c */
@@ -104,6 +112,23 @@ void lep_priv_sim_stream_begins(lep_sim *s, int64_t now);
 int64_t lep_priv_sim_deadline(const lep_sim *s, uint64_t k);
 void lep_priv_sim_stream_due(lep_sim *s, int64_t now);
 void lep_priv_sim_skip_due(lep_sim *s, int64_t now);
+
+/* sim_trace.c: the write trace (lep_sim_trace_writes). Every function
+ * takes NULL (no trace) and then does nothing. */
+/* Create path (never an existing file) for the trace: LEP_OK, or LEP_E_BUSY /
+ * LEP_E_IO with a message. */
+int lep_priv_sim_trace_open(const char *path, lep_sim_trace **out, char *err, size_t errlen);
+/* Write what is buffered, close, free. */
+void lep_priv_sim_trace_close(lep_sim_trace *t);
+/* A marker record (LEP_SIM_TRACE_START/END) at time when; END also writes the buffer out. */
+void lep_priv_sim_trace_mark(lep_sim_trace *t, uint64_t marker, int64_t when);
+/* Data frame k was queued and ends at offset end of the output queue. */
+void lep_priv_sim_trace_queued(lep_sim_trace *t, uint64_t k, size_t end);
+/* A write() called at t_call returned n > 0 bytes at t_return: record the
+ * frames it completed, move the others' offsets down by n. */
+void lep_priv_sim_trace_written(lep_sim_trace *t, size_t n, int64_t t_call, int64_t t_return);
+/* The output queue was emptied without writing (power cycle, hang-up). */
+void lep_priv_sim_trace_discard(lep_sim_trace *t);
 
 /* sim_serve.c */
 void lep_priv_sim_publish(lep_sim *s);

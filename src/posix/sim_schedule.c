@@ -15,6 +15,7 @@ void lep_priv_sim_stream_begins(lep_sim *s, int64_t now)
     s->streaming = true;
     s->t0 = now;
     s->k = 0;
+    lep_priv_sim_trace_mark(s->trace, LEP_SIM_TRACE_START, now);
 }
 
 int64_t lep_priv_sim_deadline(const lep_sim *s, uint64_t k)
@@ -46,8 +47,12 @@ void lep_priv_sim_stream_due(lep_sim *s, int64_t now)
         lep_priv_fir_next(&s->fir_state, &s->fir[code], &s->sig, s->k, &smp);
         smp.reserved = (uint16_t)(s->k & 0xFFFFu);
         s->k++;
-        if (lep_device_stream_frame(&smp, frame, sizeof frame, &len) == LEP_OK)
+        if (lep_device_stream_frame(&smp, frame, sizeof frame, &len) == LEP_OK) {
+            uint64_t sent = s->st.samples_sent;
             lep_priv_sim_emit(s, frame, len, true);
+            if (s->st.samples_sent != sent)
+                lep_priv_sim_trace_queued(s->trace, s->k - 1u, s->out_len);
+        }
     }
 }
 

@@ -8,6 +8,9 @@
 
 #include <errno.h>
 #include <poll.h>
+#if defined(__linux__)
+#include <sys/prctl.h>
+#endif
 #include <time.h>
 #include <unistd.h>
 
@@ -34,6 +37,7 @@ static void hang_up(lep_sim *s, int64_t now)
     s->pend_len = 0;
     s->streaming = false;
     s->out_len = 0;
+    lep_priv_sim_trace_discard(s->trace);
     s->hung = true;
     s->st.hangups++;
     s->reopen_at = s->opt.reopen_after_ms >= 0
@@ -97,6 +101,11 @@ static int wait_events(lep_sim *s, struct pollfd *p, nfds_t n, int64_t until)
 void *lep_priv_sim_serve(void *arg)
 {
     lep_sim *s = arg;
+#if defined(__linux__) && defined(PR_SET_TIMERSLACK)
+    /* Wake at each deadline, not up to 50 us after it (the default slack of
+     * a thread's timers; this thread's only, the host program keeps its own). */
+    (void)prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
+#endif
     for (;;) {
         struct pollfd p[2];
         nfds_t n = 1;
@@ -124,6 +133,9 @@ void *lep_priv_sim_serve(void *arg)
             reopen(s);
         if (!s->hung && !stalled)
             lep_priv_sim_stream_due(s, now);
+        if (s->trace_was_streaming && !s->streaming)
+            lep_priv_sim_trace_mark(s->trace, LEP_SIM_TRACE_END, now);
+        s->trace_was_streaming = s->streaming;
         lep_priv_sim_publish(s); /* counters first: a host that got an answer sees them */
         if (!s->hung && !stalled)
             lep_priv_sim_flush_out(s);
@@ -167,6 +179,10 @@ void *lep_priv_sim_serve(void *arg)
             cycle = s->req_power_cycle;
             hangup = s->req_hangup;
             stall_ms = s->req_stall_ms;
+            if (s->req_trace != NULL && s->trace == NULL) {
+                s->trace = s->req_trace;
+                s->req_trace = NULL;
+            }
             s->req_power_cycle = s->req_hangup = false;
             s->req_stall_ms = -1;
             pthread_mutex_unlock(&s->lock);
@@ -199,6 +215,8 @@ void *lep_priv_sim_serve(void *arg)
             }
         }
     }
+    if (s->trace_was_streaming || s->streaming) /* a stream running at lep_sim_stop */
+        lep_priv_sim_trace_mark(s->trace, LEP_SIM_TRACE_END, lep_priv_monotonic_ns());
     lep_priv_sim_publish(s);
     return NULL;
 }

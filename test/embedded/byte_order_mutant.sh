@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Proof that the big-endian run matters: plant a byte-order bug in a copy of
-# the core (the message codec's get_u16 reads the wire's little-endian bytes
+# the core (the message codec's get_le reads the wire's little-endian bytes
 # in host order, with memcpy), then require that the core's tests still pass
 # on the (little-endian) host but fail on big-endian s390x under qemu-user.
 # usage: byte_order_mutant.sh CMAKE CTEST SOURCE_DIR WORK_DIR
@@ -14,11 +14,11 @@ python3 - "$work/tree/src/core/message.c" <<'PY' || exit 1
 import re, sys
 path = sys.argv[1]
 text = open(path).read()
-pattern = re.compile(r"(static uint16_t get_u16\(const uint8_t \*p\)\s*\{)(.*?)(\n\})", re.S)
+pattern = re.compile(r"(static uint32_t get_le\(const uint8_t \*p, unsigned n\)\s*\{)(.*?)(\n\})", re.S)
 if not pattern.search(text):
-    sys.exit("FAIL: get_u16 not found in src/core/message.c: update this mutant")
-text = pattern.sub(r"\1\n    uint16_t v; /* planted bug: host byte order */\n"
-                   r"    memcpy(&v, p, sizeof v);\n    return v;\3", text, count=1)
+    sys.exit("FAIL: get_le not found in src/core/message.c: update this mutant")
+text = pattern.sub(r"\1\n    uint32_t v = 0; /* planted bug: host byte order */\n"
+                   r"    memcpy(&v, p, n);\n    return v;\3", text, count=1)
 if "#include <string.h>" not in text:
     text = "#include <string.h>\n" + text
 open(path, "w").write(text)

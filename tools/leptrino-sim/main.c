@@ -35,6 +35,8 @@ static const char usage_tail[] =
     "program:\n"
     "  --exit-after S          exit by itself after S seconds (0: never)\n"
     "  --stats                 print the simulator's counters on stderr at exit\n"
+    "  --trace-writes FILE     record when each data message was written (FILE must not exist;\n"
+    "                          binary records, see docs/simulator.md; for benchmarks)\n"
     "  --list-models           print the model presets with their rated values, then exit\n"
     "  --help, --version\n";
 
@@ -89,6 +91,7 @@ struct cli {
     lep_sim_options o;
     double exit_after;
     int stats;
+    const char *trace_writes; /* --trace-writes FILE, or NULL */
 };
 
 /* Parse argv into c. Returns -1 to go on, else an exit code. */
@@ -127,6 +130,14 @@ static int parse(int argc, char **argv, struct cli *c)
             if (strcmp(name, "--list-models") == 0)
                 return list_models();
             c->stats = 1;
+            continue;
+        }
+        if (strcmp(name, "--trace-writes") == 0) {
+            if (val == NULL && i + 1 < argc)
+                val = argv[++i];
+            if (val == NULL || val[0] == '\0')
+                return bad("needs a file name", name, NULL);
+            c->trace_writes = val;
             continue;
         }
         if (strcmp(name, "--exit-after") == 0) {
@@ -227,6 +238,12 @@ int main(int argc, char **argv)
     if (rc != LEP_OK) {
         fprintf(stderr, "leptrino-sim: %s\n", err[0] ? err : lep_strerror(rc));
         return rc == LEP_E_ARG ? EXIT_USAGE : 1;
+    }
+    if (c.trace_writes != NULL &&
+        lep_sim_trace_writes(sim, c.trace_writes, err, sizeof err) != LEP_OK) {
+        fprintf(stderr, "leptrino-sim: --trace-writes: %s\n", err);
+        lep_sim_stop(sim);
+        return 1;
     }
     printf("%s\n", lep_sim_port(sim));
     fflush(stdout);
