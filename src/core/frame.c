@@ -362,7 +362,8 @@ STEP_ATTR static size_t step(lep_frame_decoder *d, uint8_t b, lep_frame_event *e
 FEED_BYTE_ATTR static size_t feed_byte(lep_frame_decoder *d, uint8_t b, lep_frame_event *ev)
 {
 #ifdef FRAME_FAST
-    /* The usual bytes: a message byte, a DLE, a stuffed DLE, the BCC, DLE STX. */
+    /* The usual bytes: a message byte, a DLE, a stuffed DLE, the BCC, DLE STX,
+     * a byte between frames. */
     ev->type = LEP_FRAME_NONE;
     if (d->state == S_MSG) {
         if (b == LEP_DLE) {
@@ -380,8 +381,12 @@ FEED_BYTE_ATTR static size_t feed_byte(lep_frame_decoder *d, uint8_t b, lep_fram
         d->raw++;
         d->state = S_MSG;
         return 1;
-    } else if (d->state == S_IDLE && b == LEP_DLE) {
-        d->state = S_IDLE_DLE;
+    } else if (d->state == S_IDLE) { /* hunting for DLE STX */
+        if (b == LEP_DLE) {
+            d->state = S_IDLE_DLE;
+        } else {
+            d->stats.bytes_discarded++;
+        }
         return 1;
     } else if (d->state == S_IDLE_DLE && b == LEP_STX) { /* a frame begins */
         d->raw = 2;
