@@ -229,8 +229,8 @@ static void count(lep_frame_decoder *d, size_t off, size_t n)
 /* One byte (the path of a caller fed byte by byte, e.g. from an ISR ring
  * buffer): a switch on the state, and every outcome ends in one place that
  * counts the discarded bytes, makes the event and counts it, and stores the
- * next state. feed_byte below takes the usual byte (a message byte) inline
- * in the word-at-a-time build. */
+ * next state. In the word-at-a-time build, feed_byte below takes the usual
+ * bytes inline and comes here for the others. */
 STEP_ATTR static size_t step(lep_frame_decoder *d, uint8_t b, lep_frame_event *ev)
 {
     const unsigned st = d->state;
@@ -408,7 +408,9 @@ FEED_BYTE_ATTR static size_t feed_byte(lep_frame_decoder *d, uint8_t b, lep_fram
 }
 
 #ifdef FRAME_FAST
-/* Count a rejected frame of `wire` wire bytes and make it the event. */
+/* Count a rejected frame of `wire` wire bytes and make it the event: what
+ * step's common end does for an error, as direct stores (through k_counter it
+ * costs the 1 % corrupted stream 0.02 instructions/byte). */
 static void reject(lep_frame_decoder *d, lep_frame_event *ev, int error, size_t wire)
 {
     d->stats.bytes_discarded += (uint32_t)wire;
