@@ -37,8 +37,6 @@ int plain_step(plain_decoder *p, uint8_t b);
  * to *sink and count it. Returns the messages completed in this call. */
 size_t plain_feed(plain_decoder *p, const uint8_t *data, size_t len, uint32_t *sink);
 
-#endif
-
 /* ---- json_out.c: one JSON object on stdout, written as it is measured ---- */
 void json_open(const char *key);  /* key NULL at the top level and inside arrays */
 void json_close(void);
@@ -68,3 +66,5 @@ double bench_percentile(double *sorted, size_t n, double q); /* v sorted ascendi
  * returns the exit status, -1 when it could not run. */
 int bench_run(char *const argv[], const char *out_path);
 int bench_have(const char *prog); /* prog found in PATH */
+
+#endif

@@ -36,6 +36,14 @@ HEADLINES = [
     ("python", "stream_iter_us_cpu_per_sample"),
     ("end_to_end", "low_latency", "cpu_percent_of_one_core"),
     ("end_to_end", "recording", "cpu_percent_of_one_core"),
+    ("end_to_end", "field_sleep", "latency_us", "p50"),
+    ("end_to_end", "field_sleep", "cpu_percent_of_one_core"),
+    ("end_to_end", "field_sleep", "syscalls_per_sample"),
+    ("end_to_end", "field_busy", "cpu_percent_of_one_core"),
+    ("end_to_end", "field_comparison", "field_sleep_over_low_latency_latency_p50"),
+    ("end_to_end", "field_comparison", "field_sleep_over_low_latency_cpu_per_sample"),
+    ("end_to_end", "field_comparison", "field_sleep_over_recording_cpu_per_sample"),
+    ("end_to_end", "field_comparison", "field_sleep_over_recording_syscalls_per_sample"),
 ]
 
 

@@ -26,6 +26,13 @@ MODE_KEYS = [
     "sim_over_client_cpu", "read_write_syscalls_per_sample_proc", "syscalls_per_s", "syscalls_per_sample",
     "syscalls_method",
 ]
+FIELD_KEYS = ["idle_sleeps_per_sample", "syscalls_per_sample_proc", "syscalls_proc_method"]
+COMPARISON_KEYS = [
+    "field_sleep_over_low_latency_latency_p50", "field_sleep_over_low_latency_cpu_per_sample",
+    "field_sleep_over_recording_cpu_per_sample", "field_sleep_over_recording_syscalls_per_sample",
+    "field_sleep_over_recording_read_write_per_sample_proc", "field_busy_over_low_latency_latency_p50",
+    "field_busy_cpu_percent_of_one_core", "method",
+]
 SPREAD_KEYS = ["p50", "p99", "max", "min", "reference"]
 
 
@@ -56,13 +63,15 @@ def main() -> int:
     errs += need(d.get("client_step"), "client_step", ["leptrino", "plain_same_input", "samples"])
     errs += need(d.get("encoder"), "encoder", ["frame_encode_msgs_per_s", "sample_to_frame_msgs_per_s"])
     e2e = d.get("end_to_end", {})
-    errs += need(e2e, "end_to_end", ["sim", "low_latency", "recording", "client", "session_latency_budget_ms",
-                                     "rates", "max_rate_without_loss_hz"])
+    errs += need(e2e, "end_to_end", ["sim", "low_latency", "recording", "client", "field_sleep", "field_busy",
+                                     "field_comparison", "session_latency_budget_ms", "rates",
+                                     "max_rate_without_loss_hz"])
+    errs += need(e2e.get("field_comparison"), "end_to_end.field_comparison", COMPARISON_KEYS)
     errs += need(e2e.get("sender_floor"), "end_to_end.sender_floor",
                  ["sleep_us_cpu_per_period", "sleep_and_pty_write_us_cpu_per_period", "method"])
-    for mode in ("low_latency", "recording", "client"):
+    for mode in ("low_latency", "recording", "client", "field_sleep", "field_busy"):
         m = e2e.get(mode)
-        errs += need(m, f"end_to_end.{mode}", MODE_KEYS)
+        errs += need(m, f"end_to_end.{mode}", MODE_KEYS + (FIELD_KEYS if mode.startswith("field_") else []))
         for lat in ("latency_us", "latency_from_deadline_us", "sim_lateness_us"):
             errs += need((m or {}).get(lat), f"end_to_end.{mode}.{lat}", SPREAD_KEYS)
         errs += need((m or {}).get("latency_us"), f"end_to_end.{mode}.latency_us", ["matched"])

@@ -9,7 +9,12 @@
  * both are CLOCK_MONOTONIC of one machine. Kept as a second figure: the
  * latency from the sample's deadline t0 + (k+1)/rate (t0 from the trace's
  * start record), which adds the sim's own wake-up lateness; that lateness is
- * reported as well (write call minus deadline). */
+ * reported as well (write call minus deadline).
+ *
+ * Beside leptrino's paths, in the same run against the same sim, the field
+ * baselines (field_stream.c): one byte per read() on a VMIN=0/VTIME=0 port
+ * into the plain decoder, sleeping 1 ms after an empty read (field_sleep) or
+ * spinning (field_busy, bounded in time), with the ratios between them. */
 #define _DEFAULT_SOURCE
 #define _XOPEN_SOURCE 600 /* posix_openpt, ptsname */
 #include "e2e.h"
@@ -218,6 +223,7 @@ typedef struct stream_result {
     double cpu_s;
     double sim_cpu_s;   /* the sim's threads over the same window, or NaN */
     long long rw_syscalls;
+    long long sleeps;   /* the field loop's nanosleep calls (0 for leptrino's paths) */
     int64_t t_start;    /* just before the start command was written */
     double t0_window_us;
     uint64_t *k;        /* [min(samples, LAT_MAX)]: stream index of each sample */
@@ -232,13 +238,20 @@ static void stream_free(stream_result *r)
     r->t_recv = NULL;
 }
 
-/* The client's own blocking call, and the session with two latency budgets. */
-enum mode { MODE_CLIENT = 0, MODE_LOW_LATENCY = 1, MODE_RECORDING = 2 };
+/* The client's own blocking call, the session with two latency budgets, and
+ * the field baselines (a 1 ms sleep after an empty read, or a busy loop). */
+enum mode { MODE_CLIENT = 0, MODE_LOW_LATENCY = 1, MODE_RECORDING = 2, MODE_FIELD_SLEEP = 3, MODE_FIELD_BUSY = 4 };
 #define RECORDING_BUDGET_MS 100
+#define FIELD_BUSY_SECONDS 2.5 /* the busy loop burns a core: this long, no more */
 
 static int budget_of(int mode)
 {
     return mode == MODE_RECORDING ? RECORDING_BUDGET_MS : 0;
+}
+
+static int is_field(int mode)
+{
+    return mode == MODE_FIELD_SLEEP || mode == MODE_FIELD_BUSY;
 }
 
 /* Stream from port for `seconds` (or `count` samples) in mode: open, start-up
@@ -251,6 +264,7 @@ static void stream_run(const char *port, int mode, double seconds, size_t count,
     static lep_client c;
     lep_serial *sp = NULL;
     lep_session *ss = NULL;
+    field_port fp;
     lep_product_info info;
     char err[256];
     uint64_t k = 0;
@@ -261,6 +275,8 @@ static void stream_run(const char *port, int mode, double seconds, size_t count,
     long long sim0 = sim_pid > 0 ? proc_cpu_ns(sim_pid) : -1;
     double w0;
     memset(r, 0, sizeof(*r));
+    memset(&fp, 0, sizeof(fp));
+    fp.fd = -1;
     r->k = malloc(LAT_MAX * sizeof(uint64_t));
     r->t_recv = malloc(LAT_MAX * sizeof(int64_t));
     if (r->k == NULL || r->t_recv == NULL) {
@@ -273,6 +289,8 @@ static void stream_run(const char *port, int mode, double seconds, size_t count,
             lep_serial_client_init(&c, sp);
             r->rc = lep_client_sync(&c, 50, &info);
         }
+    } else if (is_field(mode)) {
+        r->rc = field_open(&fp, port, mode == MODE_FIELD_SLEEP);
     } else {
         lep_session_options o;
         lep_session_options_init(&o);
@@ -282,7 +300,9 @@ static void stream_run(const char *port, int mode, double seconds, size_t count,
     }
     r->t_start = now_ns();
     if (r->rc == LEP_OK) {
-        r->rc = mode == MODE_CLIENT ? lep_client_start(&c) : lep_session_start(ss);
+        r->rc = mode == MODE_CLIENT ? lep_client_start(&c)
+                : is_field(mode)    ? field_send(&fp, LEP_CMD_START)
+                                    : lep_session_start(ss);
     }
     r->t0_window_us = (double)(now_ns() - r->t_start) / 1e3;
     sim0 = sim_pid > 0 ? proc_cpu_ns(sim_pid) : -1;
@@ -299,6 +319,9 @@ static void stream_run(const char *port, int mode, double seconds, size_t count,
             lep_sample smp;
             r->rc = lep_client_next_sample(&c, &smp, 1000);
             seq[0] = smp.reserved;
+            n = r->rc == LEP_OK ? 1u : 0u;
+        } else if (is_field(mode)) {
+            r->rc = field_next(&fp, &seq[0], 1000);
             n = r->rc == LEP_OK ? 1u : 0u;
         } else {
             lep_session_batch b;
@@ -329,6 +352,7 @@ static void stream_run(const char *port, int mode, double seconds, size_t count,
     r->wall_s = bench_now_s() - w0;
     r->cpu_s = cpu_s(RUSAGE_SELF) - c0;
     r->rw_syscalls = s0 >= 0 ? proc_rw_syscalls() - s0 : -1;
+    r->sleeps = fp.fd >= 0 ? fp.sleeps : 0;
     {
         long long sim1 = sim0 >= 0 ? proc_cpu_ns(sim_pid) : -1;
         r->sim_cpu_s = sim0 >= 0 && sim1 >= sim0 ? (double)(sim1 - sim0) / 1e9 : 0.0 / 0.0;
@@ -338,6 +362,8 @@ static void stream_run(const char *port, int mode, double seconds, size_t count,
             (void)lep_client_stop(&c);
             lep_serial_close(sp);
         }
+    } else if (is_field(mode)) {
+        field_close(&fp);
     } else {
         lep_session_close(ss);
     }
@@ -410,24 +436,29 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-/* Sort v[0..n) and write p50, p99, max, min (nulls when n is 0). */
-static void json_spread(double *v, size_t n)
+/* Sort v[0..n) and write p50, p99, max, min (nulls when n is 0); returns the p50. */
+static double json_spread(double *v, size_t n)
 {
+    double p50;
     qsort(v, n, sizeof(double), cmp_double);
-    json_num("p50", bench_percentile(v, n, 0.50));
+    p50 = bench_percentile(v, n, 0.50);
+    json_num("p50", p50);
     json_num("p99", bench_percentile(v, n, 0.99));
     json_num("max", n > 0 ? v[n - 1u] : 0.0 / 0.0);
     json_num("min", n > 0 ? v[0] : 0.0 / 0.0);
+    return p50;
 }
 
-/* Latency figures of r against the sim's trace (see the file's comment). */
-static void report_latency(sim_proc *sp, const stream_result *r)
+/* Latency figures of r against the sim's trace (see the file's comment);
+ * returns the p50 from the write (NaN without one). */
+static double report_latency(sim_proc *sp, const stream_result *r)
 {
     size_t n = r->samples < LAT_MAX ? r->samples : LAT_MAX;
     size_t i, m = 0, d = 0, late_n = 0;
     int64_t t0;
     int64_t *w;
     size_t kn;
+    double p50;
     double period_ns = 1e9 / 1200.0;
     double *from_write = malloc((n + 1u) * sizeof(double));
     double *from_deadline = malloc((n + 1u) * sizeof(double));
@@ -452,7 +483,7 @@ static void report_latency(sim_proc *sp, const stream_result *r)
         }
     }
     json_open("latency_us");
-    json_spread(from_write, m);
+    p50 = json_spread(from_write, m);
     json_int("matched", (long long)m);
     json_str("reference", traced ? "the sim's write() call of the sample (leptrino-sim --trace-writes), "
                                    "to the return of the read that returned it"
@@ -473,6 +504,7 @@ static void report_latency(sim_proc *sp, const stream_result *r)
     free(from_write);
     free(from_deadline);
     free(late);
+    return m > 0 ? p50 : 0.0 / 0.0;
 }
 
 int e2e_child_main(int argc, char **argv)
@@ -517,46 +549,115 @@ static long long strace_calls(const e2e_options *o, const char *port, int mode, 
     return calls;
 }
 
+/* The figures of one path that the comparison between paths uses. */
+typedef struct path_figures {
+    double latency_p50_us;       /* from the sim's write */
+    double cpu_us_per_sample;
+    double cpu_percent;          /* of one core */
+    double rw_per_sample;        /* read + write calls (/proc/self/io) */
+    double syscalls_per_sample;  /* strace, NaN without */
+} path_figures;
+
+static const char *path_of(int mode)
+{
+    switch (mode) {
+    case MODE_CLIENT:
+        return "lep_client_next_sample over lep_serial, one sample per call";
+    case MODE_FIELD_SLEEP:
+        return "field baseline: VMIN=0/VTIME=0, one byte per read() into the plain decoder, "
+               "a fixed 1 ms nanosleep after a read that returned 0";
+    case MODE_FIELD_BUSY:
+        return "field baseline: VMIN=0/VTIME=0, one byte per read() into the plain decoder, "
+               "busy loop (never sleeps), run for a bounded time";
+    default:
+        return "lep_session_read over the port, batches of up to 512";
+    }
+}
+
+/* Stream one path against the sim (sp): `samples` samples, or run_seconds
+ * when samples is 0; then strace children streaming 0 and strace_seconds
+ * (none when strace_seconds is 0). Writes the path's object under key and
+ * fills *pf. */
 static void report_mode(const e2e_options *o, const char *key, int mode, sim_proc *sp, size_t samples,
-                        double stream_seconds)
+                        double run_seconds, double strace_seconds, path_figures *pf)
 {
     stream_result r;
     struct stat st;
+    double per_sample = 0.0 / 0.0;
     json_open(key);
     /* Streams of earlier paths (and of the strace children) are in the trace already. */
     if (sp->trace[0] != '\0' && stat(sp->trace, &st) == 0) {
         sp->trace_off = (long)st.st_size;
     }
-    stream_run(sp->port, mode, 0.0, samples, sp->pid, &r);
-    json_str("path", mode == MODE_CLIENT ? "lep_client_next_sample over lep_serial, one sample per call"
-                                         : "lep_session_read over the port, batches of up to 512");
-    json_int("latency_budget_ms", budget_of(mode));
+    stream_run(sp->port, mode, samples > 0 ? 0.0 : run_seconds, samples, sp->pid, &r);
+    json_str("path", path_of(mode));
+    if (is_field(mode)) {
+        json_null("latency_budget_ms");
+    } else {
+        json_int("latency_budget_ms", budget_of(mode));
+    }
     json_int("rc", r.rc);
     json_int("samples", (long long)r.samples);
     json_int("lost", (long long)r.lost);
-    report_latency(sp, &r);
+    pf->latency_p50_us = report_latency(sp, &r);
+    pf->cpu_us_per_sample = r.samples ? r.cpu_s * 1e6 / (double)r.samples : 0.0 / 0.0;
+    pf->cpu_percent = 100.0 * r.cpu_s / r.wall_s;
+    pf->rw_per_sample = r.rw_syscalls >= 0 && r.samples ? (double)r.rw_syscalls / (double)r.samples : 0.0 / 0.0;
     json_num("wall_s", r.wall_s);
     json_num("cpu_s", r.cpu_s);
-    json_num("cpu_percent_of_one_core", 100.0 * r.cpu_s / r.wall_s);
-    json_num("cpu_us_per_sample", r.samples ? r.cpu_s * 1e6 / (double)r.samples : 0.0 / 0.0);
+    json_num("cpu_percent_of_one_core", pf->cpu_percent);
+    json_num("cpu_us_per_sample", pf->cpu_us_per_sample);
     json_num("sim_cpu_us_per_sample", r.samples ? r.sim_cpu_s * 1e6 / (double)r.samples : 0.0 / 0.0);
     json_num("sim_over_client_cpu", r.sim_cpu_s / r.cpu_s);
-    json_num("read_write_syscalls_per_sample_proc",
-             r.rw_syscalls >= 0 && r.samples ? (double)r.rw_syscalls / (double)r.samples : 0.0 / 0.0);
+    json_num("read_write_syscalls_per_sample_proc", pf->rw_per_sample);
+    if (is_field(mode)) {
+        double sleeps = r.samples ? (double)r.sleeps / (double)r.samples : 0.0 / 0.0;
+        json_num("idle_sleeps_per_sample", sleeps);
+        json_num("syscalls_per_sample_proc", pf->rw_per_sample + sleeps);
+        json_str("syscalls_proc_method", "read+write calls (/proc/self/io) plus the loop's own nanosleep "
+                                         "calls, over the untraced run");
+    }
     stream_free(&r);
-    if (bench_have("strace")) {
+    if (strace_seconds > 0.0 && bench_have("strace")) {
         long long base = strace_calls(o, sp->port, mode, 0.0);
-        long long run = strace_calls(o, sp->port, mode, stream_seconds);
-        double per_s = base >= 0 && run >= 0 ? (double)(run - base) / stream_seconds : 0.0 / 0.0;
+        long long run = strace_calls(o, sp->port, mode, strace_seconds);
+        double per_s = base >= 0 && run >= 0 ? (double)(run - base) / strace_seconds : 0.0 / 0.0;
+        per_sample = per_s / 1200.0;
         json_num("syscalls_per_s", per_s);
-        json_num("syscalls_per_sample", per_s / 1200.0);
+        json_num("syscalls_per_sample", per_sample);
         json_str("syscalls_method", "strace -f -c: (calls streaming T s) - (calls streaming 0 s), over T; "
                                     "the traced run is slower than the untraced one");
     } else {
         json_null("syscalls_per_s");
         json_null("syscalls_per_sample");
-        json_str("syscalls_method", "strace not installed");
+        json_str("syscalls_method", strace_seconds > 0.0
+                                        ? "strace not installed"
+                                        : "not run under strace: a busy loop's count is set by strace's own "
+                                          "speed; see read_write_syscalls_per_sample_proc");
     }
+    pf->syscalls_per_sample = per_sample;
+    json_close();
+}
+
+/* The comparison of one run: leptrino's paths against the field baseline
+ * that sleeps (the one that does not burn a core). Ratios are
+ * field / leptrino: above 1, leptrino spends less. */
+static void report_field_comparison(const path_figures *low, const path_figures *rec,
+                                    const path_figures *fsleep, const path_figures *fbusy)
+{
+    json_open("field_comparison");
+    json_num("field_sleep_over_low_latency_latency_p50", fsleep->latency_p50_us / low->latency_p50_us);
+    json_num("field_sleep_over_low_latency_cpu_per_sample", fsleep->cpu_us_per_sample / low->cpu_us_per_sample);
+    json_num("field_sleep_over_recording_cpu_per_sample", fsleep->cpu_us_per_sample / rec->cpu_us_per_sample);
+    json_num("field_sleep_over_recording_syscalls_per_sample",
+             fsleep->syscalls_per_sample / rec->syscalls_per_sample);
+    json_num("field_sleep_over_recording_read_write_per_sample_proc",
+             fsleep->rw_per_sample / rec->rw_per_sample);
+    json_num("field_busy_over_low_latency_latency_p50", fbusy->latency_p50_us / low->latency_p50_us);
+    json_num("field_busy_cpu_percent_of_one_core", fbusy->cpu_percent);
+    json_str("method", "same run, same sim: each ratio is the field path's figure over leptrino's "
+                       "(latency from the sim's write p50; getrusage CPU per sample; system calls per "
+                       "sample by strace, and read+write calls by /proc/self/io)");
     json_close();
 }
 
@@ -733,6 +834,8 @@ void e2e_report(const e2e_options *o)
     sim_proc sp;
     double sim_cpu;
     size_t samples = o->smoke ? 400u : 12000u;
+    double strace_s = o->smoke ? 0.5 : 3.0;
+    path_figures low, rec, client, fsleep, fbusy;
     json_open("end_to_end");
     json_str("sim", o->sim);
     if (sim_start(o, 1200.0, 1, &sp) != 0) {
@@ -741,9 +844,13 @@ void e2e_report(const e2e_options *o)
         python_costs(o);
         return;
     }
-    report_mode(o, "low_latency", MODE_LOW_LATENCY, &sp, samples, o->smoke ? 0.5 : 3.0);
-    report_mode(o, "recording", MODE_RECORDING, &sp, samples, o->smoke ? 0.5 : 3.0);
-    report_mode(o, "client", MODE_CLIENT, &sp, samples, o->smoke ? 0.5 : 3.0);
+    report_mode(o, "low_latency", MODE_LOW_LATENCY, &sp, samples, 0.0, strace_s, &low);
+    report_mode(o, "recording", MODE_RECORDING, &sp, samples, 0.0, strace_s, &rec);
+    report_mode(o, "client", MODE_CLIENT, &sp, samples, 0.0, strace_s, &client);
+    report_mode(o, "field_sleep", MODE_FIELD_SLEEP, &sp, samples, 0.0, strace_s, &fsleep);
+    /* The busy loop takes a whole core: bounded in time, never under strace. */
+    report_mode(o, "field_busy", MODE_FIELD_BUSY, &sp, 0, o->smoke ? 0.3 : FIELD_BUSY_SECONDS, 0.0, &fbusy);
+    report_field_comparison(&low, &rec, &fsleep, &fbusy);
     sim_cpu = sim_stop(&sp);
     json_num("sim_cpu_s_whole_life", sim_cpu);
     json_open("sender_floor");
