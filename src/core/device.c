@@ -7,22 +7,25 @@
 
 #if LEP_HAVE_DEVICE
 
+/* Whether r, with src (size bytes) as its data, can be encoded. */
+static bool encodable(lep_response *r, uint8_t code, const void *src, size_t size)
+{
+    uint8_t msg[LEP_LEN_PRODUCT_INFO_RATE];
+    size_t n;
+    r->code = code;
+    memcpy(&r->u, src, size);
+    return lep_response_encode(r, msg, sizeof(msg), &n) == LEP_OK;
+}
+
 /* True when the answers to 0x2A and 0x2B can be encoded from info and rated
  * (the encoder reads only the member of u that the code selects). */
 static bool identity_ok(const lep_product_info *info, const lep_rated *rated)
 {
     lep_response r;
-    uint8_t msg[LEP_LEN_PRODUCT_INFO_RATE];
-    size_t n;
-    int rc;
     r.result = LEP_RESULT_OK;
     r.stream = false;
-    r.code = LEP_CMD_RATED;
-    memcpy(&r.u, rated, sizeof(*rated));
-    rc = lep_response_encode(&r, msg, sizeof(msg), &n);
-    r.code = LEP_CMD_PRODUCT_INFO;
-    memcpy(&r.u, info, sizeof(*info));
-    return rc == LEP_OK && lep_response_encode(&r, msg, sizeof(msg), &n) == LEP_OK;
+    return encodable(&r, LEP_CMD_RATED, rated, sizeof(*rated)) &&
+           encodable(&r, LEP_CMD_PRODUCT_INFO, info, sizeof(*info));
 }
 
 int lep_device_init(lep_device *d, const lep_product_info *info, const lep_rated *rated,
@@ -90,11 +93,13 @@ int lep_device_stream_frame(const lep_sample *s, uint8_t *out, size_t cap, size_
     return lep_response_frame(&r, out, cap, len);
 }
 
+typedef char lep_device_offsets_fit[(offsetof(lep_device, sample) < 256u) ? 1 : -1];
+
 /* The queries, answered with a copy of a member of lep_device. */
 static const struct query {
     uint8_t code;
     uint8_t size;
-    uint16_t at; /* offset in lep_device */
+    uint8_t at; /* offset in lep_device (the last member starts below 256) */
 } k_queries[] = {
     {LEP_CMD_PRODUCT_INFO, sizeof(lep_product_info), offsetof(lep_device, info)},
     {LEP_CMD_RATED, sizeof(lep_rated), offsetof(lep_device, rated)},
@@ -104,10 +109,10 @@ static const struct query {
 /* Apply a valid command to the state and fill its answer. */
 static void apply(lep_device *d, const lep_command *cmd, lep_response *r)
 {
-    size_t i;
-    for (i = 0; i < sizeof(k_queries) / sizeof(k_queries[0]); i++) {
-        if (cmd->code == k_queries[i].code) {
-            memcpy(&r->u, (const uint8_t *)d + k_queries[i].at, k_queries[i].size);
+    const struct query *q;
+    for (q = k_queries; q != k_queries + sizeof(k_queries) / sizeof(k_queries[0]); q++) {
+        if (cmd->code == q->code) {
+            memcpy(&r->u, (const uint8_t *)d + q->at, q->size);
             return;
         }
     }
@@ -153,7 +158,10 @@ size_t lep_device_feed(lep_device *d, const uint8_t *in, size_t len, lep_device_
     lep_frame_event fev;
     size_t n;
     if (ev != NULL) {
-        memset(ev, 0, sizeof(*ev));
+        ev->type = LEP_DEVICE_NONE;
+        ev->code = 0;
+        ev->result = 0;
+        ev->filter = 0;
     }
     if (out_len != NULL) {
         *out_len = 0;
