@@ -350,8 +350,13 @@ static int encode_data(uint8_t *msg, size_t n, const lep_response *r)
         return encode_sample(msg, &r->u.sample);
     case LEP_LEN_RATED:
         for (i = 0; i < LEP_AXES; i++) {
+            union {
+                float f;
+                uint32_t bits;
+            } v;
             uint32_t bits;
-            memcpy(&bits, &r->u.rated.axis[i], sizeof(bits));
+            v.f = r->u.rated.axis[i];
+            bits = v.bits;
             if (!rating_bits_ok(bits)) {
                 return LEP_E_VALUE;
             }
@@ -449,25 +454,27 @@ void lep_sample_to_si_f(const lep_sample *s, const lep_rated *rated, float si[LE
 
 uint8_t lep_sample_saturated(const lep_sample *s, int16_t limit)
 {
-    uint8_t mask = 0;
-    size_t i;
+    unsigned mask = 0;
+    unsigned i;
     if (s == NULL) {
         return 0;
     }
     for (i = 0; i < LEP_AXES; i++) {
         int32_t v = s->raw[i];
         if ((v < 0 ? -v : v) >= (int32_t)limit) {
-            mask = (uint8_t)(mask | (1u << i));
+            mask |= 1u << i;
         }
     }
-    return mask;
+    return (uint8_t)mask;
 }
 
 /* Entry i of a list of NUL-separated texts. */
 static const char *text_at(const char *list, unsigned i)
 {
-    for (; i > 0u; i--) {
-        list += strlen(list) + 1u;
+    while (i > 0u) {
+        if (*list++ == '\0') {
+            i--;
+        }
     }
     return list;
 }
