@@ -106,8 +106,9 @@ static const struct query {
     {LEP_CMD_FILTER_GET, 1, offsetof(lep_device, filter_active)},
     {LEP_CMD_SAMPLE, sizeof(lep_sample), offsetof(lep_device, sample)}};
 
-/* Apply a valid command to the state and fill its answer. */
-static void apply(lep_device *d, const lep_command *cmd, lep_response *r)
+/* Apply a valid command to the state and fill r.u with its answer (a
+ * refusal sets ev->result). */
+static void apply(lep_device *d, const lep_command *cmd, lep_device_event *ev, lep_response *r)
 {
     const struct query *q;
     for (q = k_queries; q != k_queries + sizeof(k_queries) / sizeof(k_queries[0]); q++) {
@@ -119,7 +120,7 @@ static void apply(lep_device *d, const lep_command *cmd, lep_response *r)
     if (cmd->code == LEP_CMD_STOP) {
         d->streaming = false;
     } else if (d->streaming) { /* start, filter set: refused while streaming */
-        r->result = LEP_RESULT_STATE;
+        ev->result = LEP_RESULT_STATE;
     } else if (cmd->code == LEP_CMD_START) {
         d->streaming = true;
     } else {
@@ -132,22 +133,21 @@ static void answer(lep_device *d, const uint8_t *msg, size_t len, lep_device_eve
 {
     lep_command cmd;
     lep_response r;
-    uint8_t result;
-    int rc = lep_command_decode(msg, len, &cmd, &result);
+    int rc = lep_command_decode(msg, len, &cmd, &ev->result);
     if (len < 3u) {
         ev->type = LEP_DEVICE_REJECTED; /* no command code to answer to */
+        ev->result = 0;
         return;
-    }
-    r.code = cmd.code; /* apply() fills the member of r.u that the code selects */
-    r.result = result;
-    r.stream = false;
-    if (rc == LEP_OK) {
-        apply(d, &cmd, &r);
     }
     ev->type = LEP_DEVICE_COMMAND;
     ev->code = cmd.code;
-    ev->result = r.result;
     ev->filter = cmd.filter;
+    if (rc == LEP_OK) {
+        apply(d, &cmd, ev, &r);
+    }
+    r.code = cmd.code; /* apply() filled the member of r.u that the code selects */
+    r.result = ev->result;
+    r.stream = false;
     /* a cap too small drops the answer: lep_response_frame leaves *out_len 0 */
     (void)lep_response_frame(&r, out, cap, out_len);
 }
@@ -157,16 +157,17 @@ size_t lep_device_feed(lep_device *d, const uint8_t *in, size_t len, lep_device_
 {
     lep_frame_event fev;
     size_t n;
-    if (ev != NULL) {
-        ev->type = LEP_DEVICE_NONE;
-        ev->code = 0;
-        ev->result = 0;
-        ev->filter = 0;
-    }
     if (out_len != NULL) {
         *out_len = 0;
     }
-    if (d == NULL || ev == NULL || out == NULL || out_len == NULL || (in == NULL && len > 0)) {
+    if (ev == NULL) {
+        return 0;
+    }
+    ev->type = LEP_DEVICE_NONE;
+    ev->code = 0;
+    ev->result = 0;
+    ev->filter = 0;
+    if (d == NULL || out == NULL || out_len == NULL || (in == NULL && len > 0)) {
         return 0;
     }
     n = lep_frame_decoder_feed(&d->dec, in, len, &fev);

@@ -13,6 +13,13 @@
 
 #define RESERVED_FF 0xFFu
 
+/* Helpers called from several functions stay out of line in size builds. */
+#if defined(__GNUC__) && defined(__OPTIMIZE_SIZE__)
+#define SHARED static __attribute__((noinline))
+#else
+#define SHARED static
+#endif
+
 /* The rated values travel as IEEE-754 binary32. */
 typedef char lep_float_is_binary32[(sizeof(float) == 4u) ? 1 : -1];
 
@@ -469,7 +476,7 @@ uint8_t lep_sample_saturated(const lep_sample *s, int16_t limit)
 }
 
 /* Entry i of a list of NUL-separated texts. */
-static const char *text_at(const char *list, unsigned i)
+SHARED const char *text_at(const char *list, unsigned i)
 {
     while (i > 0u) {
         if (*list++ == '\0') {
