@@ -40,7 +40,9 @@ static const uint8_t k_response_len[N_CODES][2] = {
     {LEP_LEN_HEADER, LEP_LEN_HEADER},
     {LEP_LEN_HEADER, LEP_LEN_HEADER}};
 
-/* The text fields of the product info, in wire order from byte 4. */
+/* The text fields of the product info, in wire order from byte 4; a
+ * message holds the fields that start below its length (32: three, 38:
+ * four), and the last entry starts beyond any message. */
 static const struct text_field {
     uint8_t wire;  /* offset in the message */
     uint8_t width; /* bytes on the wire */
@@ -48,7 +50,8 @@ static const struct text_field {
 } k_text[] = {{4, LEP_MODEL_LEN, offsetof(lep_product_info, model)},
               {20, LEP_SERIAL_LEN, offsetof(lep_product_info, serial)},
               {28, LEP_FIRMWARE_LEN, offsetof(lep_product_info, firmware)},
-              {32, LEP_RATE_LEN, offsetof(lep_product_info, output_rate)}};
+              {32, LEP_RATE_LEN, offsetof(lep_product_info, output_rate)},
+              {0xFF, 0, 0}}; /* the end: beyond any message */
 
 /* Index of a code in k_codes, N_CODES when unknown. */
 static unsigned code_index(uint8_t code)
@@ -245,15 +248,14 @@ static uint32_t parse_rate(const char *s)
 /* The product info's text fields of a len-byte message (32: three, 38: four). */
 static int decode_info(const uint8_t *msg, size_t len, lep_product_info *info)
 {
-    size_t i;
-    size_t fields = len == LEP_LEN_PRODUCT_INFO_RATE ? 4u : 3u;
-    for (i = 0; i < fields; i++) {
-        if (!get_text((char *)info + k_text[i].at, msg + k_text[i].wire, k_text[i].width)) {
+    const struct text_field *t;
+    for (t = k_text; t->wire < len; t++) {
+        if (!get_text((char *)info + t->at, msg + t->wire, t->width)) {
             memset(info, 0, sizeof(*info));
             return LEP_E_VALUE;
         }
     }
-    info->has_output_rate = fields == 4u;
+    info->has_output_rate = len == LEP_LEN_PRODUCT_INFO_RATE;
     info->output_rate_hz = parse_rate(info->output_rate);
     return LEP_OK;
 }
@@ -346,6 +348,7 @@ static int encode_sample(uint8_t *msg, const lep_sample *s)
  * encoding refuses (LEP_E_VALUE); the sensor side needs no decoder. */
 static int encode_data(uint8_t *msg, size_t n, const lep_response *r)
 {
+    const struct text_field *t;
     size_t i;
     switch (n) {
     case LEP_LEN_HEADER:
@@ -371,9 +374,8 @@ static int encode_data(uint8_t *msg, size_t n, const lep_response *r)
         }
         return LEP_OK;
     default: /* 32 or 38 */
-        for (i = 0; i < (n == LEP_LEN_PRODUCT_INFO_RATE ? 4u : 3u); i++) {
-            if (!put_text(msg + k_text[i].wire, (const char *)&r->u.info + k_text[i].at,
-                          k_text[i].width)) {
+        for (t = k_text; t->wire < n; t++) {
+            if (!put_text(msg + t->wire, (const char *)&r->u.info + t->at, t->width)) {
                 return LEP_E_VALUE;
             }
         }
