@@ -193,7 +193,7 @@ static bool printable(uint8_t b)
     return b >= 0x20u && b <= 0x7Eu;
 }
 
-/* Copy an ASCII field into a C string without its padding (trailing spaces
+/* Copy an ASCII field into a zeroed C string without its padding (trailing spaces
  * and NULs). False for anything but printable ASCII before the padding
  * (a control byte, a byte >= 0x80, a NUL followed by text). */
 static bool get_text(char *dst, const uint8_t *src, size_t n)
@@ -209,8 +209,7 @@ static bool get_text(char *dst, const uint8_t *src, size_t n)
         }
         dst[i] = (char)src[i];
     }
-    dst[end] = '\0';
-    return true;
+    return true; /* dst[end] stays '\0': lep_response_decode zeroed r */
 }
 
 /* Write a C string (at most n characters, printable ASCII) into an n-byte
@@ -229,20 +228,19 @@ static bool put_text(uint8_t *dst, const char *src, size_t n)
     return true;
 }
 
+/* Leading spaces, then digits to the end; 0 for anything else (no digits
+ * leave v at 0, so they need no test of their own). */
 static uint32_t parse_rate(const char *s)
 {
     uint32_t v = 0;
-    size_t i = 0;
-    size_t digits = 0;
-    while (s[i] == ' ') {
-        i++;
+    while (*s == ' ') {
+        s++;
     }
-    while (s[i] >= '0' && s[i] <= '9') { /* at most 6 digits: no overflow */
-        v = v * 10u + (uint32_t)(s[i] - '0');
-        i++;
-        digits++;
+    while (*s >= '0' && *s <= '9') { /* at most 6 digits: no overflow */
+        v = v * 10u + (uint32_t)(*s - '0');
+        s++;
     }
-    return (digits > 0u && s[i] == '\0') ? v : 0u;
+    return *s == '\0' ? v : 0u;
 }
 
 /* The product info's text fields of a len-byte message (32: three, 38: four). */
