@@ -155,37 +155,32 @@ int lep_command_encode(const lep_command *cmd, uint8_t *msg, size_t cap, size_t 
     return LEP_OK;
 }
 
-static int command_fail(uint8_t *result, uint8_t code, int err)
-{
-    *result = code;
-    return err;
-}
-
 int lep_command_decode(const uint8_t *msg, size_t len, lep_command *cmd, uint8_t *result)
 {
     unsigned k;
-    int rc;
+    int rc = LEP_OK;
     if (msg == NULL || cmd == NULL || result == NULL) {
         return LEP_E_ARG;
     }
     cmd->code = len >= 3u ? msg[2] : 0u;
     cmd->filter = 0;
-    *result = LEP_RESULT_OK;
     if (!length_ok(msg, len)) {
-        return command_fail(result, LEP_RESULT_LENGTH, LEP_E_LENGTH);
+        rc = LEP_E_LENGTH;
+    } else if ((k = code_index(cmd->code)) == N_CODES) {
+        rc = LEP_E_UNEXPECTED;
+    } else if (len != command_length(k)) {
+        rc = LEP_E_LENGTH;
+    } else if (msg[1] != RESERVED_FF || msg[3] != 0x00u) {
+        rc = LEP_E_RESERVED;
+    } else if (len == LEP_LEN_FILTER_SET_CMD) {
+        rc = get_filter(msg, &cmd->filter);
     }
-    k = code_index(cmd->code);
-    if (k == N_CODES) {
-        return command_fail(result, LEP_RESULT_UNDEFINED, LEP_E_UNEXPECTED);
-    }
-    if (len != command_length(k)) {
-        return command_fail(result, LEP_RESULT_LENGTH, LEP_E_LENGTH);
-    }
-    if (msg[1] != RESERVED_FF || msg[3] != 0x00u) {
-        return command_fail(result, LEP_RESULT_VALUE, LEP_E_RESERVED);
-    }
-    rc = len == LEP_LEN_FILTER_SET_CMD ? get_filter(msg, &cmd->filter) : LEP_OK;
-    return rc == LEP_OK ? LEP_OK : command_fail(result, LEP_RESULT_VALUE, rc);
+    /* the answer's result: a length error, an undefined command, or a bad value */
+    *result = rc == LEP_OK             ? LEP_RESULT_OK
+              : rc == LEP_E_LENGTH     ? LEP_RESULT_LENGTH
+              : rc == LEP_E_UNEXPECTED ? LEP_RESULT_UNDEFINED
+                                       : LEP_RESULT_VALUE;
+    return rc;
 }
 
 static bool printable(uint8_t b)
