@@ -213,7 +213,8 @@ static void client_step(int use_cg, int runs, size_t frames)
         return;
     }
     t = timed_run(REGION_CLIENT_STEP, &s, 1, runs, &m);
-    json_str("what", "lep_client_step fed one byte per call, realistic stream, streaming");
+    json_str("what", "lep_client_step_byte fed one byte per call (an ISR ring consumer: pop, "
+                     "step, use the sample), realistic stream, streaming");
     json_str("unit", use_cg ? "instructions_per_byte" : "ns_per_byte");
     json_num("leptrino", use_cg ? callgrind_ir(REGION_CLIENT_STEP, STREAM_REALISTIC, 1, frames) / (double)s.len
                                 : t * 1e9 / (double)s.len);

@@ -224,7 +224,7 @@ static inline int lep_client_step_byte(lep_client *c, uint8_t b, lep_sample *out
     /* Count the step (0: look at the clock); that also ends the last outcome's message. */
     c->fast = (uint16_t)(c->fast + 1u);
 #if !defined(__OPTIMIZE_SIZE__)
-    if (c->fast != 0u && lep_frame_decoder_push1(&c->dec, b)) {
+    if (LEP_FRAME_LIKELY_(c->fast != 0u && lep_frame_decoder_push1(&c->dec, b))) {
         return LEP_STEP_NONE;
     }
 #endif

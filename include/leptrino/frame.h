@@ -121,6 +121,13 @@ LEP_API int lep_frame_decoder_feed_all(lep_frame_decoder *d, const uint8_t *data
 #define LEP_FRAME_ST_BODY_DLE_ 3u /* inside a frame body, after a DLE */
 #define LEP_FRAME_ST_BCC_ 4u      /* after DLE ETX */
 
+/* A branch the one-byte paths below expect to take (private). */
+#if defined(__GNUC__)
+#define LEP_FRAME_LIKELY_(x) __builtin_expect(!!(x), 1)
+#else
+#define LEP_FRAME_LIKELY_(x) (x)
+#endif
+
 /* The one-byte fast path, inline for a caller fed one byte at a time (an ISR
  * ring buffer). When b completes no event and changes no counter (a message
  * byte with room for it, stuffed or not, a DLE inside a body, or the DLE STX /
@@ -132,12 +139,12 @@ LEP_API int lep_frame_decoder_feed_all(lep_frame_decoder *d, const uint8_t *data
 static inline bool lep_frame_decoder_push1(lep_frame_decoder *d, uint8_t b)
 {
     uint8_t st = d->state;
-    if (st == LEP_FRAME_ST_BODY_) {
-        if (b == LEP_DLE) {
+    if (LEP_FRAME_LIKELY_(st == LEP_FRAME_ST_BODY_)) {
+        if (!LEP_FRAME_LIKELY_(b != LEP_DLE)) {
             d->state = LEP_FRAME_ST_BODY_DLE_;
             return true;
         }
-        if (d->len < LEP_MAX_MESSAGE) { /* the usual byte */
+        if (LEP_FRAME_LIKELY_(d->len < LEP_MAX_MESSAGE)) { /* the usual byte */
             d->buf[d->len] = b;
             d->len = (uint16_t)(d->len + 1u);
             d->bcc = (uint8_t)(d->bcc ^ b);

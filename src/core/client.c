@@ -38,11 +38,11 @@ enum {
 };
 
 /* get_stats copies the counters as one block: the layouts must agree. */
-typedef char lep_client_counters_fit[(sizeof(((lep_client *)0)->count) == N_COUNTERS * sizeof(uint32_t) &&
-                                      offsetof(lep_client_stats, stalls) - offsetof(lep_client_stats, retries) ==
-                                          (N_COUNTERS - 1) * sizeof(uint32_t))
-                                         ? 1
-                                         : -1];
+#define COUNTERS_FIT \
+    (sizeof(((lep_client *)0)->count) == N_COUNTERS * sizeof(uint32_t) && \
+     offsetof(lep_client_stats, stalls) - offsetof(lep_client_stats, retries) == \
+         (N_COUNTERS - 1) * sizeof(uint32_t))
+typedef char lep_client_counters_fit[COUNTERS_FIT ? 1 : -1];
 
 /* lep_client.fast counts single-byte steps up (lep_client_step_byte adds 1
  * first); the step that brings it to 0 looks at the clock (and at the state).
@@ -479,7 +479,8 @@ HOT int take(lep_client *c, const lep_frame_event *ev, lep_sample *out)
 #if defined(__GNUC__) && !defined(__OPTIMIZE_SIZE__)
 __attribute__((noinline))
 #endif
-static int step_input(lep_client *c, const uint8_t *data, size_t len, size_t *consumed)
+static int step_input(lep_client *c, const uint8_t *data, size_t len, size_t *consumed,
+                      lep_sample *out)
 {
     size_t pos = 0;
     c->msg = NULL;
@@ -487,7 +488,7 @@ static int step_input(lep_client *c, const uint8_t *data, size_t len, size_t *co
         lep_frame_event ev;
         int rc;
         pos += lep_frame_decoder_feed(&c->dec, data + pos, len - pos, &ev);
-        rc = take(c, &ev, NULL);
+        rc = take(c, &ev, out);
         if (rc != LEP_STEP_NONE) {
             *consumed = pos;
             return rc;
@@ -510,22 +511,26 @@ int lep_client_step(lep_client *c, const uint8_t *data, size_t len, size_t *cons
         return lep_client_step_byte(c, data[0], NULL);
     }
 #endif
-    return step_input(c, data, len, consumed);
+    return step_input(c, data, len, consumed, NULL);
 }
 
+/* (lep_client_step_byte counted the step in c->fast.) */
 int lep_client_step_byte_slow(lep_client *c, uint8_t b, lep_sample *out)
 {
+#if defined(__OPTIMIZE_SIZE__)
+    size_t used;
+    return step_input(c, &b, 1, &used, out);
+#else /* step_input for one byte, without its loop */
     lep_frame_event ev;
     int rc;
-    c->msg = NULL; /* (lep_client_step_byte counted the step in c->fast) */
-#if !defined(__OPTIMIZE_SIZE__)
+    c->msg = NULL;
     if (c->fast == 0u && lep_frame_decoder_push1(&c->dec, b)) {
         return step_clock(c, 1); /* only the clock was due (the inline path left b alone) */
     }
-#endif
     (void)lep_frame_decoder_feed(&c->dec, &b, 1, &ev);
     rc = take(c, &ev, out);
     return rc != LEP_STEP_NONE ? rc : step_clock(c, 1);
+#endif
 }
 
 /* ---- Blocking calls ---- */
