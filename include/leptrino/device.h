@@ -43,13 +43,13 @@ typedef struct lep_device_event {
 
 /* Device context. Caller-allocated; fields are private. */
 typedef struct lep_device {
+    uint8_t filter_active; /* the small fields first: short offsets on Thumb-1 */
+    uint8_t filter_pending;
+    bool streaming;
     lep_frame_decoder dec;
     lep_product_info info;
     lep_rated rated;
     lep_sample sample;
-    uint8_t filter_active;
-    uint8_t filter_pending;
-    bool streaming;
 } lep_device;
 
 #if LEP_HAVE_DEVICE

@@ -10,22 +10,25 @@
 
 #if LEP_HAVE_DEVICE
 
+/* Whether r, with src (size bytes) as its data, can be encoded. */
+static bool encodable(lep_response *r, uint8_t code, const void *src, size_t size)
+{
+    uint8_t msg[LEP_LEN_PRODUCT_INFO_RATE];
+    size_t n;
+    r->code = code;
+    memcpy(&r->u, src, size);
+    return lep_response_encode(r, msg, sizeof(msg), &n) == LEP_OK;
+}
+
 /* True when the answers to 0x2A and 0x2B can be encoded from info and rated
  * (the encoder reads only the member of u that the code selects). */
 static bool identity_ok(const lep_product_info *info, const lep_rated *rated)
 {
     lep_response r;
-    uint8_t msg[LEP_LEN_PRODUCT_INFO_RATE];
-    size_t n;
-    int rc;
     r.result = LEP_RESULT_OK;
     r.stream = false;
-    r.code = LEP_CMD_RATED;
-    memcpy(&r.u, rated, sizeof(*rated));
-    rc = lep_response_encode(&r, msg, sizeof(msg), &n);
-    r.code = LEP_CMD_PRODUCT_INFO;
-    memcpy(&r.u, info, sizeof(*info));
-    return rc == LEP_OK && lep_response_encode(&r, msg, sizeof(msg), &n) == LEP_OK;
+    return encodable(&r, LEP_CMD_RATED, rated, sizeof(*rated)) &&
+           encodable(&r, LEP_CMD_PRODUCT_INFO, info, sizeof(*info));
 }
 
 int lep_device_init(lep_device *d, const lep_product_info *info, const lep_rated *rated,
@@ -93,31 +96,34 @@ int lep_device_stream_frame(const lep_sample *s, uint8_t *out, size_t cap, size_
     return lep_response_frame(&r, out, cap, len);
 }
 
+typedef char lep_device_offsets_fit[(offsetof(lep_device, sample) < 256u) ? 1 : -1];
+
 /* The queries, answered with a copy of a member of lep_device. */
 static const struct query {
     uint8_t code;
     uint8_t size;
-    uint16_t at; /* offset in lep_device */
+    uint8_t at; /* offset in lep_device (the last member starts below 256) */
 } k_queries[] = {
     {LEP_CMD_PRODUCT_INFO, sizeof(lep_product_info), offsetof(lep_device, info)},
     {LEP_CMD_RATED, sizeof(lep_rated), offsetof(lep_device, rated)},
     {LEP_CMD_FILTER_GET, 1, offsetof(lep_device, filter_active)},
     {LEP_CMD_SAMPLE, sizeof(lep_sample), offsetof(lep_device, sample)}};
 
-/* Apply a valid command to the state and fill its answer. */
-static void apply(lep_device *d, const lep_command *cmd, lep_response *r)
+/* Apply a valid command to the state and fill r.u with its answer (a
+ * refusal sets ev->result). */
+static void apply(lep_device *d, const lep_command *cmd, lep_device_event *ev, lep_response *r)
 {
-    size_t i;
-    for (i = 0; i < sizeof(k_queries) / sizeof(k_queries[0]); i++) {
-        if (cmd->code == k_queries[i].code) {
-            memcpy(&r->u, (const uint8_t *)d + k_queries[i].at, k_queries[i].size);
+    const struct query *q;
+    for (q = k_queries; q != k_queries + sizeof(k_queries) / sizeof(k_queries[0]); q++) {
+        if (cmd->code == q->code) {
+            memcpy(&r->u, (const uint8_t *)d + q->at, q->size);
             return;
         }
     }
     if (cmd->code == LEP_CMD_STOP) {
         d->streaming = false;
     } else if (d->streaming) { /* start, filter set: refused while streaming */
-        r->result = LEP_RESULT_STATE;
+        ev->result = LEP_RESULT_STATE;
     } else if (cmd->code == LEP_CMD_START) {
         d->streaming = true;
     } else {
@@ -130,22 +136,21 @@ static void answer(lep_device *d, const uint8_t *msg, size_t len, lep_device_eve
 {
     lep_command cmd;
     lep_response r;
-    uint8_t result;
-    int rc = lep_command_decode(msg, len, &cmd, &result);
+    int rc = lep_command_decode(msg, len, &cmd, &ev->result);
     if (len < 3u) {
         ev->type = LEP_DEVICE_REJECTED; /* no command code to answer to */
+        ev->result = 0;
         return;
-    }
-    r.code = cmd.code; /* apply() fills the member of r.u that the code selects */
-    r.result = result;
-    r.stream = false;
-    if (rc == LEP_OK) {
-        apply(d, &cmd, &r);
     }
     ev->type = LEP_DEVICE_COMMAND;
     ev->code = cmd.code;
-    ev->result = r.result;
     ev->filter = cmd.filter;
+    if (rc == LEP_OK) {
+        apply(d, &cmd, ev, &r);
+    }
+    r.code = cmd.code; /* apply() filled the member of r.u that the code selects */
+    r.result = ev->result;
+    r.stream = false;
     /* a cap too small drops the answer: lep_response_frame leaves *out_len 0 */
     (void)lep_response_frame(&r, out, cap, out_len);
 }
@@ -155,13 +160,17 @@ size_t lep_device_feed(lep_device *d, const uint8_t *in, size_t len, lep_device_
 {
     lep_frame_event fev;
     size_t n;
-    if (ev != NULL) {
-        memset(ev, 0, sizeof(*ev));
-    }
     if (out_len != NULL) {
         *out_len = 0;
     }
-    if (d == NULL || ev == NULL || out == NULL || out_len == NULL || (in == NULL && len > 0)) {
+    if (ev == NULL) {
+        return 0;
+    }
+    ev->type = LEP_DEVICE_NONE;
+    ev->code = 0;
+    ev->result = 0;
+    ev->filter = 0;
+    if (d == NULL || out == NULL || out_len == NULL || (in == NULL && len > 0)) {
         return 0;
     }
     n = lep_frame_decoder_feed(&d->dec, in, len, &fev);

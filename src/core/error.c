@@ -41,7 +41,10 @@ static const char k_texts[] = "success\0"
                               "state error\0"
                               "unknown result code";
 
-/* The text at index i of k_texts. */
+/* The text at index i of k_texts (one copy in size builds). */
+#if defined(__GNUC__) && defined(__OPTIMIZE_SIZE__)
+__attribute__((noinline))
+#endif
 static const char *nth(unsigned i)
 {
     const char *s = k_texts;

@@ -13,6 +13,13 @@
 
 #define RESERVED_FF 0xFFu
 
+/* Helpers called from several functions stay out of line in size builds. */
+#if defined(__GNUC__) && defined(__OPTIMIZE_SIZE__)
+#define SHARED static __attribute__((noinline))
+#else
+#define SHARED static
+#endif
+
 /* The rated values travel as IEEE-754 binary32. */
 typedef char lep_float_is_binary32[(sizeof(float) == 4u) ? 1 : -1];
 
@@ -33,7 +40,9 @@ static const uint8_t k_response_len[N_CODES][2] = {
     {LEP_LEN_HEADER, LEP_LEN_HEADER},
     {LEP_LEN_HEADER, LEP_LEN_HEADER}};
 
-/* The text fields of the product info, in wire order from byte 4. */
+/* The text fields of the product info, in wire order from byte 4; a
+ * message holds the fields that start below its length (32: three, 38:
+ * four), and the last entry starts beyond any message. */
 static const struct text_field {
     uint8_t wire;  /* offset in the message */
     uint8_t width; /* bytes on the wire */
@@ -41,7 +50,8 @@ static const struct text_field {
 } k_text[] = {{4, LEP_MODEL_LEN, offsetof(lep_product_info, model)},
               {20, LEP_SERIAL_LEN, offsetof(lep_product_info, serial)},
               {28, LEP_FIRMWARE_LEN, offsetof(lep_product_info, firmware)},
-              {32, LEP_RATE_LEN, offsetof(lep_product_info, output_rate)}};
+              {32, LEP_RATE_LEN, offsetof(lep_product_info, output_rate)},
+              {0xFF, 0, 0}}; /* the end: beyond any message */
 
 /* Index of a code in k_codes, N_CODES when unknown. */
 static unsigned code_index(uint8_t code)
@@ -145,37 +155,32 @@ int lep_command_encode(const lep_command *cmd, uint8_t *msg, size_t cap, size_t 
     return LEP_OK;
 }
 
-static int command_fail(uint8_t *result, uint8_t code, int err)
-{
-    *result = code;
-    return err;
-}
-
 int lep_command_decode(const uint8_t *msg, size_t len, lep_command *cmd, uint8_t *result)
 {
     unsigned k;
-    int rc;
+    int rc = LEP_OK;
     if (msg == NULL || cmd == NULL || result == NULL) {
         return LEP_E_ARG;
     }
     cmd->code = len >= 3u ? msg[2] : 0u;
     cmd->filter = 0;
-    *result = LEP_RESULT_OK;
     if (!length_ok(msg, len)) {
-        return command_fail(result, LEP_RESULT_LENGTH, LEP_E_LENGTH);
+        rc = LEP_E_LENGTH;
+    } else if ((k = code_index(cmd->code)) == N_CODES) {
+        rc = LEP_E_UNEXPECTED;
+    } else if (len != command_length(k)) {
+        rc = LEP_E_LENGTH;
+    } else if (msg[1] != RESERVED_FF || msg[3] != 0x00u) {
+        rc = LEP_E_RESERVED;
+    } else if (len == LEP_LEN_FILTER_SET_CMD) {
+        rc = get_filter(msg, &cmd->filter);
     }
-    k = code_index(cmd->code);
-    if (k == N_CODES) {
-        return command_fail(result, LEP_RESULT_UNDEFINED, LEP_E_UNEXPECTED);
-    }
-    if (len != command_length(k)) {
-        return command_fail(result, LEP_RESULT_LENGTH, LEP_E_LENGTH);
-    }
-    if (msg[1] != RESERVED_FF || msg[3] != 0x00u) {
-        return command_fail(result, LEP_RESULT_VALUE, LEP_E_RESERVED);
-    }
-    rc = len == LEP_LEN_FILTER_SET_CMD ? get_filter(msg, &cmd->filter) : LEP_OK;
-    return rc == LEP_OK ? LEP_OK : command_fail(result, LEP_RESULT_VALUE, rc);
+    /* the answer's result: a length error, an undefined command, or a bad value */
+    *result = rc == LEP_OK             ? LEP_RESULT_OK
+              : rc == LEP_E_LENGTH     ? LEP_RESULT_LENGTH
+              : rc == LEP_E_UNEXPECTED ? LEP_RESULT_UNDEFINED
+                                       : LEP_RESULT_VALUE;
+    return rc;
 }
 
 static bool printable(uint8_t b)
@@ -183,7 +188,7 @@ static bool printable(uint8_t b)
     return b >= 0x20u && b <= 0x7Eu;
 }
 
-/* Copy an ASCII field into a C string without its padding (trailing spaces
+/* Copy an ASCII field into a zeroed C string without its padding (trailing spaces
  * and NULs). False for anything but printable ASCII before the padding
  * (a control byte, a byte >= 0x80, a NUL followed by text). */
 static bool get_text(char *dst, const uint8_t *src, size_t n)
@@ -199,8 +204,7 @@ static bool get_text(char *dst, const uint8_t *src, size_t n)
         }
         dst[i] = (char)src[i];
     }
-    dst[end] = '\0';
-    return true;
+    return true; /* dst[end] stays '\0': lep_response_decode zeroed r */
 }
 
 /* Write a C string (at most n characters, printable ASCII) into an n-byte
@@ -219,34 +223,32 @@ static bool put_text(uint8_t *dst, const char *src, size_t n)
     return true;
 }
 
+/* Leading spaces, then digits to the end; 0 for anything else (no digits
+ * leave v at 0, so they need no test of their own). */
 static uint32_t parse_rate(const char *s)
 {
     uint32_t v = 0;
-    size_t i = 0;
-    size_t digits = 0;
-    while (s[i] == ' ') {
-        i++;
+    while (*s == ' ') {
+        s++;
     }
-    while (s[i] >= '0' && s[i] <= '9') { /* at most 6 digits: no overflow */
-        v = v * 10u + (uint32_t)(s[i] - '0');
-        i++;
-        digits++;
+    while (*s >= '0' && *s <= '9') { /* at most 6 digits: no overflow */
+        v = v * 10u + (uint32_t)(*s - '0');
+        s++;
     }
-    return (digits > 0u && s[i] == '\0') ? v : 0u;
+    return *s == '\0' ? v : 0u;
 }
 
 /* The product info's text fields of a len-byte message (32: three, 38: four). */
 static int decode_info(const uint8_t *msg, size_t len, lep_product_info *info)
 {
-    size_t i;
-    size_t fields = len == LEP_LEN_PRODUCT_INFO_RATE ? 4u : 3u;
-    for (i = 0; i < fields; i++) {
-        if (!get_text((char *)info + k_text[i].at, msg + k_text[i].wire, k_text[i].width)) {
+    const struct text_field *t;
+    for (t = k_text; t->wire < len; t++) {
+        if (!get_text((char *)info + t->at, msg + t->wire, t->width)) {
             memset(info, 0, sizeof(*info));
             return LEP_E_VALUE;
         }
     }
-    info->has_output_rate = fields == 4u;
+    info->has_output_rate = len == LEP_LEN_PRODUCT_INFO_RATE;
     info->output_rate_hz = parse_rate(info->output_rate);
     return LEP_OK;
 }
@@ -339,6 +341,7 @@ static int encode_sample(uint8_t *msg, const lep_sample *s)
  * encoding refuses (LEP_E_VALUE); the sensor side needs no decoder. */
 static int encode_data(uint8_t *msg, size_t n, const lep_response *r)
 {
+    const struct text_field *t;
     size_t i;
     switch (n) {
     case LEP_LEN_HEADER:
@@ -350,8 +353,13 @@ static int encode_data(uint8_t *msg, size_t n, const lep_response *r)
         return encode_sample(msg, &r->u.sample);
     case LEP_LEN_RATED:
         for (i = 0; i < LEP_AXES; i++) {
+            union {
+                float f;
+                uint32_t bits;
+            } v;
             uint32_t bits;
-            memcpy(&bits, &r->u.rated.axis[i], sizeof(bits));
+            v.f = r->u.rated.axis[i];
+            bits = v.bits;
             if (!rating_bits_ok(bits)) {
                 return LEP_E_VALUE;
             }
@@ -359,9 +367,8 @@ static int encode_data(uint8_t *msg, size_t n, const lep_response *r)
         }
         return LEP_OK;
     default: /* 32 or 38 */
-        for (i = 0; i < (n == LEP_LEN_PRODUCT_INFO_RATE ? 4u : 3u); i++) {
-            if (!put_text(msg + k_text[i].wire, (const char *)&r->u.info + k_text[i].at,
-                          k_text[i].width)) {
+        for (t = k_text; t->wire < n; t++) {
+            if (!put_text(msg + t->wire, (const char *)&r->u.info + t->at, t->width)) {
                 return LEP_E_VALUE;
             }
         }
@@ -449,25 +456,27 @@ void lep_sample_to_si_f(const lep_sample *s, const lep_rated *rated, float si[LE
 
 uint8_t lep_sample_saturated(const lep_sample *s, int16_t limit)
 {
-    uint8_t mask = 0;
-    size_t i;
+    unsigned mask = 0;
+    unsigned i;
     if (s == NULL) {
         return 0;
     }
     for (i = 0; i < LEP_AXES; i++) {
         int32_t v = s->raw[i];
         if ((v < 0 ? -v : v) >= (int32_t)limit) {
-            mask = (uint8_t)(mask | (1u << i));
+            mask |= 1u << i;
         }
     }
-    return mask;
+    return (uint8_t)mask;
 }
 
 /* Entry i of a list of NUL-separated texts. */
-static const char *text_at(const char *list, unsigned i)
+SHARED const char *text_at(const char *list, unsigned i)
 {
-    for (; i > 0u; i--) {
-        list += strlen(list) + 1u;
+    while (i > 0u) {
+        if (*list++ == '\0') {
+            i--;
+        }
     }
     return list;
 }
