@@ -5,6 +5,7 @@
 #define _DEFAULT_SOURCE
 #endif
 
+#include <limits.h>
 #include <time.h>
 
 #include "leptrino/serial.h"
@@ -26,4 +27,13 @@ uint32_t lep_monotonic_ms(void)
 double lep_monotonic_seconds(void)
 {
     return (double)lep_priv_monotonic_ns() / 1e9;
+}
+
+int lep_priv_ms_left(int64_t deadline_ns)
+{
+    int64_t left = deadline_ns - lep_priv_monotonic_ns();
+    if (left <= 0)
+        return 0;
+    left = (left + 999999) / 1000000;
+    return left > INT_MAX ? INT_MAX : (int)left;
 }

@@ -7,7 +7,6 @@
 
 #include <errno.h>
 #include <fcntl.h>
-#include <poll.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -15,6 +14,7 @@
 #include <unistd.h>
 
 #include "errmsg.h"
+#include "fd_write.h"
 #include "leptrino/error.h"
 #include "leptrino/output.h"
 
@@ -64,26 +64,10 @@ void lep_output_options_init(lep_output_options *o)
 
 static int flush_buf(lep_output *w)
 {
-    size_t off = 0;
     if (w->err_no != 0)
         return LEP_E_IO;
-    while (off < w->len) {
-        ssize_t n = write(w->fd, w->buf + off, w->len - off);
-        if (n > 0) {
-            off += (size_t)n;
-            continue;
-        }
-        if (n < 0 && errno == EINTR)
-            continue;
-        if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {
-            struct pollfd p;
-            p.fd = w->fd;
-            p.events = POLLOUT;
-            p.revents = 0;
-            (void)poll(&p, 1, 1000);
-            continue;
-        }
-        w->err_no = n < 0 ? errno : EIO;
+    if (lep_priv_write_all(w->fd, w->buf, w->len, -1) != LEP_PRIV_WRITE_OK) {
+        w->err_no = errno != 0 ? errno : EIO;
         w->len = 0;
         return LEP_E_IO;
     }

@@ -7,4 +7,8 @@
 /* Nanoseconds of CLOCK_MONOTONIC. */
 int64_t lep_priv_monotonic_ns(void);
 
+/* Milliseconds from now until deadline_ns (CLOCK_MONOTONIC), rounded up so a
+ * poll() given them never returns early; 0 once it has passed, at most INT_MAX. */
+int lep_priv_ms_left(int64_t deadline_ns);
+
 #endif

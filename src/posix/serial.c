@@ -28,6 +28,7 @@
 #include "errmsg.h"
 #include "leptrino/error.h"
 #include "leptrino/serial.h"
+#include "fd_write.h"
 #include "posix_clock.h"
 
 /* How long a write may wait for room in the port's output buffer. */
@@ -316,16 +317,6 @@ static bool gone_errno(int e)
     return e == EIO || e == ENXIO || e == ENODEV || e == EPIPE || e == EBADF;
 }
 
-/* Milliseconds left until deadline_ns, rounded up so poll never returns early. */
-static int ms_left(int64_t deadline_ns)
-{
-    int64_t left = deadline_ns - lep_priv_monotonic_ns();
-    if (left <= 0)
-        return 0;
-    left = (left + 999999) / 1000000;
-    return left > INT_MAX ? INT_MAX : (int)left;
-}
-
 static int serial_read(void *user, uint8_t *buf, size_t cap, int timeout_ms)
 {
     lep_serial *s = user;
@@ -340,7 +331,7 @@ static int serial_read(void *user, uint8_t *buf, size_t cap, int timeout_ms)
         deadline = lep_priv_monotonic_ns() + (int64_t)timeout_ms * 1000000;
     for (;;) {
         struct pollfd p;
-        int r, wait = timeout_ms < 0 ? -1 : timeout_ms == 0 ? 0 : ms_left(deadline);
+        int r, wait = timeout_ms < 0 ? -1 : timeout_ms == 0 ? 0 : lep_priv_ms_left(deadline);
         p.fd = s->fd;
         p.events = POLLIN;
         p.revents = 0;
@@ -351,7 +342,7 @@ static int serial_read(void *user, uint8_t *buf, size_t cap, int timeout_ms)
             return LEP_E_IO;
         }
         if (r == 0) {
-            if (timeout_ms < 0 || (timeout_ms > 0 && ms_left(deadline) > 0))
+            if (timeout_ms < 0 || (timeout_ms > 0 && lep_priv_ms_left(deadline) > 0))
                 continue;
             return 0;
         }
@@ -384,46 +375,28 @@ static int serial_read(void *user, uint8_t *buf, size_t cap, int timeout_ms)
 static int serial_write(void *user, const uint8_t *data, size_t len)
 {
     lep_serial *s = user;
-    size_t off = 0;
-    int64_t deadline = lep_priv_monotonic_ns() + (int64_t)WRITE_STALL_MS * 1000000;
     if (s == NULL || (data == NULL && len > 0))
         return LEP_E_ARG;
     if (s->dead)
         return LEP_E_DISCONNECTED;
-    while (off < len) {
-        ssize_t n = write(s->fd, data + off, len - off);
-        if (n > 0) {
-            off += (size_t)n;
-            continue;
-        }
-        if (n < 0 && errno == EINTR)
-            continue;
-        if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {
-            struct pollfd p;
-            int r, wait = ms_left(deadline);
-            if (wait == 0)
-                return LEP_E_TIMEOUT;
-            p.fd = s->fd;
-            p.events = POLLOUT;
-            p.revents = 0;
-            r = poll(&p, 1, wait);
-            if (r < 0 && errno != EINTR)
-                return LEP_E_IO;
-            if (r > 0 && (p.revents & (POLLHUP | POLLERR))) {
-                s->dead = true;
-                return LEP_E_DISCONNECTED;
-            }
-            if (r > 0 && (p.revents & POLLNVAL))
-                return LEP_E_IO;
-            continue;
-        }
-        if (n < 0 && gone_errno(errno)) {
+    switch (lep_priv_write_all(s->fd, data, len,
+                               lep_priv_monotonic_ns() + (int64_t)WRITE_STALL_MS * 1000000)) {
+    case LEP_PRIV_WRITE_OK:
+        return LEP_OK;
+    case LEP_PRIV_WRITE_TIMEOUT:
+        return LEP_E_TIMEOUT;
+    case LEP_PRIV_WRITE_HANGUP:
+        s->dead = true;
+        return LEP_E_DISCONNECTED;
+    case LEP_PRIV_WRITE_FAILED:
+        if (gone_errno(errno)) { /* errno 0 (nothing taken) is not a gone port */
             s->dead = true;
             return LEP_E_DISCONNECTED;
         }
         return LEP_E_IO;
+    default: /* poll failed */
+        return LEP_E_IO;
     }
-    return LEP_OK;
 }
 
 static uint32_t serial_now_ms(void *user)
