@@ -24,6 +24,7 @@ HEADLINES = [
     ("decoder", "streams", "realistic", "chunks", "4096", "leptrino"),
     ("end_to_end", "low_latency", "latency_us", "p50"),
     ("end_to_end", "low_latency", "latency_us", "p99"),
+    ("end_to_end", "low_latency", "latency_from_write_end_us", "p50"),
     ("end_to_end", "low_latency", "latency_from_deadline_us", "p50"),
     ("end_to_end", "low_latency", "sim_lateness_us", "p50"),
     ("end_to_end", "low_latency", "sim_over_client_cpu"),

@@ -21,7 +21,8 @@ CHUNK_KEYS = [
     "plain_loop_ns_per_byte",
 ]
 MODE_KEYS = [
-    "path", "latency_budget_ms", "rc", "samples", "lost", "latency_us", "latency_from_deadline_us",
+    "path", "latency_budget_ms", "rc", "samples", "lost", "latency_us", "latency_from_write_end_us",
+    "latency_from_deadline_us",
     "sim_lateness_us", "wall_s", "cpu_s", "cpu_percent_of_one_core", "cpu_us_per_sample", "sim_cpu_us_per_sample",
     "sim_over_client_cpu", "read_write_syscalls_per_sample_proc", "syscalls_per_s", "syscalls_per_sample",
     "syscalls_method",
@@ -72,9 +73,10 @@ def main() -> int:
     for mode in ("low_latency", "recording", "client", "field_sleep", "field_busy"):
         m = e2e.get(mode)
         errs += need(m, f"end_to_end.{mode}", MODE_KEYS + (FIELD_KEYS if mode.startswith("field_") else []))
-        for lat in ("latency_us", "latency_from_deadline_us", "sim_lateness_us"):
+        for lat in ("latency_us", "latency_from_write_end_us", "latency_from_deadline_us", "sim_lateness_us"):
             errs += need((m or {}).get(lat), f"end_to_end.{mode}.{lat}", SPREAD_KEYS)
-        errs += need((m or {}).get("latency_us"), f"end_to_end.{mode}.latency_us", ["matched"])
+        for lat in ("latency_us", "latency_from_write_end_us"):
+            errs += need((m or {}).get(lat), f"end_to_end.{mode}.{lat}", ["matched"])
     py_keys = ["record_us_cpu_per_sample", "stream_iter_us_cpu_per_sample", "session_read_only_us_cpu_per_sample",
                "reason"]
     errs += need(d.get("python"), "python", py_keys + ["backend", "latency_budget_s", "latency_budget_0"])

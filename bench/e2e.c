@@ -373,18 +373,20 @@ static void stream_run(const char *port, int mode, double seconds, size_t count,
  * last call left off up to the stream's end record (waited for up to 2 s;
  * the sim writes it out before it answers the stop). On return *t0 is the
  * stream's start (0 when not seen), write_ns[k] the write() call of sample k
- * (0: none), *kn the size of write_ns (malloc'd; free it). 0, or -1 without
- * a trace. */
-static int trace_take(sim_proc *sp, int64_t *t0, int64_t **write_ns, size_t *kn)
+ * (0: none), end_ns[k] the return of that write(), *kn the size of both
+ * (malloc'd; free them). 0, or -1 without a trace. */
+static int trace_take(sim_proc *sp, int64_t *t0, int64_t **write_ns, int64_t **end_ns, size_t *kn)
 {
     lep_sim_trace_record rec;
     int64_t *w = NULL;
+    int64_t *e = NULL;
     size_t cap = 0;
     int ended = 0;
     int tries;
     FILE *f;
     *t0 = 0;
     *write_ns = NULL;
+    *end_ns = NULL;
     *kn = 0;
     if (sp->trace[0] == '\0' || (f = fopen(sp->trace, "rb")) == NULL) {
         return -1;
@@ -402,7 +404,7 @@ static int trace_take(sim_proc *sp, int64_t *t0, int64_t **write_ns, size_t *kn)
             } else if (rec.k < (uint64_t)LAT_MAX * 4u) {
                 if (rec.k >= cap) {
                     size_t ncap = cap == 0 ? 16384u : cap;
-                    int64_t *nw;
+                    int64_t *nw, *ne;
                     while (ncap <= rec.k) {
                         ncap *= 2u;
                     }
@@ -410,11 +412,18 @@ static int trace_take(sim_proc *sp, int64_t *t0, int64_t **write_ns, size_t *kn)
                     if (nw == NULL) {
                         break;
                     }
-                    memset(nw + cap, 0, (ncap - cap) * sizeof(int64_t));
                     w = nw;
+                    ne = realloc(e, ncap * sizeof(int64_t));
+                    if (ne == NULL) {
+                        break;
+                    }
+                    e = ne;
+                    memset(w + cap, 0, (ncap - cap) * sizeof(int64_t));
+                    memset(e + cap, 0, (ncap - cap) * sizeof(int64_t));
                     cap = ncap;
                 }
                 w[rec.k] = rec.t_call_ns;
+                e[rec.k] = rec.t_return_ns;
             }
         }
         if (!ended) {
@@ -425,6 +434,7 @@ static int trace_take(sim_proc *sp, int64_t *t0, int64_t **write_ns, size_t *kn)
     }
     fclose(f);
     *write_ns = w;
+    *end_ns = e;
     *kn = cap;
     return 0;
 }
@@ -456,15 +466,16 @@ static double report_latency(sim_proc *sp, const stream_result *r)
     size_t n = r->samples < LAT_MAX ? r->samples : LAT_MAX;
     size_t i, m = 0, d = 0, late_n = 0;
     int64_t t0;
-    int64_t *w;
+    int64_t *w, *we;
     size_t kn;
     double p50;
     double period_ns = 1e9 / 1200.0;
     double *from_write = malloc((n + 1u) * sizeof(double));
+    double *from_write_end = malloc((n + 1u) * sizeof(double));
     double *from_deadline = malloc((n + 1u) * sizeof(double));
     double *late = malloc((n + 1u) * sizeof(double));
-    int traced = trace_take(sp, &t0, &w, &kn) == 0;
-    if (from_write == NULL || from_deadline == NULL || late == NULL) {
+    int traced = trace_take(sp, &t0, &w, &we, &kn) == 0;
+    if (from_write == NULL || from_write_end == NULL || from_deadline == NULL || late == NULL) {
         n = 0;
     }
     for (i = 0; i < n; i++) {
@@ -476,6 +487,7 @@ static double report_latency(sim_proc *sp, const stream_result *r)
             from_deadline[d++] = ((double)(r->t_recv[i] - r->t_start) - deadline) / 1e3;
         }
         if (traced && k < kn && w[k] != 0) {
+            from_write_end[m] = (double)(r->t_recv[i] - we[k]) / 1e3;
             from_write[m++] = (double)(r->t_recv[i] - w[k]) / 1e3;
             if (t0 != 0) {
                 late[late_n++] = ((double)(w[k] - t0) - deadline) / 1e3;
@@ -489,6 +501,14 @@ static double report_latency(sim_proc *sp, const stream_result *r)
                                    "to the return of the read that returned it"
                                  : "no write trace: see latency_from_deadline_us");
     json_close();
+    json_open("latency_from_write_end_us");
+    json_spread(from_write_end, m);
+    json_int("matched", (long long)m);
+    json_str("reference", traced ? "the return of the sim's write() of the sample (the pty holds it), "
+                                   "to the return of the read that returned it: a secondary figure, "
+                                   "latency_us less the write call's own time"
+                                 : "no write trace");
+    json_close();
     json_open("latency_from_deadline_us");
     json_spread(from_deadline, d);
     json_str("reference", traced && t0 != 0 ? "the sample's deadline at the sim, t0+(k+1)/rate, t0 from its trace"
@@ -501,6 +521,8 @@ static double report_latency(sim_proc *sp, const stream_result *r)
     json_str("reference", "the sim's write() call minus the sample's deadline: its own wake-up lateness");
     json_close();
     free(w);
+    free(we);
+    free(from_write_end);
     free(from_write);
     free(from_deadline);
     free(late);
