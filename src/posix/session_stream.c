@@ -44,6 +44,25 @@ double lep_priv_utc_offset(void)
     return best;
 }
 
+/* Whether the wall clock may have moved by more than SESSION_UTC_STEP_S
+ * from utc_off, judged from one CLOCK_REALTIME read: it happened at a
+ * monotonic instant between t_before (a monotonic time taken earlier) and a
+ * monotonic read just after it, so the true offset lies in that bracket.
+ * Two clock reads instead of lep_priv_utc_offset's nine; only when the
+ * bracket leaves utc_off +- SESSION_UTC_STEP_S (a step, or this thread lost
+ * the CPU in between) does the caller measure the offset properly. */
+static bool utc_may_have_moved(double utc_off, double t_before)
+{
+    struct timespec r, b;
+    double rt, lo, hi;
+    (void)clock_gettime(CLOCK_REALTIME, &r);
+    (void)clock_gettime(CLOCK_MONOTONIC, &b);
+    rt = (double)r.tv_sec + (double)r.tv_nsec / 1e9;
+    lo = rt - ((double)b.tv_sec + (double)b.tv_nsec / 1e9);
+    hi = rt - t_before;
+    return lo < utc_off - SESSION_UTC_STEP_S || hi > utc_off + SESSION_UTC_STEP_S;
+}
+
 /* Sleep until monotonic time t (one nanosleep; a signal ends it early). */
 static void sleep_until(double t)
 {
@@ -256,7 +275,7 @@ void lep_priv_session_feed(lep_session *s, const uint8_t *data, size_t len, doub
             break;
     }
     lep_client_get_stats(&s->client, &st);
-    if (n > 0) {
+    if (n > 0 && utc_may_have_moved(s->utc_off, t_read)) {
         double fresh = lep_priv_utc_offset();
         if (fabs(fresh - s->utc_off) > SESSION_UTC_STEP_S)
             s->utc_off = fresh; /* the wall clock was set (NTP step, by hand) */

@@ -61,6 +61,18 @@ static void test_open_start_read_stop(void)
         if (i > 0)
             TEST_ASSERT_TRUE(b.t_utc[i] >= b.t_utc[i - 1]);
     }
+    {
+        /* and that offset is the wall clock's (read here, bracketed by
+         * monotonic reads; loose: the clock is not stepped during a test) */
+        struct timespec m0, r, m1;
+        double off;
+        (void)clock_gettime(CLOCK_MONOTONIC, &m0);
+        (void)clock_gettime(CLOCK_REALTIME, &r);
+        (void)clock_gettime(CLOCK_MONOTONIC, &m1);
+        off = (double)r.tv_sec + (double)r.tv_nsec / 1e9 -
+              ((double)m0.tv_sec + (double)m0.tv_nsec / 1e9 + (double)m1.tv_sec + (double)m1.tv_nsec / 1e9) / 2.0;
+        TEST_ASSERT_DOUBLE_WITHIN(0.05, off, b.t_utc[0] - b.t_mono[0]);
+    }
     lep_session_get_health(s, &h);
     TEST_ASSERT_EQUAL_UINT64(0, h.lost);
     TEST_ASSERT_EQUAL_UINT64(0, h.gaps);
