@@ -29,6 +29,7 @@ HEADLINES = [
     ("end_to_end", "low_latency", "sim_lateness_us", "p50"),
     ("end_to_end", "low_latency", "sim_over_client_cpu"),
     ("end_to_end", "low_latency", "cpu_us_per_sample"),
+    ("end_to_end", "low_latency", "syscalls_per_sample"),
     ("end_to_end", "low_latency", "sim_cpu_us_per_sample"),
     ("end_to_end", "sender_floor", "sleep_and_pty_write_us_cpu_per_period"),
     ("machine", "load_1min_at_start"),
