@@ -293,12 +293,15 @@ static int decode_sample(const uint8_t *msg, lep_sample *s)
  * byte, code or result), so this test takes the place of those checks. */
 static bool sample_header(const uint8_t *msg, size_t len)
 {
+    uint32_t head;
+    if (len != LEP_LEN_SAMPLE) {
+        return false; /* (and msg may be shorter than a header) */
+    }
     /* the four header bytes as one word (one load at -O2); 0x30 | 0x02 and
      * 0x32 | 0x02 alone give 0x32 */
-    uint32_t head = (uint32_t)msg[0] | (uint32_t)msg[1] << 8 | (uint32_t)msg[2] << 16 |
-                    (uint32_t)msg[3] << 24;
-    return len == LEP_LEN_SAMPLE &&
-           (head | (uint32_t)0x02u << 16) == (LEP_LEN_SAMPLE | RESERVED_FF << 8 |
+    head = (uint32_t)msg[0] | (uint32_t)msg[1] << 8 | (uint32_t)msg[2] << 16 |
+           (uint32_t)msg[3] << 24;
+    return (head | (uint32_t)0x02u << 16) == (LEP_LEN_SAMPLE | RESERVED_FF << 8 |
                                               (uint32_t)LEP_CMD_START << 16 |
                                               (uint32_t)LEP_RESULT_OK << 24);
 }
