@@ -12,6 +12,7 @@
 
 #include "leptrino/error.h"
 #include "leptrino/frame.h"
+#include "rng.h"
 #include "unity.h"
 
 /* The reference build's entry points (frame.c compiled under these names). */
@@ -56,17 +57,6 @@ void setUp(void)
 
 void tearDown(void)
 {
-}
-
-/* Deterministic xorshift32: a failure names its stream's seed. */
-static uint32_t rng_next(uint32_t *s)
-{
-    uint32_t x = *s;
-    x ^= x << 13;
-    x ^= x >> 17;
-    x ^= x << 5;
-    *s = x;
-    return x;
 }
 
 static void record(diff_run *r, const lep_frame_event *ev, bool with_pos)
