@@ -330,12 +330,13 @@ HOT int on_message(lep_client *c, const lep_frame_event *ev)
 {
     lep_response r;
     int rc = lep_response_decode(ev->msg, ev->len, &r);
-    bool mine = waiting(c) && r.code == c->code; /* (a data message's code is the start's) */
+    bool mine;
     if (rc != LEP_OK && rc != LEP_E_SENSOR) {
         c->count[N_INVALID]++;
         return LEP_STEP_NONE;
     }
     memcpy(SPARE_SAMPLE(c), &r.u.sample, sizeof(r.u.sample));
+    mine = waiting(c) && r.code == c->code; /* (a data message's code is the start's) */
     if (r.stream && (c->state & ST_STREAM) != 0u) {
         if (waiting(c) && c->code == LEP_CMD_STOP) {
             return LEP_STEP_NONE; /* our data still in flight before the stop answer */
@@ -472,8 +473,15 @@ static int step_clock(lep_client *c, size_t len)
  * LEP_STEP_NONE to go on. */
 HOT int take(lep_client *c, const lep_frame_event *ev)
 {
-    int rc = ev->type == LEP_FRAME_NONE ? LEP_STEP_NONE : on_event(c, ev);
-    if (rc != LEP_STEP_NONE && c->fast == 0u) {
+    int rc;
+    if (ev->type == LEP_FRAME_NONE) {
+        return LEP_STEP_NONE;
+    }
+    rc = on_event(c, ev);
+    if (rc == LEP_STEP_NONE) {
+        return rc;
+    }
+    if (c->fast == 0u) {
         c->fast = (uint16_t)FAST_LOOK_NEXT; /* the clock was due: look on the next step */
     }
     if (rc > 0) { /* a response or a sample: keep where its message is */
@@ -745,23 +753,30 @@ int lep_client_next_samples(lep_client *c, lep_sample *out, size_t max, size_t *
     return LEP_OK;
 }
 
-/* A transaction of code; the member of its answer's union (every member
- * begins at the union's start) copied into out[0..size) when out is not
- * NULL. LEP_E_ARG when the query needs out (size > 0) and it is NULL. */
-static int query(lep_client *c, uint8_t code, uint8_t filter, void *out, size_t size)
+/* rc is how a blocking call's transaction or recovery ended; when LEP_OK and
+ * out is not NULL, the member of its answer's union (every member begins at
+ * the union's start) is copied into out[0..size). Returns rc. */
+SHARED int copy_answer(const lep_client *c, int rc, void *out, size_t size)
 {
-    lep_command cmd;
     lep_response r;
-    int rc = LEP_E_ARG;
-    cmd.code = code;
-    cmd.filter = filter;
-    if (out != NULL || size == 0u) {
-        rc = lep_client_transact(c, &cmd, &r);
-    }
     if (rc == LEP_OK && out != NULL) {
+        rc = lep_client_response(c, &r); /* (LEP_OK: the answer just came) */
         memcpy(out, &r.u, size);
     }
     return rc;
+}
+
+/* A transaction of code, its answer copied as copy_answer says. LEP_E_ARG
+ * when the query needs out (size > 0) and it is NULL. */
+static int query(lep_client *c, uint8_t code, uint8_t filter, void *out, size_t size)
+{
+    lep_command cmd;
+    cmd.code = code;
+    cmd.filter = filter;
+    if (out == NULL && size > 0u) {
+        return LEP_E_ARG;
+    }
+    return copy_answer(c, lep_client_transact(c, &cmd, NULL), out, size);
 }
 
 int lep_client_start(lep_client *c)
@@ -807,7 +822,6 @@ int lep_client_sample(lep_client *c, lep_sample *out)
 
 int lep_client_sync(lep_client *c, int quiet_ms, lep_product_info *info)
 {
-    lep_response r;
     int rc;
     if (c == NULL || c->io.read == NULL) {
         return LEP_E_ARG;
@@ -818,11 +832,5 @@ int lep_client_sync(lep_client *c, int quiet_ms, lep_product_info *info)
     if (rc == LEP_OK) {
         rc = run(c);
     }
-    if (rc == LEP_OK) {
-        rc = lep_client_response(c, &r);
-    }
-    if (rc == LEP_OK && info != NULL) {
-        *info = r.u.info;
-    }
-    return rc;
+    return copy_answer(c, rc, info, sizeof(*info));
 }
