@@ -85,6 +85,19 @@ static void test_product_info_and_rated(void)
     TEST_ASSERT_EQUAL_UINT32(0, stats().unexpected);
 }
 
+static void test_transact_gives_the_whole_response(void)
+{
+    lep_command cmd = {LEP_CMD_RATED, 0};
+    lep_response r;
+    memset(&r, 0xA5, sizeof(r));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_transact(&client, &cmd, &r));
+    TEST_ASSERT_EQUAL_HEX8(LEP_CMD_RATED, r.code);
+    TEST_ASSERT_EQUAL_HEX8(LEP_RESULT_OK, r.result);
+    TEST_ASSERT_FALSE(r.stream);
+    TEST_ASSERT_EQUAL_FLOAT(500.0f, r.u.rated.axis[LEP_FX]);
+    TEST_ASSERT_EQUAL_FLOAT(8.0f, r.u.rated.axis[LEP_MZ]);
+}
+
 static void test_handshake_sample(void)
 {
     lep_sample want;
@@ -1651,6 +1664,7 @@ int main(void)
     UNITY_BEGIN();
     RUN_TEST(test_init_rejects_incomplete_io);
     RUN_TEST(test_product_info_and_rated);
+    RUN_TEST(test_transact_gives_the_whole_response);
     RUN_TEST(test_handshake_sample);
     RUN_TEST(test_filter_set_needs_power_cycle);
     RUN_TEST(test_filter_set_rejects_bad_code_without_writing);
