@@ -99,15 +99,14 @@ typedef struct lep_client {
     uint8_t last_result;
     uint8_t code;           /* pending command */
     uint8_t filter;
-    uint8_t msg_len;
+    uint8_t msg_len;        /* length of the last outcome's message (at dec.buf), or 0 */
     uint16_t watchdog_ms;
     uint16_t quiet_ms;
     uint16_t fast;          /* counts single-byte steps up to the next look at the clock */
-    uint16_t msg_at;        /* fast when msg was stored: msg is current while they agree */
+    uint16_t msg_at;        /* fast when the message was kept: current while they agree */
     uint32_t t_start;       /* when the transaction attempt or the quiet time began */
     uint32_t t_aux;         /* when the drain began, or the watchdog's reference time */
     uint32_t timeout_ms;
-    const uint8_t *msg;     /* message of the last outcome (in dec), or NULL */
     lep_client_rx *rx;      /* read buffer of the blocking calls, or NULL */
     lep_io io;
     uint32_t count[10];     /* the client's own counters: lep_client_stats from retries on */

@@ -179,15 +179,15 @@ static int outcome_kept(const lep_client *c, const void *out)
     if (c == NULL || out == NULL) {
         return LEP_E_ARG;
     }
-    return c->msg == NULL || c->msg_at != c->fast ? LEP_E_STATE : LEP_OK;
+    return c->msg_len == 0u || c->msg_at != c->fast ? LEP_E_STATE : LEP_OK;
 }
 
 int lep_client_response(const lep_client *c, lep_response *out)
 {
     int rc = outcome_kept(c, out);
     if (rc == LEP_OK) {
-        (void)lep_response_decode(c->msg, c->msg_len, out); /* validated when it arrived; a
-                                                               refusal (0x04) gives LEP_E_SENSOR */
+        /* validated when it arrived; a refusal (0x04) gives LEP_E_SENSOR */
+        (void)lep_response_decode(c->dec.buf, c->msg_len, out);
     }
     return rc;
 }
@@ -260,7 +260,7 @@ int lep_client_send(lep_client *c, const lep_command *cmd)
     if (c == NULL || cmd == NULL) {
         return LEP_E_ARG;
     }
-    c->msg = NULL;
+    c->msg_len = 0;
     return begin(c, cmd->code, cmd->filter, PH_NONE);
 }
 
@@ -269,7 +269,7 @@ int lep_client_recover(lep_client *c, uint16_t quiet_ms)
     if (c == NULL) {
         return LEP_E_ARG;
     }
-    c->msg = NULL;
+    c->msg_len = 0;
     c->quiet_ms = quiet_ms == 0u ? (uint16_t)LEP_CLIENT_DEFAULT_QUIET_MS : quiet_ms;
     c->state = (uint8_t)(c->state & ~ST_STREAM); /* a stream's data is stale from here on */
     return begin(c, LEP_CMD_STOP, 0, PH_STOP_SYNC);
@@ -484,8 +484,7 @@ HOT int take(lep_client *c, const lep_frame_event *ev)
     if (c->fast == 0u) {
         c->fast = (uint16_t)FAST_LOOK_NEXT; /* the clock was due: look on the next step */
     }
-    if (rc > 0) { /* a response or a sample: keep where its message is */
-        c->msg = ev->msg;
+    if (rc > 0) { /* a response or a sample: keep its message (feed delivers it at dec.buf) */
         c->msg_len = (uint8_t)ev->len;
         c->msg_at = c->fast;
         if (ev->len == LEP_LEN_SAMPLE && ev->msg[LEP_LEN_SAMPLE - 1u] != 0u) {
@@ -503,7 +502,7 @@ __attribute__((noinline))
 static int step_input(lep_client *c, const uint8_t *data, size_t len, size_t *consumed)
 {
     size_t pos = 0;
-    c->msg = NULL;
+    c->msg_len = 0;
     while (pos < len) {
         lep_frame_event ev;
         int rc;
@@ -543,7 +542,7 @@ int lep_client_step_byte_slow(lep_client *c, uint8_t b, lep_sample *out)
     rc = step_input(c, &b, 1, &used);
 #else /* step_input for one byte, without its loop */
     lep_frame_event ev;
-    c->msg = NULL;
+    c->msg_len = 0;
     if (c->fast == 0u && lep_frame_decoder_push1(&c->dec, b)) {
         return step_clock(c, 1); /* only the clock was due (the inline path left b alone) */
     }
