@@ -225,6 +225,15 @@ static void client_step(int use_cg, int runs, size_t frames)
     json_int("samples", (long long)m);
     json_num("samples_per_s", (double)m / t);
     json_num("ns_per_byte", t * 1e9 / (double)s.len);
+    /* The documented general API on the same input: one call per byte. */
+    t = timed_run(REGION_CLIENT_STEP_CALL, &s, 1, runs, &m);
+    json_str("step_call_what", "lep_client_step(c, &b, 1, &used) per byte (an ISR ring consumer: pop b, "
+                               "step), lep_client_get_sample on LEP_STEP_SAMPLE, same stream");
+    json_num("step_call", use_cg ? callgrind_ir(REGION_CLIENT_STEP_CALL, STREAM_REALISTIC, 1, frames) /
+                                       (double)s.len
+                                 : t * 1e9 / (double)s.len);
+    json_int("step_call_samples", (long long)m);
+    json_num("step_call_ns_per_byte", t * 1e9 / (double)s.len);
     json_close();
     free(s.data);
 }
