@@ -50,7 +50,8 @@ void json_null(const char *key);
 void json_end(void); /* newline, flush */
 
 /* ---- decode.c: codec measurements (in process, and as callgrind regions) ---- */
-enum bench_region { REGION_LEPTRINO = 0, REGION_FEED, REGION_PLAIN, REGION_PLAIN_LOOP, REGION_CLIENT_STEP, REGION_COUNT };
+enum bench_region { REGION_LEPTRINO = 0, REGION_FEED, REGION_PLAIN, REGION_PLAIN_LOOP, REGION_CLIENT_STEP,
+                   REGION_CLIENT_STEP_CALL, REGION_COUNT };
 const char *bench_region_name(int which);
 /* Run region `which` once over s in chunks of `chunk` bytes; returns messages
  * (samples for the client) and adds to *sink. */

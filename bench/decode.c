@@ -15,7 +15,7 @@
 const char *bench_region_name(int which)
 {
     static const char *const names[REGION_COUNT] = {"leptrino", "leptrino_feed", "plain", "plain_loop",
-                                                    "client_step"};
+                                                    "client_step", "client_step_call"};
     return which >= 0 && which < REGION_COUNT ? names[which] : "?";
 }
 
@@ -162,7 +162,31 @@ NOINLINE static size_t region_client_step(lep_client *c, const uint8_t *in, size
     return samples;
 }
 
-static size_t client_step_run(const bench_bytes *s, size_t chunk, uint32_t *sink)
+/* The documented general API fed one byte per call, already streaming: an
+ * ISR ring's consumer pops a byte b, calls lep_client_step(c, &b, 1, &used)
+ * and on LEP_STEP_SAMPLE reads the sample with lep_client_get_sample. */
+NOINLINE static size_t region_client_step_call(lep_client *c, const uint8_t *in, size_t len,
+                                               uint32_t *sink)
+{
+    size_t off;
+    size_t samples = 0;
+    for (off = 0; off < len; off++) {
+        uint8_t b = in[off];
+        size_t used;
+        if (lep_client_step(c, &b, 1, &used) == LEP_STEP_SAMPLE) {
+            lep_sample smp;
+            if (lep_client_get_sample(c, &smp) == LEP_OK) {
+                *sink += (uint32_t)(uint16_t)smp.raw[0];
+                samples++;
+            }
+        }
+    }
+    return samples;
+}
+
+/* A client that has started streaming (its start answered), fed s through
+ * the step region `which` in chunks of chunk bytes. */
+static size_t client_step_run(int which, const bench_bytes *s, size_t chunk, uint32_t *sink)
 {
     static lep_client c;
     lep_io io;
@@ -184,6 +208,9 @@ static size_t client_step_run(const bench_bytes *s, size_t chunk, uint32_t *sink
         lep_client_step(&c, wire, wlen, &used) != LEP_STEP_RESPONSE || !lep_client_streaming(&c)) {
         return 0;
     }
+    if (which == REGION_CLIENT_STEP_CALL) {
+        return region_client_step_call(&c, s->data, s->len, sink);
+    }
     return region_client_step(&c, s->data, s->len, chunk, sink);
 }
 
@@ -194,7 +221,7 @@ size_t bench_region_run(int which, const bench_bytes *s, size_t chunk, uint32_t 
     case REGION_FEED: return region_feed(s->data, s->len, chunk, sink);
     case REGION_PLAIN: return region_plain(s->data, s->len, chunk, sink);
     case REGION_PLAIN_LOOP: return region_plain_loop(s->data, s->len, chunk, sink);
-    default: return client_step_run(s, chunk, sink);
+    default: return client_step_run(which, s, chunk, sink);
     }
 }
 

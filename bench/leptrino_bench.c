@@ -225,8 +225,48 @@ static void client_step(int use_cg, int runs, size_t frames)
     json_int("samples", (long long)m);
     json_num("samples_per_s", (double)m / t);
     json_num("ns_per_byte", t * 1e9 / (double)s.len);
+    /* The documented general API on the same input: one call per byte. */
+    t = timed_run(REGION_CLIENT_STEP_CALL, &s, 1, runs, &m);
+    json_str("step_call_what", "lep_client_step(c, &b, 1, &used) per byte (an ISR ring consumer: pop b, "
+                               "step), lep_client_get_sample on LEP_STEP_SAMPLE, same stream");
+    json_num("step_call", use_cg ? callgrind_ir(REGION_CLIENT_STEP_CALL, STREAM_REALISTIC, 1, frames) /
+                                       (double)s.len
+                                 : t * 1e9 / (double)s.len);
+    json_int("step_call_samples", (long long)m);
+    json_num("step_call_ns_per_byte", t * 1e9 / (double)s.len);
     json_close();
     free(s.data);
+}
+
+static void usage(void);
+
+/* One --region argument: a number below count, or the name fn(k) gives for
+ * it. Returns the index, or -1 (nothing else accepted: "all_0x10" must not
+ * read as 0). */
+static int region_arg(const char *a, int count, const char *(*fn)(int))
+{
+    char *end;
+    long v;
+    int k;
+    for (k = 0; k < count; k++) {
+        if (strcmp(a, fn(k)) == 0) {
+            return k;
+        }
+    }
+    v = strtol(a, &end, 10);
+    return end != a && *end == '\0' && v >= 0 && v < count ? (int)v : -1;
+}
+
+/* A positive count (chunk bytes, frames): the value, or 0 when a is not one. */
+static size_t count_arg(const char *a)
+{
+    char *end;
+    unsigned long long v;
+    if (*a < '0' || *a > '9') {
+        return 0;
+    }
+    v = strtoull(a, &end, 10);
+    return *end == '\0' && v <= (unsigned long long)SIZE_MAX / 64u ? (size_t)v : 0;
 }
 
 static int region_main(char **argv)
@@ -234,10 +274,24 @@ static int region_main(char **argv)
     bench_bytes s;
     uint32_t sink = 0;
     size_t n;
-    if (bench_stream_make(atoi(argv[1]), (size_t)atol(argv[3]), &s) != 0) {
+    int region = region_arg(argv[0], REGION_COUNT, bench_region_name);
+    int stream = region_arg(argv[1], STREAM_COUNT, bench_stream_name);
+    size_t chunk = count_arg(argv[2]);
+    size_t frames = count_arg(argv[3]);
+    if (region < 0 || stream < 0 || chunk == 0 || frames == 0) {
+        fprintf(stderr, "leptrino-bench: --region %s %s %s %s: %s\n", argv[0], argv[1], argv[2],
+                argv[3],
+                region < 0   ? "unknown region"
+                : stream < 0 ? "unknown stream"
+                : chunk == 0 ? "the chunk size must be a whole number of bytes >= 1"
+                             : "the frame count must be a whole number >= 1");
+        usage();
+        return 2;
+    }
+    if (bench_stream_make(stream, frames, &s) != 0) {
         return 1;
     }
-    n = bench_region_run(atoi(argv[0]), &s, (size_t)atol(argv[2]), &sink);
+    n = bench_region_run(region, &s, chunk, &sink);
     printf("%zu %u\n", n, (unsigned)sink);
     free(s.data);
     return 0;
@@ -245,10 +299,22 @@ static int region_main(char **argv)
 
 static void usage(void)
 {
+    int k;
     fputs("usage: leptrino-bench [--smoke] [--e2e-only] [--runs N] [--sim PATH] [--python PATH] [--source DIR]\n"
           "Prints one JSON object of measured figures (see BENCHMARKS.md).\n"
-          "--e2e-only: the end-to-end and Python figures alone (a quick look; not the full object).\n",
+          "--e2e-only: the end-to-end and Python figures alone (a quick look; not the full object).\n"
+          "       leptrino-bench --region REGION STREAM CHUNK FRAMES\n"
+          "Runs one decoding loop alone (for callgrind's --toggle-collect='region_*').\n"
+          "REGION, by number or name:",
           stderr);
+    for (k = 0; k < REGION_COUNT; k++) {
+        fprintf(stderr, " %d=%s", k, bench_region_name(k));
+    }
+    fputs("\nSTREAM, by number or name:", stderr);
+    for (k = 0; k < STREAM_COUNT; k++) {
+        fprintf(stderr, " %d=%s", k, bench_stream_name(k));
+    }
+    fputs("\n", stderr);
 }
 
 int main(int argc, char **argv)

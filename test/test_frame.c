@@ -8,6 +8,7 @@
 #include "json.h"
 #include "leptrino/error.h"
 #include "leptrino/frame.h"
+#include "rng.h"
 #include "unity.h"
 #include "vectors.h"
 
@@ -40,17 +41,6 @@ typedef struct run_result {
     lep_frame_stats stats;
     bool busy;
 } run_result;
-
-/* Deterministic xorshift32, so a failure can be replayed. */
-static uint32_t rng_next(uint32_t *s)
-{
-    uint32_t x = *s;
-    x ^= x << 13;
-    x ^= x >> 17;
-    x ^= x << 5;
-    *s = x;
-    return x;
-}
 
 /* Which entry point run() feeds chunks through. */
 enum api { API_FEED, API_FEED_ALL, API_MIXED, API_PUSH1 }; /* API_PUSH1: one-byte chunks

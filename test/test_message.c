@@ -569,6 +569,57 @@ static void test_status_bits(void)
     TEST_ASSERT_FALSE(r.stream);
 }
 
+/* A sample message's whole lep_response, byte for byte (every byte not
+ * decoded stays 0), for the handshake answer and stream data; and a count
+ * beyond +/-32000 on each axis in turn: LEP_E_VALUE, with code, stream and
+ * the counts before the bad one set. Speed builds decode these messages on
+ * their own path (test_message_small runs the size builds' one). */
+static void test_sample_decode_whole_response(void)
+{
+    static const uint8_t codes[2] = {LEP_CMD_SAMPLE, LEP_CMD_START};
+    static const int16_t raw[LEP_AXES] = {-32000, 32000, -1, 0, 256, -257};
+    static const int32_t bad[2] = {32001, -32001};
+    size_t c;
+    for (c = 0; c < 2; c++) {
+        uint8_t msg[LEP_LEN_SAMPLE] = {LEP_LEN_SAMPLE, 0xFF, codes[c], 0x00};
+        lep_response want;
+        lep_response got;
+        size_t a;
+        size_t b;
+        size_t i;
+        for (i = 0; i < LEP_AXES; i++) {
+            msg[4 + 2 * i] = (uint8_t)((uint16_t)raw[i] & 0xFFu);
+            msg[5 + 2 * i] = (uint8_t)((uint16_t)raw[i] >> 8);
+        }
+        msg[16] = 0x34;
+        msg[17] = 0x12;
+        msg[18] = LEP_STATUS_OVERLOAD;
+        msg[19] = 0x5A; /* the last reserved byte: any value, not kept */
+        memset(&want, 0, sizeof(want));
+        want.code = codes[c];
+        want.stream = codes[c] == LEP_CMD_START;
+        memcpy(want.u.sample.raw, raw, sizeof(raw));
+        want.u.sample.reserved = 0x1234;
+        want.u.sample.status = LEP_STATUS_OVERLOAD;
+        memset(&got, 0xA5, sizeof(got));
+        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_response_decode(msg, sizeof(msg), &got));
+        TEST_ASSERT_EQUAL_HEX8_ARRAY(&want, &got, sizeof(want));
+        for (a = 0; a < LEP_AXES; a++) {
+            for (b = 0; b < 2; b++) {
+                uint8_t m[LEP_LEN_SAMPLE];
+                memcpy(m, msg, sizeof(m));
+                m[4 + 2 * a] = (uint8_t)((uint32_t)bad[b] & 0xFFu);
+                m[5 + 2 * a] = (uint8_t)(((uint32_t)bad[b] >> 8) & 0xFFu);
+                memset(&want.u, 0, sizeof(want.u));
+                memcpy(want.u.sample.raw, raw, a * sizeof(raw[0]));
+                memset(&got, 0xA5, sizeof(got));
+                TEST_ASSERT_EQUAL_INT(LEP_E_VALUE, lep_response_decode(m, sizeof(m), &got));
+                TEST_ASSERT_EQUAL_HEX8_ARRAY(&want, &got, sizeof(want));
+            }
+        }
+    }
+}
+
 /* ---- static strings ------------------------------------------------------------ */
 
 static void expect_distinct(const char *const *s, size_t n, const char *what)
@@ -674,6 +725,7 @@ int main(void)
     RUN_TEST(test_si_of_the_spec_sample);
     RUN_TEST(test_saturation_vectors);
     RUN_TEST(test_status_bits);
+    RUN_TEST(test_sample_decode_whole_response);
     RUN_TEST(test_strerror_every_code);
     RUN_TEST(test_result_str);
     RUN_TEST(test_filter_labels);

@@ -99,15 +99,14 @@ typedef struct lep_client {
     uint8_t last_result;
     uint8_t code;           /* pending command */
     uint8_t filter;
-    uint8_t msg_len;
+    uint8_t msg_len;        /* length of the last outcome's message (at dec.buf), or 0 */
     uint16_t watchdog_ms;
     uint16_t quiet_ms;
     uint16_t fast;          /* counts single-byte steps up to the next look at the clock */
-    uint16_t msg_at;        /* fast when msg was stored: msg is current while they agree */
+    uint16_t msg_at;        /* fast when the message was kept: current while they agree */
     uint32_t t_start;       /* when the transaction attempt or the quiet time began */
     uint32_t t_aux;         /* when the drain began, or the watchdog's reference time */
     uint32_t timeout_ms;
-    const uint8_t *msg;     /* message of the last outcome (in dec), or NULL */
     lep_client_rx *rx;      /* read buffer of the blocking calls, or NULL */
     lep_io io;
     uint32_t count[10];     /* the client's own counters: lep_client_stats from retries on */
@@ -230,6 +229,28 @@ static inline int lep_client_step_byte(lep_client *c, uint8_t b, lep_sample *out
 #endif
     return lep_client_step_byte_slow(c, b, out);
 }
+
+/* lep_client_step's one-byte case without a call (the checks, *consumed and
+ * lep_client_step_byte), any other input through the function: private, see
+ * the macro below. */
+static inline int lep_client_step_inline_(lep_client *c, const uint8_t *data, size_t len,
+                                          size_t *consumed)
+{
+    if (LEP_FRAME_LIKELY_(len == 1u && c != NULL && data != NULL && consumed != NULL)) {
+        *consumed = 1u;
+        return lep_client_step_byte(c, data[0], NULL);
+    }
+    return (lep_client_step)(c, data, len, consumed);
+}
+
+/* When optimising for speed, lep_client_step is also a macro (as C's
+ * library functions may be): a call fed one byte at a time then costs no
+ * more than lep_client_step_byte. The same behaviour either way; the exported
+ * function stays for bindings, function pointers and (lep_client_step)(...).
+ * Size builds (-Os) call the function. */
+#if !defined(__OPTIMIZE_SIZE__)
+#define lep_client_step(c, data, len, consumed) lep_client_step_inline_(c, data, len, consumed)
+#endif
 
 /* True while a transaction or a recovery waits for its answer. */
 LEP_API bool lep_client_busy(const lep_client *c);

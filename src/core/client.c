@@ -136,14 +136,16 @@ int lep_client_set_watchdog(lep_client *c, uint16_t ms)
 
 void lep_client_get_stats(const lep_client *c, lep_client_stats *out)
 {
+    const lep_frame_stats *f;
     if (c == NULL || out == NULL) {
         return;
     }
-    out->messages = c->dec.stats.messages;
-    out->bcc_errors = c->dec.stats.bcc_errors;
-    out->frame_errors = c->dec.stats.escape_errors + c->dec.stats.overruns + c->dec.stats.restarts;
-    out->bytes_discarded = c->dec.stats.bytes_discarded;
-    out->naks = c->dec.stats.naks;
+    f = &c->dec.stats;
+    out->messages = f->messages;
+    out->bcc_errors = f->bcc_errors;
+    out->frame_errors = f->escape_errors + f->overruns + f->restarts;
+    out->bytes_discarded = f->bytes_discarded;
+    out->naks = f->naks;
     memcpy((unsigned char *)out + offsetof(lep_client_stats, retries), c->count, sizeof(c->count));
 }
 
@@ -162,28 +164,42 @@ bool lep_client_busy(const lep_client *c)
     return c != NULL && (c->state & ST_WAIT) != 0u;
 }
 
-int lep_client_response(const lep_client *c, lep_response *out)
+/* A message that passed validation leaves its decoded sample member (what
+ * lep_client_get_sample gives for a 20-byte one) at the end of the decoder's
+ * buffer, past the longest valid message (room the decoder writes only with
+ * a later frame's bytes, so it lives as long as the message): a sample is
+ * read out without decoding the message again. */
+#define SPARE_SAMPLE(c) ((c)->dec.buf + (LEP_MAX_MESSAGE - sizeof(lep_sample)))
+typedef char lep_client_spare_fits[LEP_LEN_PRODUCT_INFO_RATE + sizeof(lep_sample) <= LEP_MAX_MESSAGE ? 1 : -1];
+
+/* The message of the last outcome: LEP_OK, LEP_E_ARG (c or out NULL), or
+ * LEP_E_STATE (none, or a single-byte step came since). */
+static int outcome_kept(const lep_client *c, const void *out)
 {
     if (c == NULL || out == NULL) {
         return LEP_E_ARG;
     }
-    if (c->msg == NULL || c->msg_at != c->fast) { /* none, or a single-byte step came since */
-        return LEP_E_STATE;
+    return c->msg_len == 0u || c->msg_at != c->fast ? LEP_E_STATE : LEP_OK;
+}
+
+int lep_client_response(const lep_client *c, lep_response *out)
+{
+    int rc = outcome_kept(c, out);
+    if (rc == LEP_OK) {
+        /* validated when it arrived; a refusal (0x04) gives LEP_E_SENSOR */
+        (void)lep_response_decode(c->dec.buf, c->msg_len, out);
     }
-    (void)lep_response_decode(c->msg, c->msg_len, out); /* validated when it arrived; a
-                                                           refusal (0x04) gives LEP_E_SENSOR */
-    return LEP_OK;
+    return rc;
 }
 
 int lep_client_get_sample(const lep_client *c, lep_sample *out)
 {
-    lep_response r;
-    int rc = out == NULL ? LEP_E_ARG : lep_client_response(c, &r);
+    int rc = outcome_kept(c, out);
     if (rc == LEP_OK && c->msg_len != LEP_LEN_SAMPLE) {
         rc = LEP_E_STATE; /* (a sample is the only 20-byte message that makes an outcome) */
     }
     if (rc == LEP_OK) {
-        *out = r.u.sample;
+        memcpy(out, SPARE_SAMPLE(c), sizeof(*out));
     }
     return rc;
 }
@@ -244,7 +260,7 @@ int lep_client_send(lep_client *c, const lep_command *cmd)
     if (c == NULL || cmd == NULL) {
         return LEP_E_ARG;
     }
-    c->msg = NULL;
+    c->msg_len = 0;
     return begin(c, cmd->code, cmd->filter, PH_NONE);
 }
 
@@ -253,7 +269,7 @@ int lep_client_recover(lep_client *c, uint16_t quiet_ms)
     if (c == NULL) {
         return LEP_E_ARG;
     }
-    c->msg = NULL;
+    c->msg_len = 0;
     c->quiet_ms = quiet_ms == 0u ? (uint16_t)LEP_CLIENT_DEFAULT_QUIET_MS : quiet_ms;
     c->state = (uint8_t)(c->state & ~ST_STREAM); /* a stream's data is stale from here on */
     return begin(c, LEP_CMD_STOP, 0, PH_STOP_SYNC);
@@ -309,26 +325,24 @@ static int on_answer(lep_client *c, uint8_t result)
     return finish(c, LEP_E_SENSOR);
 }
 
-/* Handle one good frame; returns an outcome, or LEP_STEP_NONE to go on.
- * A delivered stream sample is also stored in *out when out is not NULL. */
-HOT int on_message(lep_client *c, const lep_frame_event *ev, lep_sample *out)
+/* Handle one good frame; returns an outcome, or LEP_STEP_NONE to go on. */
+HOT int on_message(lep_client *c, const lep_frame_event *ev)
 {
     lep_response r;
     int rc = lep_response_decode(ev->msg, ev->len, &r);
-    bool mine = waiting(c) && r.code == c->code; /* (a data message's code is the start's) */
+    bool mine;
     if (rc != LEP_OK && rc != LEP_E_SENSOR) {
         c->count[N_INVALID]++;
         return LEP_STEP_NONE;
     }
+    memcpy(SPARE_SAMPLE(c), &r.u.sample, sizeof(r.u.sample));
+    mine = waiting(c) && r.code == c->code; /* (a data message's code is the start's) */
     if (r.stream && (c->state & ST_STREAM) != 0u) {
         if (waiting(c) && c->code == LEP_CMD_STOP) {
             return LEP_STEP_NONE; /* our data still in flight before the stop answer */
         }
         c->count[N_SAMPLES]++;
         c->state = (uint8_t)(c->state | ST_FRESH);
-        if (out != NULL) {
-            *out = r.u.sample;
-        }
         return LEP_STEP_SAMPLE;
     }
     if (mine && !r.stream) {
@@ -363,10 +377,10 @@ SHARED int attempt_failed(lep_client *c, int err, unsigned which)
     return finish(c, err);
 }
 
-HOT int on_event(lep_client *c, const lep_frame_event *ev, lep_sample *out)
+HOT int on_event(lep_client *c, const lep_frame_event *ev)
 {
     if (ev->type == LEP_FRAME_MESSAGE) {
-        return on_message(c, ev, out);
+        return on_message(c, ev);
     }
     if (ev->type == LEP_FRAME_NAK) {
         if (waiting(c)) {
@@ -456,15 +470,21 @@ static int step_clock(lep_client *c, size_t len)
 }
 
 /* Handle the decoder's event ev (LEP_FRAME_NONE: nothing): an outcome, or
- * LEP_STEP_NONE to go on. out as on_message. */
-HOT int take(lep_client *c, const lep_frame_event *ev, lep_sample *out)
+ * LEP_STEP_NONE to go on. */
+HOT int take(lep_client *c, const lep_frame_event *ev)
 {
-    int rc = ev->type == LEP_FRAME_NONE ? LEP_STEP_NONE : on_event(c, ev, out);
-    if (rc != LEP_STEP_NONE && c->fast == 0u) {
+    int rc;
+    if (ev->type == LEP_FRAME_NONE) {
+        return LEP_STEP_NONE;
+    }
+    rc = on_event(c, ev);
+    if (rc == LEP_STEP_NONE) {
+        return rc;
+    }
+    if (c->fast == 0u) {
         c->fast = (uint16_t)FAST_LOOK_NEXT; /* the clock was due: look on the next step */
     }
-    if (rc > 0) { /* a response or a sample: keep where its message is */
-        c->msg = ev->msg;
+    if (rc > 0) { /* a response or a sample: keep its message (feed delivers it at dec.buf) */
         c->msg_len = (uint8_t)ev->len;
         c->msg_at = c->fast;
         if (ev->len == LEP_LEN_SAMPLE && ev->msg[LEP_LEN_SAMPLE - 1u] != 0u) {
@@ -479,16 +499,15 @@ HOT int take(lep_client *c, const lep_frame_event *ev, lep_sample *out)
 #if defined(__GNUC__) && !defined(__OPTIMIZE_SIZE__)
 __attribute__((noinline))
 #endif
-static int step_input(lep_client *c, const uint8_t *data, size_t len, size_t *consumed,
-                      lep_sample *out)
+static int step_input(lep_client *c, const uint8_t *data, size_t len, size_t *consumed)
 {
     size_t pos = 0;
-    c->msg = NULL;
+    c->msg_len = 0;
     while (pos < len) {
         lep_frame_event ev;
         int rc;
         pos += lep_frame_decoder_feed(&c->dec, data + pos, len - pos, &ev);
-        rc = take(c, &ev, out);
+        rc = take(c, &ev);
         if (rc != LEP_STEP_NONE) {
             *consumed = pos;
             return rc;
@@ -498,7 +517,7 @@ static int step_input(lep_client *c, const uint8_t *data, size_t len, size_t *co
     return step_clock(c, len);
 }
 
-int lep_client_step(lep_client *c, const uint8_t *data, size_t len, size_t *consumed)
+int(lep_client_step)(lep_client *c, const uint8_t *data, size_t len, size_t *consumed)
 {
     if (c == NULL || consumed == NULL || (data == NULL && len > 0)) {
         return LEP_E_ARG;
@@ -511,26 +530,32 @@ int lep_client_step(lep_client *c, const uint8_t *data, size_t len, size_t *cons
         return lep_client_step_byte(c, data[0], NULL);
     }
 #endif
-    return step_input(c, data, len, consumed, NULL);
+    return step_input(c, data, len, consumed);
 }
 
 /* (lep_client_step_byte counted the step in c->fast.) */
 int lep_client_step_byte_slow(lep_client *c, uint8_t b, lep_sample *out)
 {
+    int rc;
 #if defined(__OPTIMIZE_SIZE__)
     size_t used;
-    return step_input(c, &b, 1, &used, out);
+    rc = step_input(c, &b, 1, &used);
 #else /* step_input for one byte, without its loop */
     lep_frame_event ev;
-    int rc;
-    c->msg = NULL;
+    c->msg_len = 0;
     if (c->fast == 0u && lep_frame_decoder_push1(&c->dec, b)) {
         return step_clock(c, 1); /* only the clock was due (the inline path left b alone) */
     }
     (void)lep_frame_decoder_feed(&c->dec, &b, 1, &ev);
-    rc = take(c, &ev, out);
-    return rc != LEP_STEP_NONE ? rc : step_clock(c, 1);
+    rc = take(c, &ev);
+    if (rc == LEP_STEP_NONE) {
+        return step_clock(c, 1);
+    }
 #endif
+    if (rc == LEP_STEP_SAMPLE) {
+        (void)lep_client_get_sample(c, out); /* (nothing when out is NULL) */
+    }
+    return rc;
 }
 
 /* ---- Blocking calls ---- */
@@ -727,23 +752,30 @@ int lep_client_next_samples(lep_client *c, lep_sample *out, size_t max, size_t *
     return LEP_OK;
 }
 
-/* A transaction of code; the member of its answer's union (every member
- * begins at the union's start) copied into out[0..size) when out is not
- * NULL. LEP_E_ARG when the query needs out (size > 0) and it is NULL. */
-static int query(lep_client *c, uint8_t code, uint8_t filter, void *out, size_t size)
+/* rc is how a blocking call's transaction or recovery ended; when LEP_OK and
+ * out is not NULL, the member of its answer's union (every member begins at
+ * the union's start) is copied into out[0..size). Returns rc. */
+SHARED int copy_answer(const lep_client *c, int rc, void *out, size_t size)
 {
-    lep_command cmd;
     lep_response r;
-    int rc = LEP_E_ARG;
-    cmd.code = code;
-    cmd.filter = filter;
-    if (out != NULL || size == 0u) {
-        rc = lep_client_transact(c, &cmd, &r);
-    }
     if (rc == LEP_OK && out != NULL) {
+        rc = lep_client_response(c, &r); /* (LEP_OK: the answer just came) */
         memcpy(out, &r.u, size);
     }
     return rc;
+}
+
+/* A transaction of code, its answer copied as copy_answer says. LEP_E_ARG
+ * when the query needs out (size > 0) and it is NULL. */
+static int query(lep_client *c, uint8_t code, uint8_t filter, void *out, size_t size)
+{
+    lep_command cmd;
+    cmd.code = code;
+    cmd.filter = filter;
+    if (out == NULL && size > 0u) {
+        return LEP_E_ARG;
+    }
+    return copy_answer(c, lep_client_transact(c, &cmd, NULL), out, size);
 }
 
 int lep_client_start(lep_client *c)
@@ -789,7 +821,6 @@ int lep_client_sample(lep_client *c, lep_sample *out)
 
 int lep_client_sync(lep_client *c, int quiet_ms, lep_product_info *info)
 {
-    lep_response r;
     int rc;
     if (c == NULL || c->io.read == NULL) {
         return LEP_E_ARG;
@@ -800,11 +831,5 @@ int lep_client_sync(lep_client *c, int quiet_ms, lep_product_info *info)
     if (rc == LEP_OK) {
         rc = run(c);
     }
-    if (rc == LEP_OK) {
-        rc = lep_client_response(c, &r);
-    }
-    if (rc == LEP_OK && info != NULL) {
-        *info = r.u.info;
-    }
-    return rc;
+    return copy_answer(c, rc, info, sizeof(*info));
 }

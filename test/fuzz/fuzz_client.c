@@ -179,8 +179,13 @@ static void stepping(lep_client *c, line *l, uint32_t *delivered)
         check(rc >= 0 ? rc <= LEP_STEP_SAMPLE : documented(rc));
         if (rc == LEP_STEP_SAMPLE) {
             lep_sample s;
+            lep_response r;
             check(lep_client_get_sample(c, &s) == LEP_OK);
             sample_ok(&s);
+            /* the sample kept at the outcome is the message's, decoded again */
+            check(lep_client_response(c, &r) == LEP_OK && r.stream);
+            check(memcmp(r.u.sample.raw, s.raw, sizeof(s.raw)) == 0 &&
+                  r.u.sample.reserved == s.reserved && r.u.sample.status == s.status);
             (*delivered)++;
         }
         if (rc != LEP_STEP_NONE && rc != LEP_STEP_SAMPLE && !lep_client_busy(c)) {
