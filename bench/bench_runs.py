@@ -22,6 +22,8 @@ from typing import Any
 HEADLINES = [
     ("decoder", "streams", "realistic", "chunks", "32", "leptrino"),
     ("decoder", "streams", "realistic", "chunks", "4096", "leptrino"),
+    ("client_step", "leptrino"),
+    ("client_step", "step_call"),
     ("end_to_end", "low_latency", "latency_us", "p50"),
     ("end_to_end", "low_latency", "latency_us", "p99"),
     ("end_to_end", "low_latency", "latency_from_write_end_us", "p50"),

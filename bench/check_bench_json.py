@@ -61,7 +61,7 @@ def main() -> int:
             if isinstance(c, dict) and c.get("leptrino_messages") != c.get(
                     "leptrino_feed_messages"):
                 errs.append(f"{stream}/{chunk}: feed and feed_all disagree")
-    errs += need(d.get("client_step"), "client_step", ["leptrino", "plain_same_input", "samples"])
+    errs += need(d.get("client_step"), "client_step", ["leptrino", "plain_same_input", "samples", "step_call", "step_call_samples"])
     errs += need(d.get("encoder"), "encoder", ["frame_encode_msgs_per_s", "sample_to_frame_msgs_per_s"])
     e2e = d.get("end_to_end", {})
     errs += need(e2e, "end_to_end", ["sim", "low_latency", "recording", "client", "field_sleep", "field_busy",
