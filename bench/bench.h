@@ -5,6 +5,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <sys/types.h>
 
 /* ---- streams.c: the byte streams the decoders are measured on ---- */
 enum bench_stream { STREAM_REALISTIC = 0, STREAM_ALL_DLE, STREAM_CORRUPT, STREAM_COUNT };
@@ -66,6 +67,11 @@ double bench_percentile(double *sorted, size_t n, double q); /* v sorted ascendi
 /* Run argv (argv[0] looked up in PATH), stdout to out_path (NULL: /dev/null);
  * returns the exit status, -1 when it could not run. */
 int bench_run(char *const argv[], const char *out_path);
+/* Call in a child right after fork(), with parent = getpid() taken before the
+ * fork: the child gets SIGTERM when the bench ends (Linux; elsewhere nothing),
+ * so a bench killed by ^C or a broken pipe leaves no virtual sensor running;
+ * exits at once if the bench is already gone. */
+void bench_child_follow_parent(pid_t parent);
 int bench_have(const char *prog); /* prog found in PATH */
 
 #endif

@@ -111,6 +111,7 @@ static int sim_start(const e2e_options *o, double rate, int trace, sim_proc *sp)
     int fds[2];
     char a_rate[32];
     FILE *f;
+    pid_t parent;
     memset(sp, 0, sizeof(*sp));
     snprintf(a_rate, sizeof a_rate, "%g", rate);
     if (trace) {
@@ -124,6 +125,7 @@ static int sim_start(const e2e_options *o, double rate, int trace, sim_proc *sp)
     if (pipe(fds) != 0) {
         return -1;
     }
+    parent = getpid();
     sp->pid = fork();
     if (sp->pid < 0) {
         return -1;
@@ -133,6 +135,7 @@ static int sim_start(const e2e_options *o, double rate, int trace, sim_proc *sp)
         if (sp->trace[0] == '\0') {
             argv[3] = NULL;
         }
+        bench_child_follow_parent(parent);
         dup2(fds[1], 1);
         close(fds[0]);
         close(fds[1]);

@@ -1,11 +1,15 @@
 /* leptrino-bench helpers: clocks, medians, running other programs. */
 #define _POSIX_C_SOURCE 200809L
 #include <fcntl.h>
+#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
+#if defined(__linux__)
+#include <sys/prctl.h>
+#endif
 
 #include "bench.h"
 
@@ -42,14 +46,26 @@ double bench_percentile(double *sorted, size_t n, double q)
     return sorted[i < n ? i : n - 1u];
 }
 
+void bench_child_follow_parent(pid_t parent)
+{
+#if defined(__linux__)
+    (void)prctl(PR_SET_PDEATHSIG, SIGTERM);
+#endif
+    if (getppid() != parent) {
+        _exit(127);
+    }
+}
+
 int bench_run(char *const argv[], const char *out_path)
 {
+    pid_t parent = getpid();
     pid_t pid = fork();
     int status;
     if (pid < 0) {
         return -1;
     }
     if (pid == 0) {
+        bench_child_follow_parent(parent);
         int fd = open(out_path != NULL ? out_path : "/dev/null", O_WRONLY | O_CREAT | O_TRUNC, 0600);
         int null = open("/dev/null", O_WRONLY);
         if (fd >= 0) {
