@@ -1,10 +1,8 @@
 /* POSIX serial backend: open a sensor's port and hand the client its I/O.
  *
  * termios raw mode, 460800 8N1, no flow control, exclusive access (TIOCEXCL
- * and flock). Reads honour the timeout: a wait of 120 ms or more blocks in
- * read() (VMIN 0, VTIME 1: one syscall per arrival), a shorter one in poll();
- * writes time out after 2 s without room. A vanished port gives
- * LEP_E_DISCONNECTED. Linux and macOS. Not thread-safe per port. */
+ * and flock). Reads wait with poll() and honour the timeout; a vanished port
+ * gives LEP_E_DISCONNECTED. Linux and macOS. Not thread-safe per port. */
 #ifndef LEPTRINO_SERIAL_H
 #define LEPTRINO_SERIAL_H
 
@@ -48,8 +46,7 @@ LEP_API int lep_serial_client_init(lep_client *c, lep_serial *s);
 
 LEP_API void lep_serial_get_info(const lep_serial *s, lep_serial_info *info);
 LEP_API const char *lep_serial_path(const lep_serial *s);
-/* The file descriptor, for callers that poll several ports. It is in
- * blocking mode (VMIN 0, VTIME 1): poll it before reading it yourself. */
+/* The file descriptor, for callers that poll several ports. */
 LEP_API int lep_serial_fd(const lep_serial *s);
 
 /* Milliseconds of a monotonic clock (the io.now_ms of this backend). */

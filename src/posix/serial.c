@@ -1,8 +1,4 @@
-/* POSIX serial port: open, configure, exclusive lock, I/O. Reads block in
- * read() with the terminal's own timer (VMIN 0, VTIME 1) so a sample costs
- * one syscall; poll() only for short waits and to tell a hang-up from a
- * timeout. Writes go out with O_NONBLOCK set around them (a stalled port
- * times out instead of blocking). */
+/* POSIX serial port: open, configure, exclusive lock, poll-based I/O. */
 #if defined(__APPLE__)
 #define _DARWIN_C_SOURCE
 #else
@@ -37,16 +33,9 @@
 
 /* How long a write may wait for room in the port's output buffer. */
 #define WRITE_STALL_MS 2000
-/* VTIME, in tenths of a second: a blocking read returns as soon as one byte
- * is there, or after this long with none. */
-#define READ_VTIME 1
-/* Waits shorter than this are made with poll() then read(): a blocking read
- * could overrun them by up to one VTIME. */
-#define READ_BLOCK_MIN_MS 120
 
 struct lep_serial {
     int fd;
-    int fl;               /* the fd's status flags (blocking) outside writes */
     bool dead;            /* the port vanished: every call says so */
     bool have_saved;
     bool serial_changed;  /* low-latency flag set by us */
@@ -93,8 +82,7 @@ static int open_error(int e, const char *path, char *err, size_t errlen)
     }
 }
 
-/* Raw 8N1, no flow control, no echo, no signals, no translation; a read
- * waits up to READ_VTIME tenths of a second for its first byte. */
+/* Raw 8N1, no flow control, no echo, no signals, no translation. */
 static void make_raw(struct termios *t)
 {
     t->c_iflag &= ~(tcflag_t)(IGNBRK | BRKINT | PARMRK | ISTRIP | INLCR | IGNCR | ICRNL | IXON |
@@ -106,8 +94,8 @@ static void make_raw(struct termios *t)
     t->c_cflag &= ~(tcflag_t)CRTSCTS;
 #endif
     t->c_cflag |= (tcflag_t)(CS8 | CREAD | CLOCAL);
-    t->c_cc[VMIN] = 0;
-    t->c_cc[VTIME] = READ_VTIME;
+    t->c_cc[VMIN] = 1;
+    t->c_cc[VTIME] = 0;
 }
 
 static int configure(lep_serial *s, char *err, size_t errlen)
@@ -143,13 +131,6 @@ static int configure(lep_serial *s, char *err, size_t errlen)
 #endif
     /* Forget whatever an earlier program left in the buffers. */
     tcflush(s->fd, TCIOFLUSH);
-    /* Opened non-blocking (not to wait for carrier); reads block from now on. */
-    s->fl = fcntl(s->fd, F_GETFL);
-    if (s->fl < 0 || fcntl(s->fd, F_SETFL, s->fl & ~O_NONBLOCK) != 0) {
-        lep_priv_set_err(err, errlen, "%s: cannot set blocking reads: %s", s->path, strerror(errno));
-        return LEP_E_IO;
-    }
-    s->fl &= ~O_NONBLOCK;
     return LEP_OK;
 }
 
@@ -336,40 +317,10 @@ static bool gone_errno(int e)
     return e == EIO || e == ENXIO || e == ENODEV || e == EPIPE || e == EBADF;
 }
 
-/* A read() that returned 0 or failed: LEP_E_DISCONNECTED (and dead) for a
- * port that hung up or vanished, LEP_E_IO for another failure, 0 to go on. */
-static int read_failed(lep_serial *s, ssize_t n, int e)
-{
-    struct pollfd p;
-    if (n < 0 && (e == EINTR || e == EAGAIN || e == EWOULDBLOCK))
-        return 0;
-    if (n < 0) {
-        if (gone_errno(e)) {
-            s->dead = true;
-            return LEP_E_DISCONNECTED;
-        }
-        return LEP_E_IO;
-    }
-    /* 0: VTIME passed with no byte, or a hung-up terminal (end of file) */
-    p.fd = s->fd;
-    p.events = POLLIN;
-    p.revents = 0;
-    if (poll(&p, 1, 0) > 0) {
-        if (p.revents & POLLNVAL)
-            return LEP_E_IO;
-        if ((p.revents & (POLLHUP | POLLERR)) && !(p.revents & POLLIN)) {
-            s->dead = true;
-            return LEP_E_DISCONNECTED;
-        }
-    }
-    return 0;
-}
-
 static int serial_read(void *user, uint8_t *buf, size_t cap, int timeout_ms)
 {
     lep_serial *s = user;
     int64_t deadline = 0;
-    bool blocking_ok = true; /* false after a read that returned early with nothing */
     if (s == NULL || (buf == NULL && cap > 0))
         return LEP_E_ARG;
     if (s->dead)
@@ -381,24 +332,6 @@ static int serial_read(void *user, uint8_t *buf, size_t cap, int timeout_ms)
     for (;;) {
         struct pollfd p;
         int r, wait = timeout_ms < 0 ? -1 : timeout_ms == 0 ? 0 : lep_priv_ms_left(deadline);
-        if (cap > 0 && blocking_ok && (wait < 0 || wait >= READ_BLOCK_MIN_MS)) {
-            /* One syscall: returns with the first bytes, or after VTIME. */
-            int64_t t_call = lep_priv_monotonic_ns();
-            ssize_t n = read(s->fd, buf, cap);
-            int e = errno, rc;
-            if (n > 0)
-                return (int)n;
-            rc = read_failed(s, n, e);
-            if (rc != 0)
-                return rc;
-            /* An empty return well before VTIME (or EAGAIN) is not this
-             * port's timer at work: wait in poll() this time round. */
-            if (n < 0 ? e != EINTR
-                      : lep_priv_monotonic_ns() - t_call < (int64_t)READ_VTIME * 50000000)
-                blocking_ok = false;
-            continue;
-        }
-        blocking_ok = true;
         p.fd = s->fd;
         p.events = POLLIN;
         p.revents = 0;
@@ -442,24 +375,12 @@ static int serial_read(void *user, uint8_t *buf, size_t cap, int timeout_ms)
 static int serial_write(void *user, const uint8_t *data, size_t len)
 {
     lep_serial *s = user;
-    int rc, e;
     if (s == NULL || (data == NULL && len > 0))
         return LEP_E_ARG;
     if (s->dead)
         return LEP_E_DISCONNECTED;
-    /* Non-blocking for the write: a port that takes nothing times out. */
-    if (fcntl(s->fd, F_SETFL, s->fl | O_NONBLOCK) != 0) {
-        if (gone_errno(errno)) {
-            s->dead = true;
-            return LEP_E_DISCONNECTED;
-        }
-        return LEP_E_IO;
-    }
-    rc = lep_priv_write_all(s->fd, data, len, lep_priv_monotonic_ns() + (int64_t)WRITE_STALL_MS * 1000000);
-    e = errno;
-    (void)fcntl(s->fd, F_SETFL, s->fl);
-    errno = e;
-    switch (rc) {
+    switch (lep_priv_write_all(s->fd, data, len,
+                               lep_priv_monotonic_ns() + (int64_t)WRITE_STALL_MS * 1000000)) {
     case LEP_PRIV_WRITE_OK:
         return LEP_OK;
     case LEP_PRIV_WRITE_TIMEOUT:

@@ -2,12 +2,10 @@
 #define _GNU_SOURCE
 
 #include <fcntl.h>
-#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <sys/time.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -232,60 +230,6 @@ static void test_disconnect_while_waiting(void)
     TEST_ASSERT_TRUE(t >= 0.05 && t < 1.5);
 }
 
-static void on_alarm(int sig)
-{
-    (void)sig;
-}
-
-/* A signal during a read that blocks in read() (VMIN 0, VTIME): the read
- * goes on until its timeout, neither failing nor returning early. */
-static void test_signal_during_blocking_read(void)
-{
-    uint8_t buf[16];
-    lep_io io;
-    struct sigaction sa, old;
-    struct itimerval it, off;
-    double t;
-    make_pty();
-    open_port(slave_path);
-    lep_serial_get_io(port, &io);
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_alarm; /* no SA_RESTART: read() fails with EINTR */
-    TEST_ASSERT_EQUAL_INT(0, sigaction(SIGALRM, &sa, &old));
-    memset(&it, 0, sizeof it);
-    memset(&off, 0, sizeof off);
-    it.it_value.tv_usec = 150000;
-    it.it_interval.tv_usec = 150000;
-    TEST_ASSERT_EQUAL_INT(0, setitimer(ITIMER_REAL, &it, NULL));
-    t = lep_monotonic_seconds();
-    TEST_ASSERT_EQUAL_INT(0, io.read(io.user, buf, sizeof buf, 700));
-    t = lep_monotonic_seconds() - t;
-    (void)setitimer(ITIMER_REAL, &off, NULL);
-    (void)sigaction(SIGALRM, &old, NULL);
-    TEST_ASSERT_TRUE(t >= 0.7);
-    /* and bytes sent now are read at once */
-    TEST_ASSERT_EQUAL_INT(3, (int)write(master, "abc", 3));
-    TEST_ASSERT_EQUAL_INT(3, io.read(io.user, buf, sizeof buf, 2000));
-    TEST_ASSERT_EQUAL_MEMORY("abc", buf, 3);
-}
-
-/* Reads block, but a write to a port that takes nothing times out (2 s)
- * instead of blocking, and reads block again afterwards. */
-static void test_write_stall_times_out(void)
-{
-    static uint8_t big[256 * 1024];
-    uint8_t buf[16];
-    lep_io io;
-    make_pty();
-    open_port(slave_path);
-    lep_serial_get_io(port, &io);
-    TEST_ASSERT_EQUAL_INT(0, fcntl(lep_serial_fd(port), F_GETFL) & O_NONBLOCK);
-    TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, io.write(io.user, big, sizeof big)); /* nobody reads the master */
-    TEST_ASSERT_EQUAL_INT(0, fcntl(lep_serial_fd(port), F_GETFL) & O_NONBLOCK);
-    TEST_ASSERT_EQUAL_INT(2, (int)write(master, "xy", 2));
-    TEST_ASSERT_EQUAL_INT(2, io.read(io.user, buf, sizeof buf, 1000));
-}
-
 static void test_monotonic(void)
 {
     double a = lep_monotonic_seconds();
@@ -438,8 +382,6 @@ int main(void)
     RUN_TEST(test_timeout_precision);
     RUN_TEST(test_disconnect);
     RUN_TEST(test_disconnect_while_waiting);
-    RUN_TEST(test_signal_during_blocking_read);
-    RUN_TEST(test_write_stall_times_out);
     RUN_TEST(test_monotonic);
     RUN_TEST(test_list_fake_tree);
     RUN_TEST(test_list_this_machine);
