@@ -243,12 +243,16 @@ static inline int lep_client_step_inline_(lep_client *c, const uint8_t *data, si
     return (lep_client_step)(c, data, len, consumed);
 }
 
-/* When optimising for speed, lep_client_step is also a macro (as C's
- * library functions may be): a call fed one byte at a time then costs no
- * more than lep_client_step_byte. The same behaviour either way; the exported
- * function stays for bindings, function pointers and (lep_client_step)(...).
- * Size builds (-Os) call the function. */
-#if !defined(__OPTIMIZE_SIZE__)
+/* When optimising for speed, lep_client_step is also a function-like macro
+ * (as C's library functions may be): a call fed one byte at a time then costs
+ * no more than lep_client_step_byte. The same behaviour either way; the
+ * exported function stays for bindings, function pointers and
+ * (lep_client_step)(...). Size builds (-Os) call the function. Like any
+ * function-like macro it also expands in `obj.lep_client_step(...)` or
+ * `ops->lep_client_step(...)` (a member of the same name): write
+ * `(ops->lep_client_step)(...)`, or define LEP_CONFIG_NO_STEP_MACRO before
+ * including leptrino headers to turn the macro off. */
+#if !defined(__OPTIMIZE_SIZE__) && !defined(LEP_CONFIG_NO_STEP_MACRO)
 #define lep_client_step(c, data, len, consumed) lep_client_step_inline_(c, data, len, consumed)
 #endif
 

@@ -2,10 +2,12 @@
 #define _GNU_SOURCE
 
 #include <fcntl.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/time.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -230,6 +232,76 @@ static void test_disconnect_while_waiting(void)
     TEST_ASSERT_TRUE(t >= 0.05 && t < 1.5);
 }
 
+static void on_alarm(int sig)
+{
+    (void)sig;
+}
+
+/* A read of 300 ms on a silent port while a 20 ms interval timer's handler
+ * runs: it returns 0 after its timeout, neither failing at the first signal
+ * nor running on. flags: the handler's sa_flags. With SA_RESTART the kernel
+ * restarts a restartable call with its own timer reset (a blocking read()
+ * with VTIME would then never time out); poll() is never restarted, and the
+ * port recomputes the time left after each EINTR. The upper bound only tells
+ * a hang from a return: it is ten times the timeout. */
+static void read_under_timer_signals(int flags)
+{
+    uint8_t buf[16];
+    lep_io io;
+    struct sigaction sa, old;
+    struct itimerval it, off;
+    double t;
+    make_pty();
+    open_port(slave_path);
+    lep_serial_get_io(port, &io);
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_alarm;
+    sa.sa_flags = flags;
+    TEST_ASSERT_EQUAL_INT(0, sigaction(SIGALRM, &sa, &old));
+    memset(&it, 0, sizeof it);
+    memset(&off, 0, sizeof off);
+    it.it_value.tv_usec = 20000;
+    it.it_interval.tv_usec = 20000;
+    TEST_ASSERT_EQUAL_INT(0, setitimer(ITIMER_REAL, &it, NULL));
+    t = lep_monotonic_seconds();
+    TEST_ASSERT_EQUAL_INT(0, io.read(io.user, buf, sizeof buf, 300));
+    t = lep_monotonic_seconds() - t;
+    (void)setitimer(ITIMER_REAL, &off, NULL);
+    (void)sigaction(SIGALRM, &old, NULL);
+    TEST_ASSERT_TRUE(t >= 0.3);
+    TEST_ASSERT_TRUE(t < 3.0);
+    /* and bytes sent now are read at once */
+    TEST_ASSERT_EQUAL_INT(3, (int)write(master, "abc", 3));
+    TEST_ASSERT_EQUAL_INT(3, io.read(io.user, buf, sizeof buf, 2000));
+    TEST_ASSERT_EQUAL_MEMORY("abc", buf, 3);
+}
+
+static void test_signals_during_read(void)
+{
+    read_under_timer_signals(0);
+}
+
+static void test_restarting_signals_during_read(void)
+{
+    read_under_timer_signals(SA_RESTART);
+}
+
+/* A write to a port that takes nothing (nobody reads the master) times out
+ * after its 2 s instead of blocking, and the port reads normally afterwards. */
+static void test_write_stall_times_out(void)
+{
+    static uint8_t big[256 * 1024];
+    uint8_t buf[16];
+    lep_io io;
+    make_pty();
+    open_port(slave_path);
+    lep_serial_get_io(port, &io);
+    TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, io.write(io.user, big, sizeof big));
+    TEST_ASSERT_EQUAL_INT(2, (int)write(master, "xy", 2));
+    TEST_ASSERT_EQUAL_INT(2, io.read(io.user, buf, sizeof buf, 1000));
+    TEST_ASSERT_EQUAL_MEMORY("xy", buf, 2);
+}
+
 static void test_monotonic(void)
 {
     double a = lep_monotonic_seconds();
@@ -382,6 +454,9 @@ int main(void)
     RUN_TEST(test_timeout_precision);
     RUN_TEST(test_disconnect);
     RUN_TEST(test_disconnect_while_waiting);
+    RUN_TEST(test_signals_during_read);
+    RUN_TEST(test_restarting_signals_during_read);
+    RUN_TEST(test_write_stall_times_out);
     RUN_TEST(test_monotonic);
     RUN_TEST(test_list_fake_tree);
     RUN_TEST(test_list_this_machine);
