@@ -10,10 +10,7 @@ static lep_client_rx rx;
 
 void setUp(void)
 {
-    lep_io io;
-    script_io_init(&sio);
-    io = script_io_table(&sio);
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_init(&client, &io));
+    script_io_client(&sio, &client);
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_rx(&client, &rx));
 }
 
@@ -513,15 +510,8 @@ static void test_step_api_stops_at_each_sample(void)
     size_t used;
     size_t pos = 0;
     unsigned got = 0;
-    unsigned i;
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
-    sio.endless_stream = false;
-    for (i = 0; i < 3; i++) {
-        script_push_data(&sio);
-    }
-    len = script_pending(&sio);
-    TEST_ASSERT_TRUE(len <= sizeof(wire));
-    memcpy(wire, sio.in + sio.in_pos, len);
+    len = script_take_data(&sio, 3, wire, sizeof(wire));
     while (pos < len) {
         int rc = lep_client_step(&client, wire + pos, len - pos, &used);
         pos += used;

@@ -21,10 +21,7 @@ static lep_client client;
 
 void setUp(void)
 {
-    lep_io io;
-    script_io_init(&sio);
-    io = script_io_table(&sio);
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_init(&client, &io));
+    script_io_client(&sio, &client);
 }
 
 void tearDown(void) {}
@@ -41,13 +38,7 @@ static void test_member_of_the_same_name_calls_the_function(void)
     static const uint8_t dle = 0x10;
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, ops.lep_client_step(NULL, &dle, 1, &used));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
-    sio.endless_stream = false;
-    for (i = 0; i < 3; i++) {
-        script_push_data(&sio);
-    }
-    len = script_pending(&sio);
-    TEST_ASSERT_TRUE(len <= sizeof(wire));
-    memcpy(wire, sio.in + sio.in_pos, len);
+    len = script_take_data(&sio, 3, wire, sizeof(wire));
     for (i = 0; i < len; i++) {
         int rc = ops.lep_client_step(&client, wire + i, 1, &used);
         TEST_ASSERT_EQUAL_size_t(1, used);

@@ -160,3 +160,24 @@ lep_io script_io_table(script_io *s)
     io.user = s;
     return io;
 }
+
+size_t script_take_data(script_io *s, unsigned n, uint8_t *wire, size_t cap)
+{
+    size_t len;
+    s->endless_stream = false;
+    while (n-- > 0u) {
+        script_push_data(s);
+    }
+    len = script_pending(s);
+    TEST_ASSERT_TRUE(len <= cap);
+    memcpy(wire, s->in + s->in_pos, len);
+    return len;
+}
+
+void script_io_client(script_io *s, lep_client *c)
+{
+    lep_io io;
+    script_io_init(s);
+    io = script_io_table(s);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_init(c, &io));
+}

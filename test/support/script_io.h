@@ -50,12 +50,19 @@ typedef struct script_io {
 /* Reset s with a PFS055YA501U6-like device, filter 0, endless streaming on. */
 void script_io_init(script_io *s);
 lep_io script_io_table(script_io *s);
+/* script_io_init(s), then a client c on s's table (the test fails if
+ * lep_client_init refuses it). */
+void script_io_client(script_io *s, lep_client *c);
 /* Queue raw bytes for the host. */
 void script_push(script_io *s, const uint8_t *data, size_t len);
 /* Queue the frame of a response message. */
 void script_push_msg(script_io *s, const uint8_t *msg, size_t len);
 /* Queue one continuous data frame with the next sequence number. */
 void script_push_data(script_io *s);
+/* Stop the endless stream, queue n data frames and copy every byte queued
+ * for the host into wire (the test fails if they exceed cap); returns their
+ * count. The bytes stay queued: step them in by hand, do not read them. */
+size_t script_take_data(script_io *s, unsigned n, uint8_t *wire, size_t cap);
 /* Bytes queued but not read yet. */
 size_t script_pending(const script_io *s);
 
