@@ -37,3 +37,20 @@ int lep_priv_ms_left(int64_t deadline_ns)
     left = (left + 999999) / 1000000;
     return left > INT_MAX ? INT_MAX : (int)left;
 }
+
+void lep_priv_sleep_until_ns(int64_t until_ns)
+{
+    struct timespec ts;
+#if defined(__linux__)
+    ts.tv_sec = (time_t)(until_ns / 1000000000);
+    ts.tv_nsec = (long)(until_ns % 1000000000);
+    (void)clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, NULL);
+#else
+    int64_t left = until_ns - lep_priv_monotonic_ns();
+    if (left <= 0)
+        return;
+    ts.tv_sec = (time_t)(left / 1000000000);
+    ts.tv_nsec = (long)(left % 1000000000);
+    (void)nanosleep(&ts, NULL);
+#endif
+}

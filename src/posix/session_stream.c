@@ -63,20 +63,6 @@ static bool utc_may_have_moved(double utc_off, double t_before)
     return lo < utc_off - SESSION_UTC_STEP_S || hi > utc_off + SESSION_UTC_STEP_S;
 }
 
-/* Sleep until monotonic time t (one nanosleep; a signal ends it early). */
-static void sleep_until(double t)
-{
-    double left = t - lep_monotonic_seconds();
-    struct timespec ts;
-    if (left <= 0.0)
-        return;
-    ts.tv_sec = (time_t)left;
-    ts.tv_nsec = (long)((left - (double)ts.tv_sec) * 1e9);
-    if (ts.tv_nsec >= 1000000000L)
-        ts.tv_nsec = 999999999L;
-    (void)nanosleep(&ts, NULL);
-}
-
 /* Milliseconds from now until t, rounded up, clipped to int; -1 for infinity. */
 static int ms_until(double t, double now)
 {
@@ -531,7 +517,7 @@ int lep_session_read(lep_session *s, lep_session_batch *b, int timeout_ms)
                 wake = s->next_attempt < deadline ? s->next_attempt : deadline;
                 if (s->port_missing && wake > now + SESSION_WATCH_S)
                     wake = now + SESSION_WATCH_S;
-                sleep_until(wake);
+                lep_priv_sleep_until_ns((int64_t)(wake * 1e9));
                 if (lep_monotonic_seconds() >= deadline)
                     return got ? LEP_OK : LEP_E_TIMEOUT;
                 continue;
@@ -554,7 +540,7 @@ int lep_session_read(lep_session *s, lep_session_batch *b, int timeout_ms)
                 wake = deadline;
             if (wake > data_deadline)
                 wake = data_deadline;
-            sleep_until(wake);
+            lep_priv_sleep_until_ns((int64_t)(wake * 1e9));
             wait = 0;
             budget_read = true;
         } else {

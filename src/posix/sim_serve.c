@@ -3,7 +3,7 @@
 #if defined(__APPLE__)
 #define _DARWIN_C_SOURCE
 #else
-#define _GNU_SOURCE /* ppoll, ptsname_r, clock_nanosleep */
+#define _GNU_SOURCE /* ppoll, ptsname_r */
 #endif
 
 #include <errno.h>
@@ -112,27 +112,6 @@ static bool requests_pending(lep_sim *s)
           (s->req_trace != NULL && s->trace == NULL);
     pthread_mutex_unlock(&s->lock);
     return any;
-}
-
-/* Sleep until the absolute CLOCK_MONOTONIC time until_ns (a signal ends it
- * early: the loop looks again). */
-static void sleep_until_ns(int64_t until_ns)
-{
-    struct timespec ts;
-    ts.tv_sec = (time_t)(until_ns / 1000000000);
-    ts.tv_nsec = (long)(until_ns % 1000000000);
-#if defined(__linux__)
-    (void)clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, NULL);
-#else
-    {
-        int64_t left = until_ns - lep_priv_monotonic_ns();
-        if (left > 0) {
-            ts.tv_sec = (time_t)(left / 1000000000);
-            ts.tv_nsec = (long)(left % 1000000000);
-            (void)nanosleep(&ts, NULL);
-        }
-    }
-#endif
 }
 
 void *lep_priv_sim_serve(void *arg)
@@ -267,7 +246,7 @@ void *lep_priv_sim_serve(void *arg)
             }
         }
         if (idle)
-            sleep_until_ns(until);
+            lep_priv_sleep_until_ns(until);
     }
     if (s->trace_was_streaming || s->streaming) /* a stream running at lep_sim_stop */
         lep_priv_sim_trace_mark(s->trace, LEP_SIM_TRACE_END, lep_priv_monotonic_ns());
