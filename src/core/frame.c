@@ -202,7 +202,8 @@ enum {
 typedef char k_kinds_run_0_to_6[(K_NAK == 2 && K_TOO_LONG == 3 && K_BCC == 4 && K_ESCAPE == 5 &&
                                  K_LENGTH == 6) ? 1 : -1];
 #define STAT_(field) ((uint8_t)offsetof(lep_frame_stats, field))
-/* The counter each adds one to (an empty frame is counted in bytes only). */
+/* The counter each adds one to (an empty frame's is bytes_discarded: the one
+ * is its BCC byte, the rest of the frame is counted before). */
 static const uint8_t k_counter[] = {STAT_(bytes_discarded), STAT_(messages), STAT_(naks),
                                     STAT_(overruns),        STAT_(bcc_errors), STAT_(escape_errors),
                                     STAT_(bytes_discarded)};
@@ -256,10 +257,9 @@ STEP_ATTR static size_t step(lep_frame_decoder *d, uint8_t b, lep_frame_event *e
         disc++;
         next = S_SKIP;
         break;
-    case S_BCC:
-        disc++;
+    case S_BCC: /* disc is the frame without this byte */
         if (b == (uint8_t)(d->bcc ^ LEP_ETX)) {
-            kind = K_LENGTH;
+            kind = K_LENGTH; /* (its counter counts this byte) */
             if (d->len != 0) {
                 kind = K_MESSAGE;
                 disc = 0;
@@ -271,8 +271,9 @@ STEP_ATTR static size_t step(lep_frame_decoder *d, uint8_t b, lep_frame_event *e
         }
         kind = K_BCC;
         if (b == LEP_DLE) { /* this DLE may open the next frame */
-            disc--;
             next = S_IDLE_DLE;
+        } else {
+            disc++;
         }
         break;
     case S_MSG_DLE:
@@ -347,14 +348,10 @@ STEP_ATTR static size_t step(lep_frame_decoder *d, uint8_t b, lep_frame_event *e
     count(d, STAT_(bytes_discarded), disc);
     ev->type = kind < K_TOO_LONG ? (int)kind : LEP_FRAME_ERROR;
     if (kind != K_NONE) {
-        count(d, k_counter[kind], kind != K_LENGTH);
+        count(d, k_counter[kind], 1);
         ev->error = kind < K_TOO_LONG ? LEP_OK : -(int)kind;
-        ev->msg = NULL;
-        ev->len = 0;
-        if (kind == K_MESSAGE) {
-            ev->msg = d->buf;
-            ev->len = d->len;
-        }
+        ev->msg = kind == K_MESSAGE ? d->buf : NULL;
+        ev->len = kind == K_MESSAGE ? d->len : 0u;
     }
     return 1;
 }
@@ -791,7 +788,7 @@ size_t lep_frame_decoder_feed(lep_frame_decoder *d, const uint8_t *data, size_t 
 #ifndef FRAME_FAST
     const uint8_t *p = data;
 #endif
-    if (d == NULL || ev == NULL || data == NULL) {
+    if (ev == NULL || d == NULL || data == NULL) {
         return feed_bad_call(d, len, ev);
     }
 #ifdef FRAME_FAST
