@@ -6,7 +6,10 @@
  * frame.c built with LEPTRINO_FRAME_SMALL (the one-byte machine only) under
  * other names (lep_small_*, see test/CMakeLists.txt), fed each whole stream
  * one event at a time. Events (type, error, message bytes, and through feed the
- * input position at which each completes), counters and busy() must agree. */
+ * input position at which each completes) must agree, and so must the counters
+ * when each event is handed over (from feed, or inside the feed_all handler)
+ * and the counters and busy() at the end of every chunk: the reference's are
+ * taken after every input byte. */
 #include <stdio.h>
 #include <string.h>
 
@@ -33,6 +36,7 @@ typedef struct diff_event {
     size_t pos; /* input bytes consumed when it completed (through feed), else 0 */
     size_t len;
     uint8_t msg[LEP_MAX_MESSAGE];
+    lep_frame_stats stats; /* the decoder's counters when the event was handed over */
 } diff_event;
 
 typedef struct diff_run {
@@ -42,7 +46,11 @@ typedef struct diff_run {
     bool overflow;
     lep_frame_stats stats;
     bool busy;
+    const lep_frame_decoder *dec; /* the decoder being fed */
+    size_t diverged;              /* first chunk end where counters or busy() differed, or NO_DIVERGENCE */
 } diff_run;
+
+#define NO_DIVERGENCE ((size_t)-1)
 
 enum chunking { CH_WHOLE, CH_BYTES, CH_SMALL, CH_LARGE, CH_32, CH_WORDISH, CH_MIXED, CH_COUNT };
 enum api { API_FEED, API_FEED_ALL, API_MIXED, API_PUSH1, API_COUNT };
@@ -50,6 +58,9 @@ enum api { API_FEED, API_FEED_ALL, API_MIXED, API_PUSH1, API_COUNT };
 static uint8_t g_in[MAX_INPUT];
 static diff_run g_ref;
 static diff_run g_got;
+/* The reference's counters and busy() after the first i input bytes. */
+static lep_frame_stats g_ref_stats[MAX_INPUT + 1u];
+static bool g_ref_busy[MAX_INPUT + 1u];
 
 void setUp(void)
 {
@@ -75,6 +86,7 @@ static void record(diff_run *r, const lep_frame_event *ev, bool with_pos)
         e->len = ev->len;
         memcpy(e->msg, ev->msg, ev->len);
     }
+    e->stats = r->dec->stats;
 }
 
 static void on_event(void *user, const lep_frame_event *ev)
@@ -153,7 +165,9 @@ static void run_reference(size_t len, diff_run *r)
 {
     lep_frame_decoder d;
     const uint8_t *p = g_in;
+    size_t i;
     memset(r, 0, sizeof(*r));
+    r->dec = &d;
     lep_small_frame_decoder_init(&d);
     while (p < g_in + len) {
         lep_frame_event ev;
@@ -167,6 +181,26 @@ static void run_reference(size_t len, diff_run *r)
     }
     r->stats = d.stats;
     r->busy = lep_small_frame_decoder_busy(&d);
+    /* again byte by byte, for the counters and busy() after every byte */
+    lep_small_frame_decoder_init(&d);
+    g_ref_stats[0] = d.stats;
+    g_ref_busy[0] = lep_small_frame_decoder_busy(&d);
+    for (i = 0; i < len; i++) {
+        lep_frame_event ev;
+        TEST_ASSERT_EQUAL_size_t(1u, lep_small_frame_decoder_feed(&d, g_in + i, 1u, &ev));
+        g_ref_stats[i + 1u] = d.stats;
+        g_ref_busy[i + 1u] = lep_small_frame_decoder_busy(&d);
+    }
+}
+
+/* Note the first chunk end at which d's counters or busy() differ from the reference's. */
+static void check_position(diff_run *r, const lep_frame_decoder *d, size_t off)
+{
+    if (r->diverged == NO_DIVERGENCE &&
+        (memcmp(&d->stats, &g_ref_stats[off], sizeof(d->stats)) != 0 ||
+         lep_frame_decoder_busy(d) != g_ref_busy[off])) {
+        r->diverged = off;
+    }
 }
 
 static size_t chunk_size(enum chunking how, size_t left, uint32_t *s)
@@ -192,6 +226,8 @@ static void run_library(size_t len, enum api api, enum chunking how, uint32_t se
     unsigned calls = 0;
     uint32_t s = seed | 1u;
     memset(r, 0, sizeof(*r));
+    r->dec = &d;
+    r->diverged = NO_DIVERGENCE;
     lep_frame_decoder_init(&d);
     while (off < len) {
         const size_t c = chunk_size(how, len - off, &s);
@@ -201,10 +237,12 @@ static void run_library(size_t len, enum api api, enum chunking how, uint32_t se
         if (all) {
             TEST_ASSERT_EQUAL_INT(LEP_OK, lep_frame_decoder_feed_all(&d, p, c, on_event, r));
             off += c;
+            check_position(r, &d, off);
             continue;
         }
         if (api == API_PUSH1 && c == 1u && lep_frame_decoder_push1(&d, *p)) {
             off += 1u;
+            check_position(r, &d, off);
             continue;
         }
         do { /* feed, every event drained */
@@ -221,6 +259,7 @@ static void run_library(size_t len, enum api api, enum chunking how, uint32_t se
             }
         } while (left > 0u);
         off += c;
+        check_position(r, &d, off);
     }
     r->stats = d.stats;
     r->busy = lep_frame_decoder_busy(&d);
@@ -243,6 +282,13 @@ static void expect_same(const diff_run *want, const diff_run *got, bool with_pos
         if (with_pos) {
             TEST_ASSERT_EQUAL_size_t_MESSAGE(a->pos, b->pos, what);
         }
+        TEST_ASSERT_EQUAL_MEMORY_MESSAGE(&a->stats, &b->stats, sizeof(a->stats), what);
+    }
+    if (got->diverged != NO_DIVERGENCE) {
+        char at[200];
+        snprintf(at, sizeof(at), "%s: counters or busy() differ after %lu input bytes", what,
+                 (unsigned long)got->diverged);
+        TEST_FAIL_MESSAGE(at);
     }
     TEST_ASSERT_EQUAL_MEMORY_MESSAGE(&want->stats, &got->stats, sizeof(want->stats), what);
     TEST_ASSERT_EQUAL_INT_MESSAGE(want->busy, got->busy, what);
