@@ -350,8 +350,12 @@ STEP_ATTR static size_t step(lep_frame_decoder *d, uint8_t b, lep_frame_event *e
     if (kind != K_NONE) {
         count(d, k_counter[kind], 1);
         ev->error = kind < K_TOO_LONG ? LEP_OK : -(int)kind;
-        ev->msg = kind == K_MESSAGE ? d->buf : NULL;
-        ev->len = kind == K_MESSAGE ? d->len : 0u;
+        ev->msg = NULL;
+        ev->len = 0;
+        if (kind == K_MESSAGE) {
+            ev->msg = d->buf;
+            ev->len = d->len;
+        }
     }
     return 1;
 }
