@@ -3,7 +3,9 @@
  * One table describes the seven command codes; every response length, and so
  * every data layout, belongs to exactly one layout (4 none, 8 filter, 20
  * sample, 28 ratings, 32/38 product info), so decoding and encoding dispatch
- * on the length once the code has allowed it. */
+ * on the length once the code has allowed it. A command is built in one
+ * place, framed or not (it never needs stuffing); a response's encoder checks
+ * what it wrote with the decoder, so both directions share one set of rules. */
 #include "leptrino/message.h"
 
 #include <string.h>
@@ -152,6 +154,8 @@ typedef char lep_no_command_code_is_dle[(LEP_CMD_PRODUCT_INFO != LEP_DLE && LEP_
                                             ? 1
                                             : -1];
 
+/* The one builder of a command: cmd as a message (extra 0) or as a frame
+ * (extra FRAME_EXTRA) into out[0..cap); the errors of lep_command_frame. */
 static int command_out(const lep_command *cmd, uint8_t *out, size_t cap, size_t *len, unsigned extra)
 {
     unsigned k;
@@ -197,9 +201,8 @@ int lep_command_frame(const lep_command *cmd, uint8_t *out, size_t cap, size_t *
     return command_out(cmd, out, cap, len, FRAME_EXTRA);
 }
 
-/* The command's bytes come from lep_command_frame: the message is the frame
- * without DLE STX in front and DLE ETX BCC behind (no byte of a command is
- * stuffed). */
+/* The same bytes as lep_command_frame's without DLE STX in front and DLE ETX
+ * BCC behind (no byte of a command is stuffed). */
 int lep_command_encode(const lep_command *cmd, uint8_t *msg, size_t cap, size_t *len)
 {
     return command_out(cmd, msg, cap, len, 0u);
