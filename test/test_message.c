@@ -184,6 +184,71 @@ static void test_command_null_arguments(void)
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_command_frame(&cmd, out, sizeof(out), NULL));
 }
 
+/* Every code and filter value: lep_command_frame gives exactly what framing
+ * lep_command_encode's message gives (no byte of a command is stuffed), the
+ * two agree on every error, and *len is 0 on each failure. */
+static void test_command_frame_every_code_and_filter(void)
+{
+    unsigned code;
+    unsigned filter;
+    for (code = 0; code < 256u; code++) {
+        for (filter = 0; filter < 256u; filter++) {
+            lep_command cmd;
+            uint8_t msg[LEP_LEN_FILTER_SET_CMD];
+            uint8_t want[LEP_MAX_FRAME];
+            uint8_t got[LEP_MAX_FRAME];
+            size_t n = 99;
+            size_t wn = 0;
+            size_t gn = 99;
+            size_t i;
+            int rc;
+            cmd.code = (uint8_t)code;
+            cmd.filter = (uint8_t)filter;
+            rc = lep_command_encode(&cmd, msg, sizeof(msg), &n);
+            TEST_ASSERT_EQUAL_INT(rc, lep_command_frame(&cmd, got, sizeof(got), &gn));
+            if (rc != LEP_OK) {
+                TEST_ASSERT_EQUAL_size_t(0, n);
+                TEST_ASSERT_EQUAL_size_t(0, gn);
+                continue;
+            }
+            for (i = 0; i < n; i++) {
+                TEST_ASSERT_NOT_EQUAL(LEP_DLE, msg[i]);
+            }
+            TEST_ASSERT_EQUAL_INT(LEP_OK, lep_frame_encode(msg, n, want, sizeof(want), &wn));
+            TEST_ASSERT_EQUAL_size_t(n + 5u, wn);
+            TEST_ASSERT_EQUAL_size_t(wn, gn);
+            TEST_ASSERT_EQUAL_HEX8_ARRAY(want, got, wn);
+            /* exact capacity, one short */
+            TEST_ASSERT_EQUAL_INT(LEP_OK, lep_command_frame(&cmd, got, wn, &gn));
+            TEST_ASSERT_EQUAL_INT(LEP_E_BUFFER, lep_command_frame(&cmd, got, wn - 1u, &gn));
+            TEST_ASSERT_EQUAL_size_t(0, gn);
+        }
+    }
+}
+
+/* A missing argument is LEP_E_ARG before any check of the command (the order
+ * LEP_E_ARG, _UNEXPECTED, _VALUE, _BUFFER), with *len 0 where there is one. */
+static void test_command_arguments_checked_first(void)
+{
+    lep_command unknown = {0x40, 0};
+    lep_command bad_filter = {LEP_CMD_FILTER_SET, 9};
+    uint8_t out[16];
+    size_t n = 99;
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_command_frame(&unknown, NULL, sizeof(out), &n));
+    TEST_ASSERT_EQUAL_size_t(0, n);
+    n = 99;
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_command_frame(&bad_filter, NULL, sizeof(out), &n));
+    TEST_ASSERT_EQUAL_size_t(0, n);
+    n = 99;
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_command_frame(NULL, out, sizeof(out), &n));
+    TEST_ASSERT_EQUAL_size_t(0, n);
+    n = 99;
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_command_encode(&unknown, NULL, sizeof(out), &n));
+    TEST_ASSERT_EQUAL_size_t(0, n);
+    TEST_ASSERT_EQUAL_INT(LEP_E_UNEXPECTED, lep_command_encode(&unknown, out, 0, &n));
+    TEST_ASSERT_EQUAL_INT(LEP_E_VALUE, lep_command_encode(&bad_filter, out, 0, &n));
+}
+
 /* ---- responses --------------------------------------------------------------- */
 
 static void expect_fields(const lep_response *want, const lep_response *got, const char *name)
@@ -711,6 +776,8 @@ int main(void)
     RUN_TEST(test_invalid_command_vectors);
     RUN_TEST(test_command_encode_error_vectors);
     RUN_TEST(test_command_null_arguments);
+    RUN_TEST(test_command_frame_every_code_and_filter);
+    RUN_TEST(test_command_arguments_checked_first);
     RUN_TEST(test_response_vectors_decode);
     RUN_TEST(test_response_vectors_encode);
     RUN_TEST(test_response_vectors_round_trip);

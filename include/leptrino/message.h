@@ -106,8 +106,10 @@ typedef struct lep_response {
     } u;
 } lep_response;
 
-/* Host side: encode cmd into msg[0..cap). Errors: LEP_E_ARG, LEP_E_UNEXPECTED
- * (unknown code), LEP_E_VALUE (filter code > 3), LEP_E_BUFFER. */
+/* Host side: encode cmd into msg[0..cap). Errors, in this order: LEP_E_ARG
+ * (a NULL argument), LEP_E_UNEXPECTED (unknown code), LEP_E_VALUE (filter
+ * code > 3), LEP_E_BUFFER; *len is 0 on failure (when len is not NULL). The
+ * bytes are lep_command_frame's without the framing. */
 LEP_API int lep_command_encode(const lep_command *cmd, uint8_t *msg, size_t cap, size_t *len);
 
 /* Sensor side: decode a command message. On failure returns LEP_E_LENGTH,
@@ -125,12 +127,16 @@ LEP_API int lep_response_decode(const uint8_t *msg, size_t len, lep_response *r)
 
 /* Sensor side: encode r into msg[0..cap). A non-zero result gives the 4-byte
  * form (for any code, so unknown commands can be answered). Errors: LEP_E_ARG,
- * LEP_E_UNEXPECTED (unknown code with result 0), LEP_E_VALUE (what decoding
- * would reject: a bad rating or filter code, |raw| > 32000, text that is not
- * printable ASCII or too long), LEP_E_BUFFER. */
+ * LEP_E_UNEXPECTED (unknown code with result 0), LEP_E_BUFFER, LEP_E_VALUE
+ * (text too long, or what lep_response_decode rejects: the message is checked
+ * by decoding it, so a bad rating or filter code, |raw| > 32000, text that is
+ * not printable ASCII); on failure *len is 0 and msg[0..cap) unspecified. */
 LEP_API int lep_response_encode(const lep_response *r, uint8_t *msg, size_t cap, size_t *len);
 
-/* Encode straight to a wire frame (message codec + frame codec). */
+/* Encode straight to a wire frame (message codec + frame codec). Errors as
+ * the encoders', and LEP_E_BUFFER when the frame does not fit; *len is 0 on
+ * failure. lep_command_frame writes the frame itself (a command holds no
+ * DLE, so nothing is stuffed) and needs no frame encoder. */
 LEP_API int lep_command_frame(const lep_command *cmd, uint8_t *out, size_t cap, size_t *len);
 LEP_API int lep_response_frame(const lep_response *r, uint8_t *out, size_t cap, size_t *len);
 

@@ -3,7 +3,9 @@
  * One table describes the seven command codes; every response length, and so
  * every data layout, belongs to exactly one layout (4 none, 8 filter, 20
  * sample, 28 ratings, 32/38 product info), so decoding and encoding dispatch
- * on the length once the code has allowed it. */
+ * on the length once the code has allowed it. A command is built in one
+ * place, framed or not (it never needs stuffing); a response's encoder checks
+ * what it wrote with the decoder, so both directions share one set of rules. */
 #include "leptrino/message.h"
 
 #include <string.h>
@@ -12,6 +14,8 @@
 #include "leptrino/frame.h"
 
 #define RESERVED_FF 0xFFu
+/* DLE STX in front of a message, DLE ETX BCC behind it */
+#define FRAME_EXTRA 5u
 
 /* Helpers called from several functions stay out of line in size builds. */
 #if defined(__GNUC__) && defined(__OPTIMIZE_SIZE__)
@@ -139,30 +143,69 @@ static bool length_ok(const uint8_t *msg, size_t len)
     return len >= LEP_LEN_HEADER && msg[0] == len;
 }
 
-int lep_command_encode(const lep_command *cmd, uint8_t *msg, size_t cap, size_t *len)
+/* A command never holds a DLE: its length is 4 or 8, then 0xFF, a code of
+ * k_codes, 0x00 and, for a filter set, a filter code 0..3 and three 0x00
+ * (the codes are checked below); so the frame is DLE STX, the message as it
+ * is, DLE ETX and the BCC (never stuffed). */
+typedef char lep_no_command_code_is_dle[(LEP_CMD_PRODUCT_INFO != LEP_DLE && LEP_CMD_RATED != LEP_DLE &&
+                                         LEP_CMD_FILTER_GET != LEP_DLE && LEP_CMD_SAMPLE != LEP_DLE &&
+                                         LEP_CMD_START != LEP_DLE && LEP_CMD_STOP != LEP_DLE &&
+                                         LEP_CMD_FILTER_SET != LEP_DLE && LEP_FILTER_MAX < LEP_DLE)
+                                            ? 1
+                                            : -1];
+
+/* The one builder of a command: cmd as a message (extra 0) or as a frame
+ * (extra FRAME_EXTRA) into out[0..cap); the errors of lep_command_frame. */
+static int command_out(const lep_command *cmd, uint8_t *out, size_t cap, size_t *len, unsigned extra)
 {
     unsigned k;
-    size_t n;
-    if (cmd == NULL || msg == NULL || len == NULL) {
+    unsigned n = LEP_LEN_HEADER;
+    unsigned filter = 0;
+    if (len == NULL) {
         return LEP_E_ARG;
     }
     *len = 0;
+    if (cmd == NULL || out == NULL) {
+        return LEP_E_ARG;
+    }
     k = code_index(cmd->code);
     if (k == N_CODES) {
         return LEP_E_UNEXPECTED;
     }
-    n = command_length(k);
-    if (k == I_FILTER_SET && cmd->filter > LEP_FILTER_MAX) {
-        return LEP_E_VALUE;
+    if (k == I_FILTER_SET) {
+        filter = cmd->filter;
+        if (filter > LEP_FILTER_MAX) {
+            return LEP_E_VALUE;
+        }
+        n = LEP_LEN_FILTER_SET_CMD;
     }
-    if (cap < n) {
+    if (cap < n + extra) {
         return LEP_E_BUFFER;
     }
+    *len = n + extra;
+    if (extra != 0u) {
+        *out++ = LEP_DLE;
+        *out++ = LEP_STX;
+        out[n] = LEP_DLE;
+        out[n + 1] = LEP_ETX;
+        out[n + 2] = (uint8_t)(LEP_ETX ^ n ^ RESERVED_FF ^ cmd->code ^ filter); /* the XOR of the message and ETX */
+    }
+    put_header(out, n, cmd->code, 0x00u);
     /* the filter code and three reserved 0x00 follow the header of a filter set */
-    put_le(msg + 4, cmd->filter, (unsigned)n - LEP_LEN_HEADER);
-    put_header(msg, n, cmd->code, 0x00u);
-    *len = n;
+    put_le(out + 4, filter, n - LEP_LEN_HEADER);
     return LEP_OK;
+}
+
+int lep_command_frame(const lep_command *cmd, uint8_t *out, size_t cap, size_t *len)
+{
+    return command_out(cmd, out, cap, len, FRAME_EXTRA);
+}
+
+/* The same bytes as lep_command_frame's without DLE STX in front and DLE ETX
+ * BCC behind (no byte of a command is stuffed). */
+int lep_command_encode(const lep_command *cmd, uint8_t *msg, size_t cap, size_t *len)
+{
+    return command_out(cmd, msg, cap, len, 0u);
 }
 
 int lep_command_decode(const uint8_t *msg, size_t len, lep_command *cmd, uint8_t *result)
@@ -203,34 +246,19 @@ static bool printable(uint8_t b)
  * (a control byte, a byte >= 0x80, a NUL followed by text). */
 static bool get_text(char *dst, const uint8_t *src, size_t n)
 {
-    size_t end = n;
-    size_t i;
-    while (end > 0 && (src[end - 1] == ' ' || src[end - 1] == 0u)) {
-        end--;
-    }
-    for (i = 0; i < end; i++) {
-        if (!printable(src[i])) {
+    bool pad = true;
+    while (n > 0u) {
+        uint8_t b = src[--n];
+        if (pad && (b | 0x20u) == 0x20u) {
+            continue; /* a trailing space or NUL */
+        }
+        pad = false;
+        if (!printable(b)) {
             return false;
         }
-        dst[i] = (char)src[i];
+        dst[n] = (char)b;
     }
-    return true; /* dst[end] stays '\0': lep_response_decode zeroed r */
-}
-
-/* Write a C string (at most n characters, printable ASCII) into an n-byte
- * field, space padded. */
-static bool put_text(uint8_t *dst, const char *src, size_t n)
-{
-    size_t len = 0;
-    while (src[len] != '\0') { /* src has room for n characters and a NUL */
-        if (len == n || !printable((uint8_t)src[len])) {
-            return false;
-        }
-        dst[len] = (uint8_t)src[len];
-        len++;
-    }
-    memset(dst + len, ' ', n - len);
-    return true;
+    return true; /* the padding stays '\0': lep_response_decode zeroed r */
 }
 
 /* Leading spaces, then digits to the end; 0 for anything else (no digits
@@ -366,65 +394,59 @@ int lep_response_decode(const uint8_t *msg, size_t len, lep_response *r)
     }
 }
 
-static int encode_sample(uint8_t *msg, const lep_sample *s)
-{
-    size_t i;
-    for (i = 0; i < LEP_AXES; i++) {
-        if (!raw_ok(s->raw[i])) {
-            return LEP_E_VALUE;
-        }
-        put_le(msg + 4 + 2 * i, (uint16_t)s->raw[i], 2);
-    }
-    put_le(msg + 16, s->reserved, 2);
-    msg[18] = s->status;
-    return LEP_OK;
-}
-
-/* Each value is checked by the rule that decoding applies (rating_bits_ok,
- * raw_ok, printable, LEP_FILTER_MAX), so what decoding would reject,
- * encoding refuses (LEP_E_VALUE); the sensor side needs no decoder. */
-static int encode_data(uint8_t *msg, size_t n, const lep_response *r)
+/* The data of r into an n-byte message whose reserved bytes are zero, with
+ * no check but a text's length (the caller decodes the result). */
+static bool put_data(uint8_t *msg, size_t n, const lep_response *r)
 {
     const struct text_field *t;
     size_t i;
     switch (n) {
     case LEP_LEN_HEADER:
-        return LEP_OK;
+        break;
     case LEP_LEN_FILTER:
         msg[4] = r->u.filter;
-        return r->u.filter <= LEP_FILTER_MAX ? LEP_OK : LEP_E_VALUE;
+        break;
     case LEP_LEN_SAMPLE: /* the handshake sample or a stream data message */
-        return encode_sample(msg, &r->u.sample);
+        for (i = 0; i < LEP_AXES; i++) {
+            put_le(msg + 4 + 2 * i, (uint16_t)r->u.sample.raw[i], 2);
+        }
+        put_le(msg + 16, r->u.sample.reserved, 2);
+        msg[18] = r->u.sample.status;
+        break;
     case LEP_LEN_RATED:
         for (i = 0; i < LEP_AXES; i++) {
             union {
                 float f;
                 uint32_t bits;
             } v;
-            uint32_t bits;
             v.f = r->u.rated.axis[i];
-            bits = v.bits;
-            if (!rating_bits_ok(bits)) {
-                return LEP_E_VALUE;
-            }
-            put_le(msg + 4 + 4 * i, bits, 4);
+            put_le(msg + 4 + 4 * i, v.bits, 4);
         }
-        return LEP_OK;
-    default: /* 32 or 38 */
+        break;
+    default: /* 32 or 38: each text space padded, at most its width */
         for (t = k_text; t->wire < n; t++) {
-            if (!put_text(msg + t->wire, (const char *)&r->u.info + t->at, t->width)) {
-                return LEP_E_VALUE;
+            const char *src = (const char *)&r->u.info + t->at;
+            for (i = 0; i < t->width; i++) { /* src stops at its NUL: spaces from there */
+                msg[t->wire + i] = *src != '\0' ? (uint8_t)*src++ : (uint8_t)' ';
+            }
+            if (*src != '\0') {
+                return false; /* longer than the field */
             }
         }
-        return LEP_OK;
+        break;
     }
+    return true;
 }
 
+/* What decoding would reject, encoding refuses (LEP_E_VALUE): the message
+ * is checked by lep_response_decode itself, so both sides apply one set of
+ * rules (a rating finite and positive, |raw| <= 32000, a filter code <= 3,
+ * text printable ASCII). */
 int lep_response_encode(const lep_response *r, uint8_t *msg, size_t cap, size_t *len)
 {
     unsigned k;
     size_t n;
-    int rc;
+    lep_response check;
     if (r == NULL || msg == NULL || len == NULL) {
         return LEP_E_ARG;
     }
@@ -443,24 +465,12 @@ int lep_response_encode(const lep_response *r, uint8_t *msg, size_t cap, size_t 
     }
     put_header(msg, n, r->code, r->result);
     memset(msg + LEP_LEN_HEADER, 0, n - LEP_LEN_HEADER); /* the reserved bytes */
-    rc = encode_data(msg, n, r);
-    if (rc == LEP_OK) {
-        *len = n;
+    if (!put_data(msg, n, r) ||
+        (r->result == LEP_RESULT_OK && lep_response_decode(msg, n, &check) != LEP_OK)) {
+        return LEP_E_VALUE;
     }
-    return rc;
-}
-
-int lep_command_frame(const lep_command *cmd, uint8_t *out, size_t cap, size_t *len)
-{
-    uint8_t msg[LEP_LEN_FILTER_SET_CMD];
-    size_t n;
-    int rc;
-    if (len == NULL) {
-        return LEP_E_ARG;
-    }
-    *len = 0;
-    rc = lep_command_encode(cmd, msg, sizeof(msg), &n);
-    return rc == LEP_OK ? lep_frame_encode(msg, n, out, cap, len) : rc;
+    *len = n;
+    return LEP_OK;
 }
 
 int lep_response_frame(const lep_response *r, uint8_t *out, size_t cap, size_t *len)
@@ -478,23 +488,25 @@ int lep_response_frame(const lep_response *r, uint8_t *out, size_t cap, size_t *
 
 void lep_sample_to_si(const lep_sample *s, const lep_rated *rated, double si[LEP_AXES])
 {
-    size_t i;
+    const int16_t *raw;
+    const float *axis;
     if (s == NULL || rated == NULL || si == NULL) {
         return;
     }
-    for (i = 0; i < LEP_AXES; i++) {
-        si[i] = (double)s->raw[i] * (double)rated->axis[i] / (double)LEP_RAW_FULL_SCALE;
+    for (raw = s->raw, axis = rated->axis; raw < s->raw + LEP_AXES; raw++, axis++) {
+        *si++ = (double)*raw * (double)*axis / (double)LEP_RAW_FULL_SCALE;
     }
 }
 
 void lep_sample_to_si_f(const lep_sample *s, const lep_rated *rated, float si[LEP_AXES])
 {
-    size_t i;
+    const int16_t *raw;
+    const float *axis;
     if (s == NULL || rated == NULL || si == NULL) {
         return;
     }
-    for (i = 0; i < LEP_AXES; i++) {
-        si[i] = (float)s->raw[i] * rated->axis[i] / (float)LEP_RAW_FULL_SCALE;
+    for (raw = s->raw, axis = rated->axis; raw < s->raw + LEP_AXES; raw++, axis++) {
+        *si++ = (float)*raw * *axis / (float)LEP_RAW_FULL_SCALE;
     }
 }
 
