@@ -127,10 +127,9 @@ LEP_API int lep_response_decode(const uint8_t *msg, size_t len, lep_response *r)
 
 /* Sensor side: encode r into msg[0..cap). A non-zero result gives the 4-byte
  * form (for any code, so unknown commands can be answered). Errors: LEP_E_ARG,
- * LEP_E_UNEXPECTED (unknown code with result 0), LEP_E_BUFFER, LEP_E_VALUE
- * (text too long, or what lep_response_decode rejects: the message is checked
- * by decoding it, so a bad rating or filter code, |raw| > 32000, text that is
- * not printable ASCII); on failure *len is 0 and msg[0..cap) unspecified. */
+ * LEP_E_UNEXPECTED (unknown code with result 0), LEP_E_VALUE (what decoding
+ * would reject: a bad rating or filter code, |raw| > 32000, text that is not
+ * printable ASCII or too long), LEP_E_BUFFER. */
 LEP_API int lep_response_encode(const lep_response *r, uint8_t *msg, size_t cap, size_t *len);
 
 /* Encode straight to a wire frame (message codec + frame codec). Errors as

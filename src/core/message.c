@@ -4,8 +4,7 @@
  * every data layout, belongs to exactly one layout (4 none, 8 filter, 20
  * sample, 28 ratings, 32/38 product info), so decoding and encoding dispatch
  * on the length once the code has allowed it. A command is built in one
- * place, framed or not (it never needs stuffing); a response's encoder checks
- * what it wrote with the decoder, so both directions share one set of rules. */
+ * place, framed or not (it never needs stuffing). */
 #include "leptrino/message.h"
 
 #include <string.h>
@@ -261,6 +260,22 @@ static bool get_text(char *dst, const uint8_t *src, size_t n)
     return true; /* the padding stays '\0': lep_response_decode zeroed r */
 }
 
+/* Write a C string (at most n characters, printable ASCII) into an n-byte
+ * field, space padded. */
+static bool put_text(uint8_t *dst, const char *src, size_t n)
+{
+    size_t len = 0;
+    while (src[len] != '\0') { /* src has room for n characters and a NUL */
+        if (len == n || !printable((uint8_t)src[len])) {
+            return false;
+        }
+        dst[len] = (uint8_t)src[len];
+        len++;
+    }
+    memset(dst + len, ' ', n - len);
+    return true;
+}
+
 /* Leading spaces, then digits to the end; 0 for anything else (no digits
  * leave v at 0, so they need no test of their own). */
 static uint32_t parse_rate(const char *s)
@@ -394,59 +409,65 @@ int lep_response_decode(const uint8_t *msg, size_t len, lep_response *r)
     }
 }
 
-/* The data of r into an n-byte message whose reserved bytes are zero, with
- * no check but a text's length (the caller decodes the result). */
-static bool put_data(uint8_t *msg, size_t n, const lep_response *r)
+static int encode_sample(uint8_t *msg, const lep_sample *s)
+{
+    size_t i;
+    for (i = 0; i < LEP_AXES; i++) {
+        if (!raw_ok(s->raw[i])) {
+            return LEP_E_VALUE;
+        }
+        put_le(msg + 4 + 2 * i, (uint16_t)s->raw[i], 2);
+    }
+    put_le(msg + 16, s->reserved, 2);
+    msg[18] = s->status;
+    return LEP_OK;
+}
+
+/* Each value is checked by the rule that decoding applies (rating_bits_ok,
+ * raw_ok, printable, LEP_FILTER_MAX), so what decoding would reject,
+ * encoding refuses (LEP_E_VALUE); the sensor side needs no decoder. */
+static int encode_data(uint8_t *msg, size_t n, const lep_response *r)
 {
     const struct text_field *t;
     size_t i;
     switch (n) {
     case LEP_LEN_HEADER:
-        break;
+        return LEP_OK;
     case LEP_LEN_FILTER:
         msg[4] = r->u.filter;
-        break;
+        return r->u.filter <= LEP_FILTER_MAX ? LEP_OK : LEP_E_VALUE;
     case LEP_LEN_SAMPLE: /* the handshake sample or a stream data message */
-        for (i = 0; i < LEP_AXES; i++) {
-            put_le(msg + 4 + 2 * i, (uint16_t)r->u.sample.raw[i], 2);
-        }
-        put_le(msg + 16, r->u.sample.reserved, 2);
-        msg[18] = r->u.sample.status;
-        break;
+        return encode_sample(msg, &r->u.sample);
     case LEP_LEN_RATED:
         for (i = 0; i < LEP_AXES; i++) {
             union {
                 float f;
                 uint32_t bits;
             } v;
+            uint32_t bits;
             v.f = r->u.rated.axis[i];
-            put_le(msg + 4 + 4 * i, v.bits, 4);
+            bits = v.bits;
+            if (!rating_bits_ok(bits)) {
+                return LEP_E_VALUE;
+            }
+            put_le(msg + 4 + 4 * i, bits, 4);
         }
-        break;
-    default: /* 32 or 38: each text space padded, at most its width */
+        return LEP_OK;
+    default: /* 32 or 38 */
         for (t = k_text; t->wire < n; t++) {
-            const char *src = (const char *)&r->u.info + t->at;
-            for (i = 0; i < t->width; i++) { /* src stops at its NUL: spaces from there */
-                msg[t->wire + i] = *src != '\0' ? (uint8_t)*src++ : (uint8_t)' ';
-            }
-            if (*src != '\0') {
-                return false; /* longer than the field */
+            if (!put_text(msg + t->wire, (const char *)&r->u.info + t->at, t->width)) {
+                return LEP_E_VALUE;
             }
         }
-        break;
+        return LEP_OK;
     }
-    return true;
 }
 
-/* What decoding would reject, encoding refuses (LEP_E_VALUE): the message
- * is checked by lep_response_decode itself, so both sides apply one set of
- * rules (a rating finite and positive, |raw| <= 32000, a filter code <= 3,
- * text printable ASCII). */
 int lep_response_encode(const lep_response *r, uint8_t *msg, size_t cap, size_t *len)
 {
     unsigned k;
     size_t n;
-    lep_response check;
+    int rc;
     if (r == NULL || msg == NULL || len == NULL) {
         return LEP_E_ARG;
     }
@@ -465,12 +486,11 @@ int lep_response_encode(const lep_response *r, uint8_t *msg, size_t cap, size_t 
     }
     put_header(msg, n, r->code, r->result);
     memset(msg + LEP_LEN_HEADER, 0, n - LEP_LEN_HEADER); /* the reserved bytes */
-    if (!put_data(msg, n, r) ||
-        (r->result == LEP_RESULT_OK && lep_response_decode(msg, n, &check) != LEP_OK)) {
-        return LEP_E_VALUE;
+    rc = encode_data(msg, n, r);
+    if (rc == LEP_OK) {
+        *len = n;
     }
-    *len = n;
-    return LEP_OK;
+    return rc;
 }
 
 int lep_response_frame(const lep_response *r, uint8_t *out, size_t cap, size_t *len)
