@@ -6,20 +6,21 @@
 
 #include "leptrino/error.h"
 
-#define ST_WAIT 0x01u   /* a transaction or a recovery waits */
-#define ST_STREAM 0x02u /* continuous output is on */
-#define ST_FRESH 0x04u  /* a sample arrived since the watchdog last looked */
+#define ST_STREAM 0x01u /* continuous output is on */
+#define ST_FRESH 0x02u  /* a sample arrived since the watchdog last looked */
 
-/* Phases of a transaction. Numbered so that a recovery's stop phase + 2 is
- * its drain, the drains are the phases >= PH_DRAIN_SYNC, and bit 0 says a
- * start is being recovered (the phase after its drain is PH_RESTARTED). */
+/* Phases: what the client waits for (PH_NONE: nothing). Numbered so that a
+ * transaction (or a recovery's stop) waits for its answer in the phases 1..4,
+ * a recovery's stop phase + 2 is its drain, the drains are the phases >=
+ * PH_DRAIN_SYNC, and a drain's phase - 4 is the phase of what it sends next. */
 enum {
-    PH_NONE = 0,       /* a plain transaction (or nothing) */
-    PH_RESTARTED = 1,  /* the start sent after a recovery (not recovered twice) */
-    PH_STOP_SYNC = 2,  /* recovery: its stop is out */
-    PH_STOP_START = 3, /* a start refused with 0x04: the stop is out */
-    PH_DRAIN_SYNC = 4, /* recovery: waiting for a quiet line, then identify */
-    PH_DRAIN_START = 5 /* start recovery: waiting for a quiet line, then start again */
+    PH_NONE = 0,       /* no transaction or recovery */
+    PH_PLAIN = 1,      /* a plain transaction */
+    PH_RESTARTED = 2,  /* the start sent after a recovery (not recovered twice) */
+    PH_STOP_SYNC = 3,  /* recovery: its stop is out */
+    PH_STOP_START = 4, /* a start refused with 0x04: the stop is out */
+    PH_DRAIN_SYNC = 5, /* recovery: waiting for a quiet line, then identify */
+    PH_DRAIN_START = 6 /* start recovery: waiting for a quiet line, then start again */
 };
 
 /* The client's own counters (lep_client.count), in lep_client_stats order from retries on. */
@@ -49,7 +50,6 @@ typedef char lep_client_counters_fit[COUNTERS_FIT ? 1 : -1];
  * Its values after a look: */
 #define CHECK_EVERY 32u                     /* single-byte steps between two clock reads */
 #define FAST_CHECKED (0x10000u - CHECK_EVERY) /* a deadline is armed */
-#define FAST_NO_DEADLINE 1u                 /* none is: look at the state again now and then */
 #define FAST_LOOK_NEXT 0xFFFFu              /* look at the clock on the next step */
 /* The event handling is inlined into both step entries when optimising for
  * speed (the one-byte entry then makes one call less per frame). */
@@ -161,7 +161,7 @@ bool lep_client_streaming(const lep_client *c)
 
 bool lep_client_busy(const lep_client *c)
 {
-    return c != NULL && (c->state & ST_WAIT) != 0u;
+    return c != NULL && c->phase != PH_NONE;
 }
 
 /* A message that passed validation leaves its decoded sample member (what
@@ -212,7 +212,6 @@ static uint32_t now(const lep_client *c)
 /* The transaction or recovery is over; returns rc, its outcome. */
 SHARED int finish(lep_client *c, int rc)
 {
-    c->state = (uint8_t)(c->state & ~ST_WAIT);
     c->phase = PH_NONE;
     return rc;
 }
@@ -220,7 +219,7 @@ SHARED int finish(lep_client *c, int rc)
 /* A transaction (or a recovery's stop) waits for its answer. */
 SHARED bool waiting(const lep_client *c)
 {
-    return (c->state & ST_WAIT) != 0u && c->phase < PH_DRAIN_SYNC;
+    return (uint8_t)(c->phase - PH_PLAIN) < PH_DRAIN_SYNC - PH_PLAIN;
 }
 
 /* Write the pending command (again) and restart the attempt's clock. */
@@ -251,7 +250,6 @@ SHARED int begin(lep_client *c, uint8_t code, uint8_t filter, uint8_t phase)
     c->filter = filter;
     c->tries = 0;
     c->phase = phase;
-    c->state = (uint8_t)(c->state | ST_WAIT);
     return write_pending(c);
 }
 
@@ -261,7 +259,7 @@ int lep_client_send(lep_client *c, const lep_command *cmd)
         return LEP_E_ARG;
     }
     c->msg_len = 0;
-    return begin(c, cmd->code, cmd->filter, PH_NONE);
+    return begin(c, cmd->code, cmd->filter, PH_PLAIN);
 }
 
 int lep_client_recover(lep_client *c, uint16_t quiet_ms)
@@ -317,7 +315,7 @@ static int on_answer(lep_client *c, uint8_t result)
             c->count[N_RESENT_CONFIRMED]++; /* an earlier copy was executed */
             return done(c);
         }
-        if (c->code == LEP_CMD_START && c->phase == PH_NONE && (c->state & ST_STREAM) == 0u) {
+        if (c->code == LEP_CMD_START && c->phase == PH_PLAIN && (c->state & ST_STREAM) == 0u) {
             /* A stream we did not start (a stale one) already runs. */
             return begin(c, LEP_CMD_STOP, 0, PH_STOP_START); /* LEP_OK is LEP_STEP_NONE */
         }
@@ -392,10 +390,14 @@ HOT int on_event(lep_client *c, const lep_frame_event *ev)
     return LEP_STEP_NONE;
 }
 
-/* What is left at t of span begun at t0 (0 once it has passed). */
+/* What is left at t of span begun at t0 (0 once it has passed); NEVER when
+ * span is 0 (the timer is not armed). */
 static uint32_t left_of(uint32_t t, uint32_t t0, uint32_t span)
 {
     uint32_t spent = t - t0;
+    if (span == 0u) {
+        return NEVER;
+    }
     return spent >= span ? 0u : span - spent;
 }
 
@@ -405,15 +407,22 @@ static uint32_t left_of(uint32_t t, uint32_t t0, uint32_t span)
  * time; or the stream watchdog); NEVER for a timer that is not armed. */
 static uint32_t timers(const lep_client *c, uint32_t t, uint32_t *aux)
 {
-    uint32_t span = (c->state & ST_WAIT) != 0u ? c->timeout_ms : 0u; /* 0: not armed */
-    uint32_t other = (c->state & ST_STREAM) != 0u ? c->watchdog_ms : 0u;
-    if (c->phase >= PH_DRAIN_SYNC) { /* (a drain waits, and streaming is off) */
+    uint32_t span = c->timeout_ms;
+    uint32_t other = c->watchdog_ms;
+    if (c->phase >= PH_DRAIN_SYNC) { /* (streaming is off) */
         other = (span < DRAIN_TIMEOUT_CAP ? span : DRAIN_TIMEOUT_CAP) * LEP_CLIENT_DRAIN_TIMEOUTS +
                 c->quiet_ms;
         span = c->quiet_ms;
+    } else {
+        if (c->phase == PH_NONE) {
+            span = 0; /* not armed */
+        }
+        if ((c->state & ST_STREAM) == 0u) {
+            other = 0;
+        }
     }
-    *aux = other != 0u ? left_of(t, c->t_aux, other) : NEVER;
-    return span != 0u ? left_of(t, c->t_start, span) : NEVER;
+    *aux = left_of(t, c->t_aux, other);
+    return left_of(t, c->t_start, span);
 }
 
 /* Deadlines: attempt timeout, drain, watchdog. fed says bytes came in. */
@@ -437,8 +446,8 @@ static int check_clock(lep_client *c, bool fed)
     if (attempt == 0u) {
         int rc;
         if (draining) {
-            uint8_t start = (uint8_t)(c->phase & 1u);
-            return begin(c, start ? LEP_CMD_START : LEP_CMD_PRODUCT_INFO, 0, start);
+            return begin(c, c->phase == PH_DRAIN_START ? LEP_CMD_START : LEP_CMD_PRODUCT_INFO, 0,
+                         (uint8_t)(c->phase - 4u));
         }
         rc = attempt_failed(c, LEP_E_TIMEOUT, N_RESENT_TIMEOUT);
         if (rc != LEP_STEP_NONE) {
@@ -455,17 +464,17 @@ static int check_clock(lep_client *c, bool fed)
 
 /* After the input (len bytes) is consumed without an outcome: watch the
  * clock, on single-byte steps only when c->fast has come round to 0 (every
- * CHECK_EVERY steps, every step during a recovery). */
+ * CHECK_EVERY steps, every step during a recovery), and only while a deadline
+ * is armed (otherwise c->fast just goes on counting). */
 static int step_clock(lep_client *c, size_t len)
 {
-    if ((c->state & ST_WAIT) == 0u && ((c->state & ST_STREAM) == 0u || c->watchdog_ms == 0u)) {
-        c->fast = (uint16_t)FAST_NO_DEADLINE; /* no deadline to watch */
-        return LEP_STEP_NONE;
-    }
     if (len == 1u && c->fast != 0u) {
         return LEP_STEP_NONE;
     }
-    c->fast = (uint16_t)(c->phase == PH_NONE ? FAST_CHECKED : FAST_LOOK_NEXT);
+    if (c->phase == PH_NONE && ((c->state & ST_STREAM) == 0u || c->watchdog_ms == 0u)) {
+        return LEP_STEP_NONE; /* no deadline to watch */
+    }
+    c->fast = (uint16_t)(c->phase <= PH_PLAIN ? FAST_CHECKED : FAST_LOOK_NEXT);
     return check_clock(c, len > 0u);
 }
 
@@ -628,68 +637,37 @@ static int fill(lep_client *c, const reader *rd, int timeout_ms)
     return n;
 }
 
-/* Drive the pending transaction or recovery to its outcome (samples that
- * arrive meanwhile are skipped). */
-static int run(lep_client *c)
+/* The blocking calls' one waiting loop. With out NULL, drive the pending
+ * transaction or recovery to its outcome (LEP_OK or its error; samples that
+ * arrive meanwhile are skipped, a watchdog stall does not end it, a read
+ * error ends it); the caller passes timeout_ms -1 (its deadlines bound it).
+ * Otherwise wait for the next stream sample into *out; count_timeout says
+ * whether a timeout is news. Once the time is up, one more read that does not
+ * wait is made (so timeout 0 takes what is readable now); bytes that keep
+ * arriving without completing a sample never extend the wait. */
+static int wait_for(lep_client *c, lep_sample *out, int timeout_ms, bool count_timeout)
 {
     lep_client_rx local;
     reader rd = reader_of(c, &local);
-    for (;;) {
-        int rc = step_buffered(c, &rd);
-        int32_t wait;
-        if (rc == LEP_E_STALLED) {
-            continue; /* counted; the transaction goes on (found by fuzz_client) */
-        }
-        if (rc == LEP_STEP_RESPONSE || rc < 0) {
-            return rc < 0 ? rc : LEP_OK;
-        }
-        if (rc == LEP_STEP_SAMPLE) {
-            c->count[N_SAMPLES]--; /* not delivered: skipped while waiting for another answer */
-            c->count[N_UNEXPECTED]++;
-        }
-        if (rd.rx->pos < rd.rx->len) {
-            continue;
-        }
-        wait = next_deadline(c); /* >= 0: a transaction or recovery is under way */
-        rc = fill(c, &rd, clamp_int(wait));
-        if (rc < 0) {
-            return finish(c, rc);
-        }
-    }
-}
-
-int lep_client_transact(lep_client *c, const lep_command *cmd, lep_response *resp)
-{
-    int rc;
-    if (c == NULL || cmd == NULL || c->io.read == NULL) {
-        return LEP_E_ARG;
-    }
-    rc = lep_client_send(c, cmd);
-    if (rc == LEP_OK) {
-        rc = run(c);
-    }
-    if (rc == LEP_OK && resp != NULL) {
-        rc = lep_client_response(c, resp);
-    }
-    return rc;
-}
-
-/* Wait for the next stream sample; count_timeout says whether a timeout is news.
- * Once the time is up, one more read that does not wait is made (so timeout 0
- * takes what is readable now); bytes that keep arriving without completing a
- * sample never extend the wait. */
-static int next_sample(lep_client *c, lep_sample *out, int timeout_ms, bool count_timeout)
-{
-    lep_client_rx local;
-    reader rd = reader_of(c, &local);
-    uint32_t start = now(c);
+    uint32_t start = timeout_ms >= 0 ? now(c) : 0u;
     bool polled = false; /* the read after the time was up has been made */
     for (;;) {
         int rc = step_buffered(c, &rd);
         int n;
         int wait = timeout_ms;
         int32_t clock;
-        if (rc == LEP_STEP_SAMPLE) {
+        if (out == NULL) {
+            if (rc == LEP_E_STALLED) {
+                continue; /* counted; the transaction goes on (found by fuzz_client) */
+            }
+            if (rc == LEP_STEP_RESPONSE) {
+                return LEP_OK;
+            }
+            if (rc == LEP_STEP_SAMPLE) {
+                c->count[N_SAMPLES]--; /* not delivered: skipped while waiting for another answer */
+                c->count[N_UNEXPECTED]++;
+            }
+        } else if (rc == LEP_STEP_SAMPLE) {
             return lep_client_get_sample(c, out);
         }
         if (rc < 0) {
@@ -705,10 +683,10 @@ static int next_sample(lep_client *c, lep_sample *out, int timeout_ms, bool coun
                 break;
             }
         }
-        clock = next_deadline(c);
+        clock = next_deadline(c); /* (>= 0 while a transaction or recovery is under way) */
         n = fill(c, &rd, clock >= 0 && (wait < 0 || clock < (int32_t)wait) ? clamp_int(clock) : wait);
         if (n < 0) {
-            return n;
+            return out == NULL ? finish(c, n) : n;
         }
         polled = wait == 0;
         if (n == 0 && timeout_ms >= 0 && (wait == 0 || now(c) - start >= (uint32_t)timeout_ms)) {
@@ -721,6 +699,22 @@ static int next_sample(lep_client *c, lep_sample *out, int timeout_ms, bool coun
     return LEP_E_TIMEOUT;
 }
 
+int lep_client_transact(lep_client *c, const lep_command *cmd, lep_response *resp)
+{
+    int rc;
+    if (c == NULL || cmd == NULL || c->io.read == NULL) {
+        return LEP_E_ARG;
+    }
+    rc = lep_client_send(c, cmd);
+    if (rc == LEP_OK) {
+        rc = wait_for(c, NULL, -1, false);
+    }
+    if (rc == LEP_OK && resp != NULL) {
+        rc = lep_client_response(c, resp);
+    }
+    return rc;
+}
+
 int lep_client_next_sample(lep_client *c, lep_sample *out, int timeout_ms)
 {
     if (c == NULL || out == NULL || c->io.read == NULL) {
@@ -729,7 +723,7 @@ int lep_client_next_sample(lep_client *c, lep_sample *out, int timeout_ms)
     if ((c->state & ST_STREAM) == 0u) {
         return LEP_E_STATE;
     }
-    return next_sample(c, out, timeout_ms, true);
+    return wait_for(c, out, timeout_ms, true);
 }
 
 int lep_client_next_samples(lep_client *c, lep_sample *out, size_t max, size_t *n, int timeout_ms)
@@ -746,7 +740,7 @@ int lep_client_next_samples(lep_client *c, lep_sample *out, size_t max, size_t *
         return rc;
     }
     *n = 1;
-    while (*n < max && next_sample(c, &out[*n], 0, false) == LEP_OK) {
+    while (*n < max && wait_for(c, &out[*n], 0, false) == LEP_OK) {
         (*n)++;
     }
     return LEP_OK;
@@ -829,7 +823,7 @@ int lep_client_sync(lep_client *c, int quiet_ms, lep_product_info *info)
                                : (uint32_t)quiet_ms > 0xFFFFu ? (uint16_t)0xFFFFu
                                                               : (uint16_t)quiet_ms);
     if (rc == LEP_OK) {
-        rc = run(c);
+        rc = wait_for(c, NULL, -1, false);
     }
     return copy_answer(c, rc, info, sizeof(*info));
 }
