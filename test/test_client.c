@@ -61,6 +61,23 @@ static void test_init_rejects_incomplete_io(void)
     TEST_ASSERT_EQUAL_size_t(sizeof(lep_client), lep_client_size());
 }
 
+/* lep_client_init zeroes the whole context and does not call
+ * lep_frame_decoder_init: a zeroed decoder must be exactly an initialised one. */
+static void test_init_zeroes_like_decoder_init(void)
+{
+    lep_frame_decoder zero;
+    lep_frame_decoder d;
+    lep_io io = script_io_table(&sio);
+    lep_client c;
+    memset(&zero, 0, sizeof(zero));
+    memset(&d, 0xA5, sizeof(d));
+    lep_frame_decoder_init(&d);
+    TEST_ASSERT_EQUAL_MEMORY(&zero, &d, sizeof(d));
+    memset(&c, 0xA5, sizeof(c));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_init(&c, &io));
+    TEST_ASSERT_EQUAL_MEMORY(&zero, &c.dec, sizeof(c.dec));
+}
+
 static void test_product_info_and_rated(void)
 {
     lep_product_info info;
@@ -1653,6 +1670,7 @@ int main(void)
 {
     UNITY_BEGIN();
     RUN_TEST(test_init_rejects_incomplete_io);
+    RUN_TEST(test_init_zeroes_like_decoder_init);
     RUN_TEST(test_product_info_and_rated);
     RUN_TEST(test_transact_gives_the_whole_response);
     RUN_TEST(test_handshake_sample);

@@ -81,9 +81,9 @@ int lep_client_init(lep_client *c, const lep_io *io)
     if (c == NULL || io == NULL || io->write == NULL || io->now_ms == NULL) {
         return LEP_E_ARG;
     }
-    memset(c, 0, sizeof(*c));
+    memset(c, 0, sizeof(*c)); /* (the decoder too: all zero is what lep_frame_decoder_init
+                                 gives, test_init_zeroes_like_decoder_init checks it) */
     c->io = *io;
-    lep_frame_decoder_init(&c->dec);
     c->timeout_ms = LEP_CLIENT_DEFAULT_TIMEOUT_MS;
     c->max_retries = (uint8_t)LEP_CLIENT_DEFAULT_RETRIES;
     c->quiet_ms = (uint16_t)LEP_CLIENT_DEFAULT_QUIET_MS;
@@ -569,15 +569,14 @@ int lep_client_step_byte_slow(lep_client *c, uint8_t b, lep_sample *out)
 
 /* ---- Blocking calls ---- */
 
-/* Milliseconds until the next deadline (>= 0), or -1 when none is armed.
+/* Milliseconds until the next deadline (at most 0x7FFFFFFF: timeout_ms comes
+ * from an int), or NEVER when none is armed.
  * (The clock check just before took any fresh sample into the watchdog.) */
-static int32_t next_deadline(const lep_client *c)
+static uint32_t next_deadline(const lep_client *c)
 {
     uint32_t aux;
     uint32_t left = timers(c, now(c), &aux);
-    left = aux < left ? aux : left;
-    /* Every span is at most 0x7FFFFFFF (timeout_ms comes from an int). */
-    return left == NEVER ? -1 : (int32_t)left;
+    return aux < left ? aux : left;
 }
 
 /* v as an int (16 bits on some MCUs), saturated. */
@@ -655,7 +654,7 @@ static int wait_for(lep_client *c, lep_sample *out, int timeout_ms, bool count_t
         int rc = step_buffered(c, &rd);
         int n;
         int wait = timeout_ms;
-        int32_t clock;
+        uint32_t clock;
         if (out == NULL) {
             if (rc == LEP_E_STALLED) {
                 continue; /* counted; the transaction goes on (found by fuzz_client) */
@@ -683,8 +682,9 @@ static int wait_for(lep_client *c, lep_sample *out, int timeout_ms, bool count_t
                 break;
             }
         }
-        clock = next_deadline(c); /* (>= 0 while a transaction or recovery is under way) */
-        n = fill(c, &rd, clock >= 0 && (wait < 0 || clock < (int32_t)wait) ? clamp_int(clock) : wait);
+        clock = next_deadline(c); /* (armed while a transaction or recovery is under way) */
+        /* the sooner of the two (NEVER and a wait < 0 are forever) */
+        n = fill(c, &rd, clock < (uint32_t)(int32_t)wait ? clamp_int((int32_t)clock) : wait);
         if (n < 0) {
             return out == NULL ? finish(c, n) : n;
         }
