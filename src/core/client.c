@@ -226,13 +226,10 @@ SHARED bool waiting(const lep_client *c)
 static int write_pending(lep_client *c)
 {
     uint8_t frame[2u * LEP_LEN_FILTER_SET_CMD + 5u]; /* the longest command, every byte stuffed */
-    lep_command cmd;
     size_t n;
     int rc;
-    cmd.code = c->code;
-    cmd.filter = c->filter;
     c->fast = (uint16_t)FAST_LOOK_NEXT; /* a deadline is armed */
-    rc = lep_command_frame(&cmd, frame, sizeof(frame), &n);
+    rc = lep_command_frame(&c->cmd, frame, sizeof(frame), &n);
     if (rc == LEP_OK) {
         rc = c->io.write(c->io.user, frame, n);
     }
@@ -243,11 +240,12 @@ static int write_pending(lep_client *c)
     return LEP_OK;
 }
 
-/* Begin sending code (a new transaction or the next step of a recovery). */
-SHARED int begin(lep_client *c, uint8_t code, uint8_t filter, uint8_t phase)
+/* Begin sending code (a new transaction or the next step of a recovery); the
+ * filter code stays as it is (lep_command_encode reads it only for a filter set). */
+SHARED int begin(lep_client *c, uint8_t code, uint8_t phase)
 {
-    c->code = code;
-    c->filter = filter;
+    c->msg_len = 0; /* (already 0 when a step begins the next part of a recovery) */
+    c->cmd.code = code;
     c->tries = 0;
     c->phase = phase;
     return write_pending(c);
@@ -258,8 +256,8 @@ int lep_client_send(lep_client *c, const lep_command *cmd)
     if (c == NULL || cmd == NULL) {
         return LEP_E_ARG;
     }
-    c->msg_len = 0;
-    return begin(c, cmd->code, cmd->filter, PH_PLAIN);
+    c->cmd.filter = cmd->filter;
+    return begin(c, cmd->code, PH_PLAIN);
 }
 
 int lep_client_recover(lep_client *c, uint16_t quiet_ms)
@@ -267,10 +265,9 @@ int lep_client_recover(lep_client *c, uint16_t quiet_ms)
     if (c == NULL) {
         return LEP_E_ARG;
     }
-    c->msg_len = 0;
     c->quiet_ms = quiet_ms == 0u ? (uint16_t)LEP_CLIENT_DEFAULT_QUIET_MS : quiet_ms;
     c->state = (uint8_t)(c->state & ~ST_STREAM); /* a stream's data is stale from here on */
-    return begin(c, LEP_CMD_STOP, 0, PH_STOP_SYNC);
+    return begin(c, LEP_CMD_STOP, PH_STOP_SYNC);
 }
 
 /* A recovery's stop is over (answered, refused or never got through): the
@@ -289,12 +286,12 @@ static bool stop_over(lep_client *c)
 /* The transaction ended well: streaming follows the command. */
 static int done(lep_client *c)
 {
-    if (c->code == LEP_CMD_START) {
+    if (c->cmd.code == LEP_CMD_START) {
         if (c->phase == PH_RESTARTED) {
             c->count[N_RECOVERIES]++;
         }
         c->state = (uint8_t)(c->state | ST_STREAM | ST_FRESH);
-    } else if (c->code == LEP_CMD_STOP) {
+    } else if (c->cmd.code == LEP_CMD_STOP) {
         c->state = (uint8_t)(c->state & ~ST_STREAM);
     }
     return finish(c, LEP_STEP_RESPONSE);
@@ -310,14 +307,14 @@ static int on_answer(lep_client *c, uint8_t result)
     if (result == LEP_RESULT_OK) {
         return done(c);
     }
-    if (result == LEP_RESULT_STATE && (c->code == LEP_CMD_START || c->code == LEP_CMD_STOP)) {
+    if (result == LEP_RESULT_STATE && (c->cmd.code == LEP_CMD_START || c->cmd.code == LEP_CMD_STOP)) {
         if (c->tries > 0u) {
             c->count[N_RESENT_CONFIRMED]++; /* an earlier copy was executed */
             return done(c);
         }
-        if (c->code == LEP_CMD_START && c->phase == PH_PLAIN && (c->state & ST_STREAM) == 0u) {
+        if (c->cmd.code == LEP_CMD_START && c->phase == PH_PLAIN && (c->state & ST_STREAM) == 0u) {
             /* A stream we did not start (a stale one) already runs. */
-            return begin(c, LEP_CMD_STOP, 0, PH_STOP_START); /* LEP_OK is LEP_STEP_NONE */
+            return begin(c, LEP_CMD_STOP, PH_STOP_START); /* LEP_OK is LEP_STEP_NONE */
         }
     }
     return finish(c, LEP_E_SENSOR);
@@ -334,9 +331,9 @@ HOT int on_message(lep_client *c, const lep_frame_event *ev)
         return LEP_STEP_NONE;
     }
     memcpy(SPARE_SAMPLE(c), &r.u.sample, sizeof(r.u.sample));
-    mine = waiting(c) && r.code == c->code; /* (a data message's code is the start's) */
+    mine = waiting(c) && r.code == c->cmd.code; /* (a data message's code is the start's) */
     if (r.stream && (c->state & ST_STREAM) != 0u) {
-        if (waiting(c) && c->code == LEP_CMD_STOP) {
+        if (waiting(c) && c->cmd.code == LEP_CMD_STOP) {
             return LEP_STEP_NONE; /* our data still in flight before the stop answer */
         }
         c->count[N_SAMPLES]++;
@@ -446,7 +443,7 @@ static int check_clock(lep_client *c, bool fed)
     if (attempt == 0u) {
         int rc;
         if (draining) {
-            return begin(c, c->phase == PH_DRAIN_START ? LEP_CMD_START : LEP_CMD_PRODUCT_INFO, 0,
+            return begin(c, c->phase == PH_DRAIN_START ? LEP_CMD_START : LEP_CMD_PRODUCT_INFO,
                          (uint8_t)(c->phase - 4u));
         }
         rc = attempt_failed(c, LEP_E_TIMEOUT, N_RESENT_TIMEOUT);
