@@ -389,7 +389,7 @@ HOT int on_event(lep_client *c, const lep_frame_event *ev)
 
 /* What is left at t of span begun at t0 (0 once it has passed); NEVER when
  * span is 0 (the timer is not armed). */
-static uint32_t left_of(uint32_t t, uint32_t t0, uint32_t span)
+SHARED uint32_t left_of(uint32_t t, uint32_t t0, uint32_t span)
 {
     uint32_t spent = t - t0;
     if (span == 0u) {
@@ -398,60 +398,54 @@ static uint32_t left_of(uint32_t t, uint32_t t0, uint32_t span)
     return spent >= span ? 0u : span - spent;
 }
 
-/* The two timers at t. Returns what is left of the attempt (the answer's
- * timeout, or the drain's quiet time) and stores in *aux what is left of the
- * other (the drain's limit, LEP_CLIENT_DRAIN_TIMEOUTS timeouts plus the quiet
- * time; or the stream watchdog); NEVER for a timer that is not armed. */
-static uint32_t timers(const lep_client *c, uint32_t t, uint32_t *aux)
+/* Whether span has passed at t since t0. */
+static bool expired(uint32_t t, uint32_t t0, uint32_t span)
 {
-    uint32_t span = c->timeout_ms;
-    uint32_t other = c->watchdog_ms;
-    if (c->phase >= PH_DRAIN_SYNC) { /* (streaming is off) */
-        other = (span < DRAIN_TIMEOUT_CAP ? span : DRAIN_TIMEOUT_CAP) * LEP_CLIENT_DRAIN_TIMEOUTS +
-                c->quiet_ms;
-        span = c->quiet_ms;
-    } else {
-        if (c->phase == PH_NONE) {
-            span = 0; /* not armed */
-        }
-        if ((c->state & ST_STREAM) == 0u) {
-            other = 0;
-        }
-    }
-    *aux = left_of(t, c->t_aux, other);
-    return left_of(t, c->t_start, span);
+    return t - t0 >= span;
 }
 
-/* Deadlines: attempt timeout, drain, watchdog. fed says bytes came in. */
+/* The drain's limit: LEP_CLIENT_DRAIN_TIMEOUTS timeouts plus the quiet time. */
+static uint32_t drain_limit(const lep_client *c)
+{
+    uint32_t timeout = c->timeout_ms;
+    return (timeout < DRAIN_TIMEOUT_CAP ? timeout : DRAIN_TIMEOUT_CAP) * LEP_CLIENT_DRAIN_TIMEOUTS +
+           c->quiet_ms;
+}
+
+/* The deadlines at the clock's time, fed saying bytes came in. Two timers:
+ * the attempt's (the answer's timeout, or a drain's quiet time; from t_start)
+ * and the other (a drain's limit, or the stream watchdog; from t_aux). A
+ * drain's are armed throughout (quiet_ms and timeout_ms are never 0) and it
+ * runs with streaming off; otherwise the attempt's is armed while a
+ * transaction waits, the watchdog while streaming with watchdog_ms not 0. */
 static int check_clock(lep_client *c, bool fed)
 {
     uint32_t t = now(c);
-    uint32_t aux;
-    uint32_t attempt;
-    bool draining = c->phase >= PH_DRAIN_SYNC;
-    if (draining && fed) {
-        c->t_start = t; /* not quiet yet */
+    if (c->phase >= PH_DRAIN_SYNC) {
+        if (fed) {
+            c->t_start = t; /* not quiet yet */
+        }
+        if (expired(t, c->t_aux, drain_limit(c))) {
+            return finish(c, LEP_E_NO_SYNC);
+        }
+        if (expired(t, c->t_start, c->quiet_ms)) {
+            return begin(c, c->phase == PH_DRAIN_START ? LEP_CMD_START : LEP_CMD_PRODUCT_INFO,
+                         (uint8_t)(c->phase - 4u));
+        }
+        return LEP_STEP_NONE;
     }
     if ((c->state & (ST_STREAM | ST_FRESH)) == (ST_STREAM | ST_FRESH)) {
         c->state = (uint8_t)(c->state & ~ST_FRESH); /* the watchdog's time runs from here */
         c->t_aux = t;
     }
-    attempt = timers(c, t, &aux);
-    if (draining && aux == 0u) {
-        return finish(c, LEP_E_NO_SYNC);
-    }
-    if (attempt == 0u) {
-        int rc;
-        if (draining) {
-            return begin(c, c->phase == PH_DRAIN_START ? LEP_CMD_START : LEP_CMD_PRODUCT_INFO,
-                         (uint8_t)(c->phase - 4u));
-        }
-        rc = attempt_failed(c, LEP_E_TIMEOUT, N_RESENT_TIMEOUT);
+    if (c->phase != PH_NONE && expired(t, c->t_start, c->timeout_ms)) {
+        int rc = attempt_failed(c, LEP_E_TIMEOUT, N_RESENT_TIMEOUT);
         if (rc != LEP_STEP_NONE) {
             return rc;
         }
     }
-    if (aux == 0u) {
+    if ((c->state & ST_STREAM) != 0u && c->watchdog_ms != 0u &&
+        expired(t, c->t_aux, c->watchdog_ms)) {
         c->t_aux = t;
         c->count[N_STALLS]++;
         return LEP_E_STALLED;
@@ -566,14 +560,28 @@ int lep_client_step_byte_slow(lep_client *c, uint8_t b, lep_sample *out)
 
 /* ---- Blocking calls ---- */
 
-/* Milliseconds until the next deadline (at most 0x7FFFFFFF: timeout_ms comes
- * from an int), or NEVER when none is armed.
+/* Milliseconds until the next deadline of check_clock's two timers (at most
+ * 0x7FFFFFFF: timeout_ms comes from an int), or NEVER when none is armed.
  * (The clock check just before took any fresh sample into the watchdog.) */
-static uint32_t next_deadline(const lep_client *c)
+SHARED uint32_t next_deadline(const lep_client *c)
 {
-    uint32_t aux;
-    uint32_t left = timers(c, now(c), &aux);
-    return aux < left ? aux : left;
+    uint32_t t = now(c);
+    uint32_t span = c->timeout_ms;
+    uint32_t other = c->watchdog_ms;
+    if (c->phase >= PH_DRAIN_SYNC) {
+        span = c->quiet_ms;
+        other = drain_limit(c);
+    } else {
+        if (c->phase == PH_NONE) {
+            span = 0;
+        }
+        if ((c->state & ST_STREAM) == 0u) {
+            other = 0;
+        }
+    }
+    span = left_of(t, c->t_start, span);
+    other = left_of(t, c->t_aux, other);
+    return other < span ? other : span;
 }
 
 /* v as an int (16 bits on some MCUs), saturated. */
