@@ -331,15 +331,15 @@ HOT int on_message(lep_client *c, const lep_frame_event *ev)
         return LEP_STEP_NONE;
     }
     memcpy(SPARE_SAMPLE(c), &r.u.sample, sizeof(r.u.sample));
-    mine = waiting(c) && r.code == c->cmd.code; /* (a data message's code is the start's) */
     if (r.stream && (c->state & ST_STREAM) != 0u) {
-        if (waiting(c) && c->cmd.code == LEP_CMD_STOP) {
+        if (c->cmd.code == LEP_CMD_STOP && waiting(c)) {
             return LEP_STEP_NONE; /* our data still in flight before the stop answer */
         }
         c->count[N_SAMPLES]++;
         c->state = (uint8_t)(c->state | ST_FRESH);
         return LEP_STEP_SAMPLE;
     }
+    mine = waiting(c) && r.code == c->cmd.code; /* (a data message's code is the start's) */
     if (mine && !r.stream) {
         return on_answer(c, r.result);
     }
