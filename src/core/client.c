@@ -704,22 +704,6 @@ static int wait_for(lep_client *c, lep_sample *out, int timeout_ms, bool count_t
     return LEP_E_TIMEOUT;
 }
 
-int lep_client_transact(lep_client *c, const lep_command *cmd, lep_response *resp)
-{
-    int rc;
-    if (c == NULL || cmd == NULL || c->io.read == NULL) {
-        return LEP_E_ARG;
-    }
-    rc = lep_client_send(c, cmd);
-    if (rc == LEP_OK) {
-        rc = wait_for(c, NULL, -1, false);
-    }
-    if (rc == LEP_OK && resp != NULL) {
-        rc = lep_client_response(c, resp);
-    }
-    return rc;
-}
-
 int lep_client_next_sample(lep_client *c, lep_sample *out, int timeout_ms)
 {
     if (c == NULL || out == NULL || c->io.read == NULL) {
@@ -751,22 +735,41 @@ int lep_client_next_samples(lep_client *c, lep_sample *out, size_t max, size_t *
     return LEP_OK;
 }
 
-/* rc is how a blocking call's transaction or recovery ended; when LEP_OK and
- * out is not NULL, the member of its answer's union (every member begins at
- * the union's start) is copied into out[0..size). Returns rc. */
-SHARED int copy_answer(const lep_client *c, int rc, void *out, size_t size)
+/* Drive the transaction or recovery just begun (rc: how its beginning went)
+ * to its outcome. When it ends well and out is not NULL, out[0..size)
+ * receives its answer: the whole lep_response when size is its size, else
+ * the member of its union (every member begins at the union's start). */
+SHARED int complete(lep_client *c, int rc, void *out, size_t size)
 {
     lep_response r;
+    if (rc == LEP_OK) {
+        rc = wait_for(c, NULL, -1, false);
+    }
     if (rc == LEP_OK && out != NULL) {
         rc = lep_client_response(c, &r); /* (LEP_OK: the answer just came) */
-        memcpy(out, &r.u, size);
+        memcpy(out, size == sizeof(r) ? (const void *)&r : (const void *)&r.u, size);
     }
     return rc;
 }
 
-/* A transaction of code, its answer copied as copy_answer says. LEP_E_ARG
- * when the query needs out (size > 0) and it is NULL. */
-static int query(lep_client *c, uint8_t code, uint8_t filter, void *out, size_t size)
+/* A blocking transaction of cmd, its answer copied as complete says. */
+SHARED int transact(lep_client *c, const lep_command *cmd, void *out, size_t size)
+{
+    if (c == NULL || cmd == NULL || c->io.read == NULL) {
+        return LEP_E_ARG;
+    }
+    return complete(c, lep_client_send(c, cmd), out, size);
+}
+
+int lep_client_transact(lep_client *c, const lep_command *cmd, lep_response *resp)
+{
+    return transact(c, cmd, resp, sizeof(*resp));
+}
+
+/* A transaction of code (with the filter code filter), its answer's member
+ * copied into out[0..size). LEP_E_ARG when the query needs out (size > 0)
+ * and it is NULL. */
+SHARED int query(lep_client *c, uint8_t code, uint8_t filter, void *out, size_t size)
 {
     lep_command cmd;
     cmd.code = code;
@@ -774,7 +777,7 @@ static int query(lep_client *c, uint8_t code, uint8_t filter, void *out, size_t 
     if (out == NULL && size > 0u) {
         return LEP_E_ARG;
     }
-    return copy_answer(c, lep_client_transact(c, &cmd, NULL), out, size);
+    return transact(c, &cmd, out, size);
 }
 
 int lep_client_start(lep_client *c)
@@ -827,8 +830,5 @@ int lep_client_sync(lep_client *c, int quiet_ms, lep_product_info *info)
     rc = lep_client_recover(c, quiet_ms <= 0 ? (uint16_t)0u
                                : (uint32_t)quiet_ms > 0xFFFFu ? (uint16_t)0xFFFFu
                                                               : (uint16_t)quiet_ms);
-    if (rc == LEP_OK) {
-        rc = wait_for(c, NULL, -1, false);
-    }
-    return copy_answer(c, rc, info, sizeof(*info));
+    return complete(c, rc, info, sizeof(*info));
 }
