@@ -475,6 +475,22 @@ static void test_io_errors_propagate(void)
     TEST_ASSERT_EQUAL_INT(LEP_E_IO, lep_client_stop(&client));
 }
 
+/* A stop that never went out leaves the stream on: its samples are still
+ * delivered (the pending command is a stop, but no stop waits). */
+static void test_samples_after_a_failed_stop(void)
+{
+    lep_sample s;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
+    sio.write_error = LEP_E_IO;
+    TEST_ASSERT_EQUAL_INT(LEP_E_IO, lep_client_stop(&client));
+    sio.write_error = 0;
+    TEST_ASSERT_TRUE(lep_client_streaming(&client));
+    TEST_ASSERT_FALSE(lep_client_busy(&client));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_next_sample(&client, &s, 100));
+    TEST_ASSERT_EQUAL_UINT32(1, stats().samples);
+    TEST_ASSERT_EQUAL_UINT32(0, stats().unexpected);
+}
+
 static void test_step_api_without_read(void)
 {
     /* An MCU super-loop: the client never reads; bytes are fed as they come. */
@@ -1699,6 +1715,7 @@ int main(void)
     RUN_TEST(test_next_sample_timeout_when_stream_stalls);
     RUN_TEST(test_byte_by_byte_reads);
     RUN_TEST(test_io_errors_propagate);
+    RUN_TEST(test_samples_after_a_failed_stop);
     RUN_TEST(test_step_api_without_read);
     RUN_TEST(test_step_api_deadline);
     RUN_TEST(test_step_api_stops_at_each_sample);
