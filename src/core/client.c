@@ -194,14 +194,15 @@ int lep_client_response(const lep_client *c, lep_response *out)
 
 int lep_client_get_sample(const lep_client *c, lep_sample *out)
 {
-    int rc = outcome_kept(c, out);
-    if (rc == LEP_OK && c->msg_len != LEP_LEN_SAMPLE) {
-        rc = LEP_E_STATE; /* (a sample is the only 20-byte message that makes an outcome) */
+    if (c == NULL || out == NULL) {
+        return LEP_E_ARG;
     }
-    if (rc == LEP_OK) {
-        memcpy(out, SPARE_SAMPLE(c), sizeof(*out));
+    /* (a sample is the only 20-byte message that makes an outcome) */
+    if (c->msg_len != LEP_LEN_SAMPLE || c->msg_at != c->fast) {
+        return LEP_E_STATE;
     }
-    return rc;
+    memcpy(out, SPARE_SAMPLE(c), sizeof(*out));
+    return LEP_OK;
 }
 
 static uint32_t now(const lep_client *c)
