@@ -571,7 +571,7 @@ int lep_client_step_byte_slow(lep_client *c, uint8_t b, lep_sample *out)
 /* Milliseconds until the next deadline of check_clock's two timers (at most
  * 0x7FFFFFFF: timeout_ms comes from an int), or NEVER when none is armed.
  * (The clock check just before took any fresh sample into the watchdog.) */
-SHARED uint32_t next_deadline(const lep_client *c)
+static uint32_t next_deadline(const lep_client *c)
 {
     uint32_t t = now(c);
     uint32_t span = c->timeout_ms;
