@@ -362,9 +362,10 @@ HOT int on_message(lep_client *c, const lep_frame_event *ev)
     return LEP_STEP_NONE;
 }
 
-/* The attempt failed (NAK or timeout): send again (counted in count[which]),
- * or give up with err. */
-SHARED int attempt_failed(lep_client *c, int err, unsigned which)
+/* The attempt failed, after a NAK (which is N_RETRIES) or a timeout (which is
+ * N_RESENT_TIMEOUT): send again (counted in count[which]), or give up with
+ * LEP_E_NAK or LEP_E_TIMEOUT. */
+SHARED int attempt_failed(lep_client *c, unsigned which)
 {
     if (c->tries < c->max_retries) {
         c->tries++;
@@ -374,10 +375,11 @@ SHARED int attempt_failed(lep_client *c, int err, unsigned which)
     if (stop_over(c)) {
         return LEP_STEP_NONE; /* a stop that never got through does not end the recovery */
     }
-    if (err == LEP_E_TIMEOUT) {
-        c->count[N_TIMEOUTS]++;
+    if (which == N_RETRIES) {
+        return finish(c, LEP_E_NAK);
     }
-    return finish(c, err);
+    c->count[N_TIMEOUTS]++;
+    return finish(c, LEP_E_TIMEOUT);
 }
 
 HOT int on_event(lep_client *c, const lep_frame_event *ev)
@@ -387,7 +389,7 @@ HOT int on_event(lep_client *c, const lep_frame_event *ev)
     }
     if (ev->type == LEP_FRAME_NAK) {
         if (waiting(c)) {
-            return attempt_failed(c, LEP_E_NAK, N_RETRIES);
+            return attempt_failed(c, N_RETRIES);
         }
     } else if (ev->error == LEP_E_LENGTH) {
         c->count[N_INVALID]++; /* an empty frame */
@@ -447,7 +449,7 @@ static int check_clock(lep_client *c, bool fed)
         c->t_aux = t;
     }
     if (c->phase != PH_NONE && expired(t, c->t_start, c->timeout_ms)) {
-        int rc = attempt_failed(c, LEP_E_TIMEOUT, N_RESENT_TIMEOUT);
+        int rc = attempt_failed(c, N_RESENT_TIMEOUT);
         if (rc != LEP_STEP_NONE) {
             return rc;
         }
@@ -465,7 +467,7 @@ static int check_clock(lep_client *c, bool fed)
  * clock, on single-byte steps only when c->fast has come round to 0 (every
  * CHECK_EVERY steps, every step during a recovery), and only while a deadline
  * is armed (otherwise c->fast just goes on counting). */
-static int step_clock(lep_client *c, size_t len)
+SHARED int step_clock(lep_client *c, size_t len)
 {
     if (len == 1u && c->fast != 0u) {
         return LEP_STEP_NONE;
