@@ -367,6 +367,9 @@ HOT int on_message(lep_client *c, const lep_frame_event *ev)
  * LEP_E_NAK or LEP_E_TIMEOUT. */
 SHARED int attempt_failed(lep_client *c, unsigned which)
 {
+    if (!waiting(c)) {
+        return LEP_STEP_NONE; /* (a NAK or a deadline of no attempt) */
+    }
     if (c->tries < c->max_retries) {
         c->tries++;
         c->count[which]++;
@@ -388,10 +391,9 @@ HOT int on_event(lep_client *c, const lep_frame_event *ev)
         return on_message(c, ev);
     }
     if (ev->type == LEP_FRAME_NAK) {
-        if (waiting(c)) {
-            return attempt_failed(c, N_RETRIES);
-        }
-    } else if (ev->error == LEP_E_LENGTH) {
+        return attempt_failed(c, N_RETRIES);
+    }
+    if (ev->error == LEP_E_LENGTH) {
         c->count[N_INVALID]++; /* an empty frame */
     }
     return LEP_STEP_NONE;
@@ -448,7 +450,7 @@ static int check_clock(lep_client *c, bool fed)
         c->state = (uint8_t)(c->state & ~ST_FRESH); /* the watchdog's time runs from here */
         c->t_aux = t;
     }
-    if (c->phase != PH_NONE && expired(t, c->t_start, c->timeout_ms)) {
+    if (expired(t, c->t_start, c->timeout_ms)) { /* (attempt_failed: if one waits) */
         int rc = attempt_failed(c, N_RESENT_TIMEOUT);
         if (rc != LEP_STEP_NONE) {
             return rc;
