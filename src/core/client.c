@@ -430,7 +430,7 @@ static uint32_t drain_limit(const lep_client *c)
  * drain's are armed throughout (quiet_ms and timeout_ms are never 0) and it
  * runs with streaming off; otherwise the attempt's is armed while a
  * transaction waits, the watchdog while streaming with watchdog_ms not 0. */
-static int check_clock(lep_client *c, bool fed)
+static int check_clock(lep_client *c, bool fed, bool watch)
 {
     uint32_t t = now(c);
     if (c->phase >= PH_DRAIN_SYNC) {
@@ -456,8 +456,7 @@ static int check_clock(lep_client *c, bool fed)
             return rc;
         }
     }
-    if ((c->state & ST_STREAM) != 0u && c->watchdog_ms != 0u &&
-        expired(t, c->t_aux, c->watchdog_ms)) {
+    if (watch && expired(t, c->t_aux, c->watchdog_ms)) {
         c->t_aux = t;
         c->count[N_STALLS]++;
         return LEP_E_STALLED;
@@ -471,14 +470,16 @@ static int check_clock(lep_client *c, bool fed)
  * is armed (otherwise c->fast just goes on counting). */
 SHARED int step_clock(lep_client *c, size_t len)
 {
+    bool watch;
     if (len == 1u && c->fast != 0u) {
         return LEP_STEP_NONE;
     }
-    if (c->phase == PH_NONE && ((c->state & ST_STREAM) == 0u || c->watchdog_ms == 0u)) {
+    watch = (c->state & ST_STREAM) != 0u && c->watchdog_ms != 0u; /* the watchdog */
+    if (c->phase == PH_NONE && !watch) {
         return LEP_STEP_NONE; /* no deadline to watch */
     }
     c->fast = (uint16_t)(c->phase <= PH_PLAIN ? FAST_CHECKED : FAST_LOOK_NEXT);
-    return check_clock(c, len > 0u);
+    return check_clock(c, len > 0u, watch); /* (nothing there changes watch) */
 }
 
 /* Handle the decoder's event ev (LEP_FRAME_NONE: nothing): an outcome, or
