@@ -312,18 +312,18 @@ static int on_answer(lep_client *c, uint8_t result)
     if (stop_over(c)) {
         return LEP_STEP_NONE; /* any answer to the recovery's stop will do */
     }
-    if (result == LEP_RESULT_OK) {
-        return done(c);
-    }
     if (result == LEP_RESULT_STATE && (c->cmd.code == LEP_CMD_START || c->cmd.code == LEP_CMD_STOP)) {
         if (c->tries > 0u) {
             c->count[N_RESENT_CONFIRMED]++; /* an earlier copy was executed */
-            return done(c);
-        }
-        if (c->cmd.code == LEP_CMD_START && c->phase == PH_PLAIN && (c->state & ST_STREAM) == 0u) {
+            result = LEP_RESULT_OK;
+        } else if (c->cmd.code == LEP_CMD_START && c->phase == PH_PLAIN &&
+                   (c->state & ST_STREAM) == 0u) {
             /* A stream we did not start (a stale one) already runs. */
             return begin(c, LEP_CMD_STOP, PH_STOP_START); /* LEP_OK is LEP_STEP_NONE */
         }
+    }
+    if (result == LEP_RESULT_OK) {
+        return done(c);
     }
     return finish(c, LEP_E_SENSOR);
 }
