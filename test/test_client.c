@@ -1469,6 +1469,7 @@ static void test_response_accessors(void)
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_response(NULL, &r));
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_response(&client, NULL));
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_get_sample(&client, NULL));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_get_sample(NULL, &s));
     TEST_ASSERT_EQUAL_INT(LEP_E_STATE, lep_client_response(&client, &r));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_rated(&client, &rated));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_response(&client, &r));
