@@ -61,6 +61,23 @@ static void test_init_rejects_incomplete_io(void)
     TEST_ASSERT_EQUAL_size_t(sizeof(lep_client), lep_client_size());
 }
 
+/* lep_client_init zeroes the whole context and does not call
+ * lep_frame_decoder_init: a zeroed decoder must be exactly an initialised one. */
+static void test_init_zeroes_like_decoder_init(void)
+{
+    lep_frame_decoder zero;
+    lep_frame_decoder d;
+    lep_io io = script_io_table(&sio);
+    lep_client c;
+    memset(&zero, 0, sizeof(zero));
+    memset(&d, 0xA5, sizeof(d));
+    lep_frame_decoder_init(&d);
+    TEST_ASSERT_EQUAL_MEMORY(&zero, &d, sizeof(d));
+    memset(&c, 0xA5, sizeof(c));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_init(&c, &io));
+    TEST_ASSERT_EQUAL_MEMORY(&zero, &c.dec, sizeof(c.dec));
+}
+
 static void test_product_info_and_rated(void)
 {
     lep_product_info info;
@@ -456,6 +473,22 @@ static void test_io_errors_propagate(void)
     TEST_ASSERT_EQUAL_INT(LEP_E_DISCONNECTED, lep_client_next_sample(&client, &s, 100));
     sio.write_error = LEP_E_IO;
     TEST_ASSERT_EQUAL_INT(LEP_E_IO, lep_client_stop(&client));
+}
+
+/* A stop that never went out leaves the stream on: its samples are still
+ * delivered (the pending command is a stop, but no stop waits). */
+static void test_samples_after_a_failed_stop(void)
+{
+    lep_sample s;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
+    sio.write_error = LEP_E_IO;
+    TEST_ASSERT_EQUAL_INT(LEP_E_IO, lep_client_stop(&client));
+    sio.write_error = 0;
+    TEST_ASSERT_TRUE(lep_client_streaming(&client));
+    TEST_ASSERT_FALSE(lep_client_busy(&client));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_next_sample(&client, &s, 100));
+    TEST_ASSERT_EQUAL_UINT32(1, stats().samples);
+    TEST_ASSERT_EQUAL_UINT32(0, stats().unexpected);
 }
 
 static void test_step_api_without_read(void)
@@ -1436,6 +1469,7 @@ static void test_response_accessors(void)
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_response(NULL, &r));
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_response(&client, NULL));
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_get_sample(&client, NULL));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_get_sample(NULL, &s));
     TEST_ASSERT_EQUAL_INT(LEP_E_STATE, lep_client_response(&client, &r));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_rated(&client, &rated));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_response(&client, &r));
@@ -1653,6 +1687,7 @@ int main(void)
 {
     UNITY_BEGIN();
     RUN_TEST(test_init_rejects_incomplete_io);
+    RUN_TEST(test_init_zeroes_like_decoder_init);
     RUN_TEST(test_product_info_and_rated);
     RUN_TEST(test_transact_gives_the_whole_response);
     RUN_TEST(test_handshake_sample);
@@ -1681,6 +1716,7 @@ int main(void)
     RUN_TEST(test_next_sample_timeout_when_stream_stalls);
     RUN_TEST(test_byte_by_byte_reads);
     RUN_TEST(test_io_errors_propagate);
+    RUN_TEST(test_samples_after_a_failed_stop);
     RUN_TEST(test_step_api_without_read);
     RUN_TEST(test_step_api_deadline);
     RUN_TEST(test_step_api_stops_at_each_sample);

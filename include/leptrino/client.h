@@ -97,8 +97,7 @@ typedef struct lep_client {
     uint8_t tries;
     uint8_t max_retries;
     uint8_t last_result;
-    uint8_t code;           /* pending command */
-    uint8_t filter;
+    lep_command cmd;        /* pending command (its filter is read only by a filter set) */
     uint8_t msg_len;        /* length of the last outcome's message (at dec.buf), or 0 */
     uint16_t watchdog_ms;
     uint16_t quiet_ms;

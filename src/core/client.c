@@ -6,20 +6,21 @@
 
 #include "leptrino/error.h"
 
-#define ST_WAIT 0x01u   /* a transaction or a recovery waits */
-#define ST_STREAM 0x02u /* continuous output is on */
-#define ST_FRESH 0x04u  /* a sample arrived since the watchdog last looked */
+#define ST_STREAM 0x01u /* continuous output is on */
+#define ST_FRESH 0x02u  /* a sample arrived since the watchdog last looked */
 
-/* Phases of a transaction. Numbered so that a recovery's stop phase + 2 is
- * its drain, the drains are the phases >= PH_DRAIN_SYNC, and bit 0 says a
- * start is being recovered (the phase after its drain is PH_RESTARTED). */
+/* Phases: what the client waits for (PH_NONE: nothing). Numbered so that a
+ * transaction (or a recovery's stop) waits for its answer in the phases 1..4,
+ * a recovery's stop phase + 2 is its drain, the drains are the phases >=
+ * PH_DRAIN_SYNC, and a drain's phase - 4 is the phase of what it sends next. */
 enum {
-    PH_NONE = 0,       /* a plain transaction (or nothing) */
-    PH_RESTARTED = 1,  /* the start sent after a recovery (not recovered twice) */
-    PH_STOP_SYNC = 2,  /* recovery: its stop is out */
-    PH_STOP_START = 3, /* a start refused with 0x04: the stop is out */
-    PH_DRAIN_SYNC = 4, /* recovery: waiting for a quiet line, then identify */
-    PH_DRAIN_START = 5 /* start recovery: waiting for a quiet line, then start again */
+    PH_NONE = 0,       /* no transaction or recovery */
+    PH_PLAIN = 1,      /* a plain transaction */
+    PH_RESTARTED = 2,  /* the start sent after a recovery (not recovered twice) */
+    PH_STOP_SYNC = 3,  /* recovery: its stop is out */
+    PH_STOP_START = 4, /* a start refused with 0x04: the stop is out */
+    PH_DRAIN_SYNC = 5, /* recovery: waiting for a quiet line, then identify */
+    PH_DRAIN_START = 6 /* start recovery: waiting for a quiet line, then start again */
 };
 
 /* The client's own counters (lep_client.count), in lep_client_stats order from retries on. */
@@ -49,7 +50,6 @@ typedef char lep_client_counters_fit[COUNTERS_FIT ? 1 : -1];
  * Its values after a look: */
 #define CHECK_EVERY 32u                     /* single-byte steps between two clock reads */
 #define FAST_CHECKED (0x10000u - CHECK_EVERY) /* a deadline is armed */
-#define FAST_NO_DEADLINE 1u                 /* none is: look at the state again now and then */
 #define FAST_LOOK_NEXT 0xFFFFu              /* look at the clock on the next step */
 /* The event handling is inlined into both step entries when optimising for
  * speed (the one-byte entry then makes one call less per frame). */
@@ -64,6 +64,13 @@ typedef char lep_client_counters_fit[COUNTERS_FIT ? 1 : -1];
 #define SHARED static __attribute__((noinline))
 #else
 #define SHARED static
+#endif
+
+/* A one-liner that costs less than its call's argument set-up everywhere. */
+#if defined(__GNUC__)
+#define TINY static inline __attribute__((always_inline))
+#else
+#define TINY static
 #endif
 
 /* A deadline that is not armed. */
@@ -81,9 +88,9 @@ int lep_client_init(lep_client *c, const lep_io *io)
     if (c == NULL || io == NULL || io->write == NULL || io->now_ms == NULL) {
         return LEP_E_ARG;
     }
-    memset(c, 0, sizeof(*c));
+    memset(c, 0, sizeof(*c)); /* (the decoder too: all zero is what lep_frame_decoder_init
+                                 gives, test_init_zeroes_like_decoder_init checks it) */
     c->io = *io;
-    lep_frame_decoder_init(&c->dec);
     c->timeout_ms = LEP_CLIENT_DEFAULT_TIMEOUT_MS;
     c->max_retries = (uint8_t)LEP_CLIENT_DEFAULT_RETRIES;
     c->quiet_ms = (uint16_t)LEP_CLIENT_DEFAULT_QUIET_MS;
@@ -161,7 +168,7 @@ bool lep_client_streaming(const lep_client *c)
 
 bool lep_client_busy(const lep_client *c)
 {
-    return c != NULL && (c->state & ST_WAIT) != 0u;
+    return c != NULL && c->phase != PH_NONE;
 }
 
 /* A message that passed validation leaves its decoded sample member (what
@@ -194,46 +201,43 @@ int lep_client_response(const lep_client *c, lep_response *out)
 
 int lep_client_get_sample(const lep_client *c, lep_sample *out)
 {
-    int rc = outcome_kept(c, out);
-    if (rc == LEP_OK && c->msg_len != LEP_LEN_SAMPLE) {
-        rc = LEP_E_STATE; /* (a sample is the only 20-byte message that makes an outcome) */
+    if (c == NULL || out == NULL) {
+        return LEP_E_ARG;
     }
-    if (rc == LEP_OK) {
-        memcpy(out, SPARE_SAMPLE(c), sizeof(*out));
+    /* (a sample is the only 20-byte message that makes an outcome) */
+    if (c->msg_len != LEP_LEN_SAMPLE || c->msg_at != c->fast) {
+        return LEP_E_STATE;
     }
-    return rc;
+    memcpy(out, SPARE_SAMPLE(c), sizeof(*out));
+    return LEP_OK;
 }
 
-static uint32_t now(const lep_client *c)
+TINY uint32_t now(const lep_client *c)
 {
     return c->io.now_ms(c->io.user);
 }
 
 /* The transaction or recovery is over; returns rc, its outcome. */
-SHARED int finish(lep_client *c, int rc)
+static int finish(lep_client *c, int rc)
 {
-    c->state = (uint8_t)(c->state & ~ST_WAIT);
     c->phase = PH_NONE;
     return rc;
 }
 
 /* A transaction (or a recovery's stop) waits for its answer. */
-SHARED bool waiting(const lep_client *c)
+static bool waiting(const lep_client *c)
 {
-    return (c->state & ST_WAIT) != 0u && c->phase < PH_DRAIN_SYNC;
+    return (uint8_t)(c->phase - PH_PLAIN) < PH_DRAIN_SYNC - PH_PLAIN;
 }
 
 /* Write the pending command (again) and restart the attempt's clock. */
 static int write_pending(lep_client *c)
 {
     uint8_t frame[2u * LEP_LEN_FILTER_SET_CMD + 5u]; /* the longest command, every byte stuffed */
-    lep_command cmd;
     size_t n;
     int rc;
-    cmd.code = c->code;
-    cmd.filter = c->filter;
     c->fast = (uint16_t)FAST_LOOK_NEXT; /* a deadline is armed */
-    rc = lep_command_frame(&cmd, frame, sizeof(frame), &n);
+    rc = lep_command_frame(&c->cmd, frame, sizeof(frame), &n);
     if (rc == LEP_OK) {
         rc = c->io.write(c->io.user, frame, n);
     }
@@ -244,14 +248,14 @@ static int write_pending(lep_client *c)
     return LEP_OK;
 }
 
-/* Begin sending code (a new transaction or the next step of a recovery). */
-SHARED int begin(lep_client *c, uint8_t code, uint8_t filter, uint8_t phase)
+/* Begin sending code (a new transaction or the next step of a recovery); the
+ * filter code stays as it is (lep_command_encode reads it only for a filter set). */
+SHARED int begin(lep_client *c, uint8_t code, uint8_t phase)
 {
-    c->code = code;
-    c->filter = filter;
+    c->msg_len = 0; /* (already 0 when a step begins the next part of a recovery) */
+    c->cmd.code = code;
     c->tries = 0;
     c->phase = phase;
-    c->state = (uint8_t)(c->state | ST_WAIT);
     return write_pending(c);
 }
 
@@ -260,8 +264,8 @@ int lep_client_send(lep_client *c, const lep_command *cmd)
     if (c == NULL || cmd == NULL) {
         return LEP_E_ARG;
     }
-    c->msg_len = 0;
-    return begin(c, cmd->code, cmd->filter, PH_NONE);
+    c->cmd.filter = cmd->filter;
+    return begin(c, cmd->code, PH_PLAIN);
 }
 
 int lep_client_recover(lep_client *c, uint16_t quiet_ms)
@@ -269,10 +273,9 @@ int lep_client_recover(lep_client *c, uint16_t quiet_ms)
     if (c == NULL) {
         return LEP_E_ARG;
     }
-    c->msg_len = 0;
     c->quiet_ms = quiet_ms == 0u ? (uint16_t)LEP_CLIENT_DEFAULT_QUIET_MS : quiet_ms;
     c->state = (uint8_t)(c->state & ~ST_STREAM); /* a stream's data is stale from here on */
-    return begin(c, LEP_CMD_STOP, 0, PH_STOP_SYNC);
+    return begin(c, LEP_CMD_STOP, PH_STOP_SYNC);
 }
 
 /* A recovery's stop is over (answered, refused or never got through): the
@@ -291,12 +294,12 @@ static bool stop_over(lep_client *c)
 /* The transaction ended well: streaming follows the command. */
 static int done(lep_client *c)
 {
-    if (c->code == LEP_CMD_START) {
+    if (c->cmd.code == LEP_CMD_START) {
         if (c->phase == PH_RESTARTED) {
             c->count[N_RECOVERIES]++;
         }
         c->state = (uint8_t)(c->state | ST_STREAM | ST_FRESH);
-    } else if (c->code == LEP_CMD_STOP) {
+    } else if (c->cmd.code == LEP_CMD_STOP) {
         c->state = (uint8_t)(c->state & ~ST_STREAM);
     }
     return finish(c, LEP_STEP_RESPONSE);
@@ -309,18 +312,18 @@ static int on_answer(lep_client *c, uint8_t result)
     if (stop_over(c)) {
         return LEP_STEP_NONE; /* any answer to the recovery's stop will do */
     }
-    if (result == LEP_RESULT_OK) {
-        return done(c);
-    }
-    if (result == LEP_RESULT_STATE && (c->code == LEP_CMD_START || c->code == LEP_CMD_STOP)) {
+    if (result == LEP_RESULT_STATE && (c->cmd.code == LEP_CMD_START || c->cmd.code == LEP_CMD_STOP)) {
         if (c->tries > 0u) {
             c->count[N_RESENT_CONFIRMED]++; /* an earlier copy was executed */
-            return done(c);
-        }
-        if (c->code == LEP_CMD_START && c->phase == PH_NONE && (c->state & ST_STREAM) == 0u) {
+            result = LEP_RESULT_OK;
+        } else if (c->cmd.code == LEP_CMD_START && c->phase == PH_PLAIN &&
+                   (c->state & ST_STREAM) == 0u) {
             /* A stream we did not start (a stale one) already runs. */
-            return begin(c, LEP_CMD_STOP, 0, PH_STOP_START); /* LEP_OK is LEP_STEP_NONE */
+            return begin(c, LEP_CMD_STOP, PH_STOP_START); /* LEP_OK is LEP_STEP_NONE */
         }
+    }
+    if (result == LEP_RESULT_OK) {
+        return done(c);
     }
     return finish(c, LEP_E_SENSOR);
 }
@@ -336,15 +339,15 @@ HOT int on_message(lep_client *c, const lep_frame_event *ev)
         return LEP_STEP_NONE;
     }
     memcpy(SPARE_SAMPLE(c), &r.u.sample, sizeof(r.u.sample));
-    mine = waiting(c) && r.code == c->code; /* (a data message's code is the start's) */
     if (r.stream && (c->state & ST_STREAM) != 0u) {
-        if (waiting(c) && c->code == LEP_CMD_STOP) {
+        if (c->cmd.code == LEP_CMD_STOP && waiting(c)) {
             return LEP_STEP_NONE; /* our data still in flight before the stop answer */
         }
         c->count[N_SAMPLES]++;
         c->state = (uint8_t)(c->state | ST_FRESH);
         return LEP_STEP_SAMPLE;
     }
+    mine = waiting(c) && r.code == c->cmd.code; /* (a data message's code is the start's) */
     if (mine && !r.stream) {
         return on_answer(c, r.result);
     }
@@ -359,10 +362,14 @@ HOT int on_message(lep_client *c, const lep_frame_event *ev)
     return LEP_STEP_NONE;
 }
 
-/* The attempt failed (NAK or timeout): send again (counted in count[which]),
- * or give up with err. */
-SHARED int attempt_failed(lep_client *c, int err, unsigned which)
+/* The attempt failed, after a NAK (which is N_RETRIES) or a timeout (which is
+ * N_RESENT_TIMEOUT): send again (counted in count[which]), or give up with
+ * LEP_E_NAK or LEP_E_TIMEOUT. */
+SHARED int attempt_failed(lep_client *c, unsigned which)
 {
+    if (!waiting(c)) {
+        return LEP_STEP_NONE; /* (a NAK or a deadline of no attempt) */
+    }
     if (c->tries < c->max_retries) {
         c->tries++;
         c->count[which]++;
@@ -371,10 +378,11 @@ SHARED int attempt_failed(lep_client *c, int err, unsigned which)
     if (stop_over(c)) {
         return LEP_STEP_NONE; /* a stop that never got through does not end the recovery */
     }
-    if (err == LEP_E_TIMEOUT) {
-        c->count[N_TIMEOUTS]++;
+    if (which == N_RETRIES) {
+        return finish(c, LEP_E_NAK);
     }
-    return finish(c, err);
+    c->count[N_TIMEOUTS]++;
+    return finish(c, LEP_E_TIMEOUT);
 }
 
 HOT int on_event(lep_client *c, const lep_frame_event *ev)
@@ -383,69 +391,72 @@ HOT int on_event(lep_client *c, const lep_frame_event *ev)
         return on_message(c, ev);
     }
     if (ev->type == LEP_FRAME_NAK) {
-        if (waiting(c)) {
-            return attempt_failed(c, LEP_E_NAK, N_RETRIES);
-        }
-    } else if (ev->error == LEP_E_LENGTH) {
+        return attempt_failed(c, N_RETRIES);
+    }
+    if (ev->error == LEP_E_LENGTH) {
         c->count[N_INVALID]++; /* an empty frame */
     }
     return LEP_STEP_NONE;
 }
 
-/* What is left at t of span begun at t0 (0 once it has passed). */
-static uint32_t left_of(uint32_t t, uint32_t t0, uint32_t span)
+/* What is left at t of span begun at t0 (0 once it has passed); NEVER when
+ * span is 0 (the timer is not armed). */
+SHARED uint32_t left_of(uint32_t t, uint32_t t0, uint32_t span)
 {
     uint32_t spent = t - t0;
+    if (span == 0u) {
+        return NEVER;
+    }
     return spent >= span ? 0u : span - spent;
 }
 
-/* The two timers at t. Returns what is left of the attempt (the answer's
- * timeout, or the drain's quiet time) and stores in *aux what is left of the
- * other (the drain's limit, LEP_CLIENT_DRAIN_TIMEOUTS timeouts plus the quiet
- * time; or the stream watchdog); NEVER for a timer that is not armed. */
-static uint32_t timers(const lep_client *c, uint32_t t, uint32_t *aux)
+/* Whether span has passed at t since t0. */
+static bool expired(uint32_t t, uint32_t t0, uint32_t span)
 {
-    uint32_t span = (c->state & ST_WAIT) != 0u ? c->timeout_ms : 0u; /* 0: not armed */
-    uint32_t other = (c->state & ST_STREAM) != 0u ? c->watchdog_ms : 0u;
-    if (c->phase >= PH_DRAIN_SYNC) { /* (a drain waits, and streaming is off) */
-        other = (span < DRAIN_TIMEOUT_CAP ? span : DRAIN_TIMEOUT_CAP) * LEP_CLIENT_DRAIN_TIMEOUTS +
-                c->quiet_ms;
-        span = c->quiet_ms;
-    }
-    *aux = other != 0u ? left_of(t, c->t_aux, other) : NEVER;
-    return span != 0u ? left_of(t, c->t_start, span) : NEVER;
+    return t - t0 >= span;
 }
 
-/* Deadlines: attempt timeout, drain, watchdog. fed says bytes came in. */
-static int check_clock(lep_client *c, bool fed)
+/* The drain's limit: LEP_CLIENT_DRAIN_TIMEOUTS timeouts plus the quiet time. */
+static uint32_t drain_limit(const lep_client *c)
+{
+    uint32_t timeout = c->timeout_ms;
+    return (timeout < DRAIN_TIMEOUT_CAP ? timeout : DRAIN_TIMEOUT_CAP) * LEP_CLIENT_DRAIN_TIMEOUTS +
+           c->quiet_ms;
+}
+
+/* The deadlines at the clock's time, fed saying bytes came in. Two timers:
+ * the attempt's (the answer's timeout, or a drain's quiet time; from t_start)
+ * and the other (a drain's limit, or the stream watchdog; from t_aux). A
+ * drain's are armed throughout (quiet_ms and timeout_ms are never 0) and it
+ * runs with streaming off; otherwise the attempt's is armed while a
+ * transaction waits, the watchdog while streaming with watchdog_ms not 0. */
+static int check_clock(lep_client *c, bool fed, bool watch)
 {
     uint32_t t = now(c);
-    uint32_t aux;
-    uint32_t attempt;
-    bool draining = c->phase >= PH_DRAIN_SYNC;
-    if (draining && fed) {
-        c->t_start = t; /* not quiet yet */
+    if (c->phase >= PH_DRAIN_SYNC) {
+        if (fed) {
+            c->t_start = t; /* not quiet yet */
+        }
+        if (expired(t, c->t_aux, drain_limit(c))) {
+            return finish(c, LEP_E_NO_SYNC);
+        }
+        if (expired(t, c->t_start, c->quiet_ms)) {
+            return begin(c, c->phase == PH_DRAIN_START ? LEP_CMD_START : LEP_CMD_PRODUCT_INFO,
+                         (uint8_t)(c->phase - 4u));
+        }
+        return LEP_STEP_NONE;
     }
     if ((c->state & (ST_STREAM | ST_FRESH)) == (ST_STREAM | ST_FRESH)) {
         c->state = (uint8_t)(c->state & ~ST_FRESH); /* the watchdog's time runs from here */
         c->t_aux = t;
     }
-    attempt = timers(c, t, &aux);
-    if (draining && aux == 0u) {
-        return finish(c, LEP_E_NO_SYNC);
-    }
-    if (attempt == 0u) {
-        int rc;
-        if (draining) {
-            uint8_t start = (uint8_t)(c->phase & 1u);
-            return begin(c, start ? LEP_CMD_START : LEP_CMD_PRODUCT_INFO, 0, start);
-        }
-        rc = attempt_failed(c, LEP_E_TIMEOUT, N_RESENT_TIMEOUT);
+    if (expired(t, c->t_start, c->timeout_ms)) { /* (attempt_failed: if one waits) */
+        int rc = attempt_failed(c, N_RESENT_TIMEOUT);
         if (rc != LEP_STEP_NONE) {
             return rc;
         }
     }
-    if (aux == 0u) {
+    if (watch && expired(t, c->t_aux, c->watchdog_ms)) {
         c->t_aux = t;
         c->count[N_STALLS]++;
         return LEP_E_STALLED;
@@ -455,18 +466,20 @@ static int check_clock(lep_client *c, bool fed)
 
 /* After the input (len bytes) is consumed without an outcome: watch the
  * clock, on single-byte steps only when c->fast has come round to 0 (every
- * CHECK_EVERY steps, every step during a recovery). */
-static int step_clock(lep_client *c, size_t len)
+ * CHECK_EVERY steps, every step during a recovery), and only while a deadline
+ * is armed (otherwise c->fast just goes on counting). */
+SHARED int step_clock(lep_client *c, size_t len)
 {
-    if ((c->state & ST_WAIT) == 0u && ((c->state & ST_STREAM) == 0u || c->watchdog_ms == 0u)) {
-        c->fast = (uint16_t)FAST_NO_DEADLINE; /* no deadline to watch */
-        return LEP_STEP_NONE;
-    }
+    bool watch;
     if (len == 1u && c->fast != 0u) {
         return LEP_STEP_NONE;
     }
-    c->fast = (uint16_t)(c->phase == PH_NONE ? FAST_CHECKED : FAST_LOOK_NEXT);
-    return check_clock(c, len > 0u);
+    watch = (c->state & ST_STREAM) != 0u && c->watchdog_ms != 0u; /* the watchdog */
+    if (c->phase == PH_NONE && !watch) {
+        return LEP_STEP_NONE; /* no deadline to watch */
+    }
+    c->fast = (uint16_t)(c->phase <= PH_PLAIN ? FAST_CHECKED : FAST_LOOK_NEXT);
+    return check_clock(c, len > 0u, watch); /* (nothing there changes watch) */
 }
 
 /* Handle the decoder's event ev (LEP_FRAME_NONE: nothing): an outcome, or
@@ -560,15 +573,28 @@ int lep_client_step_byte_slow(lep_client *c, uint8_t b, lep_sample *out)
 
 /* ---- Blocking calls ---- */
 
-/* Milliseconds until the next deadline (>= 0), or -1 when none is armed.
+/* Milliseconds until the next deadline of check_clock's two timers (at most
+ * 0x7FFFFFFF: timeout_ms comes from an int), or NEVER when none is armed.
  * (The clock check just before took any fresh sample into the watchdog.) */
-static int32_t next_deadline(const lep_client *c)
+static uint32_t next_deadline(const lep_client *c)
 {
-    uint32_t aux;
-    uint32_t left = timers(c, now(c), &aux);
-    left = aux < left ? aux : left;
-    /* Every span is at most 0x7FFFFFFF (timeout_ms comes from an int). */
-    return left == NEVER ? -1 : (int32_t)left;
+    uint32_t t = now(c);
+    uint32_t span = c->timeout_ms;
+    uint32_t other = c->watchdog_ms;
+    if (c->phase >= PH_DRAIN_SYNC) {
+        span = c->quiet_ms;
+        other = drain_limit(c);
+    } else {
+        if (c->phase == PH_NONE) {
+            span = 0;
+        }
+        if ((c->state & ST_STREAM) == 0u) {
+            other = 0;
+        }
+    }
+    span = left_of(t, c->t_start, span);
+    other = left_of(t, c->t_aux, other);
+    return other < span ? other : span;
 }
 
 /* v as an int (16 bits on some MCUs), saturated. */
@@ -628,68 +654,37 @@ static int fill(lep_client *c, const reader *rd, int timeout_ms)
     return n;
 }
 
-/* Drive the pending transaction or recovery to its outcome (samples that
- * arrive meanwhile are skipped). */
-static int run(lep_client *c)
+/* The blocking calls' one waiting loop. With out NULL, drive the pending
+ * transaction or recovery to its outcome (LEP_OK or its error; samples that
+ * arrive meanwhile are skipped, a watchdog stall does not end it, a read
+ * error ends it); the caller passes timeout_ms -1 (its deadlines bound it).
+ * Otherwise wait for the next stream sample into *out; count_timeout says
+ * whether a timeout is news. Once the time is up, one more read that does not
+ * wait is made (so timeout 0 takes what is readable now); bytes that keep
+ * arriving without completing a sample never extend the wait. */
+static int wait_for(lep_client *c, lep_sample *out, int timeout_ms, bool count_timeout)
 {
     lep_client_rx local;
     reader rd = reader_of(c, &local);
-    for (;;) {
-        int rc = step_buffered(c, &rd);
-        int32_t wait;
-        if (rc == LEP_E_STALLED) {
-            continue; /* counted; the transaction goes on (found by fuzz_client) */
-        }
-        if (rc == LEP_STEP_RESPONSE || rc < 0) {
-            return rc < 0 ? rc : LEP_OK;
-        }
-        if (rc == LEP_STEP_SAMPLE) {
-            c->count[N_SAMPLES]--; /* not delivered: skipped while waiting for another answer */
-            c->count[N_UNEXPECTED]++;
-        }
-        if (rd.rx->pos < rd.rx->len) {
-            continue;
-        }
-        wait = next_deadline(c); /* >= 0: a transaction or recovery is under way */
-        rc = fill(c, &rd, clamp_int(wait));
-        if (rc < 0) {
-            return finish(c, rc);
-        }
-    }
-}
-
-int lep_client_transact(lep_client *c, const lep_command *cmd, lep_response *resp)
-{
-    int rc;
-    if (c == NULL || cmd == NULL || c->io.read == NULL) {
-        return LEP_E_ARG;
-    }
-    rc = lep_client_send(c, cmd);
-    if (rc == LEP_OK) {
-        rc = run(c);
-    }
-    if (rc == LEP_OK && resp != NULL) {
-        rc = lep_client_response(c, resp);
-    }
-    return rc;
-}
-
-/* Wait for the next stream sample; count_timeout says whether a timeout is news.
- * Once the time is up, one more read that does not wait is made (so timeout 0
- * takes what is readable now); bytes that keep arriving without completing a
- * sample never extend the wait. */
-static int next_sample(lep_client *c, lep_sample *out, int timeout_ms, bool count_timeout)
-{
-    lep_client_rx local;
-    reader rd = reader_of(c, &local);
-    uint32_t start = now(c);
+    uint32_t start = timeout_ms >= 0 ? now(c) : 0u;
     bool polled = false; /* the read after the time was up has been made */
     for (;;) {
         int rc = step_buffered(c, &rd);
         int n;
         int wait = timeout_ms;
-        int32_t clock;
-        if (rc == LEP_STEP_SAMPLE) {
+        uint32_t clock;
+        if (out == NULL) {
+            if (rc == LEP_E_STALLED) {
+                continue; /* counted; the transaction goes on (found by fuzz_client) */
+            }
+            if (rc == LEP_STEP_RESPONSE) {
+                return LEP_OK;
+            }
+            if (rc == LEP_STEP_SAMPLE) {
+                c->count[N_SAMPLES]--; /* not delivered: skipped while waiting for another answer */
+                c->count[N_UNEXPECTED]++;
+            }
+        } else if (rc == LEP_STEP_SAMPLE) {
             return lep_client_get_sample(c, out);
         }
         if (rc < 0) {
@@ -705,10 +700,11 @@ static int next_sample(lep_client *c, lep_sample *out, int timeout_ms, bool coun
                 break;
             }
         }
-        clock = next_deadline(c);
-        n = fill(c, &rd, clock >= 0 && (wait < 0 || clock < (int32_t)wait) ? clamp_int(clock) : wait);
+        clock = next_deadline(c); /* (armed while a transaction or recovery is under way) */
+        /* the sooner of the two (NEVER and a wait < 0 are forever) */
+        n = fill(c, &rd, clock < (uint32_t)(int32_t)wait ? clamp_int((int32_t)clock) : wait);
         if (n < 0) {
-            return n;
+            return out == NULL ? finish(c, n) : n;
         }
         polled = wait == 0;
         if (n == 0 && timeout_ms >= 0 && (wait == 0 || now(c) - start >= (uint32_t)timeout_ms)) {
@@ -729,7 +725,7 @@ int lep_client_next_sample(lep_client *c, lep_sample *out, int timeout_ms)
     if ((c->state & ST_STREAM) == 0u) {
         return LEP_E_STATE;
     }
-    return next_sample(c, out, timeout_ms, true);
+    return wait_for(c, out, timeout_ms, true);
 }
 
 int lep_client_next_samples(lep_client *c, lep_sample *out, size_t max, size_t *n, int timeout_ms)
@@ -746,28 +742,47 @@ int lep_client_next_samples(lep_client *c, lep_sample *out, size_t max, size_t *
         return rc;
     }
     *n = 1;
-    while (*n < max && next_sample(c, &out[*n], 0, false) == LEP_OK) {
+    while (*n < max && wait_for(c, &out[*n], 0, false) == LEP_OK) {
         (*n)++;
     }
     return LEP_OK;
 }
 
-/* rc is how a blocking call's transaction or recovery ended; when LEP_OK and
- * out is not NULL, the member of its answer's union (every member begins at
- * the union's start) is copied into out[0..size). Returns rc. */
-SHARED int copy_answer(const lep_client *c, int rc, void *out, size_t size)
+/* Drive the transaction or recovery just begun (rc: how its beginning went)
+ * to its outcome. When it ends well and out is not NULL, out[0..size)
+ * receives its answer: the whole lep_response when size is its size, else
+ * the member of its union (every member begins at the union's start). */
+SHARED int complete(lep_client *c, int rc, void *out, size_t size)
 {
     lep_response r;
+    if (rc == LEP_OK) {
+        rc = wait_for(c, NULL, -1, false);
+    }
     if (rc == LEP_OK && out != NULL) {
         rc = lep_client_response(c, &r); /* (LEP_OK: the answer just came) */
-        memcpy(out, &r.u, size);
+        memcpy(out, size == sizeof(r) ? (const void *)&r : (const void *)&r.u, size);
     }
     return rc;
 }
 
-/* A transaction of code, its answer copied as copy_answer says. LEP_E_ARG
- * when the query needs out (size > 0) and it is NULL. */
-static int query(lep_client *c, uint8_t code, uint8_t filter, void *out, size_t size)
+/* A blocking transaction of cmd, its answer copied as complete says. */
+SHARED int transact(lep_client *c, const lep_command *cmd, void *out, size_t size)
+{
+    if (c == NULL || cmd == NULL || c->io.read == NULL) {
+        return LEP_E_ARG;
+    }
+    return complete(c, lep_client_send(c, cmd), out, size);
+}
+
+int lep_client_transact(lep_client *c, const lep_command *cmd, lep_response *resp)
+{
+    return transact(c, cmd, resp, sizeof(*resp));
+}
+
+/* A transaction of code (with the filter code filter), its answer's member
+ * copied into out[0..size). LEP_E_ARG when the query needs out (size > 0)
+ * and it is NULL. */
+SHARED int query(lep_client *c, uint8_t code, uint8_t filter, void *out, size_t size)
 {
     lep_command cmd;
     cmd.code = code;
@@ -775,7 +790,7 @@ static int query(lep_client *c, uint8_t code, uint8_t filter, void *out, size_t 
     if (out == NULL && size > 0u) {
         return LEP_E_ARG;
     }
-    return copy_answer(c, lep_client_transact(c, &cmd, NULL), out, size);
+    return transact(c, &cmd, out, size);
 }
 
 int lep_client_start(lep_client *c)
@@ -828,8 +843,5 @@ int lep_client_sync(lep_client *c, int quiet_ms, lep_product_info *info)
     rc = lep_client_recover(c, quiet_ms <= 0 ? (uint16_t)0u
                                : (uint32_t)quiet_ms > 0xFFFFu ? (uint16_t)0xFFFFu
                                                               : (uint16_t)quiet_ms);
-    if (rc == LEP_OK) {
-        rc = run(c);
-    }
-    return copy_answer(c, rc, info, sizeof(*info));
+    return complete(c, rc, info, sizeof(*info));
 }
