@@ -1,45 +1,48 @@
 /* Descriptions of library errors and sensor result codes.
  *
- * One string of NUL-separated texts holds both lists in code order (the codes
- * are contiguous), so flash holds the text and no table of pointers; each
- * list ends with the text for a code outside it, and "success" serves both. */
+ * One string of NUL-separated texts holds both lists, so flash holds the text
+ * and no table of pointers: the errors in code order (the codes are
+ * contiguous) up to the text for a code outside them, then the result codes'
+ * own texts; a result code whose meaning an error text already states (the
+ * spec's "length error", "invalid value", "state error") shares it. */
 #include "leptrino/error.h"
 
 #if LEP_HAVE_ERROR_STRINGS
-/* LEP_OK, LEP_E_ARG (-1) .. LEP_E_STALLED (-23), unknown error; then
- * LEP_RESULT_LENGTH (1) .. LEP_RESULT_STATE (4), unknown result code. */
+/* LEP_OK, LEP_E_ARG (-1) .. LEP_E_STALLED (-23), unknown error (24); then
+ * undefined command (25), unknown result code (26). */
 #define UNKNOWN_ERROR ((unsigned)-LEP_E_STALLED + 1u)
-#define RESULTS UNKNOWN_ERROR /* result code r (1..4) is at RESULTS + r */
 static const char k_texts[] = "success\0"
                               "invalid argument\0"
                               "buffer too small\0"
-                              "message over 128 bytes\0"
+                              "message too long\0"
                               "bad frame check (BCC)\0"
                               "bad byte after DLE\0"
-                              "wrong message length\0"
+                              "length error\0"
                               "bad reserved byte\0"
-                              "unexpected or unknown message\0"
-                              "invalid field value\0"
+                              "unexpected message\0"
+                              "invalid value\0"
                               "sensor reported an error\0"
                               "sensor kept answering NAK\0"
-                              "timed out waiting for the sensor\0"
+                              "sensor timed out\0"
                               "I/O error\0"
                               "port disconnected\0"
-                              "port in use elsewhere\0"
+                              "port in use\0"
                               "no such port\0"
                               "permission denied\0"
                               "not a terminal\0"
-                              "not allowed in this state\0"
+                              "state error\0"
                               "line never went quiet\0"
                               "not supported\0"
                               "duration or count reached\0"
                               "no stream data within the watchdog time\0"
                               "unknown error\0"
-                              "length error\0"
                               "undefined command\0"
-                              "invalid setting value\0"
-                              "state error\0"
                               "unknown result code";
+
+/* The index in k_texts of result codes 0..4 and of any other. */
+static const unsigned char k_result_text[] = {
+    0u, (unsigned)-LEP_E_LENGTH, UNKNOWN_ERROR + 1u, (unsigned)-LEP_E_VALUE,
+    (unsigned)-LEP_E_STATE, UNKNOWN_ERROR + 2u};
 
 /* The text at index i of k_texts (one copy in size builds). */
 #if defined(__GNUC__) && defined(__OPTIMIZE_SIZE__)
@@ -49,8 +52,11 @@ static const char *nth(unsigned i)
 {
     const char *s = k_texts;
     while (i > 0u) {
-        while (*s++ != '\0') {
-        }
+        char c;
+        do {
+            c = *s;
+            s++;
+        } while (c != '\0');
         i--;
     }
     return s;
@@ -63,7 +69,8 @@ const char *lep_strerror(int err)
     (void)err;
     return "";
 #else
-    return nth(err > 0 || err < LEP_E_STALLED ? UNKNOWN_ERROR : (unsigned)-err);
+    unsigned i = 0u - (unsigned)err; /* 0 .. 23 for the codes; above for the others */
+    return nth(i < UNKNOWN_ERROR ? i : UNKNOWN_ERROR);
 #endif
 }
 
@@ -73,8 +80,10 @@ const char *lep_result_str(uint8_t result)
     (void)result;
     return "";
 #else
-    return nth(result == LEP_RESULT_OK      ? 0u
-               : result > LEP_RESULT_STATE ? RESULTS + LEP_RESULT_STATE + 1u
-                                            : RESULTS + result);
+    unsigned r = result;
+    if (r > LEP_RESULT_STATE + 1u) {
+        r = LEP_RESULT_STATE + 1u;
+    }
+    return nth(k_result_text[r]);
 #endif
 }
