@@ -20,7 +20,6 @@ static void test_result_shares_error_text(void)
     TEST_ASSERT_EQUAL_PTR(lep_strerror(LEP_OK), lep_result_str(LEP_RESULT_OK));
     TEST_ASSERT_EQUAL_PTR(lep_strerror(LEP_E_LENGTH), lep_result_str(LEP_RESULT_LENGTH));
     TEST_ASSERT_EQUAL_PTR(lep_strerror(LEP_E_VALUE), lep_result_str(LEP_RESULT_VALUE));
-    TEST_ASSERT_EQUAL_PTR(lep_strerror(LEP_E_STATE), lep_result_str(LEP_RESULT_STATE));
 }
 
 static void test_error_texts(void)
@@ -47,7 +46,7 @@ static void test_error_texts(void)
              {LEP_E_NOT_FOUND, "no such port"},
              {LEP_E_PERMISSION, "permission denied"},
              {LEP_E_NOT_TTY, "not a terminal"},
-             {LEP_E_STATE, "state error"},
+             {LEP_E_STATE, "not allowed in this state"},
              {LEP_E_NO_SYNC, "line never went quiet"},
              {LEP_E_UNSUPPORTED, "not supported"},
              {LEP_E_END, "duration or count reached"},

@@ -4,12 +4,12 @@
  * and no table of pointers: the errors in code order (the codes are
  * contiguous) up to the text for a code outside them, then the result codes'
  * own texts; a result code whose meaning an error text already states (the
- * spec's "length error", "invalid value", "state error") shares it. */
+ * spec's "length error", "invalid value") shares it. */
 #include "leptrino/error.h"
 
 #if LEP_HAVE_ERROR_STRINGS
 /* LEP_OK, LEP_E_ARG (-1) .. LEP_E_STALLED (-23), unknown error (24); then
- * undefined command (25), unknown result code (26). */
+ * undefined command (25), state error (26), unknown result code (27). */
 #define UNKNOWN_ERROR ((unsigned)-LEP_E_STALLED + 1u)
 static const char k_texts[] = "success\0"
                               "invalid argument\0"
@@ -30,19 +30,20 @@ static const char k_texts[] = "success\0"
                               "no such port\0"
                               "permission denied\0"
                               "not a terminal\0"
-                              "state error\0"
+                              "not allowed in this state\0"
                               "line never went quiet\0"
                               "not supported\0"
                               "duration or count reached\0"
                               "no stream data within the watchdog time\0"
                               "unknown error\0"
                               "undefined command\0"
+                              "state error\0"
                               "unknown result code";
 
 /* The index in k_texts of result codes 0..4 and of any other. */
 static const unsigned char k_result_text[] = {
     0u, (unsigned)-LEP_E_LENGTH, UNKNOWN_ERROR + 1u, (unsigned)-LEP_E_VALUE,
-    (unsigned)-LEP_E_STATE, UNKNOWN_ERROR + 2u};
+    UNKNOWN_ERROR + 2u, UNKNOWN_ERROR + 3u};
 
 /* The text at index i of k_texts (one copy in size builds). */
 #if defined(__GNUC__) && defined(__OPTIMIZE_SIZE__)
