@@ -291,28 +291,36 @@ static bool stop_over(lep_client *c)
     return true;
 }
 
-/* The transaction ended well: streaming follows the command. */
-static int done(lep_client *c)
+/* The attempt is over with rc (LEP_STEP_RESPONSE: it ended well, streaming
+ * follows the command; else its error). A recovery's stop goes on to its
+ * drain instead (answered, refused or never got through: LEP_STEP_NONE). */
+SHARED int settle(lep_client *c, int rc)
 {
-    if (c->cmd.code == LEP_CMD_START) {
-        if (c->phase == PH_RESTARTED) {
-            c->count[N_RECOVERIES]++;
-        }
-        c->state = (uint8_t)(c->state | ST_STREAM | ST_FRESH);
-    } else if (c->cmd.code == LEP_CMD_STOP) {
-        c->state = (uint8_t)(c->state & ~ST_STREAM);
+    if (stop_over(c)) {
+        return LEP_STEP_NONE;
     }
-    return finish(c, LEP_STEP_RESPONSE);
+    if (rc == LEP_E_TIMEOUT) {
+        c->count[N_TIMEOUTS]++;
+    }
+    if (rc == LEP_STEP_RESPONSE) {
+        if (c->cmd.code == LEP_CMD_START) {
+            if (c->phase == PH_RESTARTED) {
+                c->count[N_RECOVERIES]++;
+            }
+            c->state = (uint8_t)(c->state | ST_STREAM | ST_FRESH);
+        } else if (c->cmd.code == LEP_CMD_STOP) {
+            c->state = (uint8_t)(c->state & ~ST_STREAM);
+        }
+    }
+    return finish(c, rc);
 }
 
 /* The answer to the pending command arrived; result is its result code. */
 static int on_answer(lep_client *c, uint8_t result)
 {
     c->last_result = result;
-    if (stop_over(c)) {
-        return LEP_STEP_NONE; /* any answer to the recovery's stop will do */
-    }
-    if (result == LEP_RESULT_STATE && (c->cmd.code == LEP_CMD_START || c->cmd.code == LEP_CMD_STOP)) {
+    if (result == LEP_RESULT_STATE && (c->cmd.code == LEP_CMD_START || c->cmd.code == LEP_CMD_STOP) &&
+        c->phase <= PH_RESTARTED) { /* (not a recovery's stop: any answer to it will do) */
         if (c->tries > 0u) {
             c->count[N_RESENT_CONFIRMED]++; /* an earlier copy was executed */
             result = LEP_RESULT_OK;
@@ -322,10 +330,7 @@ static int on_answer(lep_client *c, uint8_t result)
             return begin(c, LEP_CMD_STOP, PH_STOP_START); /* LEP_OK is LEP_STEP_NONE */
         }
     }
-    if (result == LEP_RESULT_OK) {
-        return done(c);
-    }
-    return finish(c, LEP_E_SENSOR);
+    return settle(c, result == LEP_RESULT_OK ? LEP_STEP_RESPONSE : LEP_E_SENSOR);
 }
 
 /* Handle one good frame; returns an outcome, or LEP_STEP_NONE to go on. */
@@ -375,14 +380,8 @@ SHARED int attempt_failed(lep_client *c, unsigned which)
         c->count[which]++;
         return write_pending(c);
     }
-    if (stop_over(c)) {
-        return LEP_STEP_NONE; /* a stop that never got through does not end the recovery */
-    }
-    if (which == N_RETRIES) {
-        return finish(c, LEP_E_NAK);
-    }
-    c->count[N_TIMEOUTS]++;
-    return finish(c, LEP_E_TIMEOUT);
+    /* (a stop of a recovery that never got through does not end it) */
+    return settle(c, which == N_RETRIES ? LEP_E_NAK : LEP_E_TIMEOUT);
 }
 
 HOT int on_event(lep_client *c, const lep_frame_event *ev)
