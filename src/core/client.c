@@ -23,6 +23,14 @@ enum {
     PH_DRAIN_START = 6 /* start recovery: waiting for a quiet line, then start again */
 };
 
+/* What a drain sends next: the product-info query (PH_DRAIN_SYNC) or the
+ * start again (PH_DRAIN_START), as one multiply-add on the phase. */
+#define DRAIN_NEXT_CODE(phase) ((phase) * 8u + 2u)
+typedef char lep_client_drain_codes[DRAIN_NEXT_CODE(PH_DRAIN_SYNC) == LEP_CMD_PRODUCT_INFO &&
+                                            DRAIN_NEXT_CODE(PH_DRAIN_START) == LEP_CMD_START
+                                        ? 1
+                                        : -1];
+
 /* The client's own counters (lep_client.count), in lep_client_stats order from retries on. */
 enum {
     N_RETRIES,
@@ -171,13 +179,16 @@ bool lep_client_busy(const lep_client *c)
     return c != NULL && c->phase != PH_NONE;
 }
 
-/* A message that passed validation leaves its decoded sample member (what
- * lep_client_get_sample gives for a 20-byte one) at the end of the decoder's
- * buffer, past the longest valid message (room the decoder writes only with
- * a later frame's bytes, so it lives as long as the message): a sample is
- * read out without decoding the message again. */
+/* When optimising for speed, a message that passed validation leaves its
+ * decoded sample member (what lep_client_get_sample gives for a 20-byte one)
+ * at the end of the decoder's buffer, past the longest valid message (room
+ * the decoder writes only with a later frame's bytes, so it lives as long as
+ * the message): a sample is read out without decoding the message again.
+ * Size builds decode the kept message again instead (the same sample). */
+#if !defined(__OPTIMIZE_SIZE__)
 #define SPARE_SAMPLE(c) ((c)->dec.buf + (LEP_MAX_MESSAGE - sizeof(lep_sample)))
 typedef char lep_client_spare_fits[LEP_LEN_PRODUCT_INFO_RATE + sizeof(lep_sample) <= LEP_MAX_MESSAGE ? 1 : -1];
+#endif
 
 /* The message of the last outcome: LEP_OK, LEP_E_ARG (c or out NULL), or
  * LEP_E_STATE (none, or a single-byte step came since). */
@@ -201,6 +212,17 @@ int lep_client_response(const lep_client *c, lep_response *out)
 
 int lep_client_get_sample(const lep_client *c, lep_sample *out)
 {
+#if defined(__OPTIMIZE_SIZE__)
+    lep_response r;
+    int rc = out == NULL ? LEP_E_ARG : lep_client_response(c, &r); /* (LEP_E_ARG, LEP_E_STATE) */
+    if (rc == LEP_OK && c->msg_len != LEP_LEN_SAMPLE) {
+        rc = LEP_E_STATE; /* (a sample is the only 20-byte message that makes an outcome) */
+    }
+    if (rc == LEP_OK) {
+        *out = r.u.sample;
+    }
+    return rc;
+#else
     if (c == NULL || out == NULL) {
         return LEP_E_ARG;
     }
@@ -210,6 +232,7 @@ int lep_client_get_sample(const lep_client *c, lep_sample *out)
     }
     memcpy(out, SPARE_SAMPLE(c), sizeof(*out));
     return LEP_OK;
+#endif
 }
 
 TINY uint32_t now(const lep_client *c)
@@ -250,12 +273,12 @@ static int write_pending(lep_client *c)
 
 /* Begin sending code (a new transaction or the next step of a recovery); the
  * filter code stays as it is (lep_command_encode reads it only for a filter set). */
-SHARED int begin(lep_client *c, uint8_t code, uint8_t phase)
+SHARED int begin(lep_client *c, unsigned code, unsigned phase)
 {
     c->msg_len = 0; /* (already 0 when a step begins the next part of a recovery) */
-    c->cmd.code = code;
+    c->cmd.code = (uint8_t)code;
     c->tries = 0;
-    c->phase = phase;
+    c->phase = (uint8_t)phase;
     return write_pending(c);
 }
 
@@ -343,7 +366,9 @@ HOT int on_message(lep_client *c, const lep_frame_event *ev)
         c->count[N_INVALID]++;
         return LEP_STEP_NONE;
     }
+#if !defined(__OPTIMIZE_SIZE__)
     memcpy(SPARE_SAMPLE(c), &r.u.sample, sizeof(r.u.sample));
+#endif
     if (r.stream && (c->state & ST_STREAM) != 0u) {
         if (c->cmd.code == LEP_CMD_STOP && waiting(c)) {
             return LEP_STEP_NONE; /* our data still in flight before the stop answer */
@@ -440,8 +465,7 @@ static int check_clock(lep_client *c, bool fed, bool watch)
             return finish(c, LEP_E_NO_SYNC);
         }
         if (expired(t, c->t_start, c->quiet_ms)) {
-            return begin(c, c->phase == PH_DRAIN_START ? LEP_CMD_START : LEP_CMD_PRODUCT_INFO,
-                         (uint8_t)(c->phase - 4u));
+            return begin(c, DRAIN_NEXT_CODE(c->phase), c->phase - 4u);
         }
         return LEP_STEP_NONE;
     }
