@@ -338,10 +338,12 @@ SHARED int settle(lep_client *c, int rc)
     return finish(c, rc);
 }
 
-/* The answer to the pending command arrived; result is its result code. */
-static int on_answer(lep_client *c, uint8_t result)
+/* The answer to the pending command arrived: kept is its result code, result
+ * what it means here (the same, or LEP_RESULT_STATE for data of a stream a
+ * resent start began, whose first copy was executed). */
+SHARED int on_answer(lep_client *c, uint8_t kept, unsigned result)
 {
-    c->last_result = result;
+    c->last_result = kept;
     if (result == LEP_RESULT_STATE && (c->cmd.code == LEP_CMD_START || c->cmd.code == LEP_CMD_STOP) &&
         c->phase <= PH_RESTARTED) { /* (not a recovery's stop: any answer to it will do) */
         if (c->tries > 0u) {
@@ -378,15 +380,11 @@ HOT int on_message(lep_client *c, const lep_frame_event *ev)
         return LEP_STEP_SAMPLE;
     }
     mine = waiting(c) && r.code == c->cmd.code; /* (a data message's code is the start's) */
-    if (mine && !r.stream) {
-        return on_answer(c, r.result);
-    }
-    if (mine && c->tries > 0u) {
-        /* Data of a stream we are starting: the first copy of our resent start
-         * was executed, as if a copy were refused with 0x04. */
-        rc = on_answer(c, LEP_RESULT_STATE);
-        c->last_result = LEP_RESULT_OK;
-        return rc;
+    if (mine && (!r.stream || c->tries > 0u)) {
+        /* Our answer; or data of a stream we are starting: the first copy of
+         * our resent start was executed, as if a copy were refused with 0x04
+         * (the data's result is 0, which is kept). */
+        return on_answer(c, r.result, r.result | (r.stream ? LEP_RESULT_STATE : 0u));
     }
     c->count[N_UNEXPECTED]++; /* e.g. a stream we did not start (a stale one), a late answer */
     return LEP_STEP_NONE;
