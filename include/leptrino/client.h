@@ -100,7 +100,7 @@ typedef struct lep_client {
     lep_command cmd;        /* pending command (its filter is read only by a filter set) */
     uint8_t msg_len;        /* length of the last outcome's message (at dec.buf), or 0 */
     uint16_t watchdog_ms;
-    uint16_t quiet_ms;
+    uint16_t quiet_ms;      /* the drain's quiet time (0: LEP_CLIENT_DEFAULT_QUIET_MS) */
     uint16_t fast;          /* counts single-byte steps up to the next look at the clock */
     uint16_t msg_at;        /* fast when the message was kept: current while they agree */
     uint32_t t_start;       /* when the transaction attempt or the quiet time began */

@@ -101,7 +101,6 @@ int lep_client_init(lep_client *c, const lep_io *io)
     c->io = *io;
     c->timeout_ms = LEP_CLIENT_DEFAULT_TIMEOUT_MS;
     c->max_retries = (uint8_t)LEP_CLIENT_DEFAULT_RETRIES;
-    c->quiet_ms = (uint16_t)LEP_CLIENT_DEFAULT_QUIET_MS;
     return LEP_OK;
 }
 
@@ -296,7 +295,7 @@ int lep_client_recover(lep_client *c, uint16_t quiet_ms)
     if (c == NULL) {
         return LEP_E_ARG;
     }
-    c->quiet_ms = quiet_ms == 0u ? (uint16_t)LEP_CLIENT_DEFAULT_QUIET_MS : quiet_ms;
+    c->quiet_ms = quiet_ms; /* (0: the default, see quiet_of) */
     c->state = (uint8_t)(c->state & ~ST_STREAM); /* a stream's data is stale from here on */
     return begin(c, LEP_CMD_STOP, PH_STOP_SYNC);
 }
@@ -438,12 +437,19 @@ static bool expired(uint32_t t, uint32_t t0, uint32_t span)
     return t - t0 >= span;
 }
 
+/* The drain's quiet time: quiet_ms, where 0 (what lep_client_init leaves) is
+ * the default. */
+TINY uint32_t quiet_of(const lep_client *c)
+{
+    return c->quiet_ms != 0u ? c->quiet_ms : LEP_CLIENT_DEFAULT_QUIET_MS;
+}
+
 /* The drain's limit: LEP_CLIENT_DRAIN_TIMEOUTS timeouts plus the quiet time. */
-static uint32_t drain_limit(const lep_client *c)
+static uint32_t drain_limit(const lep_client *c, uint32_t quiet)
 {
     uint32_t timeout = c->timeout_ms;
     return (timeout < DRAIN_TIMEOUT_CAP ? timeout : DRAIN_TIMEOUT_CAP) * LEP_CLIENT_DRAIN_TIMEOUTS +
-           c->quiet_ms;
+           quiet;
 }
 
 /* The deadlines at the clock's time, fed saying bytes came in. Two timers:
@@ -456,13 +462,14 @@ static int check_clock(lep_client *c, bool fed, bool watch)
 {
     uint32_t t = now(c);
     if (c->phase >= PH_DRAIN_SYNC) {
+        uint32_t quiet = quiet_of(c);
         if (fed) {
             c->t_start = t; /* not quiet yet */
         }
-        if (expired(t, c->t_aux, drain_limit(c))) {
+        if (expired(t, c->t_aux, drain_limit(c, quiet))) {
             return finish(c, LEP_E_NO_SYNC);
         }
-        if (expired(t, c->t_start, c->quiet_ms)) {
+        if (expired(t, c->t_start, quiet)) {
             return begin(c, DRAIN_NEXT_CODE(c->phase), c->phase - 4u);
         }
         return LEP_STEP_NONE;
@@ -603,8 +610,8 @@ static uint32_t next_deadline(const lep_client *c)
     uint32_t span = c->timeout_ms;
     uint32_t other = c->watchdog_ms;
     if (c->phase >= PH_DRAIN_SYNC) {
-        span = c->quiet_ms;
-        other = drain_limit(c);
+        span = quiet_of(c);
+        other = drain_limit(c, span);
     } else {
         if (c->phase == PH_NONE) {
             span = 0;
