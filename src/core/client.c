@@ -474,8 +474,10 @@ static int check_clock(lep_client *c, bool fed, bool watch)
         }
         return LEP_STEP_NONE;
     }
-    if ((c->state & (ST_STREAM | ST_FRESH)) == (ST_STREAM | ST_FRESH)) {
-        c->state = (uint8_t)(c->state & ~ST_FRESH); /* the watchdog's time runs from here */
+    if ((c->state & ST_FRESH) != 0u) {
+        /* The watchdog's time runs from here. (Without streaming t_aux is not
+         * read here; a start that succeeds sets ST_FRESH again.) */
+        c->state = (uint8_t)(c->state & ~ST_FRESH);
         c->t_aux = t;
     }
     if (expired(t, c->t_start, c->timeout_ms)) { /* (attempt_failed: if one waits) */
