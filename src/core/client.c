@@ -59,6 +59,10 @@ typedef char lep_client_counters_fit[COUNTERS_FIT ? 1 : -1];
 #define CHECK_EVERY 32u                     /* single-byte steps between two clock reads */
 #define FAST_CHECKED (0x10000u - CHECK_EVERY) /* a deadline is armed */
 #define FAST_LOOK_NEXT 0xFFFFu              /* look at the clock on the next step */
+typedef char lep_client_fast_values[(uint16_t)~(CHECK_EVERY - 1u) == FAST_CHECKED &&
+                                            (uint16_t)~0u == FAST_LOOK_NEXT
+                                        ? 1
+                                        : -1];
 /* The event handling is inlined into both step entries when optimising for
  * speed (the one-byte entry then makes one call less per frame). */
 #if defined(__GNUC__) && defined(__OPTIMIZE__) && !defined(__OPTIMIZE_SIZE__)
@@ -508,7 +512,9 @@ SHARED int step_clock(lep_client *c, size_t len)
     if (c->phase == PH_NONE && !watch) {
         return LEP_STEP_NONE; /* no deadline to watch */
     }
-    c->fast = (uint16_t)(c->phase <= PH_PLAIN ? FAST_CHECKED : FAST_LOOK_NEXT);
+    /* FAST_CHECKED (~31) when at most a plain transaction waits, else
+     * FAST_LOOK_NEXT (~0): no branch, no literal */
+    c->fast = (uint16_t)~((c->phase <= PH_PLAIN) * (CHECK_EVERY - 1u));
     return check_clock(c, len > 0u, watch); /* (nothing there changes watch) */
 }
 
