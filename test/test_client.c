@@ -1218,6 +1218,40 @@ static int pump(lep_client *c, unsigned max_ms)
     return LEP_STEP_NONE;
 }
 
+/* A recovery's stop refused with 0x04, even a resent copy: the recovery goes
+ * on to its drain (a refusal is an answer like any other), and nothing is
+ * taken as a confirmed resend. */
+static void test_recovery_stop_refused_after_a_resend_goes_on(void)
+{
+    static const uint8_t refused[] = {0x04, 0xFF, 0x33, 0x04};
+    uint8_t frame[16];
+    size_t n;
+    size_t used;
+    lep_response r;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_frame_encode(refused, sizeof(refused), frame, sizeof(frame), &n));
+    sio.silent = true;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_recover(&client, 10));
+    sio.now += LEP_CLIENT_DEFAULT_TIMEOUT_MS;
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step(&client, NULL, 0, &used)); /* resent */
+    TEST_ASSERT_EQUAL_UINT(2, sio.writes);
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step(&client, frame, n, &used));
+    TEST_ASSERT_EQUAL_size_t(n, used);
+    TEST_ASSERT_TRUE(lep_client_busy(&client)); /* draining */
+    TEST_ASSERT_EQUAL_HEX8(LEP_RESULT_STATE, lep_client_last_result(&client));
+    TEST_ASSERT_EQUAL_UINT32(0, stats().resent_confirmed);
+    TEST_ASSERT_EQUAL_UINT32(1, stats().resent_after_timeout);
+    TEST_ASSERT_EQUAL_INT(LEP_E_STATE, lep_client_response(&client, &r));
+    sio.silent = false;
+    sio.now += 10u;
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step(&client, NULL, 0, &used)); /* identify */
+    TEST_ASSERT_EQUAL_UINT(3, sio.writes);
+    TEST_ASSERT_EQUAL_INT(LEP_STEP_RESPONSE, pump(&client, 0));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_response(&client, &r));
+    TEST_ASSERT_EQUAL_HEX8(LEP_CMD_PRODUCT_INFO, r.code);
+    TEST_ASSERT_EQUAL_UINT32(0, stats().resent_confirmed);
+    TEST_ASSERT_EQUAL_UINT32(0, stats().timeouts);
+}
+
 static void test_step_recovery_stops_drains_and_identifies(void)
 {
     static const uint8_t start_cmd[] = {0x10, 0x02, 0x04, 0xFF, 0x32, 0x00, 0x10, 0x03, 0xCA};
@@ -1746,6 +1780,7 @@ int main(void)
     RUN_TEST(test_resent_start_with_data_flowing_counts_as_started);
     RUN_TEST(test_data_before_the_first_start_answer_is_not_taken_as_started);
     RUN_TEST(test_resent_stop_answered_state_error_counts_as_stopped);
+    RUN_TEST(test_recovery_stop_refused_after_a_resend_goes_on);
     RUN_TEST(test_step_recovery_stops_drains_and_identifies);
     RUN_TEST(test_step_recovery_waits_for_a_quiet_line);
     RUN_TEST(test_step_recovery_gives_up_on_endless_noise);
