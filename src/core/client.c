@@ -572,7 +572,9 @@ int(lep_client_step)(lep_client *c, const uint8_t *data, size_t len, size_t *con
         return LEP_E_ARG;
     }
 #if defined(__OPTIMIZE_SIZE__)
-    c->fast = (uint16_t)(c->fast + (len == 1u)); /* counted like lep_client_step_byte */
+    if (len == 1u) {
+        c->fast++; /* counted like lep_client_step_byte */
+    }
 #else
     if (len == 1u) { /* the same, without the loop */
         *consumed = 1;
