@@ -43,9 +43,13 @@ typedef struct run_result {
 } run_result;
 
 /* Which entry point run() feeds chunks through. */
-enum api { API_FEED, API_FEED_ALL, API_MIXED, API_PUSH1 }; /* API_PUSH1: one-byte chunks
-                                                          try lep_frame_decoder_push1 first */
+enum api { API_FEED, API_FEED_ALL, API_MIXED, API_PUSH1, API_BYTE }; /* API_PUSH1: one-byte
+                             chunks try lep_frame_decoder_push1 first; API_BYTE: every byte through
+                             lep_frame_decoder_feed_byte, held to a second decoder fed the same byte
+                             through lep_frame_decoder_feed */
 static enum api g_api = API_FEED;
+/* API_BYTE's second decoder. */
+static lep_frame_decoder g_twin;
 
 static void record_event(run_result *r, const lep_frame_event *ev)
 {
@@ -83,6 +87,23 @@ static void feed_chunk(lep_frame_decoder *d, const uint8_t *p, size_t len, run_r
     if (g_api == API_PUSH1 && len == 1u && lep_frame_decoder_push1(d, p[0])) {
         return; /* taken inline: no event */
     }
+    if (g_api == API_BYTE) {
+        for (; len > 0; len--) { /* the same event, counters and state as feed of one byte */
+            lep_frame_event ev;
+            lep_frame_event want;
+            TEST_ASSERT_EQUAL_size_t(1u, lep_frame_decoder_feed(&g_twin, p, 1, &want));
+            TEST_ASSERT_EQUAL_INT(LEP_OK, lep_frame_decoder_feed_byte(d, *p++, &ev));
+            TEST_ASSERT_EQUAL_INT(want.type, ev.type);
+            if (ev.type != LEP_FRAME_NONE) {
+                TEST_ASSERT_EQUAL_INT(want.error, ev.error);
+                TEST_ASSERT_EQUAL_size_t(want.len, ev.len);
+                TEST_ASSERT_TRUE(ev.msg == (ev.type == LEP_FRAME_MESSAGE ? d->buf : NULL));
+                record_event(r, &ev);
+            }
+            TEST_ASSERT_EQUAL_MEMORY(&g_twin, d, sizeof(*d));
+        }
+        return;
+    }
     do {
         lep_frame_event ev;
         size_t used = lep_frame_decoder_feed(d, p, len, &ev);
@@ -106,6 +127,7 @@ static void run(const uint8_t *in, size_t len, enum split_mode mode, uint32_t se
     size_t off = 0;
     memset(r, 0, sizeof(*r));
     lep_frame_decoder_init(&d);
+    lep_frame_decoder_init(&g_twin);
     while (off < len) {
         size_t chunk = 0;
         switch (mode) {
@@ -313,10 +335,10 @@ static void check_stream_api(const lep_json *v, enum split_mode mode, const char
 static void check_stream(const lep_json *v, enum split_mode mode, const char *how)
 {
     static const char *const names[] = {"feed", "feed_all", "feed and feed_all in turn",
-                                        "push1, else feed"};
+                                        "push1, else feed", "feed_byte"};
     char what[128];
     int api;
-    for (api = API_FEED; api <= API_PUSH1; api++) {
+    for (api = API_FEED; api <= API_BYTE; api++) {
         g_api = (enum api)api;
         snprintf(what, sizeof what, "%s, %s", how, names[api]);
         check_stream_api(v, mode, what);
@@ -463,6 +485,44 @@ static void test_decoder_feed_bad_arguments(void)
     TEST_ASSERT_EQUAL_INT(LEP_FRAME_MESSAGE, ev.type);
     TEST_ASSERT_EQUAL_size_t(4u, ev.len);
     TEST_ASSERT_EQUAL_HEX8(0x2A, ev.msg[2]);
+}
+
+/* feed_byte's bad arguments: LEP_E_ARG, the event feed gives for the same
+ * call with one byte, and the decoder left as it was. */
+static void test_decoder_feed_byte_bad_arguments(void)
+{
+    static const uint8_t start[] = {0x10, 0x02, 0x04};
+    static const uint8_t rest[] = {0xFF, 0x2A, 0x00, 0x10, 0x03, 0xD2};
+    static const uint8_t b = 0xFF;
+    lep_frame_decoder d;
+    lep_frame_decoder before;
+    lep_frame_event ev;
+    lep_frame_event want;
+    size_t i;
+    lep_frame_decoder_init(&d);
+    TEST_ASSERT_EQUAL_size_t(sizeof(start), lep_frame_decoder_feed(&d, start, sizeof(start), &ev));
+    before = d;
+    memset(&ev, 0x5A, sizeof(ev));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_frame_decoder_feed_byte(NULL, b, &ev));
+    TEST_ASSERT_EQUAL_INT(LEP_FRAME_ERROR, ev.type);
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, ev.error);
+    TEST_ASSERT_NULL(ev.msg);
+    TEST_ASSERT_EQUAL_size_t(0u, ev.len);
+    memset(&want, 0x5A, sizeof(want));
+    TEST_ASSERT_EQUAL_size_t(0u, lep_frame_decoder_feed(NULL, &b, 1, &want));
+    TEST_ASSERT_EQUAL_MEMORY(&want, &ev, sizeof(ev));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_frame_decoder_feed_byte(&d, b, NULL));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_frame_decoder_feed_byte(NULL, b, NULL));
+    /* None of it touched the frame in progress. */
+    TEST_ASSERT_EQUAL_MEMORY(&before, &d, sizeof(d));
+    for (i = 0; i < sizeof(rest); i++) {
+        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_frame_decoder_feed_byte(&d, rest[i], &ev));
+        TEST_ASSERT_EQUAL_INT(i + 1u < sizeof(rest) ? LEP_FRAME_NONE : LEP_FRAME_MESSAGE, ev.type);
+    }
+    TEST_ASSERT_EQUAL_size_t(4u, ev.len);
+    TEST_ASSERT_EQUAL_HEX8(0x2A, ev.msg[2]);
+    TEST_ASSERT_EQUAL_UINT32(1u, d.stats.messages);
+    TEST_ASSERT_EQUAL_UINT32(0u, d.stats.bytes_discarded);
 }
 
 static void count_events(void *user, const lep_frame_event *ev)
@@ -696,6 +756,7 @@ int main(void)
     RUN_TEST(test_decode_streams_concatenated);
     RUN_TEST(test_decoder_busy_and_empty_feed);
     RUN_TEST(test_decoder_feed_bad_arguments);
+    RUN_TEST(test_decoder_feed_byte_bad_arguments);
     RUN_TEST(test_decoder_feed_all_arguments);
     RUN_TEST(test_decoder_not_busy_after_bcc_0x10);
     RUN_TEST(test_overlong_run_of_stuffed_dles);

@@ -5,7 +5,9 @@
  * feed_all, the two in turn, and push1 + feed. The reference is the same
  * frame.c built with LEPTRINO_FRAME_SMALL (the one-byte machine only) under
  * other names (lep_small_*, see test/CMakeLists.txt), fed each whole stream
- * one event at a time. Events (type, error, message bytes, and through feed the
+ * one event at a time; its feed of one byte and its feed_byte are held to each
+ * other at every byte. The library's feed_byte runs every stream too (API_BYTE,
+ * its counters and busy() checked after every byte). Events (type, error, message bytes, and through feed the
  * input position at which each completes) must agree, and so must the counters
  * when each event is handed over (from feed, or inside the feed_all handler)
  * and the counters and busy() at the end of every chunk: the reference's are
@@ -25,6 +27,7 @@ void lep_small_frame_decoder_init(lep_frame_decoder *d);
 size_t lep_small_frame_decoder_feed(lep_frame_decoder *d, const uint8_t *data, size_t len,
                                     lep_frame_event *ev);
 bool lep_small_frame_decoder_busy(const lep_frame_decoder *d);
+int lep_small_frame_decoder_feed_byte(lep_frame_decoder *d, uint8_t b, lep_frame_event *ev);
 
 #define MAX_INPUT 4096u
 #define MAX_EVENTS 512u
@@ -53,7 +56,7 @@ typedef struct diff_run {
 #define NO_DIVERGENCE ((size_t)-1)
 
 enum chunking { CH_WHOLE, CH_BYTES, CH_SMALL, CH_LARGE, CH_32, CH_WORDISH, CH_MIXED, CH_COUNT };
-enum api { API_FEED, API_FEED_ALL, API_MIXED, API_PUSH1, API_COUNT };
+enum api { API_FEED, API_FEED_ALL, API_MIXED, API_PUSH1, API_BYTE, API_COUNT };
 
 static uint8_t g_in[MAX_INPUT];
 static diff_run g_ref;
@@ -164,6 +167,7 @@ static size_t make_stream(uint32_t *s)
 static void run_reference(size_t len, diff_run *r)
 {
     lep_frame_decoder d;
+    lep_frame_decoder twin;
     const uint8_t *p = g_in;
     size_t i;
     memset(r, 0, sizeof(*r));
@@ -181,13 +185,24 @@ static void run_reference(size_t len, diff_run *r)
     }
     r->stats = d.stats;
     r->busy = lep_small_frame_decoder_busy(&d);
-    /* again byte by byte, for the counters and busy() after every byte */
+    /* again byte by byte, for the counters and busy() after every byte, and
+     * through feed_byte on a twin: the same event and decoder at every byte */
     lep_small_frame_decoder_init(&d);
+    lep_small_frame_decoder_init(&twin);
     g_ref_stats[0] = d.stats;
     g_ref_busy[0] = lep_small_frame_decoder_busy(&d);
     for (i = 0; i < len; i++) {
         lep_frame_event ev;
+        lep_frame_event ev_byte;
         TEST_ASSERT_EQUAL_size_t(1u, lep_small_frame_decoder_feed(&d, g_in + i, 1u, &ev));
+        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_small_frame_decoder_feed_byte(&twin, g_in[i], &ev_byte));
+        TEST_ASSERT_EQUAL_INT(ev.type, ev_byte.type);
+        if (ev.type != LEP_FRAME_NONE) {
+            TEST_ASSERT_EQUAL_INT(ev.error, ev_byte.error);
+            TEST_ASSERT_EQUAL_size_t(ev.len, ev_byte.len);
+            TEST_ASSERT_TRUE((ev.msg == NULL) == (ev_byte.msg == NULL));
+        }
+        TEST_ASSERT_EQUAL_MEMORY(&d, &twin, sizeof(d));
         g_ref_stats[i + 1u] = d.stats;
         g_ref_busy[i + 1u] = lep_small_frame_decoder_busy(&d);
     }
@@ -243,6 +258,19 @@ static void run_library(size_t len, enum api api, enum chunking how, uint32_t se
         if (api == API_PUSH1 && c == 1u && lep_frame_decoder_push1(&d, *p)) {
             off += 1u;
             check_position(r, &d, off);
+            continue;
+        }
+        if (api == API_BYTE) { /* every byte of the chunk, each checked */
+            for (; left > 0u; left--) {
+                lep_frame_event ev;
+                TEST_ASSERT_EQUAL_INT(LEP_OK, lep_frame_decoder_feed_byte(&d, *p++, &ev));
+                r->pos = (size_t)(p - g_in);
+                if (ev.type != LEP_FRAME_NONE) {
+                    record(r, &ev, true);
+                }
+                check_position(r, &d, r->pos);
+            }
+            off += c;
             continue;
         }
         do { /* feed, every event drained */
@@ -313,7 +341,8 @@ static void test_library_decoder_matches_the_byte_machine(void)
                          (unsigned long)stream_seed, api, how);
                 run_library(len, (enum api)api, (enum chunking)how, stream_seed ^ (uint32_t)how, &g_got);
                 /* feed_all hands events over at chunk ends: no position */
-                expect_same(&g_ref, &g_got, api == API_FEED || api == API_PUSH1, what);
+                expect_same(&g_ref, &g_got, api == API_FEED || api == API_PUSH1 || api == API_BYTE,
+                            what);
             }
         }
     }

@@ -54,7 +54,8 @@ typedef struct lep_frame_event {
     int type;           /* enum lep_frame_event_type */
     int error;          /* with LEP_FRAME_ERROR: LEP_E_BCC, LEP_E_ESCAPE, LEP_E_TOO_LONG,
                            LEP_E_LENGTH for an empty frame (counted in bytes_discarded only),
-                           or LEP_E_ARG for a bad argument to lep_frame_decoder_feed */
+                           or LEP_E_ARG for a bad argument to lep_frame_decoder_feed or
+                           lep_frame_decoder_feed_byte */
     const uint8_t *msg; /* with LEP_FRAME_MESSAGE: the unstuffed message, valid until the next feed */
     size_t len;         /* its length (1..128) */
 } lep_frame_event;
@@ -99,6 +100,15 @@ LEP_API void lep_frame_decoder_init(lep_frame_decoder *d);
 LEP_API size_t lep_frame_decoder_feed(lep_frame_decoder *d, const uint8_t *data, size_t len,
                                       lep_frame_event *ev);
 
+/* Feed the one byte b: exactly lep_frame_decoder_feed(d, &b, 1, ev) (the same
+ * event in ev, the same counters), for a caller fed a byte at a time (e.g. from
+ * an ISR ring buffer). ev->type is LEP_FRAME_NONE when b completes no event.
+ * Returns LEP_OK, or LEP_E_ARG when d or ev is NULL: then b is not consumed,
+ * d is unchanged and ev (when not NULL) is an LEP_FRAME_ERROR event with error
+ * LEP_E_ARG. Constant time, allocates nothing, no clock; re-entrant across
+ * decoders (one decoder must not be fed from two contexts at once). */
+LEP_API int lep_frame_decoder_feed_byte(lep_frame_decoder *d, uint8_t b, lep_frame_event *ev);
+
 /* Called by lep_frame_decoder_feed_all for each event, in input order. ev and
  * ev->msg are valid only during the call. The handler must not feed the same
  * decoder (it may feed others). */
@@ -134,7 +144,7 @@ LEP_API int lep_frame_decoder_feed_all(lep_frame_decoder *d, const uint8_t *data
  * DLE ETX of a frame after a plain idle line or a body) it takes b and returns
  * true.
  * Otherwise it changes nothing and returns false: the caller then feeds b with
- * lep_frame_decoder_feed. Mixing both gives exactly the events and counters
+ * lep_frame_decoder_feed_byte (or lep_frame_decoder_feed). Mixing both gives exactly the events and counters
  * of lep_frame_decoder_feed alone. d must not be NULL. */
 static inline bool lep_frame_decoder_push1(lep_frame_decoder *d, uint8_t b)
 {

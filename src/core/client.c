@@ -555,7 +555,12 @@ static int step_input(lep_client *c, const uint8_t *data, size_t len, size_t *co
     while (pos < len) {
         lep_frame_event ev;
         int rc;
+#if defined(__OPTIMIZE_SIZE__) /* a byte at a time: the firmware links no feed loop */
+        (void)lep_frame_decoder_feed_byte(&c->dec, data[pos], &ev);
+        pos++;
+#else
         pos += lep_frame_decoder_feed(&c->dec, data + pos, len - pos, &ev);
+#endif
         rc = take(c, &ev);
         if (rc != LEP_STEP_NONE) {
             *consumed = pos;

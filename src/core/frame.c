@@ -32,10 +32,11 @@ enum {
 };
 
 /* The word-at-a-time machine (decode below) is built unless the build
- * optimises for size or defines LEPTRINO_FRAME_SMALL: then every entry point
- * runs the one-byte machine (feed_byte), for about a fifth of the flash (727
- * bytes against 3,964 on a Cortex-M0+) and several times the instructions per
- * byte. The tests run both builds. */
+ * optimises for size or defines LEPTRINO_FRAME_SMALL: then the one-byte machine
+ * is lep_frame_decoder_feed_byte, and feed and feed_all are loops over it (a
+ * firmware fed byte by byte links no loop of the decoder's), for about a fifth
+ * of the flash and several times the instructions per byte. The tests run both
+ * builds. */
 #if !defined(LEPTRINO_FRAME_SMALL) && !defined(__OPTIMIZE_SIZE__)
 #define FRAME_FAST 1
 #endif
@@ -786,6 +787,16 @@ static int feed_all_byte(lep_frame_decoder *d, uint8_t b, lep_frame_handler on_e
 
 #endif /* FRAME_FAST */
 
+int lep_frame_decoder_feed_byte(lep_frame_decoder *d, uint8_t b, lep_frame_event *ev)
+{
+    if (ev == NULL || d == NULL) {
+        (void)feed_bad_call(d, 1, ev);
+        return LEP_E_ARG;
+    }
+    (void)feed_byte(d, b, ev);
+    return LEP_OK;
+}
+
 size_t lep_frame_decoder_feed(lep_frame_decoder *d, const uint8_t *data, size_t len,
                               lep_frame_event *ev)
 {
@@ -802,8 +813,8 @@ size_t lep_frame_decoder_feed(lep_frame_decoder *d, const uint8_t *data, size_t 
     return decode_one_event(d, data, len, ev);
 #else
     ev->type = LEP_FRAME_NONE;
-    while (p < data + len) {
-        (void)feed_byte(d, *p++, ev);
+    while (p < data + len) { /* the one machine, a byte at a time */
+        (void)lep_frame_decoder_feed_byte(d, *p++, ev);
         if (ev->type != LEP_FRAME_NONE) {
             break;
         }
@@ -829,10 +840,9 @@ int lep_frame_decoder_feed_all(lep_frame_decoder *d, const uint8_t *data, size_t
         return feed_all_byte(d, data[0], on_event, user);
     }
 #else
-    while (len > 0) { /* feed, one event at a time */
-        const size_t used = lep_frame_decoder_feed(d, data, len, &ev);
-        data += used;
-        len -= used;
+    while (len > 0) { /* the one machine, a byte at a time */
+        (void)lep_frame_decoder_feed_byte(d, *data++, &ev);
+        len--;
         if (ev.type != LEP_FRAME_NONE) {
             on_event(user, &ev);
         }

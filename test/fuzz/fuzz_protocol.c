@@ -1,6 +1,7 @@
 /* Fuzz entry: arbitrary bytes into every receiving path of the core (frame
- * decoder in two chunkings, response decoder, command decoder, device, client
- * step, and the client's blocking calls over a port serving the input).
+ * decoder in two chunkings and through feed_byte, response decoder, command
+ * decoder, device, client step, and the client's blocking calls over a port
+ * serving the input).
  * Invariants: no crash or UB, chunking never changes the outcome, every input
  * byte is accounted for by the decoder's counters, and the blocking calls
  * return (their reads stay bounded) with the sample counter exact. */
@@ -124,6 +125,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     lep_frame_decoder whole;
     lep_frame_decoder bytewise;
+    lep_frame_decoder by_byte; /* bytewise's twin, fed through lep_frame_decoder_feed_byte */
     lep_frame_event ev;
     lep_frame_event ev1;
     size_t pos = 0;
@@ -139,6 +141,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 
     lep_frame_decoder_init(&whole);
     lep_frame_decoder_init(&bytewise);
+    lep_frame_decoder_init(&by_byte);
     while (pos < size) {
         size_t fsize;
         pos += lep_frame_decoder_feed(&whole, data + pos, size - pos, &ev);
@@ -147,7 +150,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         }
         /* The byte-at-a-time decoder must reach the same event at the same byte. */
         do {
+            lep_frame_event ev2;
+            check(lep_frame_decoder_feed_byte(&by_byte, data[pos1], &ev2) == LEP_OK);
             pos1 += lep_frame_decoder_feed(&bytewise, data + pos1, 1, &ev1);
+            check(ev2.type == ev1.type && (ev2.type != LEP_FRAME_ERROR || ev2.error == ev1.error));
+            check(memcmp(&by_byte, &bytewise, sizeof(by_byte)) == 0);
         } while (ev1.type == LEP_FRAME_NONE && pos1 < pos);
         check(ev1.type == ev.type && pos1 == pos && ev1.error == ev.error);
         if (ev.type == LEP_FRAME_MESSAGE) {
