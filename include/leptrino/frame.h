@@ -144,8 +144,9 @@ LEP_API int lep_frame_decoder_feed_all(lep_frame_decoder *d, const uint8_t *data
  * DLE ETX of a frame after a plain idle line or a body) it takes b and returns
  * true.
  * Otherwise it changes nothing and returns false: the caller then feeds b with
- * lep_frame_decoder_feed_byte (or lep_frame_decoder_feed). Mixing both gives exactly the events and counters
- * of lep_frame_decoder_feed alone. d must not be NULL. */
+ * lep_frame_decoder_feed_byte (or lep_frame_decoder_feed). Mixing both gives
+ * exactly the events and counters of lep_frame_decoder_feed alone. d must not
+ * be NULL. */
 static inline bool lep_frame_decoder_push1(lep_frame_decoder *d, uint8_t b)
 {
     uint8_t st = d->state;
