@@ -13,10 +13,10 @@ enum bench_stream { STREAM_REALISTIC = 0, STREAM_ALL_DLE, STREAM_CORRUPT, STREAM
 typedef struct bench_bytes {
     uint8_t *data;
     size_t len;
-    size_t frames;       /* data frames written (before corruption) */
-    size_t payload;      /* message bytes (unstuffed) */
-    size_t payload_dle;  /* of which 0x10 */
-    size_t corrupted;    /* bytes changed (STREAM_CORRUPT) */
+    size_t frames;      /* data frames written (before corruption) */
+    size_t payload;     /* message bytes (unstuffed) */
+    size_t payload_dle; /* of which 0x10 */
+    size_t corrupted;   /* bytes changed (STREAM_CORRUPT) */
 } bench_bytes;
 
 const char *bench_stream_name(int which);
@@ -39,7 +39,7 @@ int plain_step(plain_decoder *p, uint8_t b);
 size_t plain_feed(plain_decoder *p, const uint8_t *data, size_t len, uint32_t *sink);
 
 /* ---- json_out.c: one JSON object on stdout, written as it is measured ---- */
-void json_open(const char *key);  /* key NULL at the top level and inside arrays */
+void json_open(const char *key); /* key NULL at the top level and inside arrays */
 void json_close(void);
 void json_open_array(const char *key);
 void json_close_array(void);
@@ -51,8 +51,15 @@ void json_null(const char *key);
 void json_end(void); /* newline, flush */
 
 /* ---- decode.c: codec measurements (in process, and as callgrind regions) ---- */
-enum bench_region { REGION_LEPTRINO = 0, REGION_FEED, REGION_PLAIN, REGION_PLAIN_LOOP, REGION_CLIENT_STEP,
-                   REGION_CLIENT_STEP_CALL, REGION_COUNT };
+enum bench_region {
+    REGION_LEPTRINO = 0,
+    REGION_FEED,
+    REGION_PLAIN,
+    REGION_PLAIN_LOOP,
+    REGION_CLIENT_STEP,
+    REGION_CLIENT_STEP_CALL,
+    REGION_COUNT
+};
 const char *bench_region_name(int which);
 /* Run region `which` once over s in chunks of `chunk` bytes; returns messages
  * (samples for the client) and adds to *sink. */

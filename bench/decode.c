@@ -14,8 +14,9 @@
 
 const char *bench_region_name(int which)
 {
-    static const char *const names[REGION_COUNT] = {"leptrino", "leptrino_feed", "plain", "plain_loop",
-                                                    "client_step", "client_step_call"};
+    static const char *const names[REGION_COUNT] = { "leptrino",    "leptrino_feed",
+                                                     "plain",       "plain_loop",
+                                                     "client_step", "client_step_call" };
     return which >= 0 && which < REGION_COUNT ? names[which] : "?";
 }
 
@@ -88,7 +89,8 @@ NOINLINE static size_t region_plain(const uint8_t *in, size_t len, size_t chunk,
 }
 
 /* The same machine with the loop inside its file (state in registers). */
-NOINLINE static size_t region_plain_loop(const uint8_t *in, size_t len, size_t chunk, uint32_t *sink)
+NOINLINE static size_t region_plain_loop(const uint8_t *in, size_t len, size_t chunk,
+                                         uint32_t *sink)
 {
     plain_decoder d;
     size_t off = 0;
@@ -130,8 +132,8 @@ static void take_outcome(lep_client *c, int rc, size_t *samples, uint32_t *sink)
 /* The client's step API fed chunk bytes per call, already streaming; every
  * outcome drained. One byte at a time is lep_client_step_byte, as an MCU's
  * ISR ring consumer calls it (the same outcomes as lep_client_step). */
-NOINLINE static size_t region_client_step(lep_client *c, const uint8_t *in, size_t len, size_t chunk,
-                                          uint32_t *sink)
+NOINLINE static size_t region_client_step(lep_client *c, const uint8_t *in, size_t len,
+                                          size_t chunk, uint32_t *sink)
 {
     size_t off = 0;
     size_t samples = 0;
@@ -190,7 +192,7 @@ static size_t client_step_run(int which, const bench_bytes *s, size_t chunk, uin
 {
     static lep_client c;
     lep_io io;
-    lep_command start = {LEP_CMD_START, 0};
+    lep_command start = { LEP_CMD_START, 0 };
     lep_response ack;
     uint8_t msg[8];
     uint8_t wire[32];
@@ -217,11 +219,16 @@ static size_t client_step_run(int which, const bench_bytes *s, size_t chunk, uin
 size_t bench_region_run(int which, const bench_bytes *s, size_t chunk, uint32_t *sink)
 {
     switch (which) {
-    case REGION_LEPTRINO: return region_leptrino(s->data, s->len, chunk, sink);
-    case REGION_FEED: return region_feed(s->data, s->len, chunk, sink);
-    case REGION_PLAIN: return region_plain(s->data, s->len, chunk, sink);
-    case REGION_PLAIN_LOOP: return region_plain_loop(s->data, s->len, chunk, sink);
-    default: return client_step_run(which, s, chunk, sink);
+    case REGION_LEPTRINO:
+        return region_leptrino(s->data, s->len, chunk, sink);
+    case REGION_FEED:
+        return region_feed(s->data, s->len, chunk, sink);
+    case REGION_PLAIN:
+        return region_plain(s->data, s->len, chunk, sink);
+    case REGION_PLAIN_LOOP:
+        return region_plain_loop(s->data, s->len, chunk, sink);
+    default:
+        return client_step_run(which, s, chunk, sink);
     }
 }
 
@@ -246,7 +253,7 @@ double bench_encode_msgs_per_s(int runs, size_t frames, int whole_sample)
                 smp.reserved = (uint16_t)i;
                 (void)lep_device_stream_frame(&smp, out, sizeof(out), &n);
             } else {
-                uint8_t msg[20] = {20, 0xFF, 0x32, 0x00};
+                uint8_t msg[20] = { 20, 0xFF, 0x32, 0x00 };
                 msg[4] = (uint8_t)i;
                 msg[5] = (uint8_t)(i >> 8);
                 (void)lep_frame_encode(msg, sizeof(msg), out, sizeof(out), &n);

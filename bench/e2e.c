@@ -45,9 +45,9 @@
 typedef struct sim_proc {
     pid_t pid;
     char port[256];
-    char dir[64];    /* temporary directory of the trace, "" when none */
-    char trace[96];  /* the sim's --trace-writes file */
-    long trace_off;  /* bytes of it already taken */
+    char dir[64];   /* temporary directory of the trace, "" when none */
+    char trace[96]; /* the sim's --trace-writes file */
+    long trace_off; /* bytes of it already taken */
 } sim_proc;
 
 void e2e_defaults(e2e_options *o, const char *self)
@@ -83,8 +83,8 @@ static double cpu_s(int who)
 {
     struct rusage ru;
     getrusage(who, &ru);
-    return (double)ru.ru_utime.tv_sec + (double)ru.ru_utime.tv_usec * 1e-6 + (double)ru.ru_stime.tv_sec +
-           (double)ru.ru_stime.tv_usec * 1e-6;
+    return (double)ru.ru_utime.tv_sec + (double)ru.ru_utime.tv_usec * 1e-6 +
+           (double)ru.ru_stime.tv_sec + (double)ru.ru_stime.tv_usec * 1e-6;
 }
 
 /* read + write system calls of this process so far (/proc/self/io), or -1. */
@@ -131,7 +131,7 @@ static int sim_start(const e2e_options *o, double rate, int trace, sim_proc *sp)
         return -1;
     }
     if (sp->pid == 0) {
-        char *argv[] = {(char *)o->sim, "--rate", a_rate, "--trace-writes", sp->trace, NULL};
+        char *argv[] = { (char *)o->sim, "--rate", a_rate, "--trace-writes", sp->trace, NULL };
         if (sp->trace[0] == '\0') {
             argv[3] = NULL;
         }
@@ -175,8 +175,8 @@ static double sim_stop(sim_proc *sp)
     if (w < 0) {
         return 0.0 / 0.0;
     }
-    return (double)ru.ru_utime.tv_sec + (double)ru.ru_utime.tv_usec * 1e-6 + (double)ru.ru_stime.tv_sec +
-           (double)ru.ru_stime.tv_usec * 1e-6;
+    return (double)ru.ru_utime.tv_sec + (double)ru.ru_utime.tv_usec * 1e-6 +
+           (double)ru.ru_stime.tv_sec + (double)ru.ru_stime.tv_usec * 1e-6;
 }
 
 /* CPU nanoseconds of every thread of process pid so far (the sum of
@@ -221,16 +221,16 @@ static long long proc_cpu_ns(pid_t pid)
 typedef struct stream_result {
     int rc;
     size_t samples;
-    size_t lost;        /* sequence numbers skipped */
+    size_t lost; /* sequence numbers skipped */
     double wall_s;
     double cpu_s;
-    double sim_cpu_s;   /* the sim's threads over the same window, or NaN */
+    double sim_cpu_s; /* the sim's threads over the same window, or NaN */
     long long rw_syscalls;
-    long long sleeps;   /* the field loop's nanosleep calls (0 for leptrino's paths) */
-    int64_t t_start;    /* just before the start command was written */
+    long long sleeps; /* the field loop's nanosleep calls (0 for leptrino's paths) */
+    int64_t t_start;  /* just before the start command was written */
     double t0_window_us;
-    uint64_t *k;        /* [min(samples, LAT_MAX)]: stream index of each sample */
-    int64_t *t_recv;    /* when the read that returned it returned */
+    uint64_t *k;     /* [min(samples, LAT_MAX)]: stream index of each sample */
+    int64_t *t_recv; /* when the read that returned it returned */
 } stream_result;
 
 static void stream_free(stream_result *r)
@@ -243,7 +243,13 @@ static void stream_free(stream_result *r)
 
 /* The client's own blocking call, the session with two latency budgets, and
  * the field baselines (a 1 ms sleep after an empty read, or a busy loop). */
-enum mode { MODE_CLIENT = 0, MODE_LOW_LATENCY = 1, MODE_RECORDING = 2, MODE_FIELD_SLEEP = 3, MODE_FIELD_BUSY = 4 };
+enum mode {
+    MODE_CLIENT = 0,
+    MODE_LOW_LATENCY = 1,
+    MODE_RECORDING = 2,
+    MODE_FIELD_SLEEP = 3,
+    MODE_FIELD_BUSY = 4
+};
 #define RECORDING_BUDGET_MS 100
 #define FIELD_BUSY_SECONDS 2.5 /* the busy loop burns a core: this long, no more */
 
@@ -430,7 +436,7 @@ static int trace_take(sim_proc *sp, int64_t *t0, int64_t **write_ns, int64_t **e
             }
         }
         if (!ended) {
-            struct timespec ts = {0, 5000000};
+            struct timespec ts = { 0, 5000000 };
             clearerr(f);
             nanosleep(&ts, NULL);
         }
@@ -500,28 +506,32 @@ static double report_latency(sim_proc *sp, const stream_result *r)
     json_open("latency_us");
     p50 = json_spread(from_write, m);
     json_int("matched", (long long)m);
-    json_str("reference", traced ? "the sim's write() call of the sample (leptrino-sim --trace-writes), "
-                                   "to the return of the read that returned it"
-                                 : "no write trace: see latency_from_deadline_us");
+    json_str("reference",
+             traced ? "the sim's write() call of the sample (leptrino-sim --trace-writes), "
+                      "to the return of the read that returned it"
+                    : "no write trace: see latency_from_deadline_us");
     json_close();
     json_open("latency_from_write_end_us");
     json_spread(from_write_end, m);
     json_int("matched", (long long)m);
-    json_str("reference", traced ? "the return of the sim's write() of the sample (the pty holds it), "
-                                   "to the return of the read that returned it: a secondary figure, "
-                                   "latency_us less the write call's own time"
-                                 : "no write trace");
+    json_str("reference", traced
+                              ? "the return of the sim's write() of the sample (the pty holds it), "
+                                "to the return of the read that returned it: a secondary figure, "
+                                "latency_us less the write call's own time"
+                              : "no write trace");
     json_close();
     json_open("latency_from_deadline_us");
     json_spread(from_deadline, d);
-    json_str("reference", traced && t0 != 0 ? "the sample's deadline at the sim, t0+(k+1)/rate, t0 from its trace"
-                                            : "sim deadline t0+(k+1)/rate, t0 = when the start command was "
-                                              "written (upper bounds by at most t0_window_us)");
+    json_str("reference", traced && t0 != 0
+                              ? "the sample's deadline at the sim, t0+(k+1)/rate, t0 from its trace"
+                              : "sim deadline t0+(k+1)/rate, t0 = when the start command was "
+                                "written (upper bounds by at most t0_window_us)");
     json_num("t0_window_us", r->t0_window_us);
     json_close();
     json_open("sim_lateness_us");
     json_spread(late, late_n);
-    json_str("reference", "the sim's write() call minus the sample's deadline: its own wake-up lateness");
+    json_str("reference",
+             "the sim's write() call minus the sample's deadline: its own wake-up lateness");
     json_close();
     free(w);
     free(we);
@@ -551,8 +561,8 @@ static long long strace_calls(const e2e_options *o, const char *port, int mode, 
     long long calls = -1;
     FILE *f;
     int fd = mkstemp(out);
-    char *argv[] = {"strace", "-f", "-c", "-U", "calls", "-o", a_out, (char *)o->self, "--e2e-child",
-                    a_mode, (char *)port, a_secs, NULL};
+    char *argv[] = { "strace",        "-f",          "-c",   "-U",         "calls", "-o", a_out,
+                     (char *)o->self, "--e2e-child", a_mode, (char *)port, a_secs,  NULL };
     if (fd < 0) {
         return -1;
     }
@@ -576,11 +586,11 @@ static long long strace_calls(const e2e_options *o, const char *port, int mode, 
 
 /* The figures of one path that the comparison between paths uses. */
 typedef struct path_figures {
-    double latency_p50_us;       /* from the sim's write */
+    double latency_p50_us; /* from the sim's write */
     double cpu_us_per_sample;
-    double cpu_percent;          /* of one core */
-    double rw_per_sample;        /* read + write calls (/proc/self/io) */
-    double syscalls_per_sample;  /* strace, NaN without */
+    double cpu_percent;         /* of one core */
+    double rw_per_sample;       /* read + write calls (/proc/self/io) */
+    double syscalls_per_sample; /* strace, NaN without */
 } path_figures;
 
 static const char *path_of(int mode)
@@ -603,8 +613,8 @@ static const char *path_of(int mode)
  * when samples is 0; then strace children streaming 0 and strace_seconds
  * (none when strace_seconds is 0). Writes the path's object under key and
  * fills *pf. */
-static void report_mode(const e2e_options *o, const char *key, int mode, sim_proc *sp, size_t samples,
-                        double run_seconds, double strace_seconds, path_figures *pf)
+static void report_mode(const e2e_options *o, const char *key, int mode, sim_proc *sp,
+                        size_t samples, double run_seconds, double strace_seconds, path_figures *pf)
 {
     stream_result r;
     struct stat st;
@@ -627,20 +637,23 @@ static void report_mode(const e2e_options *o, const char *key, int mode, sim_pro
     pf->latency_p50_us = report_latency(sp, &r);
     pf->cpu_us_per_sample = r.samples ? r.cpu_s * 1e6 / (double)r.samples : 0.0 / 0.0;
     pf->cpu_percent = 100.0 * r.cpu_s / r.wall_s;
-    pf->rw_per_sample = r.rw_syscalls >= 0 && r.samples ? (double)r.rw_syscalls / (double)r.samples : 0.0 / 0.0;
+    pf->rw_per_sample =
+        r.rw_syscalls >= 0 && r.samples ? (double)r.rw_syscalls / (double)r.samples : 0.0 / 0.0;
     json_num("wall_s", r.wall_s);
     json_num("cpu_s", r.cpu_s);
     json_num("cpu_percent_of_one_core", pf->cpu_percent);
     json_num("cpu_us_per_sample", pf->cpu_us_per_sample);
-    json_num("sim_cpu_us_per_sample", r.samples ? r.sim_cpu_s * 1e6 / (double)r.samples : 0.0 / 0.0);
+    json_num("sim_cpu_us_per_sample",
+             r.samples ? r.sim_cpu_s * 1e6 / (double)r.samples : 0.0 / 0.0);
     json_num("sim_over_client_cpu", r.sim_cpu_s / r.cpu_s);
     json_num("read_write_syscalls_per_sample_proc", pf->rw_per_sample);
     if (is_field(mode)) {
         double sleeps = r.samples ? (double)r.sleeps / (double)r.samples : 0.0 / 0.0;
         json_num("idle_sleeps_per_sample", sleeps);
         json_num("syscalls_per_sample_proc", pf->rw_per_sample + sleeps);
-        json_str("syscalls_proc_method", "read+write calls (/proc/self/io) plus the loop's own nanosleep "
-                                         "calls, over the untraced run");
+        json_str("syscalls_proc_method",
+                 "read+write calls (/proc/self/io) plus the loop's own nanosleep "
+                 "calls, over the untraced run");
     }
     stream_free(&r);
     if (strace_seconds > 0.0 && bench_have("strace")) {
@@ -650,15 +663,17 @@ static void report_mode(const e2e_options *o, const char *key, int mode, sim_pro
         per_sample = per_s / 1200.0;
         json_num("syscalls_per_s", per_s);
         json_num("syscalls_per_sample", per_sample);
-        json_str("syscalls_method", "strace -f -c: (calls streaming T s) - (calls streaming 0 s), over T; "
-                                    "the traced run is slower than the untraced one");
+        json_str("syscalls_method",
+                 "strace -f -c: (calls streaming T s) - (calls streaming 0 s), over T; "
+                 "the traced run is slower than the untraced one");
     } else {
         json_null("syscalls_per_s");
         json_null("syscalls_per_sample");
-        json_str("syscalls_method", strace_seconds > 0.0
-                                        ? "strace not installed"
-                                        : "not run under strace: a busy loop's count is set by strace's own "
-                                          "speed; see read_write_syscalls_per_sample_proc");
+        json_str("syscalls_method",
+                 strace_seconds > 0.0
+                     ? "strace not installed"
+                     : "not run under strace: a busy loop's count is set by strace's own "
+                       "speed; see read_write_syscalls_per_sample_proc");
     }
     pf->syscalls_per_sample = per_sample;
     json_close();
@@ -671,24 +686,29 @@ static void report_field_comparison(const path_figures *low, const path_figures 
                                     const path_figures *fsleep, const path_figures *fbusy)
 {
     json_open("field_comparison");
-    json_num("field_sleep_over_low_latency_latency_p50", fsleep->latency_p50_us / low->latency_p50_us);
-    json_num("field_sleep_over_low_latency_cpu_per_sample", fsleep->cpu_us_per_sample / low->cpu_us_per_sample);
-    json_num("field_sleep_over_recording_cpu_per_sample", fsleep->cpu_us_per_sample / rec->cpu_us_per_sample);
+    json_num("field_sleep_over_low_latency_latency_p50",
+             fsleep->latency_p50_us / low->latency_p50_us);
+    json_num("field_sleep_over_low_latency_cpu_per_sample",
+             fsleep->cpu_us_per_sample / low->cpu_us_per_sample);
+    json_num("field_sleep_over_recording_cpu_per_sample",
+             fsleep->cpu_us_per_sample / rec->cpu_us_per_sample);
     json_num("field_sleep_over_recording_syscalls_per_sample",
              fsleep->syscalls_per_sample / rec->syscalls_per_sample);
     json_num("field_sleep_over_recording_read_write_per_sample_proc",
              fsleep->rw_per_sample / rec->rw_per_sample);
-    json_num("field_busy_over_low_latency_latency_p50", fbusy->latency_p50_us / low->latency_p50_us);
+    json_num("field_busy_over_low_latency_latency_p50",
+             fbusy->latency_p50_us / low->latency_p50_us);
     json_num("field_busy_cpu_percent_of_one_core", fbusy->cpu_percent);
-    json_str("method", "same run, same sim: each ratio is the field path's figure over leptrino's "
-                       "(latency from the sim's write p50; getrusage CPU per sample; system calls per "
-                       "sample by strace, and read+write calls by /proc/self/io)");
+    json_str("method",
+             "same run, same sim: each ratio is the field path's figure over leptrino's "
+             "(latency from the sim's write p50; getrusage CPU per sample; system calls per "
+             "sample by strace, and read+write calls by /proc/self/io)");
     json_close();
 }
 
 static void max_rate(const e2e_options *o)
 {
-    static const double rates[] = {1200, 2400, 4800, 7200, 10000};
+    static const double rates[] = { 1200, 2400, 4800, 7200, 10000 };
     double best = 0.0;
     size_t i;
     json_open_array("rates");
@@ -737,9 +757,17 @@ static const char *python_run(const e2e_options *o, const char *latency_s, char 
     char out[] = "/tmp/leptrino-bench-py-XXXXXX";
     const char *reason = NULL;
     int fd = mkstemp(out);
-    char *check[] = {(char *)o->python, "-c", "import leptrino", NULL};
-    char *argv[] = {(char *)o->python, script, "--json", "--latency", (char *)latency_s, "--runs",
-                    o->smoke ? "1" : "3", "--seconds", o->smoke ? "0.3" : "2", NULL};
+    char *check[] = { (char *)o->python, "-c", "import leptrino", NULL };
+    char *argv[] = { (char *)o->python,
+                     script,
+                     "--json",
+                     "--latency",
+                     (char *)latency_s,
+                     "--runs",
+                     o->smoke ? "1" : "3",
+                     "--seconds",
+                     o->smoke ? "0.3" : "2",
+                     NULL };
     FILE *f;
     line[0] = '\0';
     snprintf(script, sizeof script, "%s/bindings/python/bench_record.py", o->source);
@@ -782,7 +810,8 @@ static void python_costs(const e2e_options *o)
     json_num("latency_budget_s", 0.05);
     json_num("record_us_cpu_per_sample", json_field(line, "record_us_per_sample"));
     json_num("stream_iter_us_cpu_per_sample", json_field(line, "iterate_us_per_sample"));
-    json_num("session_read_only_us_cpu_per_sample", json_field(line, "session_read_only_us_per_sample"));
+    json_num("session_read_only_us_cpu_per_sample",
+             json_field(line, "session_read_only_us_per_sample"));
     json_str("reason", reason);
     /* With no budget every sample is a wake-up of its own: what the per-sample
      * figures cost before the session batched them. */
@@ -790,12 +819,14 @@ static void python_costs(const e2e_options *o)
     json_open("latency_budget_0");
     json_num("record_us_cpu_per_sample", json_field(line, "record_us_per_sample"));
     json_num("stream_iter_us_cpu_per_sample", json_field(line, "iterate_us_per_sample"));
-    json_num("session_read_only_us_cpu_per_sample", json_field(line, "session_read_only_us_per_sample"));
+    json_num("session_read_only_us_cpu_per_sample",
+             json_field(line, "session_read_only_us_per_sample"));
     json_str("reason", reason);
     json_close();
-    json_str("method", "bindings/python/bench_record.py --json (time.thread_time of the calling thread, "
-                       "virtual sensor in process on a C thread), median of its runs; the Sensor's "
-                       "default latency budget 0.05 s, and 0 below");
+    json_str("method",
+             "bindings/python/bench_record.py --json (time.thread_time of the calling thread, "
+             "virtual sensor in process on a C thread), median of its runs; the Sensor's "
+             "default latency budget 0.05 s, and 0 below");
     json_close();
 }
 
@@ -807,7 +838,7 @@ static void python_costs(const e2e_options *o)
  * or NaN. */
 static double sender_floor_us(size_t periods, int write_pty)
 {
-    static const uint8_t msg[25] = {0x10, 0x02};
+    static const uint8_t msg[25] = { 0x10, 0x02 };
     uint8_t drain[4096];
     const int64_t period = 833333;
     int m = -1;
@@ -874,16 +905,18 @@ void e2e_report(const e2e_options *o)
     report_mode(o, "client", MODE_CLIENT, &sp, samples, 0.0, strace_s, &client);
     report_mode(o, "field_sleep", MODE_FIELD_SLEEP, &sp, samples, 0.0, strace_s, &fsleep);
     /* The busy loop takes a whole core: bounded in time, never under strace. */
-    report_mode(o, "field_busy", MODE_FIELD_BUSY, &sp, 0, o->smoke ? 0.3 : FIELD_BUSY_SECONDS, 0.0, &fbusy);
+    report_mode(o, "field_busy", MODE_FIELD_BUSY, &sp, 0, o->smoke ? 0.3 : FIELD_BUSY_SECONDS, 0.0,
+                &fbusy);
     report_field_comparison(&low, &rec, &fsleep, &fbusy);
     sim_cpu = sim_stop(&sp);
     json_num("sim_cpu_s_whole_life", sim_cpu);
     json_open("sender_floor");
     json_num("sleep_us_cpu_per_period", sender_floor_us(o->smoke ? 240u : 2400u, 0));
     json_num("sleep_and_pty_write_us_cpu_per_period", sender_floor_us(o->smoke ? 240u : 2400u, 1));
-    json_str("method", "this process alone, 1200 Hz: clock_nanosleep(TIMER_ABSTIME) to each deadline, "
-                       "then one 25-byte write() to a pty master (slave drained every 50 periods); "
-                       "getrusage CPU per period: the least a virtual sensor can cost here");
+    json_str("method",
+             "this process alone, 1200 Hz: clock_nanosleep(TIMER_ABSTIME) to each deadline, "
+             "then one 25-byte write() to a pty master (slave drained every 50 periods); "
+             "getrusage CPU per period: the least a virtual sensor can cost here");
     json_close();
     json_int("session_latency_budget_ms", RECORDING_BUDGET_MS);
     max_rate(o);

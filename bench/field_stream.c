@@ -44,11 +44,12 @@ int field_open(field_port *f, const char *port, int sleep_when_idle)
         return LEP_E_NOT_TTY;
     }
     cfmakeraw(&t); /* 8 data bits, no parity, no echo, no translation */
-    t.c_cflag &= (tcflag_t)~(CSTOPB | PARENB | CRTSCTS);
+    t.c_cflag &= (tcflag_t) ~(CSTOPB | PARENB | CRTSCTS);
     t.c_cflag |= CS8 | CLOCAL | CREAD;
     t.c_cc[VMIN] = 0; /* read() returns at once, with whatever is there (maybe nothing) */
     t.c_cc[VTIME] = 0;
-    if (cfsetispeed(&t, B460800) != 0 || cfsetospeed(&t, B460800) != 0 || tcsetattr(f->fd, TCSANOW, &t) != 0) {
+    if (cfsetispeed(&t, B460800) != 0 || cfsetospeed(&t, B460800) != 0 ||
+        tcsetattr(f->fd, TCSANOW, &t) != 0) {
         close(f->fd);
         f->fd = -1;
         return LEP_E_IO;
@@ -91,7 +92,7 @@ static int read_until(field_port *f, uint8_t want, size_t want_len, int timeout_
             return LEP_E_TIMEOUT;
         }
         if (f->sleep_when_idle) {
-            struct timespec ts = {0, FIELD_IDLE_SLEEP_NS};
+            struct timespec ts = { 0, FIELD_IDLE_SLEEP_NS };
             (void)nanosleep(&ts, NULL);
             f->sleeps++;
         }

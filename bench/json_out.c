@@ -4,7 +4,7 @@
 
 #include "bench.h"
 
-static int g_first[32] = {1};
+static int g_first[32] = { 1 };
 static int g_depth;
 
 static void key_of(const char *key)

@@ -22,7 +22,7 @@
 
 static char g_self[4096];
 
-static const size_t k_chunks[] = {1, 32, 4096};
+static const size_t k_chunks[] = { 1, 32, 4096 };
 #define N_CHUNKS (sizeof(k_chunks) / sizeof(k_chunks[0]))
 
 /* Instructions of one region run under callgrind, or -1. */
@@ -34,8 +34,9 @@ static double callgrind_ir(int region, int stream, size_t chunk, size_t frames)
     double ir = -1.0;
     FILE *f;
     int fd = mkstemp(out);
-    char *argv[] = {"valgrind", "--tool=callgrind", a_out, "--toggle-collect=region_*",
-                    g_self, "--region", a_region, a_stream, a_chunk, a_frames, NULL};
+    char *argv[] = { "valgrind", "--tool=callgrind", a_out,    "--toggle-collect=region_*",
+                     g_self,     "--region",         a_region, a_stream,
+                     a_chunk,    a_frames,           NULL };
     if (fd < 0) {
         return -1.0;
     }
@@ -135,7 +136,9 @@ static void decoder(int use_cg, int runs, size_t frames)
     json_str("unit", use_cg ? "instructions_per_byte" : "ns_per_byte");
     json_str("leptrino", "lep_frame_decoder_feed_all: one call per chunk, a handler per event");
     json_str("leptrino_feed", "lep_frame_decoder_feed: one call per event (and per chunk end)");
-    json_str("plain", "baseline: a per-byte parse function called from the read loop (bench/plain_decoder.c)");
+    json_str(
+        "plain",
+        "baseline: a per-byte parse function called from the read loop (bench/plain_decoder.c)");
     json_str("plain_loop", "the same state machine with the loop in its file (state in registers)");
     json_int("frames_per_stream", (long long)frames);
     json_int("runs", runs);
@@ -216,22 +219,27 @@ static void client_step(int use_cg, int runs, size_t frames)
     json_str("what", "lep_client_step_byte fed one byte per call (an ISR ring consumer: pop, "
                      "step, use the sample), realistic stream, streaming");
     json_str("unit", use_cg ? "instructions_per_byte" : "ns_per_byte");
-    json_num("leptrino", use_cg ? callgrind_ir(REGION_CLIENT_STEP, STREAM_REALISTIC, 1, frames) / (double)s.len
-                                : t * 1e9 / (double)s.len);
-    json_num("plain_same_input", use_cg ? callgrind_ir(REGION_PLAIN, STREAM_REALISTIC, 1, frames) / (double)s.len
-                                        : 0.0 / 0.0);
+    json_num("leptrino",
+             use_cg ? callgrind_ir(REGION_CLIENT_STEP, STREAM_REALISTIC, 1, frames) / (double)s.len
+                    : t * 1e9 / (double)s.len);
+    json_num("plain_same_input",
+             use_cg ? callgrind_ir(REGION_PLAIN, STREAM_REALISTIC, 1, frames) / (double)s.len
+                    : 0.0 / 0.0);
     json_num("plain_loop_same_input",
-             use_cg ? callgrind_ir(REGION_PLAIN_LOOP, STREAM_REALISTIC, 1, frames) / (double)s.len : 0.0 / 0.0);
+             use_cg ? callgrind_ir(REGION_PLAIN_LOOP, STREAM_REALISTIC, 1, frames) / (double)s.len
+                    : 0.0 / 0.0);
     json_int("samples", (long long)m);
     json_num("samples_per_s", (double)m / t);
     json_num("ns_per_byte", t * 1e9 / (double)s.len);
     /* The documented general API on the same input: one call per byte. */
     t = timed_run(REGION_CLIENT_STEP_CALL, &s, 1, runs, &m);
-    json_str("step_call_what", "lep_client_step(c, &b, 1, &used) per byte (an ISR ring consumer: pop b, "
-                               "step), lep_client_get_sample on LEP_STEP_SAMPLE, same stream");
-    json_num("step_call", use_cg ? callgrind_ir(REGION_CLIENT_STEP_CALL, STREAM_REALISTIC, 1, frames) /
-                                       (double)s.len
-                                 : t * 1e9 / (double)s.len);
+    json_str("step_call_what",
+             "lep_client_step(c, &b, 1, &used) per byte (an ISR ring consumer: pop b, "
+             "step), lep_client_get_sample on LEP_STEP_SAMPLE, same stream");
+    json_num("step_call", use_cg
+                              ? callgrind_ir(REGION_CLIENT_STEP_CALL, STREAM_REALISTIC, 1, frames) /
+                                    (double)s.len
+                              : t * 1e9 / (double)s.len);
     json_int("step_call_samples", (long long)m);
     json_num("step_call_ns_per_byte", t * 1e9 / (double)s.len);
     json_close();
@@ -300,13 +308,15 @@ static int region_main(char **argv)
 static void usage(void)
 {
     int k;
-    fputs("usage: leptrino-bench [--smoke] [--e2e-only] [--runs N] [--sim PATH] [--python PATH] [--source DIR]\n"
-          "Prints one JSON object of measured figures (see BENCHMARKS.md).\n"
-          "--e2e-only: the end-to-end and Python figures alone (a quick look; not the full object).\n"
-          "       leptrino-bench --region REGION STREAM CHUNK FRAMES\n"
-          "Runs one decoding loop alone (for callgrind's --toggle-collect='region_*').\n"
-          "REGION, by number or name:",
-          stderr);
+    fputs(
+        "usage: leptrino-bench [--smoke] [--e2e-only] [--runs N] [--sim PATH] [--python PATH] "
+        "[--source DIR]\n"
+        "Prints one JSON object of measured figures (see BENCHMARKS.md).\n"
+        "--e2e-only: the end-to-end and Python figures alone (a quick look; not the full object).\n"
+        "       leptrino-bench --region REGION STREAM CHUNK FRAMES\n"
+        "Runs one decoding loop alone (for callgrind's --toggle-collect='region_*').\n"
+        "REGION, by number or name:",
+        stderr);
     for (k = 0; k < REGION_COUNT; k++) {
         fprintf(stderr, " %d=%s", k, bench_region_name(k));
     }
@@ -384,8 +394,10 @@ int main(int argc, char **argv)
         decoder(use_cg && !smoke, runs, frames);
         client_step(use_cg, runs, frames);
         json_open("encoder");
-        json_num("frame_encode_msgs_per_s", bench_encode_msgs_per_s(runs, smoke ? 20000u : 400000u, 0));
-        json_num("sample_to_frame_msgs_per_s", bench_encode_msgs_per_s(runs, smoke ? 20000u : 400000u, 1));
+        json_num("frame_encode_msgs_per_s",
+                 bench_encode_msgs_per_s(runs, smoke ? 20000u : 400000u, 0));
+        json_num("sample_to_frame_msgs_per_s",
+                 bench_encode_msgs_per_s(runs, smoke ? 20000u : 400000u, 1));
         json_close();
     }
     e2e_report(&eo);

@@ -25,7 +25,7 @@ static uint32_t xorshift(uint32_t *s)
 
 const char *bench_stream_name(int which)
 {
-    static const char *const names[STREAM_COUNT] = {"realistic", "all_0x10", "corrupt_1pct"};
+    static const char *const names[STREAM_COUNT] = { "realistic", "all_0x10", "corrupt_1pct" };
     return which >= 0 && which < STREAM_COUNT ? names[which] : "?";
 }
 
@@ -58,7 +58,8 @@ int bench_stream_make(int which, size_t frames, bench_bytes *out)
             unsigned a;
             memset(&s, 0, sizeof(s));
             for (a = 0; a < LEP_AXES; a++) {
-                double v = 500.0 * (double)a - 1200.0 + 3000.0 * sin(2.0 * 3.14159265358979 * (0.5 + 0.5 * a) * t);
+                double v = 500.0 * (double)a - 1200.0 +
+                           3000.0 * sin(2.0 * 3.14159265358979 * (0.5 + 0.5 * a) * t);
                 v += (double)(xorshift(&rng) % 81u) - 40.0;
                 s.raw[a] = (int16_t)lround(v);
             }
@@ -77,7 +78,8 @@ int bench_stream_make(int which, size_t frames, bench_bytes *out)
             out->payload_dle += msg[j] == LEP_DLE;
         }
         out->payload += sizeof(msg);
-        if (lep_frame_encode(msg, sizeof(msg), out->data + out->len, cap - out->len, &n) != LEP_OK) {
+        if (lep_frame_encode(msg, sizeof(msg), out->data + out->len, cap - out->len, &n) !=
+            LEP_OK) {
             free(out->data);
             out->data = NULL;
             return -1;

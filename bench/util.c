@@ -66,7 +66,8 @@ int bench_run(char *const argv[], const char *out_path)
     }
     if (pid == 0) {
         bench_child_follow_parent(parent);
-        int fd = open(out_path != NULL ? out_path : "/dev/null", O_WRONLY | O_CREAT | O_TRUNC, 0600);
+        int fd =
+            open(out_path != NULL ? out_path : "/dev/null", O_WRONLY | O_CREAT | O_TRUNC, 0600);
         int null = open("/dev/null", O_WRONLY);
         if (fd >= 0) {
             dup2(fd, 1);

@@ -17,7 +17,7 @@ void setUp(void)
 /* A stream left running by an earlier program: the device streams before any command. */
 static void leave_stream_running(void)
 {
-    static const uint8_t start[] = {0x10, 0x02, 0x04, 0xFF, 0x32, 0x00, 0x10, 0x03, 0xCA};
+    static const uint8_t start[] = { 0x10, 0x02, 0x04, 0xFF, 0x32, 0x00, 0x10, 0x03, 0xCA };
     lep_device_event ev;
     uint8_t out[LEP_MAX_FRAME];
     size_t n;
@@ -46,7 +46,8 @@ static lep_client_stats stats(void)
 
 static void force_reply(const uint8_t *msg, size_t len)
 {
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_frame_encode(msg, len, sio.forced, sizeof(sio.forced), &sio.forced_len));
+    TEST_ASSERT_EQUAL_INT(
+        LEP_OK, lep_frame_encode(msg, len, sio.forced, sizeof(sio.forced), &sio.forced_len));
 }
 
 static void test_init_rejects_incomplete_io(void)
@@ -83,7 +84,7 @@ static void test_product_info_and_rated(void)
     lep_product_info info;
     lep_rated rated;
     uint8_t filter = 9;
-    static const uint8_t cmd[] = {0x10, 0x02, 0x04, 0xFF, 0x2A, 0x00, 0x10, 0x03, 0xD2};
+    static const uint8_t cmd[] = { 0x10, 0x02, 0x04, 0xFF, 0x2A, 0x00, 0x10, 0x03, 0xD2 };
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_product_info(&client, &info));
     TEST_ASSERT_EQUAL_UINT8_ARRAY(cmd, sio.out, sizeof(cmd));
     TEST_ASSERT_EQUAL_STRING("PFS055YA501U6", info.model);
@@ -101,7 +102,7 @@ static void test_product_info_and_rated(void)
 
 static void test_transact_gives_the_whole_response(void)
 {
-    lep_command cmd = {LEP_CMD_RATED, 0};
+    lep_command cmd = { LEP_CMD_RATED, 0 };
     lep_response r;
     memset(&r, 0xA5, sizeof(r));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_transact(&client, &cmd, &r));
@@ -194,7 +195,7 @@ static void test_timeout(void)
 
 static void test_wrong_response_type_is_skipped(void)
 {
-    static const uint8_t filter_answer[] = {0x08, 0xFF, 0xB6, 0x00, 0x01, 0x00, 0x00, 0x00};
+    static const uint8_t filter_answer[] = { 0x08, 0xFF, 0xB6, 0x00, 0x01, 0x00, 0x00, 0x00 };
     lep_rated rated;
     /* The sensor first sends an answer of another type, then the right one. */
     script_push_msg(&sio, filter_answer, sizeof(filter_answer));
@@ -205,7 +206,7 @@ static void test_wrong_response_type_is_skipped(void)
 
 static void test_only_wrong_type_is_resent(void)
 {
-    static const uint8_t filter_answer[] = {0x08, 0xFF, 0xB6, 0x00, 0x01, 0x00, 0x00, 0x00};
+    static const uint8_t filter_answer[] = { 0x08, 0xFF, 0xB6, 0x00, 0x01, 0x00, 0x00, 0x00 };
     lep_rated rated;
     force_reply(filter_answer, sizeof(filter_answer));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_rated(&client, &rated));
@@ -218,7 +219,7 @@ static void test_sensor_error_codes(void)
 {
     uint8_t code;
     for (code = 1; code <= 4; code++) {
-        uint8_t msg[4] = {0x04, 0xFF, 0x2B, 0};
+        uint8_t msg[4] = { 0x04, 0xFF, 0x2B, 0 };
         lep_rated rated;
         msg[3] = code;
         force_reply(msg, sizeof(msg));
@@ -231,7 +232,7 @@ static void test_sensor_error_codes(void)
 static void test_invalid_answer_is_counted_not_taken(void)
 {
     /* Rated values with a NaN for Fx: framed correctly, invalid as a message. */
-    uint8_t msg[28] = {0x1C, 0xFF, 0x2B, 0x00, 0x00, 0x00, 0xC0, 0x7F};
+    uint8_t msg[28] = { 0x1C, 0xFF, 0x2B, 0x00, 0x00, 0x00, 0xC0, 0x7F };
     lep_rated rated;
     force_reply(msg, sizeof(msg));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_rated(&client, &rated));
@@ -242,7 +243,7 @@ static void test_invalid_answer_is_counted_not_taken(void)
 
 static void test_corrupt_answer_is_counted(void)
 {
-    static const uint8_t bad[] = {0x10, 0x02, 0x04, 0xFF, 0x2A, 0x00, 0x10, 0x03, 0xD3};
+    static const uint8_t bad[] = { 0x10, 0x02, 0x04, 0xFF, 0x2A, 0x00, 0x10, 0x03, 0xD3 };
     lep_product_info info;
     memcpy(sio.forced, bad, sizeof(bad));
     sio.forced_len = sizeof(bad);
@@ -269,7 +270,7 @@ static void test_stale_stream_does_not_answer_queries(void)
 static void test_sync_recovers_stale_stream(void)
 {
     lep_product_info info;
-    static const uint8_t start[] = {0x10, 0x02, 0x04, 0xFF, 0x32, 0x00, 0x10, 0x03, 0xCA};
+    static const uint8_t start[] = { 0x10, 0x02, 0x04, 0xFF, 0x32, 0x00, 0x10, 0x03, 0xCA };
     leave_stream_running();
     script_push_data(&sio);
     /* Half a frame on the line when the program starts. */
@@ -300,10 +301,10 @@ static void test_sync_gives_up_on_endless_noise(void)
 
 static void test_late_answer_is_skipped_by_the_next_query(void)
 {
-    static const uint8_t rated_answer[28] = {0x1C, 0xFF, 0x2B, 0x00, 0x00, 0x00, 0x80, 0x3F,
-                                             0x00, 0x00, 0x80, 0x3F, 0x00, 0x00, 0x80, 0x3F,
-                                             0x00, 0x00, 0x80, 0x3F, 0x00, 0x00, 0x80, 0x3F,
-                                             0x00, 0x00, 0x80, 0x3F};
+    static const uint8_t rated_answer[28] = { 0x1C, 0xFF, 0x2B, 0x00, 0x00, 0x00, 0x80,
+                                              0x3F, 0x00, 0x00, 0x80, 0x3F, 0x00, 0x00,
+                                              0x80, 0x3F, 0x00, 0x00, 0x80, 0x3F, 0x00,
+                                              0x00, 0x80, 0x3F, 0x00, 0x00, 0x80, 0x3F };
     lep_rated rated;
     lep_product_info info;
     sio.silent = true;
@@ -319,8 +320,8 @@ static void test_late_answer_is_skipped_by_the_next_query(void)
 static void test_timeout_applies_to_each_attempt(void)
 {
     /* A NAK just before the deadline restarts the wait for the retransmission. */
-    static const uint8_t nak[2] = {LEP_DLE, LEP_NAK};
-    lep_command cmd = {LEP_CMD_RATED, 0};
+    static const uint8_t nak[2] = { LEP_DLE, LEP_NAK };
+    lep_command cmd = { LEP_CMD_RATED, 0 };
     size_t used;
     sio.silent = true;
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_retries(&client, 1));
@@ -365,8 +366,8 @@ static void test_start_while_streaming_is_a_state_error(void)
 
 static void test_start_refused_by_a_stale_stream_recovers_once(void)
 {
-    static const uint8_t stop_cmd[] = {0x10, 0x02, 0x04, 0xFF, 0x33, 0x00, 0x10, 0x03, 0xCB};
-    static const uint8_t start_cmd[] = {0x10, 0x02, 0x04, 0xFF, 0x32, 0x00, 0x10, 0x03, 0xCA};
+    static const uint8_t stop_cmd[] = { 0x10, 0x02, 0x04, 0xFF, 0x33, 0x00, 0x10, 0x03, 0xCB };
+    static const uint8_t start_cmd[] = { 0x10, 0x02, 0x04, 0xFF, 0x32, 0x00, 0x10, 0x03, 0xCA };
     /* A stream left running by an earlier program. */
     leave_stream_running();
     script_push_data(&sio);
@@ -385,14 +386,15 @@ static void test_start_refused_by_a_stale_stream_recovers_once(void)
 
 static void test_start_refused_twice_is_a_sensor_error(void)
 {
-    static const uint8_t refused[] = {0x04, 0xFF, 0x32, 0x04};
-    lep_command start = {LEP_CMD_START, 0};
+    static const uint8_t refused[] = { 0x04, 0xFF, 0x32, 0x04 };
+    lep_command start = { LEP_CMD_START, 0 };
     uint8_t frame[16];
     size_t n;
     size_t used;
     int rc = LEP_STEP_NONE;
     unsigned i;
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_frame_encode(refused, sizeof(refused), frame, sizeof(frame), &n));
+    TEST_ASSERT_EQUAL_INT(LEP_OK,
+                          lep_frame_encode(refused, sizeof(refused), frame, sizeof(frame), &n));
     sio.silent = true;
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_send(&client, &start));
     TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step(&client, frame, n, &used));
@@ -494,7 +496,7 @@ static void test_samples_after_a_failed_stop(void)
 static void test_step_api_without_read(void)
 {
     /* An MCU super-loop: the client never reads; bytes are fed as they come. */
-    lep_command cmd = {LEP_CMD_RATED, 0};
+    lep_command cmd = { LEP_CMD_RATED, 0 };
     lep_io io = script_io_table(&sio);
     lep_client c;
     size_t used;
@@ -502,7 +504,7 @@ static void test_step_api_without_read(void)
     int rc = LEP_STEP_NONE;
     io.read = NULL;
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_init(&c, &io));
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_rated(&c, &(lep_rated){{0}}));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_rated(&c, &(lep_rated){ { 0 } }));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_send(&c, &cmd));
     TEST_ASSERT_TRUE(lep_client_busy(&c));
     for (i = sio.in_pos; i < sio.in_len; i++) {
@@ -520,7 +522,7 @@ static void test_step_api_without_read(void)
 
 static void test_step_api_deadline(void)
 {
-    lep_command cmd = {LEP_CMD_STOP, 0};
+    lep_command cmd = { LEP_CMD_STOP, 0 };
     size_t used;
     unsigned i;
     sio.silent = true;
@@ -561,9 +563,9 @@ static void test_step_api_stops_at_each_sample(void)
 /* A streaming client on the script's table (the start's answer stepped in by hand). */
 static void start_streaming(lep_client *c)
 {
-    static const uint8_t ack[] = {0x10, 0x02, 0x04, 0xFF, 0x32, 0x00, 0x10, 0x03, 0xCA};
+    static const uint8_t ack[] = { 0x10, 0x02, 0x04, 0xFF, 0x32, 0x00, 0x10, 0x03, 0xCA };
     lep_io io = script_io_table(&sio);
-    lep_command start = {LEP_CMD_START, 0};
+    lep_command start = { LEP_CMD_START, 0 };
     size_t used;
     sio.silent = true;
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_init(c, &io));
@@ -576,8 +578,8 @@ static void start_streaming(lep_client *c)
  * noise, a NAK, an empty frame, a restart and a sample whose BCC is 0x10. */
 static size_t mixed_stream(uint8_t *wire, size_t cap)
 {
-    static const uint8_t junk[] = {0x55, 0x10, 0x10, 0x10, 0x15, 0x10, 0x02, 0x10, 0x03, 0x03,
-                                   0x10, 0x41, 0x10, 0x02, 0x04, 0x10, 0x02};
+    static const uint8_t junk[] = { 0x55, 0x10, 0x10, 0x10, 0x15, 0x10, 0x02, 0x10, 0x03,
+                                    0x03, 0x10, 0x41, 0x10, 0x02, 0x04, 0x10, 0x02 };
     size_t n = 0;
     unsigned i;
     for (i = 0; i < 48u; i++) {
@@ -629,7 +631,7 @@ static void note(outcomes *o, lep_client *c, int rc)
 
 static void test_step_byte_gives_what_step_gives_at_every_chunking(void)
 {
-    static const size_t chunks[] = {1, 2, 3, 7, 25, 64, 4096};
+    static const size_t chunks[] = { 1, 2, 3, 7, 25, 64, 4096 };
     uint8_t wire[2048];
     size_t len = mixed_stream(wire, sizeof(wire));
     outcomes ref;
@@ -722,7 +724,7 @@ static void test_step_byte_message_lasts_until_the_next_step(void)
     TEST_ASSERT_TRUE(r.stream);
     /* A transaction without a place for its answer. */
     {
-        lep_command stop = {LEP_CMD_STOP, 0};
+        lep_command stop = { LEP_CMD_STOP, 0 };
         sio.silent = false;
         TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_rx(&client, &rx));
         TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_transact(&client, &stop, NULL));
@@ -732,8 +734,8 @@ static void test_step_byte_message_lasts_until_the_next_step(void)
 
 static void test_step_byte_reads_the_clock_every_32_bytes(void)
 {
-    lep_command cmd = {LEP_CMD_RATED, 0};
-    static const uint8_t open[] = {0x10, 0x02};
+    lep_command cmd = { LEP_CMD_RATED, 0 };
+    static const uint8_t open[] = { 0x10, 0x02 };
     uint32_t t0;
     unsigned i;
     int rc = LEP_STEP_NONE;
@@ -817,7 +819,7 @@ static void test_next_sample_timeout_across_clock_wrap(void)
 
 static void test_step_api_deadline_across_clock_wrap(void)
 {
-    lep_command cmd = {LEP_CMD_STOP, 0};
+    lep_command cmd = { LEP_CMD_STOP, 0 };
     size_t used;
     sio.silent = true;
     sio.now = 0xFFFFFFFFu - 5u;
@@ -930,7 +932,7 @@ static void test_sync_accounts_for_every_stale_byte(void)
 {
     /* A stale stream: two data frames in flight before the stop answer, one
      * more right after it, and the reads split that last frame. */
-    static const uint8_t stop_answer[] = {0x10, 0x02, 0x04, 0xFF, 0x33, 0x00, 0x10, 0x03, 0xCB};
+    static const uint8_t stop_answer[] = { 0x10, 0x02, 0x04, 0xFF, 0x33, 0x00, 0x10, 0x03, 0xCB };
     lep_product_info info;
     lep_sample smp;
     size_t n;
@@ -938,8 +940,9 @@ static void test_sync_accounts_for_every_stale_byte(void)
     leave_stream_running();
     memset(&smp, 0, sizeof(smp));
     memcpy(sio.forced, stop_answer, sizeof(stop_answer));
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_device_stream_frame(&smp, sio.forced + sizeof(stop_answer),
-                                                          sizeof(sio.forced) - sizeof(stop_answer), &n));
+    TEST_ASSERT_EQUAL_INT(LEP_OK,
+                          lep_device_stream_frame(&smp, sio.forced + sizeof(stop_answer),
+                                                  sizeof(sio.forced) - sizeof(stop_answer), &n));
     TEST_ASSERT_EQUAL_size_t(25, n);
     sio.forced_len = sizeof(stop_answer) + n;
     sio.inflight = 2;
@@ -1012,7 +1015,7 @@ static int loop_once(lep_client *c, ring *r)
             return rc;
         }
     }
-    return lep_client_step(c, NULL, 0, &(size_t){0});
+    return lep_client_step(c, NULL, 0, &(size_t){ 0 });
 }
 
 static int run_until_outcome(lep_client *c, ring *r)
@@ -1035,9 +1038,9 @@ static void test_step_api_from_a_ring_buffer(void)
     lep_io io = script_io_table(&sio);
     lep_client c;
     ring r;
-    lep_command start = {LEP_CMD_START, 0};
-    lep_command stop = {LEP_CMD_STOP, 0};
-    lep_command rated = {LEP_CMD_RATED, 0};
+    lep_command start = { LEP_CMD_START, 0 };
+    lep_command stop = { LEP_CMD_STOP, 0 };
+    lep_command rated = { LEP_CMD_RATED, 0 };
     lep_client_stats st;
     unsigned i;
     memset(&r, 0, sizeof(r));
@@ -1125,7 +1128,7 @@ static void test_resent_start_answered_state_error_counts_as_started(void)
 
 static void test_resent_start_with_data_flowing_counts_as_started(void)
 {
-    lep_command start = {LEP_CMD_START, 0};
+    lep_command start = { LEP_CMD_START, 0 };
     lep_response r;
     lep_sample smp;
     uint8_t wire[64];
@@ -1153,7 +1156,7 @@ static void test_resent_start_with_data_flowing_counts_as_started(void)
 
 static void test_data_before_the_first_start_answer_is_not_taken_as_started(void)
 {
-    lep_command start = {LEP_CMD_START, 0};
+    lep_command start = { LEP_CMD_START, 0 };
     uint8_t wire[64];
     size_t len;
     size_t used;
@@ -1170,13 +1173,14 @@ static void test_data_before_the_first_start_answer_is_not_taken_as_started(void
 
 static void test_resent_stop_answered_state_error_counts_as_stopped(void)
 {
-    static const uint8_t refused[] = {0x04, 0xFF, 0x33, 0x04};
-    lep_command stop = {LEP_CMD_STOP, 0};
+    static const uint8_t refused[] = { 0x04, 0xFF, 0x33, 0x04 };
+    lep_command stop = { LEP_CMD_STOP, 0 };
     uint8_t frame[16];
     size_t n;
     size_t used;
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_frame_encode(refused, sizeof(refused), frame, sizeof(frame), &n));
+    TEST_ASSERT_EQUAL_INT(LEP_OK,
+                          lep_frame_encode(refused, sizeof(refused), frame, sizeof(frame), &n));
     sio.silent = true;
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_send(&client, &stop));
     /* First copy refused: a sensor error (the client cannot know it was stopped). */
@@ -1223,12 +1227,13 @@ static int pump(lep_client *c, unsigned max_ms)
  * taken as a confirmed resend. */
 static void test_recovery_stop_refused_after_a_resend_goes_on(void)
 {
-    static const uint8_t refused[] = {0x04, 0xFF, 0x33, 0x04};
+    static const uint8_t refused[] = { 0x04, 0xFF, 0x33, 0x04 };
     uint8_t frame[16];
     size_t n;
     size_t used;
     lep_response r;
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_frame_encode(refused, sizeof(refused), frame, sizeof(frame), &n));
+    TEST_ASSERT_EQUAL_INT(LEP_OK,
+                          lep_frame_encode(refused, sizeof(refused), frame, sizeof(frame), &n));
     sio.silent = true;
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_recover(&client, 10));
     sio.now += LEP_CLIENT_DEFAULT_TIMEOUT_MS;
@@ -1254,7 +1259,7 @@ static void test_recovery_stop_refused_after_a_resend_goes_on(void)
 
 static void test_step_recovery_stops_drains_and_identifies(void)
 {
-    static const uint8_t start_cmd[] = {0x10, 0x02, 0x04, 0xFF, 0x32, 0x00, 0x10, 0x03, 0xCA};
+    static const uint8_t start_cmd[] = { 0x10, 0x02, 0x04, 0xFF, 0x32, 0x00, 0x10, 0x03, 0xCA };
     lep_io io = script_io_table(&sio);
     lep_client c;
     lep_response r;
@@ -1291,7 +1296,7 @@ static void test_step_recovery_waits_for_a_quiet_line(void)
     t0 = sio.now;
     /* Noise every 10 ms for 100 ms: the drain keeps waiting. */
     for (i = 0; i < 10; i++) {
-        static const uint8_t junk[3] = {0x55, 0x55, 0x55};
+        static const uint8_t junk[3] = { 0x55, 0x55, 0x55 };
         script_push(&sio, junk, sizeof(junk));
         TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, pump(&c, 10));
     }
@@ -1308,7 +1313,7 @@ static void test_step_recovery_gives_up_on_endless_noise(void)
     size_t used;
     unsigned i;
     int rc = LEP_STEP_NONE;
-    static const uint8_t junk[1] = {0x55};
+    static const uint8_t junk[1] = { 0x55 };
     io.read = NULL;
     sio.silent = true;
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_init(&c, &io));
@@ -1319,7 +1324,8 @@ static void test_step_recovery_gives_up_on_endless_noise(void)
     }
     TEST_ASSERT_EQUAL_INT(LEP_E_NO_SYNC, rc);
     /* The stop's 4 attempts, then 20 timeouts + the quiet time. */
-    TEST_ASSERT_TRUE(sio.now <= 4u * LEP_CLIENT_DEFAULT_TIMEOUT_MS + 20u * LEP_CLIENT_DEFAULT_TIMEOUT_MS +
+    TEST_ASSERT_TRUE(sio.now <= 4u * LEP_CLIENT_DEFAULT_TIMEOUT_MS +
+                                    20u * LEP_CLIENT_DEFAULT_TIMEOUT_MS +
                                     LEP_CLIENT_DEFAULT_QUIET_MS + 1u);
     TEST_ASSERT_FALSE(lep_client_busy(&c));
 }
@@ -1329,7 +1335,7 @@ static void test_step_start_recovered_byte_by_byte(void)
     /* A start refused (a stale stream runs), recovered by stop, drain, start,
      * every byte stepped alone: the clock is looked at on each one meanwhile. */
     lep_io io = script_io_table(&sio);
-    lep_command start = {LEP_CMD_START, 0};
+    lep_command start = { LEP_CMD_START, 0 };
     lep_client c;
     lep_client_stats st;
     io.read = NULL;
@@ -1342,7 +1348,7 @@ static void test_step_start_recovered_byte_by_byte(void)
     TEST_ASSERT_EQUAL_UINT(3, sio.writes); /* start, stop, start */
     lep_client_get_stats(&c, &st);
     TEST_ASSERT_EQUAL_UINT32(1, st.recoveries);
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_response(&c, &(lep_response){0}));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_response(&c, &(lep_response){ 0 }));
 }
 
 static void test_recover_write_error(void)
@@ -1357,7 +1363,7 @@ static void test_watchdog_reports_a_stalled_stream(void)
 {
     lep_io io = script_io_table(&sio);
     lep_client c;
-    lep_command start = {LEP_CMD_START, 0};
+    lep_command start = { LEP_CMD_START, 0 };
     unsigned i;
     io.read = NULL;
     sio.endless_stream = false;
@@ -1399,13 +1405,14 @@ static void test_watchdog_in_blocking_next_sample(void)
     TEST_ASSERT_EQUAL_INT(LEP_E_STALLED, lep_client_next_sample(&client, &s, 1000));
     TEST_ASSERT_TRUE(sio.now <= 1u + 30u + 2u);
     TEST_ASSERT_EQUAL_UINT32(1, stats().stalls);
-    TEST_ASSERT_EQUAL_STRING("no stream data within the watchdog time", lep_strerror(LEP_E_STALLED));
+    TEST_ASSERT_EQUAL_STRING("no stream data within the watchdog time",
+                             lep_strerror(LEP_E_STALLED));
 }
 
 static void test_watchdog_checked_every_32_single_bytes(void)
 {
-    lep_command start = {LEP_CMD_START, 0};
-    static const uint8_t junk[1] = {0x55};
+    lep_command start = { LEP_CMD_START, 0 };
+    static const uint8_t junk[1] = { 0x55 };
     size_t used;
     unsigned i;
     int rc = LEP_STEP_NONE;
@@ -1441,7 +1448,9 @@ static void test_watchdog_stall_does_not_end_a_blocking_query(void)
 
 static void test_reserved_byte_variants_are_counted_and_delivered(void)
 {
-    uint8_t msg[20] = {0x14, 0xFF, 0x32, 0x00, 1, 0, 2, 0, 3, 0, 4, 0, 5, 0, 6, 0, 9, 0, 0x00, 0xA5};
+    uint8_t msg[20] = {
+        0x14, 0xFF, 0x32, 0x00, 1, 0, 2, 0, 3, 0, 4, 0, 5, 0, 6, 0, 9, 0, 0x00, 0xA5
+    };
     lep_sample s;
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
     sio.endless_stream = false;
@@ -1457,7 +1466,9 @@ static void test_reserved_byte_variants_are_counted_and_delivered(void)
 
 static void test_impossible_samples_are_invalid_never_delivered(void)
 {
-    uint8_t msg[20] = {0x14, 0xFF, 0x32, 0x00, 0, 0, 0x01, 0x7D, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+    uint8_t msg[20] = {
+        0x14, 0xFF, 0x32, 0x00, 0, 0, 0x01, 0x7D, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0
+    };
     lep_sample s;
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
     sio.endless_stream = false;
@@ -1469,7 +1480,9 @@ static void test_impossible_samples_are_invalid_never_delivered(void)
 
 static void test_handshake_reserved_variant_is_counted(void)
 {
-    uint8_t msg[20] = {0x14, 0xFF, 0x30, 0x00, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 7, 0, 0, 0, 0x04, 0x01};
+    uint8_t msg[20] = {
+        0x14, 0xFF, 0x30, 0x00, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 7, 0, 0, 0, 0x04, 0x01
+    };
     lep_sample s;
     force_reply(msg, sizeof(msg));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_sample(&client, &s));
@@ -1520,7 +1533,7 @@ static void test_null_arguments(void)
     lep_product_info info;
     lep_rated rated;
     lep_sample smp;
-    lep_command cmd = {LEP_CMD_RATED, 0};
+    lep_command cmd = { LEP_CMD_RATED, 0 };
     uint8_t code;
     size_t used;
     size_t n = 5;
@@ -1539,7 +1552,7 @@ static void test_null_arguments(void)
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_step(NULL, NULL, 0, &used));
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_step(&client, NULL, 0, NULL));
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_step(&client, NULL, 1, &used));
-    {   /* the one-byte fast path checks its arguments too */
+    { /* the one-byte fast path checks its arguments too */
         const uint8_t one = 0x41;
         TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_step(NULL, &one, 1, &used));
         TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_step(&client, &one, 1, NULL));
@@ -1566,7 +1579,7 @@ static void test_null_arguments(void)
 
 static void test_send_of_an_unknown_command_writes_nothing(void)
 {
-    lep_command cmd = {0x40, 0};
+    lep_command cmd = { 0x40, 0 };
     TEST_ASSERT_EQUAL_INT(LEP_E_UNEXPECTED, lep_client_send(&client, &cmd));
     TEST_ASSERT_FALSE(lep_client_busy(&client));
     TEST_ASSERT_EQUAL_UINT(0, sio.writes);
@@ -1574,7 +1587,7 @@ static void test_send_of_an_unknown_command_writes_nothing(void)
 
 static void test_empty_frame_is_invalid(void)
 {
-    static const uint8_t empty[] = {0x10, 0x02, 0x10, 0x03, 0x03};
+    static const uint8_t empty[] = { 0x10, 0x02, 0x10, 0x03, 0x03 };
     lep_rated rated;
     script_push(&sio, empty, sizeof(empty));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_rated(&client, &rated));
@@ -1583,7 +1596,7 @@ static void test_empty_frame_is_invalid(void)
 
 static void test_nak_without_a_transaction_is_ignored(void)
 {
-    static const uint8_t nak[2] = {LEP_DLE, LEP_NAK};
+    static const uint8_t nak[2] = { LEP_DLE, LEP_NAK };
     size_t used;
     TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step(&client, nak, sizeof(nak), &used));
     TEST_ASSERT_EQUAL_UINT32(1, stats().naks);
@@ -1611,18 +1624,20 @@ static void test_sync_clamps_the_quiet_time_and_reports_write_errors(void)
 
 static void test_messages_and_naks_during_a_start_recovery_drain(void)
 {
-    static const uint8_t refused[] = {0x04, 0xFF, 0x32, 0x04};
-    static const uint8_t stop_ack[] = {0x04, 0xFF, 0x33, 0x00};
-    static const uint8_t nak[2] = {LEP_DLE, LEP_NAK};
-    lep_command start = {LEP_CMD_START, 0};
+    static const uint8_t refused[] = { 0x04, 0xFF, 0x32, 0x04 };
+    static const uint8_t stop_ack[] = { 0x04, 0xFF, 0x33, 0x00 };
+    static const uint8_t nak[2] = { LEP_DLE, LEP_NAK };
+    lep_command start = { LEP_CMD_START, 0 };
     uint8_t frame[16];
     size_t n;
     size_t used;
     sio.silent = true;
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_send(&client, &start));
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_frame_encode(refused, sizeof(refused), frame, sizeof(frame), &n));
+    TEST_ASSERT_EQUAL_INT(LEP_OK,
+                          lep_frame_encode(refused, sizeof(refused), frame, sizeof(frame), &n));
     TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step(&client, frame, n, &used)); /* stop sent */
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_frame_encode(stop_ack, sizeof(stop_ack), frame, sizeof(frame), &n));
+    TEST_ASSERT_EQUAL_INT(LEP_OK,
+                          lep_frame_encode(stop_ack, sizeof(stop_ack), frame, sizeof(frame), &n));
     TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step(&client, frame, n, &used)); /* draining */
     /* A late duplicate answer and a NAK while draining: neither ends nor resends anything. */
     TEST_ASSERT_EQUAL_INT(LEP_STEP_NONE, lep_client_step(&client, frame, n, &used));
@@ -1645,7 +1660,7 @@ static void test_blocking_sync_drain_limit_after_a_clock_jump(void)
 
 static void test_next_sample_takes_a_step_api_answer_in_stride(void)
 {
-    lep_command rated = {LEP_CMD_RATED, 0};
+    lep_command rated = { LEP_CMD_RATED, 0 };
     lep_sample s;
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
     sio.endless_stream = false;

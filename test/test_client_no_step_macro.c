@@ -24,11 +24,13 @@ void setUp(void)
     script_io_client(&sio, &client);
 }
 
-void tearDown(void) {}
+void tearDown(void)
+{
+}
 
 static void test_member_of_the_same_name_calls_the_function(void)
 {
-    const struct client_ops ops = {lep_client_step};
+    const struct client_ops ops = { lep_client_step };
     uint8_t wire[3 * 29];
     size_t len;
     size_t used;

@@ -12,7 +12,7 @@ static lep_device_event ev;
 void setUp(void)
 {
     lep_product_info info;
-    lep_rated rated = {{100.0f, 100.0f, 200.0f, 1.0f, 1.0f, 1.0f}};
+    lep_rated rated = { { 100.0f, 100.0f, 200.0f, 1.0f, 1.0f, 1.0f } };
     memset(&info, 0, sizeof(info));
     strcpy(info.model, "CFS018CA201U");
     strcpy(info.serial, "00000042");
@@ -33,7 +33,7 @@ static void feed(const uint8_t *frame, size_t len)
 
 static void send_cmd(uint8_t code, uint8_t filter)
 {
-    lep_command cmd = {code, filter};
+    lep_command cmd = { code, filter };
     uint8_t frame[LEP_MAX_FRAME];
     size_t n;
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_command_frame(&cmd, frame, sizeof(frame), &n));
@@ -65,8 +65,8 @@ static void expect_result(uint8_t code, uint8_t result)
 static void test_init_validates(void)
 {
     lep_product_info info;
-    lep_rated bad = {{100.0f, -1.0f, 200.0f, 1.0f, 1.0f, 1.0f}};
-    lep_rated good = {{1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f}};
+    lep_rated bad = { { 100.0f, -1.0f, 200.0f, 1.0f, 1.0f, 1.0f } };
+    lep_rated good = { { 1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f } };
     memset(&info, 0, sizeof(info));
     TEST_ASSERT_EQUAL_INT(LEP_E_VALUE, lep_device_init(&dev, &info, &bad, 0));
     TEST_ASSERT_EQUAL_INT(LEP_E_VALUE, lep_device_init(&dev, &info, &good, 4));
@@ -78,7 +78,7 @@ static void test_init_rejects_identity_that_cannot_be_answered(void)
     /* Fields that do not fit the product-info answer would make every 0x2A go
      * unanswered: refuse them up front. */
     lep_product_info info;
-    lep_rated good = {{1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f}};
+    lep_rated good = { { 1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f } };
     lep_response r;
     memset(&info, 0, sizeof(info));
     memset(info.model, 'M', sizeof(info.model)); /* 17 characters, no NUL */
@@ -133,9 +133,9 @@ static void test_handshake_answers_current_sample(void)
     send_cmd(LEP_CMD_SAMPLE, 0);
     {
         /* The data response of the spec's worked frames, byte for byte. */
-        static const uint8_t wire[] = {0x10, 0x02, 0x14, 0xFF, 0x30, 0x00, 0x10, 0x10, 0x00, 0xF0,
-                                       0xFF, 0x10, 0x10, 0x27, 0xF0, 0xD8, 0x10, 0x10, 0x10, 0x10,
-                                       0x00, 0x7D, 0x00, 0x00, 0x04, 0x00, 0x10, 0x03, 0xA1};
+        static const uint8_t wire[] = { 0x10, 0x02, 0x14, 0xFF, 0x30, 0x00, 0x10, 0x10, 0x00, 0xF0,
+                                        0xFF, 0x10, 0x10, 0x27, 0xF0, 0xD8, 0x10, 0x10, 0x10, 0x10,
+                                        0x00, 0x7D, 0x00, 0x00, 0x04, 0x00, 0x10, 0x03, 0xA1 };
         TEST_ASSERT_EQUAL_size_t(sizeof(wire), out_len);
         TEST_ASSERT_EQUAL_HEX8_ARRAY(wire, out, sizeof(wire));
     }
@@ -145,7 +145,7 @@ static void test_handshake_answers_current_sample(void)
 
 static void test_bad_bcc_gets_nak(void)
 {
-    static const uint8_t bad[] = {0x10, 0x02, 0x04, 0xFF, 0x2A, 0x00, 0x10, 0x03, 0xD3};
+    static const uint8_t bad[] = { 0x10, 0x02, 0x04, 0xFF, 0x2A, 0x00, 0x10, 0x03, 0xD3 };
     feed(bad, sizeof(bad));
     TEST_ASSERT_EQUAL_INT(LEP_DEVICE_NAK, ev.type);
     TEST_ASSERT_EQUAL_size_t(2, out_len);
@@ -156,36 +156,41 @@ static void test_bad_bcc_gets_nak(void)
 static void test_result_codes(void)
 {
     /* Length error: Length byte says 5 but 4 bytes came. */
-    static const uint8_t wrong_len[] = {0x05, 0xFF, 0x2A, 0x00};
-    static const uint8_t unknown[] = {0x04, 0xFF, 0x99, 0x00};
-    static const uint8_t long_query[] = {0x05, 0xFF, 0x2B, 0x00, 0x00};
-    static const uint8_t bad_reserved[] = {0x04, 0xFE, 0x2A, 0x00};
+    static const uint8_t wrong_len[] = { 0x05, 0xFF, 0x2A, 0x00 };
+    static const uint8_t unknown[] = { 0x04, 0xFF, 0x99, 0x00 };
+    static const uint8_t long_query[] = { 0x05, 0xFF, 0x2B, 0x00, 0x00 };
+    static const uint8_t bad_reserved[] = { 0x04, 0xFE, 0x2A, 0x00 };
     uint8_t frame[LEP_MAX_FRAME];
     size_t n;
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_frame_encode(wrong_len, sizeof(wrong_len), frame, sizeof(frame), &n));
+    TEST_ASSERT_EQUAL_INT(LEP_OK,
+                          lep_frame_encode(wrong_len, sizeof(wrong_len), frame, sizeof(frame), &n));
     feed(frame, n);
     expect_result(0x2A, LEP_RESULT_LENGTH);
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_frame_encode(long_query, sizeof(long_query), frame, sizeof(frame), &n));
+    TEST_ASSERT_EQUAL_INT(
+        LEP_OK, lep_frame_encode(long_query, sizeof(long_query), frame, sizeof(frame), &n));
     feed(frame, n);
     expect_result(0x2B, LEP_RESULT_LENGTH);
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_frame_encode(unknown, sizeof(unknown), frame, sizeof(frame), &n));
+    TEST_ASSERT_EQUAL_INT(LEP_OK,
+                          lep_frame_encode(unknown, sizeof(unknown), frame, sizeof(frame), &n));
     feed(frame, n);
     TEST_ASSERT_EQUAL_INT(LEP_DEVICE_COMMAND, ev.type);
     TEST_ASSERT_EQUAL_HEX8(LEP_RESULT_UNDEFINED, ev.result);
     /* The host cannot decode an unknown code as a response: check the raw answer. */
     {
-        static const uint8_t want[] = {0x10, 0x02, 0x04, 0xFF, 0x99, 0x02, 0x10, 0x03, 0x63};
+        static const uint8_t want[] = { 0x10, 0x02, 0x04, 0xFF, 0x99, 0x02, 0x10, 0x03, 0x63 };
         TEST_ASSERT_EQUAL_size_t(sizeof(want), out_len);
         TEST_ASSERT_EQUAL_HEX8_ARRAY(want, out, sizeof(want));
     }
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_frame_encode(bad_reserved, sizeof(bad_reserved), frame, sizeof(frame), &n));
+    TEST_ASSERT_EQUAL_INT(
+        LEP_OK, lep_frame_encode(bad_reserved, sizeof(bad_reserved), frame, sizeof(frame), &n));
     feed(frame, n);
     expect_result(0x2A, LEP_RESULT_VALUE);
     send_cmd(LEP_CMD_FILTER_SET, 3);
     expect_result(LEP_CMD_FILTER_SET, 0);
     {
-        static const uint8_t filter4[] = {0x08, 0xFF, 0xA6, 0x00, 0x04, 0x00, 0x00, 0x00};
-        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_frame_encode(filter4, sizeof(filter4), frame, sizeof(frame), &n));
+        static const uint8_t filter4[] = { 0x08, 0xFF, 0xA6, 0x00, 0x04, 0x00, 0x00, 0x00 };
+        TEST_ASSERT_EQUAL_INT(LEP_OK,
+                              lep_frame_encode(filter4, sizeof(filter4), frame, sizeof(frame), &n));
         feed(frame, n);
         expect_result(LEP_CMD_FILTER_SET, LEP_RESULT_VALUE);
         TEST_ASSERT_EQUAL_UINT8(3, lep_device_filter_pending(&dev));
@@ -240,8 +245,8 @@ static void test_stream_frame(void)
 
 static void test_unanswerable_frames(void)
 {
-    static const uint8_t escape[] = {0x10, 0x02, 0x04, 0xFF, 0x10, 0x07};
-    static const uint8_t tiny[] = {0x10, 0x02, 0x04, 0xFF, 0x10, 0x03, 0xF8};
+    static const uint8_t escape[] = { 0x10, 0x02, 0x04, 0xFF, 0x10, 0x07 };
+    static const uint8_t tiny[] = { 0x10, 0x02, 0x04, 0xFF, 0x10, 0x03, 0xF8 };
     feed(escape, sizeof(escape));
     TEST_ASSERT_EQUAL_INT(LEP_DEVICE_REJECTED, ev.type);
     TEST_ASSERT_EQUAL_size_t(0, out_len);
@@ -250,7 +255,7 @@ static void test_unanswerable_frames(void)
     TEST_ASSERT_EQUAL_size_t(0, out_len);
     /* Too small an output buffer drops the answer instead of overflowing. */
     {
-        static const uint8_t info[] = {0x10, 0x02, 0x04, 0xFF, 0x2A, 0x00, 0x10, 0x03, 0xD2};
+        static const uint8_t info[] = { 0x10, 0x02, 0x04, 0xFF, 0x2A, 0x00, 0x10, 0x03, 0xD2 };
         size_t n = lep_device_feed(&dev, info, sizeof(info), &ev, out, 8, &out_len);
         TEST_ASSERT_EQUAL_size_t(sizeof(info), n);
         TEST_ASSERT_EQUAL_INT(LEP_DEVICE_COMMAND, ev.type);
@@ -262,7 +267,7 @@ static void test_unanswerable_frames(void)
 static void test_null_arguments(void)
 {
     lep_product_info info;
-    lep_rated rated = {{1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f}};
+    lep_rated rated = { { 1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f } };
     lep_sample s;
     size_t n = 7;
     static const uint8_t byte = 0x10;
@@ -291,8 +296,8 @@ static void test_null_arguments(void)
 /* A NAK that does not fit the caller's buffer is dropped, never overrun. */
 static void test_nak_with_a_tiny_buffer(void)
 {
-    static const uint8_t bad[] = {0x10, 0x02, 0x04, 0xFF, 0x2A, 0x00, 0x10, 0x03, 0xD3};
-    uint8_t tiny[1] = {0xEE};
+    static const uint8_t bad[] = { 0x10, 0x02, 0x04, 0xFF, 0x2A, 0x00, 0x10, 0x03, 0xD3 };
+    uint8_t tiny[1] = { 0xEE };
     size_t n = 99;
     size_t used = lep_device_feed(&dev, bad, sizeof(bad), &ev, tiny, sizeof(tiny), &n);
     TEST_ASSERT_EQUAL_size_t(sizeof(bad), used);

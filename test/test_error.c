@@ -27,30 +27,30 @@ static void test_error_texts(void)
     static const struct {
         int err;
         const char *text;
-    } k[] = {{LEP_OK, "success"},
-             {LEP_E_ARG, "invalid argument"},
-             {LEP_E_BUFFER, "buffer too small"},
-             {LEP_E_TOO_LONG, "message too long"},
-             {LEP_E_BCC, "bad frame check (BCC)"},
-             {LEP_E_ESCAPE, "bad byte after DLE"},
-             {LEP_E_LENGTH, "length error"},
-             {LEP_E_RESERVED, "bad reserved byte"},
-             {LEP_E_UNEXPECTED, "unexpected message"},
-             {LEP_E_VALUE, "invalid value"},
-             {LEP_E_SENSOR, "sensor reported an error"},
-             {LEP_E_NAK, "sensor kept answering NAK"},
-             {LEP_E_TIMEOUT, "sensor timed out"},
-             {LEP_E_IO, "I/O error"},
-             {LEP_E_DISCONNECTED, "port disconnected"},
-             {LEP_E_BUSY, "port in use"},
-             {LEP_E_NOT_FOUND, "no such port"},
-             {LEP_E_PERMISSION, "permission denied"},
-             {LEP_E_NOT_TTY, "not a terminal"},
-             {LEP_E_STATE, "not allowed in this state"},
-             {LEP_E_NO_SYNC, "line never went quiet"},
-             {LEP_E_UNSUPPORTED, "not supported"},
-             {LEP_E_END, "duration or count reached"},
-             {LEP_E_STALLED, "no stream data within the watchdog time"}};
+    } k[] = { { LEP_OK, "success" },
+              { LEP_E_ARG, "invalid argument" },
+              { LEP_E_BUFFER, "buffer too small" },
+              { LEP_E_TOO_LONG, "message too long" },
+              { LEP_E_BCC, "bad frame check (BCC)" },
+              { LEP_E_ESCAPE, "bad byte after DLE" },
+              { LEP_E_LENGTH, "length error" },
+              { LEP_E_RESERVED, "bad reserved byte" },
+              { LEP_E_UNEXPECTED, "unexpected message" },
+              { LEP_E_VALUE, "invalid value" },
+              { LEP_E_SENSOR, "sensor reported an error" },
+              { LEP_E_NAK, "sensor kept answering NAK" },
+              { LEP_E_TIMEOUT, "sensor timed out" },
+              { LEP_E_IO, "I/O error" },
+              { LEP_E_DISCONNECTED, "port disconnected" },
+              { LEP_E_BUSY, "port in use" },
+              { LEP_E_NOT_FOUND, "no such port" },
+              { LEP_E_PERMISSION, "permission denied" },
+              { LEP_E_NOT_TTY, "not a terminal" },
+              { LEP_E_STATE, "not allowed in this state" },
+              { LEP_E_NO_SYNC, "line never went quiet" },
+              { LEP_E_UNSUPPORTED, "not supported" },
+              { LEP_E_END, "duration or count reached" },
+              { LEP_E_STALLED, "no stream data within the watchdog time" } };
     size_t i;
     for (i = 0; i < sizeof(k) / sizeof(k[0]); i++) {
         TEST_ASSERT_EQUAL_STRING(k[i].text, lep_strerror(k[i].err));
@@ -60,8 +60,8 @@ static void test_error_texts(void)
 /* Codes outside the list, up to the ends of int (no overflow negating them). */
 static void test_unknown_errors(void)
 {
-    static const int k[] = {1, 2, 127, INT_MAX, LEP_E_STALLED - 1, -100, -1000000, INT_MIN + 1,
-                            INT_MIN};
+    static const int k[] = { 1,    2,        127,         INT_MAX, LEP_E_STALLED - 1,
+                             -100, -1000000, INT_MIN + 1, INT_MIN };
     size_t i;
     for (i = 0; i < sizeof(k) / sizeof(k[0]); i++) {
         TEST_ASSERT_EQUAL_STRING("unknown error", lep_strerror(k[i]));

@@ -43,7 +43,13 @@ typedef struct run_result {
 } run_result;
 
 /* Which entry point run() feeds chunks through. */
-enum api { API_FEED, API_FEED_ALL, API_MIXED, API_PUSH1, API_BYTE }; /* API_PUSH1: one-byte
+enum api {
+    API_FEED,
+    API_FEED_ALL,
+    API_MIXED,
+    API_PUSH1,
+    API_BYTE
+}; /* API_PUSH1: one-byte
                              chunks try lep_frame_decoder_push1 first; API_BYTE: every byte through
                              lep_frame_decoder_feed_byte, held to a second decoder fed the same byte
                              through lep_frame_decoder_feed */
@@ -131,8 +137,12 @@ static void run(const uint8_t *in, size_t len, enum split_mode mode, uint32_t se
     while (off < len) {
         size_t chunk = 0;
         switch (mode) {
-        case SPLIT_WHOLE: chunk = len - off; break;
-        case SPLIT_BYTES: chunk = 1; break;
+        case SPLIT_WHOLE:
+            chunk = len - off;
+            break;
+        case SPLIT_BYTES:
+            chunk = 1;
+            break;
         case SPLIT_RANDOM: {
             uint32_t pick = rng_next(&seed);
             /* Mostly short chunks, sometimes long ones, sometimes empty feeds. */
@@ -162,7 +172,8 @@ static void expect_same(const run_result *want, const run_result *got, const cha
         TEST_ASSERT_EQUAL_INT_MESSAGE(want->ev[i].error, got->ev[i].error, what);
         TEST_ASSERT_EQUAL_size_t_MESSAGE(want->ev[i].len, got->ev[i].len, what);
         if (want->ev[i].len > 0) {
-            TEST_ASSERT_EQUAL_HEX8_ARRAY_MESSAGE(want->ev[i].msg, got->ev[i].msg, want->ev[i].len, what);
+            TEST_ASSERT_EQUAL_HEX8_ARRAY_MESSAGE(want->ev[i].msg, got->ev[i].msg, want->ev[i].len,
+                                                 what);
         }
     }
     TEST_ASSERT_EQUAL_UINT32_MESSAGE(want->stats.messages, got->stats.messages, what);
@@ -191,7 +202,8 @@ static void expected_of(const lep_json *v, run_result *r)
         TEST_ASSERT_NOT_NULL(type);
         if (strcmp(type, "message") == 0) {
             r->ev[i].type = LEP_FRAME_MESSAGE;
-            r->ev[i].len = lep_vectors_hex(lep_json_get_str(e, "message"), r->ev[i].msg, LEP_MAX_MESSAGE);
+            r->ev[i].len =
+                lep_vectors_hex(lep_json_get_str(e, "message"), r->ev[i].msg, LEP_MAX_MESSAGE);
         } else if (strcmp(type, "nak") == 0) {
             r->ev[i].type = LEP_FRAME_NAK;
         } else if (strcmp(type, "error") == 0) {
@@ -250,13 +262,16 @@ static void test_encode_vectors_give_exact_wire_bytes(void)
                                       lep_vectors_ctx(name, "encode"));
         TEST_ASSERT_EQUAL_size_t_MESSAGE(wlen, n, lep_vectors_ctx(name, "encoded size"));
         TEST_ASSERT_EQUAL_HEX8_ARRAY_MESSAGE(wire, out, wlen, lep_vectors_ctx(name, "wire bytes"));
-        TEST_ASSERT_EQUAL_size_t_MESSAGE(wlen, lep_frame_size(msg, mlen), lep_vectors_ctx(name, "lep_frame_size"));
-        TEST_ASSERT_EQUAL_HEX8_MESSAGE(wire[wlen - 1], lep_bcc(msg, mlen), lep_vectors_ctx(name, "lep_bcc"));
+        TEST_ASSERT_EQUAL_size_t_MESSAGE(wlen, lep_frame_size(msg, mlen),
+                                         lep_vectors_ctx(name, "lep_frame_size"));
+        TEST_ASSERT_EQUAL_HEX8_MESSAGE(wire[wlen - 1], lep_bcc(msg, mlen),
+                                       lep_vectors_ctx(name, "lep_bcc"));
 
         /* Exactly enough room works; one byte less is LEP_E_BUFFER. */
         TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_frame_encode(msg, mlen, out, wlen, &n),
                                       lep_vectors_ctx(name, "exact capacity"));
-        TEST_ASSERT_EQUAL_HEX8_ARRAY_MESSAGE(wire, out, wlen, lep_vectors_ctx(name, "exact capacity bytes"));
+        TEST_ASSERT_EQUAL_HEX8_ARRAY_MESSAGE(wire, out, wlen,
+                                             lep_vectors_ctx(name, "exact capacity bytes"));
         TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_E_BUFFER, lep_frame_encode(msg, mlen, out, wlen - 1u, &n),
                                       lep_vectors_ctx(name, "capacity one short"));
     }
@@ -275,7 +290,8 @@ static void test_encode_vectors_decode_back(void)
         memset(&g_want, 0, sizeof(g_want));
         g_want.n = 1;
         g_want.ev[0].type = LEP_FRAME_MESSAGE;
-        g_want.ev[0].len = lep_vectors_hex(lep_json_get_str(v, "message"), g_want.ev[0].msg, LEP_MAX_MESSAGE);
+        g_want.ev[0].len =
+            lep_vectors_hex(lep_json_get_str(v, "message"), g_want.ev[0].msg, LEP_MAX_MESSAGE);
         g_want.stats.messages = 1;
         run(wire, wlen, SPLIT_WHOLE, 0, &g_got);
         expect_same(&g_want, &g_got, lep_vectors_ctx(name, "decode whole"));
@@ -314,12 +330,14 @@ static void test_encode_bounds(void)
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_frame_encode(msg, 4, NULL, sizeof(out), &n));
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_frame_encode(msg, 4, out, sizeof(out), NULL));
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_frame_encode(msg, 0, out, sizeof(out), &n));
-    TEST_ASSERT_EQUAL_INT(LEP_E_TOO_LONG, lep_frame_encode(msg, LEP_MAX_MESSAGE + 1u, out, sizeof(out), &n));
+    TEST_ASSERT_EQUAL_INT(LEP_E_TOO_LONG,
+                          lep_frame_encode(msg, LEP_MAX_MESSAGE + 1u, out, sizeof(out), &n));
     TEST_ASSERT_EQUAL_INT(LEP_E_BUFFER, lep_frame_encode(msg, 4, out, 0, &n));
     /* The worst case fits LEP_MAX_FRAME exactly. */
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_frame_encode(msg, LEP_MAX_MESSAGE, out, LEP_MAX_FRAME, &n));
     TEST_ASSERT_EQUAL_size_t(LEP_MAX_FRAME, n);
-    TEST_ASSERT_EQUAL_INT(LEP_E_BUFFER, lep_frame_encode(msg, LEP_MAX_MESSAGE, out, LEP_MAX_FRAME - 1u, &n));
+    TEST_ASSERT_EQUAL_INT(LEP_E_BUFFER,
+                          lep_frame_encode(msg, LEP_MAX_MESSAGE, out, LEP_MAX_FRAME - 1u, &n));
     TEST_ASSERT_EQUAL_size_t(0u, lep_frame_size(NULL, 4));
     TEST_ASSERT_EQUAL_size_t(LEP_MAX_FRAME, lep_frame_size(msg, LEP_MAX_MESSAGE));
     TEST_ASSERT_EQUAL_HEX8(LEP_ETX, lep_bcc(msg, 0));
@@ -334,8 +352,8 @@ static void check_stream_api(const lep_json *v, enum split_mode mode, const char
 /* Every stream through feed, through feed_all, and through both in turn. */
 static void check_stream(const lep_json *v, enum split_mode mode, const char *how)
 {
-    static const char *const names[] = {"feed", "feed_all", "feed and feed_all in turn",
-                                        "push1, else feed", "feed_byte"};
+    static const char *const names[] = { "feed", "feed_all", "feed and feed_all in turn",
+                                         "push1, else feed", "feed_byte" };
     char what[128];
     int api;
     for (api = API_FEED; api <= API_BYTE; api++) {
@@ -428,8 +446,8 @@ static void test_decode_streams_concatenated(void)
 
 static void test_decoder_busy_and_empty_feed(void)
 {
-    static const uint8_t start[] = {0x10, 0x02, 0x04, 0xFF};
-    static const uint8_t rest[] = {0x2A, 0x00, 0x10, 0x03, 0xD2};
+    static const uint8_t start[] = { 0x10, 0x02, 0x04, 0xFF };
+    static const uint8_t rest[] = { 0x2A, 0x00, 0x10, 0x03, 0xD2 };
     lep_frame_decoder d;
     lep_frame_event ev;
     lep_frame_decoder_init(&d);
@@ -456,8 +474,8 @@ static void test_decoder_busy_and_empty_feed(void)
  * the decoder is left as it was. */
 static void test_decoder_feed_bad_arguments(void)
 {
-    static const uint8_t start[] = {0x10, 0x02, 0x04};
-    static const uint8_t rest[] = {0xFF, 0x2A, 0x00, 0x10, 0x03, 0xD2};
+    static const uint8_t start[] = { 0x10, 0x02, 0x04 };
+    static const uint8_t rest[] = { 0xFF, 0x2A, 0x00, 0x10, 0x03, 0xD2 };
     lep_frame_decoder d;
     lep_frame_event ev;
     lep_frame_decoder_init(&d);
@@ -491,8 +509,8 @@ static void test_decoder_feed_bad_arguments(void)
  * call with one byte, and the decoder left as it was. */
 static void test_decoder_feed_byte_bad_arguments(void)
 {
-    static const uint8_t start[] = {0x10, 0x02, 0x04};
-    static const uint8_t rest[] = {0xFF, 0x2A, 0x00, 0x10, 0x03, 0xD2};
+    static const uint8_t start[] = { 0x10, 0x02, 0x04 };
+    static const uint8_t rest[] = { 0xFF, 0x2A, 0x00, 0x10, 0x03, 0xD2 };
     static const uint8_t b = 0xFF;
     lep_frame_decoder d;
     lep_frame_decoder before;
@@ -536,18 +554,22 @@ static void count_events(void *user, const lep_frame_event *ev)
  * during the call. */
 static void test_decoder_feed_all_arguments(void)
 {
-    static const uint8_t two[] = {0x10, 0x02, 0x04, 0xFF, 0x33, 0x00, 0x10, 0x03, 0xCB, 0x10, 0x15};
+    static const uint8_t two[] = {
+        0x10, 0x02, 0x04, 0xFF, 0x33, 0x00, 0x10, 0x03, 0xCB, 0x10, 0x15
+    };
     lep_frame_decoder d;
     unsigned n = 0;
     lep_frame_decoder_init(&d);
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_frame_decoder_feed_all(NULL, two, sizeof(two), count_events, &n));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG,
+                          lep_frame_decoder_feed_all(NULL, two, sizeof(two), count_events, &n));
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_frame_decoder_feed_all(&d, two, sizeof(two), NULL, &n));
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_frame_decoder_feed_all(&d, NULL, 3, count_events, &n));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_frame_decoder_feed_all(&d, NULL, 0, count_events, &n));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_frame_decoder_feed_all(&d, two, 0, count_events, &n));
     TEST_ASSERT_EQUAL_UINT(0u, n);
     TEST_ASSERT_EQUAL_UINT32(0u, d.stats.bytes_discarded);
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_frame_decoder_feed_all(&d, two, sizeof(two), count_events, &n));
+    TEST_ASSERT_EQUAL_INT(LEP_OK,
+                          lep_frame_decoder_feed_all(&d, two, sizeof(two), count_events, &n));
     TEST_ASSERT_EQUAL_UINT(2u, n);
     TEST_ASSERT_EQUAL_UINT32(1u, d.stats.messages);
     TEST_ASSERT_EQUAL_UINT32(1u, d.stats.naks);
@@ -562,7 +584,8 @@ static void test_decoder_not_busy_after_bcc_0x10(void)
     size_t found = 0;
     for (i = 0; i < lep_json_len(enc); i++) {
         uint8_t wire[LEP_MAX_FRAME];
-        size_t wlen = lep_vectors_hex(lep_json_get_str(lep_json_at(enc, i), "wire"), wire, sizeof(wire));
+        size_t wlen =
+            lep_vectors_hex(lep_json_get_str(lep_json_at(enc, i), "wire"), wire, sizeof(wire));
         lep_frame_decoder d;
         lep_frame_event ev;
         if (wire[wlen - 1u] != LEP_DLE) {
@@ -581,7 +604,7 @@ static void test_decoder_not_busy_after_bcc_0x10(void)
  * and the frame after it still comes through. */
 static void test_overlong_run_of_stuffed_dles(void)
 {
-    static const uint8_t pi[] = {0x10, 0x02, 0x04, 0xFF, 0x2A, 0x00, 0x10, 0x03, 0xD2};
+    static const uint8_t pi[] = { 0x10, 0x02, 0x04, 0xFF, 0x2A, 0x00, 0x10, 0x03, 0xD2 };
     static uint8_t in[2u + 2u * 130u + 3u + sizeof(pi)];
     size_t len = 0;
     size_t i;
@@ -625,8 +648,8 @@ static void test_overlong_run_of_stuffed_dles(void)
  * bytes after it are left to the next call. */
 static void test_decoder_stops_after_each_event(void)
 {
-    static const uint8_t two[] = {0x10, 0x02, 0x04, 0xFF, 0x33, 0x00, 0x10, 0x03, 0xCB,
-                                  0x10, 0x15, 0x10, 0x02, 0x04, 0xFF, 0x2A, 0x00, 0x10, 0x03, 0xD2};
+    static const uint8_t two[] = { 0x10, 0x02, 0x04, 0xFF, 0x33, 0x00, 0x10, 0x03, 0xCB, 0x10,
+                                   0x15, 0x10, 0x02, 0x04, 0xFF, 0x2A, 0x00, 0x10, 0x03, 0xD2 };
     lep_frame_decoder d;
     lep_frame_event ev;
     size_t used;
@@ -648,7 +671,7 @@ static void test_decoder_stops_after_each_event(void)
  * (DLE STX DLE ETX BCC=0x03) must not be delivered as a message. */
 static void test_empty_frame_is_not_delivered(void)
 {
-    static const uint8_t empty[] = {0x10, 0x02, 0x10, 0x03, 0x03};
+    static const uint8_t empty[] = { 0x10, 0x02, 0x10, 0x03, 0x03 };
     size_t i;
     run(empty, sizeof(empty), SPLIT_WHOLE, 0, &g_got);
     for (i = 0; i < g_got.n; i++) {
@@ -663,7 +686,7 @@ static void test_empty_frame_is_not_delivered(void)
  * between them come back exactly, whatever the chunking. */
 static void test_random_messages_round_trip(void)
 {
-    static const uint8_t alphabet[] = {0x10, 0x10, 0x02, 0x03, 0x15, 0x00, 0xFF, 0x7E};
+    static const uint8_t alphabet[] = { 0x10, 0x10, 0x02, 0x03, 0x15, 0x00, 0xFF, 0x7E };
     static uint8_t stream[MAX_INPUT];
     uint32_t seed = 0xC0FFEEu;
     int round;
@@ -687,8 +710,8 @@ static void test_random_messages_round_trip(void)
                 uint32_t r = rng_next(&seed);
                 e->msg[j] = (r & 1u) ? alphabet[(r >> 1) % sizeof(alphabet)] : (uint8_t)(r >> 8);
             }
-            TEST_ASSERT_EQUAL_INT(LEP_OK, lep_frame_encode(e->msg, e->len, stream + len,
-                                                           sizeof(stream) - len, &n));
+            TEST_ASSERT_EQUAL_INT(
+                LEP_OK, lep_frame_encode(e->msg, e->len, stream + len, sizeof(stream) - len, &n));
             len += n;
         }
         g_want.stats.messages = 6;
@@ -708,7 +731,7 @@ static void test_random_messages_round_trip(void)
 /* Arbitrary bytes: whatever the decoder makes of them, every chunking agrees. */
 static void test_random_noise_is_chunking_invariant(void)
 {
-    static const uint8_t alphabet[] = {0x10, 0x10, 0x10, 0x02, 0x03, 0x15, 0x00, 0x13};
+    static const uint8_t alphabet[] = { 0x10, 0x10, 0x10, 0x02, 0x03, 0x15, 0x00, 0x13 };
     static uint8_t noise[MAX_INPUT];
     static run_result whole;
     uint32_t seed = 0xBADC0DEu;

@@ -22,7 +22,8 @@
 
 /* The reference build's entry points (frame.c compiled under these names). */
 uint8_t lep_small_bcc(const uint8_t *msg, size_t len);
-int lep_small_frame_encode(const uint8_t *msg, size_t len, uint8_t *out, size_t cap, size_t *out_len);
+int lep_small_frame_encode(const uint8_t *msg, size_t len, uint8_t *out, size_t cap,
+                           size_t *out_len);
 void lep_small_frame_decoder_init(lep_frame_decoder *d);
 size_t lep_small_frame_decoder_feed(lep_frame_decoder *d, const uint8_t *data, size_t len,
                                     lep_frame_event *ev);
@@ -50,7 +51,7 @@ typedef struct diff_run {
     lep_frame_stats stats;
     bool busy;
     const lep_frame_decoder *dec; /* the decoder being fed */
-    size_t diverged;              /* first chunk end where counters or busy() differed, or NO_DIVERGENCE */
+    size_t diverged; /* first chunk end where counters or busy() differed, or NO_DIVERGENCE */
 } diff_run;
 
 #define NO_DIVERGENCE ((size_t)-1)
@@ -102,7 +103,7 @@ static void on_event(void *user, const lep_frame_event *ev)
  * encoder refuses them), wrong BCCs, bytes changed and bytes lost. */
 static size_t make_stream(uint32_t *s)
 {
-    static const uint8_t alphabet[] = {0x10, 0x10, 0x10, 0x02, 0x03, 0x15, 0x00, 0x13, 0x12};
+    static const uint8_t alphabet[] = { 0x10, 0x10, 0x10, 0x02, 0x03, 0x15, 0x00, 0x13, 0x12 };
     const uint32_t mode = rng_next(s) % 4u;
     const size_t target = 1u + rng_next(s) % (MAX_INPUT - 400u);
     size_t len = 0;
@@ -112,13 +113,16 @@ static size_t make_stream(uint32_t *s)
             size_t n = 1u + rng_next(s) % 30u;
             while (n-- > 0u) {
                 const uint32_t r = rng_next(s);
-                g_in[len++] = (r & 3u) != 0u ? alphabet[(r >> 2) % sizeof(alphabet)] : (uint8_t)(r >> 8);
+                g_in[len++] =
+                    (r & 3u) != 0u ? alphabet[(r >> 2) % sizeof(alphabet)] : (uint8_t)(r >> 8);
             }
         } else { /* a frame, perhaps damaged */
             uint8_t msg[160];
             const uint32_t lk = rng_next(s) % 10u;
-            const size_t ml = lk == 0u ? 0u : lk == 1u ? 120u + rng_next(s) % 40u
-                                : lk < 5u ? 1u + rng_next(s) % LEP_MAX_MESSAGE : 20u;
+            const size_t ml = lk == 0u   ? 0u
+                              : lk == 1u ? 120u + rng_next(s) % 40u
+                              : lk < 5u  ? 1u + rng_next(s) % LEP_MAX_MESSAGE
+                                         : 20u;
             size_t n = 0;
             size_t j;
             for (j = 0; j < ml; j++) {
@@ -140,10 +144,12 @@ static size_t make_stream(uint32_t *s)
                 }
                 g_in[len++] = LEP_DLE;
                 g_in[len++] = LEP_ETX;
-                g_in[len++] = (rng_next(s) & 1u) != 0u ? lep_small_bcc(msg, ml) : (uint8_t)rng_next(s);
+                g_in[len++] =
+                    (rng_next(s) & 1u) != 0u ? lep_small_bcc(msg, ml) : (uint8_t)rng_next(s);
                 n = 2u * ml + 5u;
             } else {
-                TEST_ASSERT_EQUAL_INT(LEP_OK, lep_small_frame_encode(msg, ml, g_in + len, sizeof(g_in) - len, &n));
+                TEST_ASSERT_EQUAL_INT(
+                    LEP_OK, lep_small_frame_encode(msg, ml, g_in + len, sizeof(g_in) - len, &n));
                 len += n;
             }
             if (mode >= 2u && rng_next(s) % 3u == 0u) { /* change a few bytes */
@@ -222,13 +228,27 @@ static size_t chunk_size(enum chunking how, size_t left, uint32_t *s)
 {
     size_t c;
     switch (how) {
-    case CH_WHOLE: c = left; break;
-    case CH_BYTES: c = 1; break;
-    case CH_SMALL: c = 1u + rng_next(s) % 9u; break;
-    case CH_LARGE: c = 1u + rng_next(s) % 200u; break;
-    case CH_32: c = 32; break;
-    case CH_WORDISH: c = 7u + rng_next(s) % 3u; break;
-    default: c = rng_next(s) % 4u == 0u ? 0u : 1u + rng_next(s) % 64u; break; /* empty feeds too */
+    case CH_WHOLE:
+        c = left;
+        break;
+    case CH_BYTES:
+        c = 1;
+        break;
+    case CH_SMALL:
+        c = 1u + rng_next(s) % 9u;
+        break;
+    case CH_LARGE:
+        c = 1u + rng_next(s) % 200u;
+        break;
+    case CH_32:
+        c = 32;
+        break;
+    case CH_WORDISH:
+        c = 7u + rng_next(s) % 3u;
+        break;
+    default:
+        c = rng_next(s) % 4u == 0u ? 0u : 1u + rng_next(s) % 64u;
+        break; /* empty feeds too */
     }
     return c < left ? c : left;
 }
@@ -339,7 +359,8 @@ static void test_library_decoder_matches_the_byte_machine(void)
                 char what[96];
                 snprintf(what, sizeof(what), "stream seed 0x%08lX, api %d, chunking %d",
                          (unsigned long)stream_seed, api, how);
-                run_library(len, (enum api)api, (enum chunking)how, stream_seed ^ (uint32_t)how, &g_got);
+                run_library(len, (enum api)api, (enum chunking)how, stream_seed ^ (uint32_t)how,
+                            &g_got);
                 /* feed_all hands events over at chunk ends: no position */
                 expect_same(&g_ref, &g_got, api == API_FEED || api == API_PUSH1 || api == API_BYTE,
                             what);

@@ -103,7 +103,8 @@ static void test_command_vectors_encode_and_decode(void)
         TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_command_encode(&cmd, out, sizeof(out), &n),
                                       lep_vectors_ctx(name, "encode"));
         TEST_ASSERT_EQUAL_size_t_MESSAGE(wlen, n, lep_vectors_ctx(name, "encoded length"));
-        TEST_ASSERT_EQUAL_HEX8_ARRAY_MESSAGE(want, out, wlen, lep_vectors_ctx(name, "encoded bytes"));
+        TEST_ASSERT_EQUAL_HEX8_ARRAY_MESSAGE(want, out, wlen,
+                                             lep_vectors_ctx(name, "encoded bytes"));
         TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_command_encode(&cmd, out, wlen, &n),
                                       lep_vectors_ctx(name, "exact capacity"));
         TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_E_BUFFER, lep_command_encode(&cmd, out, wlen - 1u, &n),
@@ -113,7 +114,8 @@ static void test_command_vectors_encode_and_decode(void)
         TEST_ASSERT_EQUAL_INT(LEP_OK, lep_command_frame(&cmd, wire, sizeof(wire), &fn));
         TEST_ASSERT_EQUAL_INT(LEP_OK, lep_frame_encode(want, wlen, wire2, sizeof(wire2), &fn2));
         TEST_ASSERT_EQUAL_size_t_MESSAGE(fn2, fn, lep_vectors_ctx(name, "frame size"));
-        TEST_ASSERT_EQUAL_HEX8_ARRAY_MESSAGE(wire2, wire, fn2, lep_vectors_ctx(name, "frame bytes"));
+        TEST_ASSERT_EQUAL_HEX8_ARRAY_MESSAGE(wire2, wire, fn2,
+                                             lep_vectors_ctx(name, "frame bytes"));
         TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_E_BUFFER, lep_command_frame(&cmd, wire, fn2 - 1u, &fn),
                                       lep_vectors_ctx(name, "frame capacity one short"));
 
@@ -121,10 +123,12 @@ static void test_command_vectors_encode_and_decode(void)
         memset(&got, 0xA5, sizeof(got));
         TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_command_decode(want, wlen, &got, &result),
                                       lep_vectors_ctx(name, "decode"));
-        TEST_ASSERT_EQUAL_HEX8_MESSAGE(LEP_RESULT_OK, result, lep_vectors_ctx(name, "decode result"));
+        TEST_ASSERT_EQUAL_HEX8_MESSAGE(LEP_RESULT_OK, result,
+                                       lep_vectors_ctx(name, "decode result"));
         TEST_ASSERT_EQUAL_HEX8_MESSAGE(cmd.code, got.code, lep_vectors_ctx(name, "decoded code"));
         if (cmd.code == LEP_CMD_FILTER_SET) {
-            TEST_ASSERT_EQUAL_UINT8_MESSAGE(cmd.filter, got.filter, lep_vectors_ctx(name, "decoded filter"));
+            TEST_ASSERT_EQUAL_UINT8_MESSAGE(cmd.filter, got.filter,
+                                            lep_vectors_ctx(name, "decoded filter"));
         }
     }
 }
@@ -142,9 +146,12 @@ static void test_invalid_command_vectors(void)
         lep_command cmd;
         memset(&cmd, 0xA5, sizeof(cmd));
         TEST_ASSERT_EQUAL_INT_MESSAGE(lep_vectors_error(lep_json_get_str(v, "error")),
-                                      lep_command_decode(msg, len, &cmd, &result), lep_vectors_ctx(name, "error"));
-        TEST_ASSERT_EQUAL_HEX8_MESSAGE(get_u8(v, "result"), result, lep_vectors_ctx(name, "result to answer"));
-        TEST_ASSERT_EQUAL_HEX8_MESSAGE(get_u8(v, "code"), cmd.code, lep_vectors_ctx(name, "reported code"));
+                                      lep_command_decode(msg, len, &cmd, &result),
+                                      lep_vectors_ctx(name, "error"));
+        TEST_ASSERT_EQUAL_HEX8_MESSAGE(get_u8(v, "result"), result,
+                                       lep_vectors_ctx(name, "result to answer"));
+        TEST_ASSERT_EQUAL_HEX8_MESSAGE(get_u8(v, "code"), cmd.code,
+                                       lep_vectors_ctx(name, "reported code"));
     }
 }
 
@@ -171,7 +178,7 @@ static void test_command_encode_error_vectors(void)
 
 static void test_command_null_arguments(void)
 {
-    lep_command cmd = {LEP_CMD_STOP, 0};
+    lep_command cmd = { LEP_CMD_STOP, 0 };
     uint8_t out[16];
     uint8_t result = 0;
     size_t n;
@@ -230,8 +237,8 @@ static void test_command_frame_every_code_and_filter(void)
  * LEP_E_ARG, _UNEXPECTED, _VALUE, _BUFFER), with *len 0 where there is one. */
 static void test_command_arguments_checked_first(void)
 {
-    lep_command unknown = {0x40, 0};
-    lep_command bad_filter = {LEP_CMD_FILTER_SET, 9};
+    lep_command unknown = { 0x40, 0 };
+    lep_command bad_filter = { LEP_CMD_FILTER_SET, 9 };
     uint8_t out[16];
     size_t n = 99;
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_command_frame(&unknown, NULL, sizeof(out), &n));
@@ -262,8 +269,10 @@ static void expect_fields(const lep_response *want, const lep_response *got, con
     }
     switch (want->code) {
     case LEP_CMD_PRODUCT_INFO:
-        TEST_ASSERT_EQUAL_STRING_MESSAGE(want->u.info.model, got->u.info.model, lep_vectors_ctx(name, "model"));
-        TEST_ASSERT_EQUAL_STRING_MESSAGE(want->u.info.serial, got->u.info.serial, lep_vectors_ctx(name, "serial"));
+        TEST_ASSERT_EQUAL_STRING_MESSAGE(want->u.info.model, got->u.info.model,
+                                         lep_vectors_ctx(name, "model"));
+        TEST_ASSERT_EQUAL_STRING_MESSAGE(want->u.info.serial, got->u.info.serial,
+                                         lep_vectors_ctx(name, "serial"));
         TEST_ASSERT_EQUAL_STRING_MESSAGE(want->u.info.firmware, got->u.info.firmware,
                                          lep_vectors_ctx(name, "firmware"));
         TEST_ASSERT_EQUAL_STRING_MESSAGE(want->u.info.output_rate, got->u.info.output_rate,
@@ -276,11 +285,13 @@ static void expect_fields(const lep_response *want, const lep_response *got, con
     case LEP_CMD_RATED:
         for (i = 0; i < LEP_AXES; i++) {
             /* Exact: the vectors hold float32 values. */
-            TEST_ASSERT_TRUE_MESSAGE(want->u.rated.axis[i] == got->u.rated.axis[i], lep_vectors_ctx(name, "rated"));
+            TEST_ASSERT_TRUE_MESSAGE(want->u.rated.axis[i] == got->u.rated.axis[i],
+                                     lep_vectors_ctx(name, "rated"));
         }
         break;
     case LEP_CMD_FILTER_GET:
-        TEST_ASSERT_EQUAL_UINT8_MESSAGE(want->u.filter, got->u.filter, lep_vectors_ctx(name, "filter"));
+        TEST_ASSERT_EQUAL_UINT8_MESSAGE(want->u.filter, got->u.filter,
+                                        lep_vectors_ctx(name, "filter"));
         break;
     case LEP_CMD_SAMPLE:
     case LEP_CMD_START:
@@ -313,7 +324,8 @@ static void test_response_vectors_decode(void)
         response_of(v, &want);
         memset(&got, 0xA5, sizeof(got));
         TEST_ASSERT_EQUAL_INT_MESSAGE(err != NULL ? lep_vectors_error(err) : LEP_OK,
-                                      lep_response_decode(msg, len, &got), lep_vectors_ctx(name, "decode"));
+                                      lep_response_decode(msg, len, &got),
+                                      lep_vectors_ctx(name, "decode"));
         expect_fields(&want, &got, name);
     }
 }
@@ -338,7 +350,8 @@ static void test_response_vectors_encode(void)
         TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_response_encode(&r, out, sizeof(out), &n),
                                       lep_vectors_ctx(name, "encode"));
         TEST_ASSERT_EQUAL_size_t_MESSAGE(wlen, n, lep_vectors_ctx(name, "encoded length"));
-        TEST_ASSERT_EQUAL_HEX8_ARRAY_MESSAGE(want, out, wlen, lep_vectors_ctx(name, "encoded bytes"));
+        TEST_ASSERT_EQUAL_HEX8_ARRAY_MESSAGE(want, out, wlen,
+                                             lep_vectors_ctx(name, "encoded bytes"));
         TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_response_encode(&r, out, wlen, &n),
                                       lep_vectors_ctx(name, "exact capacity"));
         TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_E_BUFFER, lep_response_encode(&r, out, wlen - 1u, &n),
@@ -346,7 +359,8 @@ static void test_response_vectors_encode(void)
         TEST_ASSERT_EQUAL_INT(LEP_OK, lep_response_frame(&r, wire, sizeof(wire), &fn));
         TEST_ASSERT_EQUAL_INT(LEP_OK, lep_frame_encode(want, wlen, wire2, sizeof(wire2), &fn2));
         TEST_ASSERT_EQUAL_size_t_MESSAGE(fn2, fn, lep_vectors_ctx(name, "frame size"));
-        TEST_ASSERT_EQUAL_HEX8_ARRAY_MESSAGE(wire2, wire, fn2, lep_vectors_ctx(name, "frame bytes"));
+        TEST_ASSERT_EQUAL_HEX8_ARRAY_MESSAGE(wire2, wire, fn2,
+                                             lep_vectors_ctx(name, "frame bytes"));
     }
 }
 
@@ -367,7 +381,8 @@ static void test_response_vectors_round_trip(void)
         TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_response_encode(&r, out, sizeof(out), &n),
                                       lep_vectors_ctx(name, "re-encode"));
         TEST_ASSERT_EQUAL_size_t_MESSAGE(len, n, lep_vectors_ctx(name, "re-encoded length"));
-        TEST_ASSERT_EQUAL_HEX8_ARRAY_MESSAGE(msg, out, len, lep_vectors_ctx(name, "re-encoded bytes"));
+        TEST_ASSERT_EQUAL_HEX8_ARRAY_MESSAGE(msg, out, len,
+                                             lep_vectors_ctx(name, "re-encoded bytes"));
     }
 }
 
@@ -399,7 +414,8 @@ static void test_response_variant_vectors(void)
         uint8_t canonical[LEP_MAX_MESSAGE];
         uint8_t out[LEP_MAX_MESSAGE];
         size_t len = lep_vectors_hex(lep_json_get_str(v, "message"), msg, sizeof(msg));
-        size_t clen = lep_vectors_hex(lep_json_get_str(v, "canonical"), canonical, sizeof(canonical));
+        size_t clen =
+            lep_vectors_hex(lep_json_get_str(v, "canonical"), canonical, sizeof(canonical));
         size_t n = 0;
         lep_response want;
         lep_response got;
@@ -408,13 +424,14 @@ static void test_response_variant_vectors(void)
                                       lep_vectors_ctx(name, "decode"));
         expect_fields(&want, &got, name);
         if (len == LEP_LEN_SAMPLE) {
-            TEST_ASSERT_EQUAL_HEX8_MESSAGE((uint8_t)lep_json_get_int(v, "last_reserved", -1), msg[19],
-                                           lep_vectors_ctx(name, "last reserved byte"));
+            TEST_ASSERT_EQUAL_HEX8_MESSAGE((uint8_t)lep_json_get_int(v, "last_reserved", -1),
+                                           msg[19], lep_vectors_ctx(name, "last reserved byte"));
         }
         TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_response_encode(&got, out, sizeof(out), &n),
                                       lep_vectors_ctx(name, "encode"));
         TEST_ASSERT_EQUAL_size_t_MESSAGE(clen, n, lep_vectors_ctx(name, "canonical length"));
-        TEST_ASSERT_EQUAL_HEX8_ARRAY_MESSAGE(canonical, out, clen, lep_vectors_ctx(name, "canonical bytes"));
+        TEST_ASSERT_EQUAL_HEX8_ARRAY_MESSAGE(canonical, out, clen,
+                                             lep_vectors_ctx(name, "canonical bytes"));
     }
 }
 
@@ -448,9 +465,9 @@ static void test_encoder_refuses_what_decoding_rejects(void)
 static void test_sample_to_si_float(void)
 {
     lep_sample s;
-    lep_rated rated = {{500.0f, 500.0f, 1000.0f, 40.0f, 40.0f, 30.0f}};
+    lep_rated rated = { { 500.0f, 500.0f, 1000.0f, 40.0f, 40.0f, 30.0f } };
     double d[LEP_AXES];
-    float f[LEP_AXES] = {0};
+    float f[LEP_AXES] = { 0 };
     size_t i;
     memset(&s, 0, sizeof(s));
     s.raw[0] = 10000;
@@ -462,7 +479,8 @@ static void test_sample_to_si_float(void)
     lep_sample_to_si(&s, &rated, d);
     lep_sample_to_si_f(&s, &rated, f);
     for (i = 0; i < LEP_AXES; i++) {
-        TEST_ASSERT_FLOAT_WITHIN((float)(1e-6 * (d[i] < 0 ? -d[i] : d[i]) + 1e-9), (float)d[i], f[i]);
+        TEST_ASSERT_FLOAT_WITHIN((float)(1e-6 * (d[i] < 0 ? -d[i] : d[i]) + 1e-9), (float)d[i],
+                                 f[i]);
     }
     TEST_ASSERT_EQUAL_FLOAT(500.0f, f[0]);
     d[0] = 7.0;
@@ -482,7 +500,7 @@ static void test_sensor_result_codes(void)
 {
     uint8_t result;
     for (result = 1; result <= 4; result++) {
-        uint8_t msg[4] = {0x04, 0xFF, LEP_CMD_RATED, 0};
+        uint8_t msg[4] = { 0x04, 0xFF, LEP_CMD_RATED, 0 };
         lep_response r;
         msg[3] = result;
         TEST_ASSERT_EQUAL_INT(LEP_E_SENSOR, lep_response_decode(msg, sizeof(msg), &r));
@@ -493,8 +511,8 @@ static void test_sensor_result_codes(void)
 
 static void test_response_encode_errors(void)
 {
-    static const uint32_t bad_bits[] = {0x7FC00000u, 0x7F800000u, 0xFF800000u, 0x00000000u,
-                                        0x80000000u, 0xC1200000u /* -10.0 */};
+    static const uint32_t bad_bits[] = { 0x7FC00000u, 0x7F800000u, 0xFF800000u,
+                                         0x00000000u, 0x80000000u, 0xC1200000u /* -10.0 */ };
     uint8_t out[LEP_MAX_MESSAGE];
     size_t n;
     size_t i;
@@ -577,7 +595,8 @@ static void test_si_vectors(void)
         lep_sample_to_si(&s, &rt, got);
         for (a = 0; a < LEP_AXES; a++) {
             double w = lep_json_num(lep_json_at(want, a));
-            TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(1e-12 * ((w < 0 ? -w : w) + 1.0), w, got[a], lep_vectors_ctx(name, "si"));
+            TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(1e-12 * ((w < 0 ? -w : w) + 1.0), w, got[a],
+                                              lep_vectors_ctx(name, "si"));
         }
     }
 }
@@ -585,8 +604,8 @@ static void test_si_vectors(void)
 static void test_si_of_the_spec_sample(void)
 {
     /* Spec data response: (16, -16, 10000, -10000, 4112, 32000) with PFS055YA501U6 ratings. */
-    const lep_sample s = {{16, -16, 10000, -10000, 4112, 32000}, 0, LEP_STATUS_OVERLOAD};
-    const lep_rated rt = {{500.0f, 500.0f, 500.0f, 10.0f, 10.0f, 8.0f}};
+    const lep_sample s = { { 16, -16, 10000, -10000, 4112, 32000 }, 0, LEP_STATUS_OVERLOAD };
+    const lep_rated rt = { { 500.0f, 500.0f, 500.0f, 10.0f, 10.0f, 8.0f } };
     double si[LEP_AXES];
     lep_sample_to_si(&s, &rt, si);
     TEST_ASSERT_DOUBLE_WITHIN(1e-9, 0.8, si[LEP_FX]);
@@ -610,9 +629,9 @@ static void test_saturation_vectors(void)
         for (a = 0; a < LEP_AXES; a++) {
             s.raw[a] = (int16_t)lep_json_num(lep_json_at(raw, a));
         }
-        TEST_ASSERT_EQUAL_HEX8_MESSAGE(get_u8(v, "mask"),
-                                       lep_sample_saturated(&s, (int16_t)lep_json_get_int(v, "limit", 0)),
-                                       lep_vectors_ctx(lep_json_get_str(v, "name"), "mask"));
+        TEST_ASSERT_EQUAL_HEX8_MESSAGE(
+            get_u8(v, "mask"), lep_sample_saturated(&s, (int16_t)lep_json_get_int(v, "limit", 0)),
+            lep_vectors_ctx(lep_json_get_str(v, "name"), "mask"));
     }
     TEST_ASSERT_EQUAL_INT(32000, LEP_SATURATION_V113);
     TEST_ASSERT_EQUAL_INT(15000, LEP_SATURATION_LATER);
@@ -622,8 +641,8 @@ static void test_saturation_vectors(void)
 
 static void test_status_bits(void)
 {
-    static const uint8_t msg[] = {0x14, 0xFF, 0x30, 0x00, 0, 0, 0, 0, 0, 0, 0, 0,
-                                  0,    0,    0,    0,    0, 0, 0x07, 0};
+    static const uint8_t msg[] = { 0x14, 0xFF, 0x30, 0x00, 0, 0, 0, 0, 0,    0,
+                                   0,    0,    0,    0,    0, 0, 0, 0, 0x07, 0 };
     lep_response r;
     TEST_ASSERT_EQUAL_HEX8(0x01, LEP_STATUS_CALIBRATION);
     TEST_ASSERT_EQUAL_HEX8(0x02, LEP_STATUS_SENSOR_FAULT);
@@ -641,12 +660,12 @@ static void test_status_bits(void)
  * their own path (test_message_small runs the size builds' one). */
 static void test_sample_decode_whole_response(void)
 {
-    static const uint8_t codes[2] = {LEP_CMD_SAMPLE, LEP_CMD_START};
-    static const int16_t raw[LEP_AXES] = {-32000, 32000, -1, 0, 256, -257};
-    static const int32_t bad[2] = {32001, -32001};
+    static const uint8_t codes[2] = { LEP_CMD_SAMPLE, LEP_CMD_START };
+    static const int16_t raw[LEP_AXES] = { -32000, 32000, -1, 0, 256, -257 };
+    static const int32_t bad[2] = { 32001, -32001 };
     size_t c;
     for (c = 0; c < 2; c++) {
-        uint8_t msg[LEP_LEN_SAMPLE] = {LEP_LEN_SAMPLE, 0xFF, codes[c], 0x00};
+        uint8_t msg[LEP_LEN_SAMPLE] = { LEP_LEN_SAMPLE, 0xFF, codes[c], 0x00 };
         lep_response want;
         lep_response got;
         size_t a;
@@ -703,11 +722,12 @@ static void expect_distinct(const char *const *s, size_t n, const char *what)
 static void test_strerror_every_code(void)
 {
     static const int codes[] = {
-        LEP_OK,          LEP_E_ARG,          LEP_E_BUFFER,    LEP_E_TOO_LONG,  LEP_E_BCC,
-        LEP_E_ESCAPE,    LEP_E_LENGTH,       LEP_E_RESERVED,  LEP_E_UNEXPECTED, LEP_E_VALUE,
-        LEP_E_SENSOR,    LEP_E_NAK,          LEP_E_TIMEOUT,   LEP_E_IO,        LEP_E_DISCONNECTED,
-        LEP_E_BUSY,      LEP_E_NOT_FOUND,    LEP_E_PERMISSION, LEP_E_NOT_TTY,  LEP_E_STATE,
-        LEP_E_NO_SYNC,   LEP_E_UNSUPPORTED,  LEP_E_END,       LEP_E_STALLED};
+        LEP_OK,        LEP_E_ARG,         LEP_E_BUFFER,     LEP_E_TOO_LONG,   LEP_E_BCC,
+        LEP_E_ESCAPE,  LEP_E_LENGTH,      LEP_E_RESERVED,   LEP_E_UNEXPECTED, LEP_E_VALUE,
+        LEP_E_SENSOR,  LEP_E_NAK,         LEP_E_TIMEOUT,    LEP_E_IO,         LEP_E_DISCONNECTED,
+        LEP_E_BUSY,    LEP_E_NOT_FOUND,   LEP_E_PERMISSION, LEP_E_NOT_TTY,    LEP_E_STATE,
+        LEP_E_NO_SYNC, LEP_E_UNSUPPORTED, LEP_E_END,        LEP_E_STALLED
+    };
     const char *s[sizeof(codes) / sizeof(codes[0]) + 1];
     size_t i;
     for (i = 0; i < sizeof(codes) / sizeof(codes[0]); i++) {
@@ -718,7 +738,8 @@ static void test_strerror_every_code(void)
     /* the ends of the packed list, and both sides of it */
     TEST_ASSERT_EQUAL_STRING("success", lep_strerror(LEP_OK));
     TEST_ASSERT_EQUAL_STRING("invalid argument", lep_strerror(LEP_E_ARG));
-    TEST_ASSERT_EQUAL_STRING("no stream data within the watchdog time", lep_strerror(LEP_E_STALLED));
+    TEST_ASSERT_EQUAL_STRING("no stream data within the watchdog time",
+                             lep_strerror(LEP_E_STALLED));
     TEST_ASSERT_EQUAL_STRING("unknown error", lep_strerror(1));
     TEST_ASSERT_EQUAL_STRING("unknown error", lep_strerror(LEP_E_STALLED - 1));
 }

@@ -35,8 +35,8 @@ void tearDown(void)
  * limit (-32050..32049); the rest is random. */
 static size_t random_message(uint32_t *seed, uint8_t *msg)
 {
-    static const uint8_t codes[] = {LEP_CMD_SAMPLE, LEP_CMD_START, 0x31, LEP_CMD_STOP,
-                                    LEP_CMD_RATED};
+    static const uint8_t codes[] = { LEP_CMD_SAMPLE, LEP_CMD_START, 0x31, LEP_CMD_STOP,
+                                     LEP_CMD_RATED };
     uint32_t k = rng_next(seed);
     size_t len = (size_t)(rng_next(seed) % 41u);
     size_t i;

@@ -14,11 +14,11 @@
 #define SENSOR_BAUD 460800u
 
 typedef struct cmsdk_uart {
-    volatile uint32_t data;   /* 0x00 received / to send byte */
-    volatile uint32_t state;  /* 0x04 bit 0 TX full, bit 1 RX full, bits 2-3 overruns */
-    volatile uint32_t ctrl;   /* 0x08 bit 0 TX enable, bit 1 RX enable, bit 3 RX interrupt */
-    volatile uint32_t intsts; /* 0x0C interrupt status; write 1 to clear */
-    volatile uint32_t bauddiv;/* 0x10 clock / baud rate, >= 16 */
+    volatile uint32_t data;    /* 0x00 received / to send byte */
+    volatile uint32_t state;   /* 0x04 bit 0 TX full, bit 1 RX full, bits 2-3 overruns */
+    volatile uint32_t ctrl;    /* 0x08 bit 0 TX enable, bit 1 RX enable, bit 3 RX interrupt */
+    volatile uint32_t intsts;  /* 0x0C interrupt status; write 1 to clear */
+    volatile uint32_t bauddiv; /* 0x10 clock / baud rate, >= 16 */
 } cmsdk_uart;
 
 #define UART0 ((cmsdk_uart *)UART0_BASE)

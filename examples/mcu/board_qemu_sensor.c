@@ -127,8 +127,8 @@ void SysTick_Handler(void)
 
 void board_init(void)
 {
-    static const lep_rated rated = {{500.0f, 500.0f, 1000.0f, 10.0f, 10.0f, 8.0f}};
-    const lep_command start_cmd = {LEP_CMD_START, 0};
+    static const lep_rated rated = { { 500.0f, 500.0f, 1000.0f, 10.0f, 10.0f, 8.0f } };
+    const lep_command start_cmd = { LEP_CMD_START, 0 };
     uint8_t start[LEP_MAX_FRAME];
     size_t start_len = 0;
     lep_product_info info;
@@ -207,13 +207,13 @@ bool board_should_stop(void)
     printf("published %lu samples (%lu after the silence), stale %lu, wrong SI %lu; "
            "sensor saw %lu stops, %lu starts, %lu product-info queries; ring overruns %lu\n",
            (unsigned long)seen.published, (unsigned long)seen.published_after_silence,
-           (unsigned long)seen.stale_published, (unsigned long)seen.bad_si, (unsigned long)seen.stops,
-           (unsigned long)seen.starts, (unsigned long)seen.queries,
+           (unsigned long)seen.stale_published, (unsigned long)seen.bad_si,
+           (unsigned long)seen.stops, (unsigned long)seen.starts, (unsigned long)seen.queries,
            (unsigned long)board_uart_rx.overruns);
     /* Streaming before the silence (~550 ms) and after it (~500 ms) at 1.2 kHz. */
     ok = seen.published >= 900u && seen.published_after_silence >= 400u &&
-         seen.stale_published == 0u && seen.bad_si == 0u && seen.stops >= 2u &&
-         seen.starts >= 2u && board_uart_rx.overruns == 0u;
+         seen.stale_published == 0u && seen.bad_si == 0u && seen.stops >= 2u && seen.starts >= 2u &&
+         board_uart_rx.overruns == 0u;
     puts(ok ? "mcu example: OK" : "mcu example: FAIL");
     exit(ok ? 0 : 1);
 }

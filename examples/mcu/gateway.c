@@ -31,7 +31,7 @@ static uint32_t tick_ms(void *user)
 
 static void send(gateway *g, uint8_t code, uint8_t next)
 {
-    lep_command cmd = {code, 0};
+    lep_command cmd = { code, 0 };
     g->state = next;
     if (lep_client_send(&g->client, &cmd) != LEP_OK) {
         board_log("write failed", 0);

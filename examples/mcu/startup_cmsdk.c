@@ -13,8 +13,22 @@ extern uint32_t __stack_top, __data_load, __data_start, __data_end, __bss_start,
 typedef void (*vector)(void);
 
 __attribute__((section(".vectors"), used)) const vector vectors[16 + 1] = {
-    (vector)(uintptr_t)&__stack_top, Reset_Handler, Default_Handler, Default_Handler,
-    0, 0, 0, 0, 0, 0, 0, Default_Handler, 0, 0, Default_Handler, SysTick_Handler,
+    (vector)(uintptr_t)&__stack_top,
+    Reset_Handler,
+    Default_Handler,
+    Default_Handler,
+    0,
+    0,
+    0,
+    0,
+    0,
+    0,
+    0,
+    Default_Handler,
+    0,
+    0,
+    Default_Handler,
+    SysTick_Handler,
     UART0_RX_Handler, /* IRQ 0 */
 };
 

@@ -68,9 +68,10 @@ typedef struct lep_client_stats {
 
 /* Step outcomes (non-negative); failures are negative LEP_E_* codes. */
 enum lep_step {
-    LEP_STEP_NONE = 0,     /* input consumed, nothing to report */
-    LEP_STEP_RESPONSE = 1, /* the transaction (or start-up recovery) finished: lep_client_response() */
-    LEP_STEP_SAMPLE = 2    /* a stream sample arrived: lep_client_get_sample() */
+    LEP_STEP_NONE = 0, /* input consumed, nothing to report */
+    LEP_STEP_RESPONSE =
+        1,              /* the transaction (or start-up recovery) finished: lep_client_response() */
+    LEP_STEP_SAMPLE = 2 /* a stream sample arrived: lep_client_get_sample() */
 };
 
 #define LEP_CLIENT_DEFAULT_TIMEOUT_MS 100
@@ -97,18 +98,18 @@ typedef struct lep_client {
     uint8_t tries;
     uint8_t max_retries;
     uint8_t last_result;
-    lep_command cmd;        /* pending command (its filter is read only by a filter set) */
-    uint8_t msg_len;        /* length of the last outcome's message (at dec.buf), or 0 */
+    lep_command cmd; /* pending command (its filter is read only by a filter set) */
+    uint8_t msg_len; /* length of the last outcome's message (at dec.buf), or 0 */
     uint16_t watchdog_ms;
-    uint16_t quiet_ms;      /* the drain's quiet time (0: LEP_CLIENT_DEFAULT_QUIET_MS) */
-    uint16_t fast;          /* counts single-byte steps up to the next look at the clock */
-    uint16_t msg_at;        /* fast when the message was kept: current while they agree */
-    uint32_t t_start;       /* when the transaction attempt or the quiet time began */
-    uint32_t t_aux;         /* when the drain began, or the watchdog's reference time */
+    uint16_t quiet_ms; /* the drain's quiet time (0: LEP_CLIENT_DEFAULT_QUIET_MS) */
+    uint16_t fast;     /* counts single-byte steps up to the next look at the clock */
+    uint16_t msg_at;   /* fast when the message was kept: current while they agree */
+    uint32_t t_start;  /* when the transaction attempt or the quiet time began */
+    uint32_t t_aux;    /* when the drain began, or the watchdog's reference time */
     uint32_t timeout_ms;
-    lep_client_rx *rx;      /* read buffer of the blocking calls, or NULL */
+    lep_client_rx *rx; /* read buffer of the blocking calls, or NULL */
     lep_io io;
-    uint32_t count[10];     /* the client's own counters: lep_client_stats from retries on */
+    uint32_t count[10]; /* the client's own counters: lep_client_stats from retries on */
     lep_frame_decoder dec;
 } lep_client;
 

@@ -28,10 +28,10 @@ extern "C" {
 #endif
 
 enum lep_device_event_type {
-    LEP_DEVICE_NONE = 0,     /* input consumed, nothing to answer */
-    LEP_DEVICE_COMMAND = 1,  /* a command was processed; out holds its answer */
-    LEP_DEVICE_NAK = 2,      /* a command with a bad BCC; out holds DLE NAK */
-    LEP_DEVICE_REJECTED = 3  /* a frame that cannot be answered (bad escape, too long, no code) */
+    LEP_DEVICE_NONE = 0,    /* input consumed, nothing to answer */
+    LEP_DEVICE_COMMAND = 1, /* a command was processed; out holds its answer */
+    LEP_DEVICE_NAK = 2,     /* a command with a bad BCC; out holds DLE NAK */
+    LEP_DEVICE_REJECTED = 3 /* a frame that cannot be answered (bad escape, too long, no code) */
 };
 
 typedef struct lep_device_event {

@@ -51,13 +51,14 @@ enum lep_frame_event_type {
 };
 
 typedef struct lep_frame_event {
-    int type;           /* enum lep_frame_event_type */
-    int error;          /* with LEP_FRAME_ERROR: LEP_E_BCC, LEP_E_ESCAPE, LEP_E_TOO_LONG,
+    int type;  /* enum lep_frame_event_type */
+    int error; /* with LEP_FRAME_ERROR: LEP_E_BCC, LEP_E_ESCAPE, LEP_E_TOO_LONG,
                            LEP_E_LENGTH for an empty frame (counted in bytes_discarded only),
                            or LEP_E_ARG for a bad argument to lep_frame_decoder_feed or
                            lep_frame_decoder_feed_byte */
-    const uint8_t *msg; /* with LEP_FRAME_MESSAGE: the unstuffed message, valid until the next feed */
-    size_t len;         /* its length (1..128) */
+    const uint8_t
+        *msg;   /* with LEP_FRAME_MESSAGE: the unstuffed message, valid until the next feed */
+    size_t len; /* its length (1..128) */
 } lep_frame_event;
 
 /* Decoder counters; they only grow (wrap at 2^32). */

@@ -89,8 +89,8 @@ typedef struct lep_rated {
  * accepted with any value and not kept (the client counts non-zero ones). */
 typedef struct lep_sample {
     int16_t raw[LEP_AXES]; /* counts: +/-10000 = +/- rated; |raw| <= 32000 (else LEP_E_VALUE) */
-    uint16_t reserved;     /* the two undefined bytes (LE); leptrino-sim puts a sequence number here */
-    uint8_t status;        /* LEP_STATUS_* bits */
+    uint16_t reserved; /* the two undefined bytes (LE); leptrino-sim puts a sequence number here */
+    uint8_t status;    /* LEP_STATUS_* bits */
 } lep_sample;
 
 /* A response. Which member of u is valid depends on code, result and stream. */

@@ -18,13 +18,13 @@ extern "C" {
 
 /* Destination arrays; any pointer but t may be NULL to skip that column. */
 typedef struct lep_record_batch {
-    size_t cap;       /* capacity in samples */
-    size_t n;         /* samples filled so far; the call appends from here */
-    double *t;        /* [cap] host arrival time, lep_monotonic_seconds() */
-    double *si;       /* [cap * 6] N, N m (needs rated) */
-    int16_t *raw;     /* [cap * 6] counts */
-    uint8_t *status;  /* [cap] status bits */
-    uint16_t *seq;    /* [cap] the two reserved bytes (sequence number of leptrino-sim) */
+    size_t cap;      /* capacity in samples */
+    size_t n;        /* samples filled so far; the call appends from here */
+    double *t;       /* [cap] host arrival time, lep_monotonic_seconds() */
+    double *si;      /* [cap * 6] N, N m (needs rated) */
+    int16_t *raw;    /* [cap * 6] counts */
+    uint8_t *status; /* [cap] status bits */
+    uint16_t *seq;   /* [cap] the two reserved bytes (sequence number of leptrino-sim) */
 } lep_record_batch;
 
 /* Append stream samples to b until it is full or the monotonic clock

@@ -43,37 +43,37 @@ typedef struct lep_session lep_session;
 /* Options; start from lep_session_options_init(). Copied at open. */
 typedef struct lep_session_options {
     /* ---- the port ---- */
-    const char *port;        /* serial port path (used when use_sim is false) */
-    bool use_sim;            /* start an in-process virtual sensor with sim instead */
-    lep_sim_options sim;     /* its options (lep_sim_options_init'ed by default) */
+    const char *port;    /* serial port path (used when use_sim is false) */
+    bool use_sim;        /* start an in-process virtual sensor with sim instead */
+    lep_sim_options sim; /* its options (lep_sim_options_init'ed by default) */
     /* ---- start-up and transactions ---- */
-    int timeout_ms;          /* answer timeout per attempt, default 500 */
-    int sync_quiet_ms;       /* quiet time that ends the start-up drain, default 30 */
+    int timeout_ms;    /* answer timeout per attempt, default 500 */
+    int sync_quiet_ms; /* quiet time that ends the start-up drain, default 30 */
     /* ---- stream ---- */
-    int data_timeout_ms;     /* no sample for this long while streaming: a disconnect
+    int data_timeout_ms;      /* no sample for this long while streaming: a disconnect
                                 (reconnect) or LEP_E_TIMEOUT, default 2000 */
-    double gap_periods;      /* a hole longer than this many nominal periods is a gap, default 3 */
-    double nominal_hz;       /* 0 (default): the sensor's output-rate field, else the virtual
+    double gap_periods;       /* a hole longer than this many nominal periods is a gap, default 3 */
+    double nominal_hz;        /* 0 (default): the sensor's output-rate field, else the virtual
                                 sensor's rate_hz with use_sim, else 1200 */
-    bool reconnect;          /* after a disconnect or data timeout, reopen with backoff,
+    bool reconnect;           /* after a disconnect or data timeout, reopen with backoff,
                                 re-sync and restart the stream (default false) */
-    int reconnect_min_ms;    /* backoff from ... (default 100) */
-    int reconnect_max_ms;    /* ... doubling up to this (default 1000) */
+    int reconnect_min_ms;     /* backoff from ... (default 100) */
+    int reconnect_max_ms;     /* ... doubling up to this (default 1000) */
     int reconnect_give_up_ms; /* give up after this long without the sensor, < 0 never (default) */
-    int latency_ms;          /* latency budget: how long delivery may hold samples back to
+    int latency_ms;           /* latency budget: how long delivery may hold samples back to
                                 save wake-ups; 0 (default) delivers as soon as a read returns */
     /* ---- processing (all can be changed later except tare_samples) ---- */
-    unsigned tare_samples;   /* tare over the first N samples after start; they are not
+    unsigned tare_samples; /* tare over the first N samples after start; they are not
                                 delivered (0 = none) */
-    double lowpass_hz;       /* host low-pass cut-off on SI values, 0 = off */
-    unsigned decimate;       /* deliver every Nth sample (after the low-pass), default 1 */
-    double rotation[9];      /* row-major R: output force = R f, moment = R m (identity) */
-    double shift_m[3];       /* moment reference point, in the output frame, metres: the
+    double lowpass_hz;     /* host low-pass cut-off on SI values, 0 = off */
+    unsigned decimate;     /* deliver every Nth sample (after the low-pass), default 1 */
+    double rotation[9];    /* row-major R: output force = R f, moment = R m (identity) */
+    double shift_m[3];     /* moment reference point, in the output frame, metres: the
                                 moment about it is m' - r x f' (default 0) */
     /* ---- end of stream ---- */
-    double duration_s;       /* lep_session_read gives LEP_E_END after this long from the
+    double duration_s; /* lep_session_read gives LEP_E_END after this long from the
                                 first delivered sample's arrival, 0 = none */
-    uint64_t count;          /* ... or after this many samples delivered, 0 = none */
+    uint64_t count;    /* ... or after this many samples delivered, 0 = none */
 } lep_session_options;
 
 /* Per-sample flags (lep_session_batch.flags). */
@@ -85,16 +85,16 @@ typedef struct lep_session_options {
 /* Destination arrays, caller-owned. Every pointer may be NULL to skip that
  * column. lep_session_read appends from n up to cap. */
 typedef struct lep_session_batch {
-    size_t cap;       /* capacity in samples */
-    size_t n;         /* samples filled so far */
-    double *t_mono;   /* [cap] s, lep_monotonic_seconds() when the read delivering it returned */
-    double *t_utc;    /* [cap] s since 1970-01-01 UTC, the same instant on the wall clock */
-    int16_t *raw;     /* [cap*6] counts as received */
-    double *zeroed;   /* [cap*6] raw - tare offset, counts */
-    double *si;       /* [cap*6] N, N m: zeroed, low-passed, decimated, rotated, shifted */
-    uint8_t *status;  /* [cap] the sensor's LEP_STATUS_* bits */
-    uint8_t *flags;   /* [cap] LEP_SF_* */
-    uint16_t *seq;    /* [cap] the reserved bytes (leptrino-sim's sequence number) */
+    size_t cap;      /* capacity in samples */
+    size_t n;        /* samples filled so far */
+    double *t_mono;  /* [cap] s, lep_monotonic_seconds() when the read delivering it returned */
+    double *t_utc;   /* [cap] s since 1970-01-01 UTC, the same instant on the wall clock */
+    int16_t *raw;    /* [cap*6] counts as received */
+    double *zeroed;  /* [cap*6] raw - tare offset, counts */
+    double *si;      /* [cap*6] N, N m: zeroed, low-passed, decimated, rotated, shifted */
+    uint8_t *status; /* [cap] the sensor's LEP_STATUS_* bits */
+    uint8_t *flags;  /* [cap] LEP_SF_* */
+    uint16_t *seq;   /* [cap] the reserved bytes (leptrino-sim's sequence number) */
 } lep_session_batch;
 
 enum lep_session_event_type {
@@ -107,35 +107,35 @@ enum lep_session_event_type {
 };
 
 typedef struct lep_session_event {
-    int type;              /* enum lep_session_event_type */
-    uint64_t sample;       /* index (count of samples delivered before it) where it applies */
-    double t_mono;         /* when, monotonic s */
-    double t_utc;          /* when, UTC s */
-    double gap_from;       /* GAP/RECONNECTED: arrival of the last sample before (mono s);
+    int type;        /* enum lep_session_event_type */
+    uint64_t sample; /* index (count of samples delivered before it) where it applies */
+    double t_mono;   /* when, monotonic s */
+    double t_utc;    /* when, UTC s */
+    double gap_from; /* GAP/RECONNECTED: arrival of the last sample before (mono s);
                               DISCONNECTED: the same, the last sample received */
-    double gap_to;         /* ... and of the first after */
-    uint32_t lost;         /* GAP: samples estimated lost (from sequence numbers on the
+    double gap_to;   /* ... and of the first after */
+    uint32_t lost;   /* GAP: samples estimated lost (from sequence numbers on the
                               virtual sensor, from arrival times otherwise) */
-    int error;             /* DISCONNECTED, and RECONNECTED (what caused the loss):
+    int error;       /* DISCONNECTED, and RECONNECTED (what caused the loss):
                               LEP_E_DISCONNECTED or LEP_E_TIMEOUT; 0 otherwise */
-    uint8_t axes;          /* OVERLOAD_*: bit i = axis i saturated; status bits in status */
+    uint8_t axes;    /* OVERLOAD_*: bit i = axis i saturated; status bits in status */
     uint8_t status;
     double tare[LEP_AXES]; /* TARE: the offsets now in force (counts; zeros when untared) */
 } lep_session_event;
 
 /* Health, since lep_session_start. */
 typedef struct lep_session_health {
-    double elapsed_s;       /* from the first sample to the last */
-    double nominal_hz;      /* 1200, or the sensor's output-rate field */
-    double measured_hz;     /* (samples received - 1) / elapsed (decimation not applied) */
-    double recent_hz;       /* over the last second or so */
-    bool shortfall;         /* measured_hz below 98 % of nominal over at least 1 s */
-    uint64_t received;      /* samples received (tare samples included) */
-    uint64_t delivered;     /* samples delivered (after decimation) */
-    uint64_t lost;          /* samples estimated lost in gaps */
+    double elapsed_s;   /* from the first sample to the last */
+    double nominal_hz;  /* 1200, or the sensor's output-rate field */
+    double measured_hz; /* (samples received - 1) / elapsed (decimation not applied) */
+    double recent_hz;   /* over the last second or so */
+    bool shortfall;     /* measured_hz below 98 % of nominal over at least 1 s */
+    uint64_t received;  /* samples received (tare samples included) */
+    uint64_t delivered; /* samples delivered (after decimation) */
+    uint64_t lost;      /* samples estimated lost in gaps */
     uint64_t gaps;
-    uint64_t errors;        /* framing, BCC, invalid messages, timeouts (all connections) */
-    uint64_t overloads;     /* overload episodes begun */
+    uint64_t errors;    /* framing, BCC, invalid messages, timeouts (all connections) */
+    uint64_t overloads; /* overload episodes begun */
     uint64_t disconnects;
     uint64_t reconnects;
     double max_gap_s;
@@ -144,25 +144,25 @@ typedef struct lep_session_health {
 
 /* What a recording says about itself. Strings are NUL-terminated. */
 typedef struct lep_session_metadata {
-    lep_product_info info;       /* model, serial, firmware, output-rate field */
-    char protocol[24];           /* "v1.13 (32-byte info)" or "rate field (38-byte)" */
+    lep_product_info info; /* model, serial, firmware, output-rate field */
+    char protocol[24];     /* "v1.13 (32-byte info)" or "rate field (38-byte)" */
     lep_rated rated;
-    int sensor_filter;           /* the sensor's filter code, -1 when it refused or did not answer */
+    int sensor_filter; /* the sensor's filter code, -1 when it refused or did not answer */
     char sensor_filter_label[24]; /* lep_filter_label, or "not supported by sensor" */
     double nominal_hz;
-    double lowpass_hz;           /* host low-pass cut-off, 0 off */
-    char lowpass_name[48];       /* the filter's name, "" when off */
-    double lowpass_delay_s;      /* its group delay at low frequency */
+    double lowpass_hz;      /* host low-pass cut-off, 0 off */
+    char lowpass_name[48];  /* the filter's name, "" when off */
+    double lowpass_delay_s; /* its group delay at low frequency */
     unsigned decimate;
     double rotation[9];
     double shift_m[3];
     bool tared;
-    double tare[LEP_AXES];       /* counts */
-    double start_utc;            /* UTC s of lep_session_start (0 before) */
-    double start_mono;           /* monotonic s of lep_session_start (0 before) */
+    double tare[LEP_AXES]; /* counts */
+    double start_utc;      /* UTC s of lep_session_start (0 before) */
+    double start_mono;     /* monotonic s of lep_session_start (0 before) */
     char port[256];
     bool sim;
-    char library_version[16];    /* lep_version() */
+    char library_version[16]; /* lep_version() */
 } lep_session_metadata;
 
 /* Defaults as documented on each field. o must not be NULL. */

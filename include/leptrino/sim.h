@@ -41,18 +41,19 @@ typedef struct lep_sim lep_sim;
  * Simulator(**options) are derived from it. The name of each option in that
  * table is given in brackets. */
 typedef struct lep_sim_options {
-    char model[LEP_SIM_MODEL_SIZE];       /* [model] preset: CFS018CA201U, CFS034CA301U,
+    char model[LEP_SIM_MODEL_SIZE];   /* [model] preset: CFS018CA201U, CFS034CA301U,
                                              PFS055YA501U6 (default), PFS080YS102U6 */
-    char serial[LEP_SIM_SERIAL_SIZE];     /* [serial] 1..8 ASCII digits, default "00000001" */
-    char firmware[LEP_SIM_FIRMWARE_SIZE]; /* [firmware] 1..4 printable ASCII chars, default "1.13" */
+    char serial[LEP_SIM_SERIAL_SIZE]; /* [serial] 1..8 ASCII digits, default "00000001" */
+    char
+        firmware[LEP_SIM_FIRMWARE_SIZE]; /* [firmware] 1..4 printable ASCII chars, default "1.13" */
     bool output_rate_field; /* [output-rate-field] answer product info in the 38-byte form */
     double rate_hz;         /* [rate] continuous output rate, 1..10000 Hz, default 1200 */
     uint8_t filter;         /* [filter] filter code in effect at power-on, 0..3, default 0 */
     uint64_t seed;          /* [seed] waveform and fault randomness, default 1 */
-    double amplitude;       /* [amplitude] sine amplitude as a fraction of rated, 0..4, default 0.2 */
-    double noise;           /* [noise] uniform noise amplitude as a fraction of rated, 0..1,
+    double amplitude; /* [amplitude] sine amplitude as a fraction of rated, 0..4, default 0.2 */
+    double noise;     /* [noise] uniform noise amplitude as a fraction of rated, 0..1,
                                default 0.005 */
-    bool constant;          /* [constant] hold a constant load (amplitude as the level), no noise */
+    bool constant;    /* [constant] hold a constant load (amplitude as the level), no noise */
     char replay_csv[LEP_SIM_PATH_SIZE]; /* [replay] replay raw counts from this CSV file,
                                            looping; "" (default): the waveform */
     double overload_every_s;    /* [overload-every] an overload episode every N s of a stream,
@@ -60,19 +61,19 @@ typedef struct lep_sim_options {
                                    +/-32000, status bit 2 */
     double overload_duration_s; /* [overload-duration] length of an episode, > 0 and
                                    < overload_every_s, default 0.1 */
-    double p_nak;           /* [nak] probability of NAKing a valid command (not executed) */
-    double p_corrupt;       /* [corrupt] probability of flipping one bit of an outgoing message */
-    double p_garbage;       /* [garbage] probability of 1..8 garbage bytes (never DLE) before
+    double p_nak;               /* [nak] probability of NAKing a valid command (not executed) */
+    double p_corrupt;      /* [corrupt] probability of flipping one bit of an outgoing message */
+    double p_garbage;      /* [garbage] probability of 1..8 garbage bytes (never DLE) before
                                an outgoing message */
-    double p_drop;          /* [drop] probability of dropping a continuous data message */
-    int stall_ms;           /* [stall] stall (send nothing, answer nothing) for N ms ... */
-    double stall_after_s;   /* [stall-after] ... starting this long after start (needs stall_ms) */
-    double hangup_after_s;  /* [hangup-after] hang up (close the pty) once, N s after start,
+    double p_drop;         /* [drop] probability of dropping a continuous data message */
+    int stall_ms;          /* [stall] stall (send nothing, answer nothing) for N ms ... */
+    double stall_after_s;  /* [stall-after] ... starting this long after start (needs stall_ms) */
+    double hangup_after_s; /* [hangup-after] hang up (close the pty) once, N s after start,
                                0 (default) = never */
-    int reopen_after_ms;    /* [reopen-after] after a hang-up, open a new pty after N ms and
+    int reopen_after_ms;   /* [reopen-after] after a hang-up, open a new pty after N ms and
                                re-point link (needs link; the sensor comes back powered up,
                                idle), -1 (default) = never */
-    bool start_streaming;   /* [start-streaming] power up already streaming (a stream left by
+    bool start_streaming;  /* [start-streaming] power up already streaming (a stream left by
                                an earlier program) */
     char link[LEP_SIM_PATH_SIZE]; /* [link] also make a symlink at this path to the port;
                                      "" (default): none. Replaces only a symlink to a
@@ -95,10 +96,10 @@ enum lep_sim_option_type {
 };
 
 typedef struct lep_sim_option_info {
-    const char *name;         /* dash-separated, e.g. "amplitude", "output-rate-field" */
-    int type;                 /* enum lep_sim_option_type */
-    const char *arg;          /* name of the argument for help ("F", "HZ", "PATH"); NULL for flags */
-    const char *help;         /* one line, no trailing period, without range or default */
+    const char *name; /* dash-separated, e.g. "amplitude", "output-rate-field" */
+    int type;         /* enum lep_sim_option_type */
+    const char *arg;  /* name of the argument for help ("F", "HZ", "PATH"); NULL for flags */
+    const char *help; /* one line, no trailing period, without range or default */
     const char *default_text; /* the default as lep_sim_option_set accepts it; NULL when the
                                  option is off/empty by default (flags, replay, link) */
     double min, max;          /* numbers: the allowed range; STRING: its length in bytes;
@@ -125,8 +126,8 @@ LEP_API const lep_sim_option_info *lep_sim_option_find(const char *name);
  * On error returns LEP_E_ARG, leaves o unchanged and writes one line into err
  * (when not NULL) naming the option and what is allowed, e.g.
  * "amplitude '5': expected a number from 0 to 4". Re-entrant. */
-LEP_API int lep_sim_option_set(lep_sim_options *o, const char *name, const char *value,
-                               char *err, size_t errlen);
+LEP_API int lep_sim_option_set(lep_sim_options *o, const char *name, const char *value, char *err,
+                               size_t errlen);
 
 /* Write the current value of an option in o as text that lep_sim_option_set
  * accepts (flags: "1"/"0") into buf. LEP_E_ARG for an unknown name or a NULL
@@ -150,8 +151,8 @@ typedef struct lep_sim_stats {
     uint64_t bytes_corrupted; /* messages with a byte flipped by the p_corrupt fault */
     uint64_t hangups;
     bool streaming;
-    uint8_t filter;           /* in effect */
-    uint8_t filter_pending;   /* takes effect at the next power cycle */
+    uint8_t filter;         /* in effect */
+    uint8_t filter_pending; /* takes effect at the next power cycle */
     /* added after the first draft of this header: */
     bool hung_up;             /* the pty is closed now (after a hang-up, before a reopen) */
     uint16_t sequence;        /* sequence number the next stream sample will carry */

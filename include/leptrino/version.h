@@ -12,7 +12,7 @@
 #define LEP_VERSION_PATCH 0
 #define LEP_VERSION_STRING "0.1.0"
 /* Compare with LEP_VERSION_NUMBER >= LEP_MAKE_VERSION(0, 1, 0). */
-#define LEP_MAKE_VERSION(major, minor, patch) ((major) * 10000L + (minor) * 100L + (patch))
+#define LEP_MAKE_VERSION(major, minor, patch) ((major)*10000L + (minor)*100L + (patch))
 #define LEP_VERSION_NUMBER LEP_MAKE_VERSION(LEP_VERSION_MAJOR, LEP_VERSION_MINOR, LEP_VERSION_PATCH)
 
 #endif

@@ -25,7 +25,7 @@ enum {
 
 /* What a drain sends next: the product-info query (PH_DRAIN_SYNC) or the
  * start again (PH_DRAIN_START), as one multiply-add on the phase. */
-#define DRAIN_NEXT_CODE(phase) ((phase) * 8u + 2u)
+#define DRAIN_NEXT_CODE(phase) ((phase)*8u + 2u)
 typedef char lep_client_drain_codes[DRAIN_NEXT_CODE(PH_DRAIN_SYNC) == LEP_CMD_PRODUCT_INFO &&
                                             DRAIN_NEXT_CODE(PH_DRAIN_START) == LEP_CMD_START
                                         ? 1
@@ -47,8 +47,8 @@ enum {
 };
 
 /* get_stats copies the counters as one block: the layouts must agree. */
-#define COUNTERS_FIT \
-    (sizeof(((lep_client *)0)->count) == N_COUNTERS * sizeof(uint32_t) && \
+#define COUNTERS_FIT                                                             \
+    (sizeof(((lep_client *)0)->count) == N_COUNTERS * sizeof(uint32_t) &&        \
      offsetof(lep_client_stats, stalls) - offsetof(lep_client_stats, retries) == \
          (N_COUNTERS - 1) * sizeof(uint32_t))
 typedef char lep_client_counters_fit[COUNTERS_FIT ? 1 : -1];
@@ -56,13 +56,11 @@ typedef char lep_client_counters_fit[COUNTERS_FIT ? 1 : -1];
 /* lep_client.fast counts single-byte steps up (lep_client_step_byte adds 1
  * first); the step that brings it to 0 looks at the clock (and at the state).
  * Its values after a look: */
-#define CHECK_EVERY 32u                     /* single-byte steps between two clock reads */
+#define CHECK_EVERY 32u                       /* single-byte steps between two clock reads */
 #define FAST_CHECKED (0x10000u - CHECK_EVERY) /* a deadline is armed */
-#define FAST_LOOK_NEXT 0xFFFFu              /* look at the clock on the next step */
-typedef char lep_client_fast_values[(uint16_t)~(CHECK_EVERY - 1u) == FAST_CHECKED &&
-                                            (uint16_t)~0u == FAST_LOOK_NEXT
-                                        ? 1
-                                        : -1];
+#define FAST_LOOK_NEXT 0xFFFFu                /* look at the clock on the next step */
+typedef char lep_client_fast_values
+    [(uint16_t) ~(CHECK_EVERY - 1u) == FAST_CHECKED && (uint16_t)~0u == FAST_LOOK_NEXT ? 1 : -1];
 /* The event handling is inlined into both step entries when optimising for
  * speed (the one-byte entry then makes one call less per frame). */
 #if defined(__GNUC__) && defined(__OPTIMIZE__) && !defined(__OPTIMIZE_SIZE__)
@@ -190,7 +188,9 @@ bool lep_client_busy(const lep_client *c)
  * Size builds decode the kept message again instead (the same sample). */
 #if !defined(__OPTIMIZE_SIZE__)
 #define SPARE_SAMPLE(c) ((c)->dec.buf + (LEP_MAX_MESSAGE - sizeof(lep_sample)))
-typedef char lep_client_spare_fits[LEP_LEN_PRODUCT_INFO_RATE + sizeof(lep_sample) <= LEP_MAX_MESSAGE ? 1 : -1];
+typedef char lep_client_spare_fits[LEP_LEN_PRODUCT_INFO_RATE + sizeof(lep_sample) <= LEP_MAX_MESSAGE
+                                       ? 1
+                                       : -1];
 #endif
 
 /* The message of the last outcome: LEP_OK, LEP_E_ARG (c or out NULL), or
@@ -299,7 +299,7 @@ int lep_client_recover(lep_client *c, uint16_t quiet_ms)
     if (c == NULL) {
         return LEP_E_ARG;
     }
-    c->quiet_ms = quiet_ms; /* (0: the default, see quiet_of) */
+    c->quiet_ms = quiet_ms;                      /* (0: the default, see quiet_of) */
     c->state = (uint8_t)(c->state & ~ST_STREAM); /* a stream's data is stale from here on */
     return begin(c, LEP_CMD_STOP, PH_STOP_SYNC);
 }
@@ -347,7 +347,8 @@ SHARED int settle(lep_client *c, int rc)
 SHARED int on_answer(lep_client *c, uint8_t kept, unsigned result)
 {
     c->last_result = kept;
-    if (result == LEP_RESULT_STATE && (c->cmd.code == LEP_CMD_START || c->cmd.code == LEP_CMD_STOP) &&
+    if (result == LEP_RESULT_STATE &&
+        (c->cmd.code == LEP_CMD_START || c->cmd.code == LEP_CMD_STOP) &&
         c->phase <= PH_RESTARTED) { /* (not a recovery's stop: any answer to it will do) */
         if (c->tries > 0u) {
             c->count[N_RESENT_CONFIRMED]++; /* an earlier copy was executed */
@@ -514,7 +515,7 @@ SHARED int step_clock(lep_client *c, size_t len)
     }
     /* FAST_CHECKED (~31) when at most a plain transaction waits, else
      * FAST_LOOK_NEXT (~0): no branch, no literal */
-    c->fast = (uint16_t)~((c->phase <= PH_PLAIN) * (CHECK_EVERY - 1u));
+    c->fast = (uint16_t) ~((c->phase <= PH_PLAIN) * (CHECK_EVERY - 1u));
     return check_clock(c, len > 0u, watch); /* (nothing there changes watch) */
 }
 
@@ -548,7 +549,8 @@ HOT int take(lep_client *c, const lep_frame_event *ev)
 #if defined(__GNUC__) && !defined(__OPTIMIZE_SIZE__)
 __attribute__((noinline))
 #endif
-static int step_input(lep_client *c, const uint8_t *data, size_t len, size_t *consumed)
+static int
+step_input(lep_client *c, const uint8_t *data, size_t len, size_t *consumed)
 {
     size_t pos = 0;
     c->msg_len = 0;
@@ -883,7 +885,7 @@ int lep_client_sync(lep_client *c, int quiet_ms, lep_product_info *info)
     if (c == NULL || c->io.read == NULL) {
         return LEP_E_ARG;
     }
-    rc = lep_client_recover(c, quiet_ms <= 0 ? (uint16_t)0u
+    rc = lep_client_recover(c, quiet_ms <= 0                  ? (uint16_t)0u
                                : (uint32_t)quiet_ms > 0xFFFFu ? (uint16_t)0xFFFFu
                                                               : (uint16_t)quiet_ms);
     return complete(c, rc, info, sizeof(*info));

@@ -103,11 +103,10 @@ static const struct query {
     uint8_t code;
     uint8_t size;
     uint8_t at; /* offset in lep_device (the last member starts below 256) */
-} k_queries[] = {
-    {LEP_CMD_PRODUCT_INFO, sizeof(lep_product_info), offsetof(lep_device, info)},
-    {LEP_CMD_RATED, sizeof(lep_rated), offsetof(lep_device, rated)},
-    {LEP_CMD_FILTER_GET, 1, offsetof(lep_device, filter_active)},
-    {LEP_CMD_SAMPLE, sizeof(lep_sample), offsetof(lep_device, sample)}};
+} k_queries[] = { { LEP_CMD_PRODUCT_INFO, sizeof(lep_product_info), offsetof(lep_device, info) },
+                  { LEP_CMD_RATED, sizeof(lep_rated), offsetof(lep_device, rated) },
+                  { LEP_CMD_FILTER_GET, 1, offsetof(lep_device, filter_active) },
+                  { LEP_CMD_SAMPLE, sizeof(lep_sample), offsetof(lep_device, sample) } };
 
 /* Apply a valid command to the state and fill r.u with its answer (a
  * refusal sets ev->result). */

@@ -41,15 +41,19 @@ static const char k_texts[] = "success\0"
                               "unknown result code";
 
 /* The index in k_texts of result codes 0..4 and of any other. */
-static const unsigned char k_result_text[] = {
-    0u, (unsigned)-LEP_E_LENGTH, UNKNOWN_ERROR + 1u, (unsigned)-LEP_E_VALUE,
-    UNKNOWN_ERROR + 2u, UNKNOWN_ERROR + 3u};
+static const unsigned char k_result_text[] = { 0u,
+                                               (unsigned)-LEP_E_LENGTH,
+                                               UNKNOWN_ERROR + 1u,
+                                               (unsigned)-LEP_E_VALUE,
+                                               UNKNOWN_ERROR + 2u,
+                                               UNKNOWN_ERROR + 3u };
 
 /* The text at index i of k_texts (one copy in size builds). */
 #if defined(__GNUC__) && defined(__OPTIMIZE_SIZE__)
 __attribute__((noinline))
 #endif
-static const char *nth(unsigned i)
+static const char *
+nth(unsigned i)
 {
     const char *s = k_texts;
     while (i > 0u) {

@@ -24,10 +24,10 @@ enum {
     S_MSG = LEP_FRAME_ST_BODY_,          /* inside a frame */
     S_MSG_DLE = LEP_FRAME_ST_BODY_DLE_,  /* inside a frame, after a DLE */
     S_BCC = LEP_FRAME_ST_BCC_,           /* after DLE ETX: the next byte is the BCC */
-    S_SKIP,      /* inside a rejected (over-long) frame: track escapes to its end */
-    S_SKIP_DLE,  /* same, after a DLE */
-    S_SKIP_BCC,  /* same, the BCC byte */
-    S_BCC_DLE    /* between frames, after a frame whose BCC was 0x10: that byte may
+    S_SKIP,     /* inside a rejected (over-long) frame: track escapes to its end */
+    S_SKIP_DLE, /* same, after a DLE */
+    S_SKIP_BCC, /* same, the BCC byte */
+    S_BCC_DLE   /* between frames, after a frame whose BCC was 0x10: that byte may
                     also have been the DLE of a following DLE STX / DLE NAK */
 };
 
@@ -109,8 +109,9 @@ void lep_frame_decoder_init(lep_frame_decoder *d)
 }
 
 /* Busy in every state but S_IDLE, S_IDLE_DLE and S_BCC_DLE (between frames). */
-#define BUSY_STATES ((1u << S_MSG) | (1u << S_MSG_DLE) | (1u << S_BCC) | (1u << S_SKIP) | \
-                     (1u << S_SKIP_DLE) | (1u << S_SKIP_BCC))
+#define BUSY_STATES                                                                            \
+    ((1u << S_MSG) | (1u << S_MSG_DLE) | (1u << S_BCC) | (1u << S_SKIP) | (1u << S_SKIP_DLE) | \
+     (1u << S_SKIP_BCC))
 
 bool lep_frame_decoder_busy(const lep_frame_decoder *d)
 {
@@ -123,8 +124,8 @@ bool lep_frame_decoder_busy(const lep_frame_decoder *d)
 typedef size_t word_t;
 #define W_SIZE sizeof(word_t)
 #define W_ONES ((word_t)-1 / 0xFFu) /* 0x0101...01 */
-#define W_HIGH (W_ONES * 0x80u)      /* 0x8080...80 */
-#define W_DLES (W_ONES * LEP_DLE)    /* 0x1010...10 */
+#define W_HIGH (W_ONES * 0x80u)     /* 0x8080...80 */
+#define W_DLES (W_ONES * LEP_DLE)   /* 0x1010...10 */
 
 /* Non-zero when some byte of w is 0x10 (a zero byte of w ^ 0x1010...: the
  * high bit of a byte of w ^ 0x10 is that of w). On a little-endian machine
@@ -158,7 +159,7 @@ static word_t first_bytes(word_t w, size_t k)
 {
     /* Eight 0xFF then zeros: W_SIZE bytes from keep + 8 - k are k 0xFF bytes
      * then zeros, for any word of up to 8 bytes (4 on a 32-bit target). */
-    static const uint8_t keep[16] = {0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF};
+    static const uint8_t keep[16] = { 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF };
     word_t m;
     memcpy(&m, keep + (8u - k), W_SIZE);
     return w & m;
@@ -200,14 +201,15 @@ enum {
     K_ESCAPE = -LEP_E_ESCAPE,
     K_LENGTH = -LEP_E_LENGTH
 };
-typedef char k_kinds_run_0_to_6[(K_NAK == 2 && K_TOO_LONG == 3 && K_BCC == 4 && K_ESCAPE == 5 &&
-                                 K_LENGTH == 6) ? 1 : -1];
+typedef char k_kinds_run_0_to_6
+    [(K_NAK == 2 && K_TOO_LONG == 3 && K_BCC == 4 && K_ESCAPE == 5 && K_LENGTH == 6) ? 1 : -1];
 #define STAT_(field) ((uint8_t)offsetof(lep_frame_stats, field))
 /* The counter each adds one to (an empty frame's is bytes_discarded: the one
  * is its BCC byte, the rest of the frame is counted before). */
-static const uint8_t k_counter[] = {STAT_(bytes_discarded), STAT_(messages), STAT_(naks),
-                                    STAT_(overruns),        STAT_(bcc_errors), STAT_(escape_errors),
-                                    STAT_(bytes_discarded)};
+static const uint8_t k_counter[] = {
+    STAT_(bytes_discarded), STAT_(messages),      STAT_(naks),           STAT_(overruns),
+    STAT_(bcc_errors),      STAT_(escape_errors), STAT_(bytes_discarded)
+};
 
 /* Add n to the counter at offset off (an offsetof of one of its uint32_t
  * members) of d's stats. */
@@ -443,8 +445,9 @@ static void reject(lep_frame_decoder *d, lep_frame_event *ev, int error, size_t 
 #if defined(__GNUC__) && defined(__OPTIMIZE__) && !defined(__OPTIMIZE_SIZE__)
 __attribute__((always_inline)) inline /* a copy per entry point, not at -O0/-Os */
 #endif
-static size_t decode(lep_frame_decoder *d, const uint8_t *data, size_t len, lep_frame_event *ev,
-                     lep_frame_handler on_event, void *user)
+    static size_t
+    decode(lep_frame_decoder *d, const uint8_t *data, size_t len, lep_frame_event *ev,
+           lep_frame_handler on_event, void *user)
 {
     const uint8_t *p;
     const uint8_t *end;
@@ -467,17 +470,25 @@ static size_t decode(lep_frame_decoder *d, const uint8_t *data, size_t len, lep_
     x = d->raw;
     acc = d->bcc;
     switch (st) {
-    case S_MSG: goto msg;
-    case S_MSG_DLE: goto msg_dle;
-    case S_BCC: goto bcc;
-    case S_IDLE_DLE: goto idle_dle;
-    case S_BCC_DLE: goto bcc_dle;
-    case S_SKIP: goto skip;
-    case S_SKIP_DLE: goto skip_dle;
-    default: goto skip_bcc;
+    case S_MSG:
+        goto msg;
+    case S_MSG_DLE:
+        goto msg_dle;
+    case S_BCC:
+        goto bcc;
+    case S_IDLE_DLE:
+        goto idle_dle;
+    case S_BCC_DLE:
+        goto bcc_dle;
+    case S_SKIP:
+        goto skip;
+    case S_SKIP_DLE:
+        goto skip_dle;
+    default:
+        goto skip_bcc;
     }
 
-idle: { /* between frames: hunting for DLE STX */
+idle : { /* between frames: hunting for DLE STX */
     const uint8_t *q = p;
     if (end - p >= 2 && p[0] == LEP_DLE && p[1] == LEP_STX) {
         p += 2; /* the usual case, taken in one step */
@@ -518,32 +529,33 @@ idle_dle: /* between frames, after a DLE */
 begin:
     n = 0;
     acc = 0;
-msg: /* inside a frame */
-    {
-        /* Whole words while they hold no DLE and fit in the input and in buf. */
-        uint8_t *dst = buf + n;
-        uint8_t *const dst_last = buf + (LEP_MAX_MESSAGE - W_SIZE);
-        while ((size_t)(end - p) >= W_SIZE && dst <= dst_last) {
-            word_t w;
-            word_t m;
-            memcpy(&w, p, W_SIZE);
-            memcpy(dst, &w, W_SIZE);
-            m = has_dle(w);
-            if (m != 0) {
-                size_t k = FIRST_DLE(m, p);
-                acc ^= first_bytes(w, k);
-                n = (size_t)(dst - buf) + k;
-                p += k + 1u; /* the DLE */
-                goto msg_dle;
-            }
-            acc ^= w;
-            p += W_SIZE;
-            dst += W_SIZE;
+msg : /* inside a frame */
+{
+    /* Whole words while they hold no DLE and fit in the input and in buf. */
+    uint8_t *dst = buf + n;
+    uint8_t *const dst_last = buf + (LEP_MAX_MESSAGE - W_SIZE);
+    while ((size_t)(end - p) >= W_SIZE && dst <= dst_last) {
+        word_t w;
+        word_t m;
+        memcpy(&w, p, W_SIZE);
+        memcpy(dst, &w, W_SIZE);
+        m = has_dle(w);
+        if (m != 0) {
+            size_t k = FIRST_DLE(m, p);
+            acc ^= first_bytes(w, k);
+            n = (size_t)(dst - buf) + k;
+            p += k + 1u; /* the DLE */
+            goto msg_dle;
         }
-        n = (size_t)(dst - buf);
+        acc ^= w;
+        p += W_SIZE;
+        dst += W_SIZE;
     }
+    n = (size_t)(dst - buf);
+}
     { /* Byte by byte: the end of the input is near, or of the buffer. */
-        const uint8_t *stop = (size_t)(end - p) < LEP_MAX_MESSAGE - n ? end : p + (LEP_MAX_MESSAGE - n);
+        const uint8_t *stop =
+            (size_t)(end - p) < LEP_MAX_MESSAGE - n ? end : p + (LEP_MAX_MESSAGE - n);
         while (p < stop && *p != LEP_DLE) {
             buf[n++] = *p;
             acc ^= *p++;
@@ -581,7 +593,8 @@ msg_dle: /* inside a frame, after a DLE */
         acc ^= LEP_DLE;
         x++;
         /* Runs of stuffed DLEs (payloads full of 0x10) pair by pair. */
-        while ((size_t)(end - p) >= 2u && p[0] == LEP_DLE && p[1] == LEP_DLE && n < LEP_MAX_MESSAGE) {
+        while ((size_t)(end - p) >= 2u && p[0] == LEP_DLE && p[1] == LEP_DLE &&
+               n < LEP_MAX_MESSAGE) {
             buf[n++] = LEP_DLE;
             acc ^= LEP_DLE;
             x++;
@@ -774,8 +787,7 @@ LEP_NOINLINE static int decode_all(lep_frame_decoder *d, const uint8_t *data, si
 }
 
 /* One byte through feed_all: its event, if any, to the handler. */
-static int feed_all_byte(lep_frame_decoder *d, uint8_t b, lep_frame_handler on_event,
-                         void *user)
+static int feed_all_byte(lep_frame_decoder *d, uint8_t b, lep_frame_handler on_event, void *user)
 {
     lep_frame_event ev;
     (void)feed_byte(d, b, &ev);

@@ -38,20 +38,20 @@ typedef char lep_float_is_binary32[(sizeof(float) == 4u) ? 1 : -1];
 
 /* The known codes, in the order of k_response_len and of lep_command_name's list. */
 enum { I_INFO, I_RATED, I_FILTER_GET, I_SAMPLE, I_START, I_STOP, I_FILTER_SET, N_CODES };
-static const uint8_t k_codes[N_CODES] = {
-    LEP_CMD_PRODUCT_INFO, LEP_CMD_RATED, LEP_CMD_FILTER_GET, LEP_CMD_SAMPLE,
-    LEP_CMD_START,        LEP_CMD_STOP,  LEP_CMD_FILTER_SET};
+static const uint8_t k_codes[N_CODES] = { LEP_CMD_PRODUCT_INFO, LEP_CMD_RATED, LEP_CMD_FILTER_GET,
+                                          LEP_CMD_SAMPLE,       LEP_CMD_START, LEP_CMD_STOP,
+                                          LEP_CMD_FILTER_SET };
 
 /* Lengths of a successful answer per code: the usual one, then the other
  * (the 38-byte product info with output rate, start's first data message). */
-static const uint8_t k_response_len[N_CODES][2] = {
-    {LEP_LEN_PRODUCT_INFO, LEP_LEN_PRODUCT_INFO_RATE},
-    {LEP_LEN_RATED, LEP_LEN_RATED},
-    {LEP_LEN_FILTER, LEP_LEN_FILTER},
-    {LEP_LEN_SAMPLE, LEP_LEN_SAMPLE},
-    {LEP_LEN_HEADER, LEP_LEN_SAMPLE},
-    {LEP_LEN_HEADER, LEP_LEN_HEADER},
-    {LEP_LEN_HEADER, LEP_LEN_HEADER}};
+static const uint8_t k_response_len[N_CODES][2] = { { LEP_LEN_PRODUCT_INFO,
+                                                      LEP_LEN_PRODUCT_INFO_RATE },
+                                                    { LEP_LEN_RATED, LEP_LEN_RATED },
+                                                    { LEP_LEN_FILTER, LEP_LEN_FILTER },
+                                                    { LEP_LEN_SAMPLE, LEP_LEN_SAMPLE },
+                                                    { LEP_LEN_HEADER, LEP_LEN_SAMPLE },
+                                                    { LEP_LEN_HEADER, LEP_LEN_HEADER },
+                                                    { LEP_LEN_HEADER, LEP_LEN_HEADER } };
 
 /* The text fields of the product info, in wire order from byte 4; a
  * message holds the fields that start below its length (32: three, 38:
@@ -60,11 +60,11 @@ static const struct text_field {
     uint8_t wire;  /* offset in the message */
     uint8_t width; /* bytes on the wire */
     uint8_t at;    /* offset of the C string in lep_product_info */
-} k_text[] = {{4, LEP_MODEL_LEN, offsetof(lep_product_info, model)},
-              {20, LEP_SERIAL_LEN, offsetof(lep_product_info, serial)},
-              {28, LEP_FIRMWARE_LEN, offsetof(lep_product_info, firmware)},
-              {32, LEP_RATE_LEN, offsetof(lep_product_info, output_rate)},
-              {0xFF, 0, 0}}; /* the end: beyond any message */
+} k_text[] = { { 4, LEP_MODEL_LEN, offsetof(lep_product_info, model) },
+               { 20, LEP_SERIAL_LEN, offsetof(lep_product_info, serial) },
+               { 28, LEP_FIRMWARE_LEN, offsetof(lep_product_info, firmware) },
+               { 32, LEP_RATE_LEN, offsetof(lep_product_info, output_rate) },
+               { 0xFF, 0, 0 } }; /* the end: beyond any message */
 
 /* Index of a code in k_codes, N_CODES when unknown. */
 static unsigned code_index(uint8_t code)
@@ -146,16 +146,18 @@ static bool length_ok(const uint8_t *msg, size_t len)
  * k_codes, 0x00 and, for a filter set, a filter code 0..3 and three 0x00
  * (the codes are checked below); so the frame is DLE STX, the message as it
  * is, DLE ETX and the BCC (never stuffed). */
-typedef char lep_no_command_code_is_dle[(LEP_CMD_PRODUCT_INFO != LEP_DLE && LEP_CMD_RATED != LEP_DLE &&
-                                         LEP_CMD_FILTER_GET != LEP_DLE && LEP_CMD_SAMPLE != LEP_DLE &&
-                                         LEP_CMD_START != LEP_DLE && LEP_CMD_STOP != LEP_DLE &&
-                                         LEP_CMD_FILTER_SET != LEP_DLE && LEP_FILTER_MAX < LEP_DLE)
-                                            ? 1
-                                            : -1];
+typedef char
+    lep_no_command_code_is_dle[(LEP_CMD_PRODUCT_INFO != LEP_DLE && LEP_CMD_RATED != LEP_DLE &&
+                                LEP_CMD_FILTER_GET != LEP_DLE && LEP_CMD_SAMPLE != LEP_DLE &&
+                                LEP_CMD_START != LEP_DLE && LEP_CMD_STOP != LEP_DLE &&
+                                LEP_CMD_FILTER_SET != LEP_DLE && LEP_FILTER_MAX < LEP_DLE)
+                                   ? 1
+                                   : -1];
 
 /* The one builder of a command: cmd as a message (extra 0) or as a frame
  * (extra FRAME_EXTRA) into out[0..cap); the errors of lep_command_frame. */
-static int command_out(const lep_command *cmd, uint8_t *out, size_t cap, size_t *len, unsigned extra)
+static int command_out(const lep_command *cmd, uint8_t *out, size_t cap, size_t *len,
+                       unsigned extra)
 {
     unsigned k;
     unsigned n = LEP_LEN_HEADER;
@@ -187,7 +189,8 @@ static int command_out(const lep_command *cmd, uint8_t *out, size_t cap, size_t 
         *out++ = LEP_STX;
         out[n] = LEP_DLE;
         out[n + 1] = LEP_ETX;
-        out[n + 2] = (uint8_t)(LEP_ETX ^ n ^ RESERVED_FF ^ cmd->code ^ filter); /* the XOR of the message and ETX */
+        out[n + 2] = (uint8_t)(LEP_ETX ^ n ^ RESERVED_FF ^ cmd->code ^
+                               filter); /* the XOR of the message and ETX */
     }
     put_header(out, n, cmd->code, 0x00u);
     /* the filter code and three reserved 0x00 follow the header of a filter set */
@@ -342,11 +345,11 @@ static bool sample_header(const uint8_t *msg, size_t len)
     }
     /* the four header bytes as one word (one load at -O2); 0x30 | 0x02 and
      * 0x32 | 0x02 alone give 0x32 */
-    head = (uint32_t)msg[0] | (uint32_t)msg[1] << 8 | (uint32_t)msg[2] << 16 |
-           (uint32_t)msg[3] << 24;
-    return (head | (uint32_t)0x02u << 16) == (LEP_LEN_SAMPLE | RESERVED_FF << 8 |
-                                              (uint32_t)LEP_CMD_START << 16 |
-                                              (uint32_t)LEP_RESULT_OK << 24);
+    head =
+        (uint32_t)msg[0] | (uint32_t)msg[1] << 8 | (uint32_t)msg[2] << 16 | (uint32_t)msg[3] << 24;
+    return (head | (uint32_t)0x02u << 16) ==
+           (LEP_LEN_SAMPLE | RESERVED_FF << 8 | (uint32_t)LEP_CMD_START << 16 |
+            (uint32_t)LEP_RESULT_OK << 24);
 }
 #endif
 
@@ -388,7 +391,7 @@ int lep_response_decode(const uint8_t *msg, size_t len, lep_response *r)
         return LEP_OK;
     case LEP_LEN_FILTER:
         return get_filter(msg, &r->u.filter);
-#if !SAMPLE_FAST /* (speed builds took the sample above) */
+#if !SAMPLE_FAST         /* (speed builds took the sample above) */
     case LEP_LEN_SAMPLE: /* the handshake sample, or start's first data message */
         r->stream = k == I_START;
         return decode_sample(msg, &r->u.sample);
@@ -559,15 +562,24 @@ SHARED const char *text_at(const char *list, unsigned i)
 
 const char *lep_filter_label(uint8_t code)
 {
-    return text_at("off\0" "10 Hz\0" "100 Hz\0" "200 Hz\0" "invalid",
+    return text_at("off\0"
+                   "10 Hz\0"
+                   "100 Hz\0"
+                   "200 Hz\0"
+                   "invalid",
                    code > LEP_FILTER_MAX ? LEP_FILTER_MAX + 1u : code);
 }
 
 const char *lep_command_name(uint8_t code)
 {
     /* in the order of k_codes, then the text for an unknown code */
-    return text_at("product info\0" "rated values\0" "filter query\0" "handshake sample\0"
-                   "start continuous output\0" "stop continuous output\0" "set filter\0"
+    return text_at("product info\0"
+                   "rated values\0"
+                   "filter query\0"
+                   "handshake sample\0"
+                   "start continuous output\0"
+                   "stop continuous output\0"
+                   "set filter\0"
                    "unknown",
                    code_index(code));
 }

@@ -6,11 +6,11 @@
 #include <stdint.h>
 
 enum lep_priv_write_result {
-    LEP_PRIV_WRITE_OK = 0,      /* every byte was written */
-    LEP_PRIV_WRITE_TIMEOUT,     /* the deadline passed while fd would not take more (errno ETIMEDOUT) */
-    LEP_PRIV_WRITE_HANGUP,      /* poll reported POLLHUP or POLLERR on fd (errno EPIPE) */
-    LEP_PRIV_WRITE_FAILED,      /* write() failed (errno is its error) or took nothing (errno 0) */
-    LEP_PRIV_WRITE_POLL_FAILED  /* poll() failed (errno is its error) or reported POLLNVAL (EBADF) */
+    LEP_PRIV_WRITE_OK = 0,  /* every byte was written */
+    LEP_PRIV_WRITE_TIMEOUT, /* the deadline passed while fd would not take more (errno ETIMEDOUT) */
+    LEP_PRIV_WRITE_HANGUP,  /* poll reported POLLHUP or POLLERR on fd (errno EPIPE) */
+    LEP_PRIV_WRITE_FAILED,  /* write() failed (errno is its error) or took nothing (errno 0) */
+    LEP_PRIV_WRITE_POLL_FAILED /* poll() failed (errno is its error) or reported POLLNVAL (EBADF) */
 };
 
 /* Write data[0..len) to fd. Retries after EINTR; after EAGAIN/EWOULDBLOCK it

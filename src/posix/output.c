@@ -46,9 +46,9 @@ struct lep_output {
     char buf[OUT_BUF];
 };
 
-static const char *const AXES[LEP_AXES] = {"fx", "fy", "fz", "mx", "my", "mz"};
-static const char *const SI_NAMES[LEP_AXES] = {"fx_N", "fy_N", "fz_N", "mx_Nm", "my_Nm", "mz_Nm"};
-static const char *const TIME_NAMES[3] = {"t_s", "t_mono_s", "t_utc_s"};
+static const char *const AXES[LEP_AXES] = { "fx", "fy", "fz", "mx", "my", "mz" };
+static const char *const SI_NAMES[LEP_AXES] = { "fx_N", "fy_N", "fz_N", "mx_Nm", "my_Nm", "mz_Nm" };
+static const char *const TIME_NAMES[3] = { "t_s", "t_mono_s", "t_utc_s" };
 
 void lep_output_options_init(lep_output_options *o)
 {

@@ -9,8 +9,7 @@
 /* Samples taken from the client per lep_client_next_samples call. */
 #define LEP_RECORD_CHUNK 64u
 
-static void record_store(lep_record_batch *b, const lep_rated *rated, const lep_sample *s,
-                         double t)
+static void record_store(lep_record_batch *b, const lep_rated *rated, const lep_sample *s, double t)
 {
     size_t i = b->n;
     size_t k;
@@ -38,7 +37,8 @@ int lep_record_fill(lep_client *c, const lep_rated *rated, lep_record_batch *b, 
 {
     lep_sample chunk[LEP_RECORD_CHUNK];
 
-    if (c == NULL || b == NULL || b->t == NULL || b->n > b->cap || (b->si != NULL && rated == NULL)) {
+    if (c == NULL || b == NULL || b->t == NULL || b->n > b->cap ||
+        (b->si != NULL && rated == NULL)) {
         return LEP_E_ARG;
     }
     if (!lep_client_streaming(c)) {

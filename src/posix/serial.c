@@ -36,18 +36,18 @@
 
 struct lep_serial {
     int fd;
-    bool dead;            /* the port vanished: every call says so */
+    bool dead; /* the port vanished: every call says so */
     bool have_saved;
-    bool serial_changed;  /* low-latency flag set by us */
+    bool serial_changed; /* low-latency flag set by us */
 #if defined(__linux__)
     struct serial_struct saved_serial;
 #endif
     struct termios saved;
     lep_serial_info info;
-    int ftdi_saved_ms;    /* value to restore at close, or -1 */
+    int ftdi_saved_ms; /* value to restore at close, or -1 */
     char ftdi_attr[PATH_MAX];
     char path[PATH_MAX];
-    lep_client_rx rx;     /* read buffer of the blocking client calls */
+    lep_client_rx rx; /* read buffer of the blocking client calls */
 };
 
 static int open_error(int e, const char *path, char *err, size_t errlen)
@@ -67,8 +67,9 @@ static int open_error(int e, const char *path, char *err, size_t errlen)
     case EPERM:
     case EROFS:
         lep_priv_set_err(err, errlen,
-                "%s: permission denied (add yourself to the port's group, e.g. dialout, or use a udev rule)",
-                path);
+                         "%s: permission denied (add yourself to the port's group, e.g. dialout, "
+                         "or use a udev rule)",
+                         path);
         return LEP_E_PERMISSION;
     case EBUSY:
         lep_priv_set_err(err, errlen, "%s: in use by another program", path);
@@ -102,7 +103,8 @@ static int configure(lep_serial *s, char *err, size_t errlen)
 {
     struct termios t;
     if (tcgetattr(s->fd, &t) != 0) {
-        lep_priv_set_err(err, errlen, "%s: cannot read the port settings: %s", s->path, strerror(errno));
+        lep_priv_set_err(err, errlen, "%s: cannot read the port settings: %s", s->path,
+                         strerror(errno));
         return LEP_E_IO;
     }
     s->saved = t;
@@ -117,14 +119,16 @@ static int configure(lep_serial *s, char *err, size_t errlen)
     cfsetospeed(&t, B460800);
 #endif
     if (tcsetattr(s->fd, TCSANOW, &t) != 0) {
-        lep_priv_set_err(err, errlen, "%s: cannot set 460800 8N1 raw mode: %s", s->path, strerror(errno));
+        lep_priv_set_err(err, errlen, "%s: cannot set 460800 8N1 raw mode: %s", s->path,
+                         strerror(errno));
         return LEP_E_IO;
     }
 #if defined(__APPLE__)
     {
         speed_t speed = LEP_BAUD;
         if (ioctl(s->fd, IOSSIOSPEED, &speed) != 0) {
-            lep_priv_set_err(err, errlen, "%s: cannot set 460800 baud: %s", s->path, strerror(errno));
+            lep_priv_set_err(err, errlen, "%s: cannot set 460800 baud: %s", s->path,
+                             strerror(errno));
             return LEP_E_IO;
         }
     }
@@ -191,8 +195,8 @@ static int write_int_file(const char *path, int value)
  * lower it to 1 ms when the sysfs attribute is writable. */
 static void lower_ftdi_latency(lep_serial *s)
 {
-    static const char *const forms[] = {"/sys/class/tty/%s/device/latency_timer",
-                                        "/sys/class/tty/%s/device/../latency_timer"};
+    static const char *const forms[] = { "/sys/class/tty/%s/device/latency_timer",
+                                         "/sys/class/tty/%s/device/../latency_timer" };
     char real[PATH_MAX];
     const char *name;
     size_t i;

@@ -222,7 +222,7 @@ int lep_serial_list(lep_port_info *out, size_t max, size_t *n)
 #if defined(__APPLE__)
     return list_darwin(out, max, n);
 #else
-    static const lep_serial_roots roots = {"/sys/class/tty", "/dev/serial/by-id", "/dev"};
+    static const lep_serial_roots roots = { "/sys/class/tty", "/dev/serial/by-id", "/dev" };
     return lep_priv_serial_list_in(&roots, out, max, n);
 #endif
 }

@@ -64,12 +64,14 @@ static int check_options(const lep_session_options *o, char *err, size_t errlen)
         return LEP_E_ARG;
     }
     if (o->reconnect_min_ms <= 0 || o->reconnect_max_ms < o->reconnect_min_ms) {
-        lep_priv_set_err(err, errlen,
-                         "session: reconnect backoff needs 0 < reconnect_min_ms <= reconnect_max_ms");
+        lep_priv_set_err(
+            err, errlen,
+            "session: reconnect backoff needs 0 < reconnect_min_ms <= reconnect_max_ms");
         return LEP_E_ARG;
     }
     if (o->latency_ms < 0 || o->latency_ms > 10000) {
-        lep_priv_set_err(err, errlen, "session: latency_ms must be 0..10000 (got %d)", o->latency_ms);
+        lep_priv_set_err(err, errlen, "session: latency_ms must be 0..10000 (got %d)",
+                         o->latency_ms);
         return LEP_E_ARG;
     }
     if (o->decimate == 0) {
@@ -78,7 +80,8 @@ static int check_options(const lep_session_options *o, char *err, size_t errlen)
     }
     /* name the option that is wrong, and its value, not a list of suspects */
     if (!finite_nonneg(o->lowpass_hz)) {
-        lep_priv_set_err(err, errlen, "session: lowpass_hz %g: must be 0 (off) or a cut-off in Hz > 0",
+        lep_priv_set_err(err, errlen,
+                         "session: lowpass_hz %g: must be 0 (off) or a cut-off in Hz > 0",
                          o->lowpass_hz);
         return LEP_E_ARG;
     }
@@ -114,8 +117,8 @@ int lep_priv_session_connect(lep_session *s, char *err, size_t errlen)
     if (rc == LEP_OK)
         rc = lep_client_set_timeout(&s->client, s->opt.timeout_ms);
     if (rc == LEP_OK)
-        rc = lep_client_sync(&s->client, s->opt.sync_quiet_ms > 0 ? s->opt.sync_quiet_ms : 1,
-                             &info);
+        rc =
+            lep_client_sync(&s->client, s->opt.sync_quiet_ms > 0 ? s->opt.sync_quiet_ms : 1, &info);
     if (rc != LEP_OK) {
         lep_priv_set_err(err, errlen, "%s: start-up recovery (stop, drain, product info): %s",
                          s->opt.port, lep_strerror(rc));
@@ -235,7 +238,8 @@ int lep_session_open(const lep_session_options *o, lep_session **out, char *err,
     }
     rc = lep_session_set_lowpass(s, o->lowpass_hz);
     if (rc != LEP_OK) {
-        lep_priv_set_err(err, errlen, "session: lowpass_hz %g is above 0.45 x the %g Hz output rate",
+        lep_priv_set_err(err, errlen,
+                         "session: lowpass_hz %g is above 0.45 x the %g Hz output rate",
                          o->lowpass_hz, s->nominal_hz);
         lep_session_close(s);
         return LEP_E_ARG;

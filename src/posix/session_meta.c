@@ -163,8 +163,8 @@ static void iso8601(double utc, char *out, size_t cap)
 
 int lep_session_metadata_json(lep_session *s, char *buf, size_t cap, size_t *len)
 {
-    static const char *const rated_names[LEP_AXES] = {"fx_N", "fy_N", "fz_N",
-                                                      "mx_Nm", "my_Nm", "mz_Nm"};
+    static const char *const rated_names[LEP_AXES] = { "fx_N",  "fy_N",  "fz_N",
+                                                       "mx_Nm", "my_Nm", "mz_Nm" };
     lep_session_metadata m;
     jbuf j;
     char iso[96];

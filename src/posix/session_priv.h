@@ -48,13 +48,13 @@ typedef struct session_row {
 /* 2nd-order Butterworth low-pass, one section per axis (direct form II
  * transposed), run on raw counts. */
 typedef struct session_lowpass {
-    double cutoff_hz;   /* 0: off */
+    double cutoff_hz; /* 0: off */
     double b0, b1, b2, a1, a2;
     double z1[LEP_AXES], z2[LEP_AXES];
-    bool primed;        /* state set from a sample (steady state) */
-    uint32_t settle;    /* samples left flagged LEP_SF_SETTLING */
-    uint32_t settle_n;  /* samples of one settling period */
-    double delay_s;     /* group delay at 0 Hz */
+    bool primed;       /* state set from a sample (steady state) */
+    uint32_t settle;   /* samples left flagged LEP_SF_SETTLING */
+    uint32_t settle_n; /* samples of one settling period */
+    double delay_s;    /* group delay at 0 Hz */
 } session_lowpass;
 
 enum session_conn { CONN_UP = 0, CONN_DOWN = 1 };
@@ -64,40 +64,40 @@ struct lep_session {
     char port_buf[256];
     char link_buf[128];
     lep_sim *sim;
-    lep_serial *serial;       /* NULL while disconnected */
+    lep_serial *serial; /* NULL while disconnected */
     lep_client client;
-    lep_product_info info;    /* [mu] of the current connection */
+    lep_product_info info;       /* [mu] of the current connection */
     lep_product_info first_info; /* of the connection at open (a reconnect must find the same) */
     lep_rated rated;
-    int sensor_filter;        /* -1: refused or unanswered */
+    int sensor_filter; /* -1: refused or unanswered */
     double nominal_hz;
     double period_s;
     int16_t saturation;
 
-    pthread_mutex_t mu;       /* guards everything below marked [mu] */
+    pthread_mutex_t mu; /* guards everything below marked [mu] */
 
     /* ---- streaming state (driving thread) ---- */
     bool streaming;
-    int conn;                 /* enum session_conn */
-    int failed;               /* sticky error after a loss without reconnect (0: none) */
-    bool ended;               /* duration or count reached */
+    int conn;   /* enum session_conn */
+    int failed; /* sticky error after a loss without reconnect (0: none) */
+    bool ended; /* duration or count reached */
     uint8_t rbuf[SESSION_RBUF];
     session_row pending[SESSION_PENDING];
     size_t pend_head, pend_len;
-    bool backlog;             /* more may be waiting: read again before sleeping */
-    double last_read_t;       /* when the last read returned */
-    double last_data_read_t;  /* when the last read that completed a sample returned */
-    double last_sample_t;     /* reconstructed arrival of the last sample */
-    bool have_sample;         /* a sample came since start (or since the reconnect) */
+    bool backlog;            /* more may be waiting: read again before sleeping */
+    double last_read_t;      /* when the last read returned */
+    double last_data_read_t; /* when the last read that completed a sample returned */
+    double last_sample_t;    /* reconstructed arrival of the last sample */
+    bool have_sample;        /* a sample came since start (or since the reconnect) */
     bool have_seq;
     uint16_t last_seq;
-    uint8_t carry_flags;      /* LEP_SF_GAP of a sample that decimation dropped */
-    bool gap_next;            /* the next sample follows a gap (reconnect) */
+    uint8_t carry_flags; /* LEP_SF_GAP of a sample that decimation dropped */
+    bool gap_next;       /* the next sample follows a gap (reconnect) */
     double gap_from;
-    int gap_error;            /* what caused the disconnect before a reconnect */
+    int gap_error; /* what caused the disconnect before a reconnect */
     double down_since;
     double next_attempt;
-    bool port_missing;        /* the last reconnect attempt found no port */
+    bool port_missing; /* the last reconnect attempt found no port */
     int backoff_ms;
     uint32_t dec_phase;
     double first_delivered_t;
@@ -107,7 +107,7 @@ struct lep_session {
     double tm_anchor_t;
     uint64_t tm_anchor_k, tm_k;
     double tm_window_t, tm_window_min;
-    size_t held;              /* newest pending rows held back: a suspected hole before them */
+    size_t held; /* newest pending rows held back: a suspected hole before them */
     double suspect_from, suspect_to;
     uint64_t suspect_index;
     lep_client_stats base_stats; /* the connection's counters at start or reconnect */
@@ -116,9 +116,9 @@ struct lep_session {
     double tare[LEP_AXES];
     bool tared;
     bool taring;
-    bool tare_hold;           /* the start-up tare: its samples are not delivered */
-    uint32_t tare_n_goal;     /* samples to average (0: by time) */
-    double tare_until;        /* by time: arrival time that ends it (set at its first sample) */
+    bool tare_hold;       /* the start-up tare: its samples are not delivered */
+    uint32_t tare_n_goal; /* samples to average (0: by time) */
+    double tare_until;    /* by time: arrival time that ends it (set at its first sample) */
     double tare_duration;
     double tare_sum[LEP_AXES];
     uint32_t tare_n;
@@ -132,7 +132,7 @@ struct lep_session {
     double first_t;
     double window_t;
     uint64_t window_n;
-    uint64_t errors_before;   /* errors counted on earlier connections */
+    uint64_t errors_before; /* errors counted on earlier connections */
     uint64_t data_timeouts;
 
     /* UTC - monotonic offset the samples are stamped with (the reading thread
@@ -147,7 +147,7 @@ struct lep_session {
     /* ---- [mu] events ---- */
     lep_session_event ev[SESSION_EVENTS];
     size_t ev_head, ev_len;
-    uint64_t ev_pushed;       /* events queued since open (to tell a read it has news) */
+    uint64_t ev_pushed; /* events queued since open (to tell a read it has news) */
 };
 
 /* session.c */

@@ -108,8 +108,8 @@ void lep_rotation_from_rpy(double roll, double pitch, double yaw, double r[9])
 
 int lep_session_set_rotation(lep_session *s, const double rotation[9], const double shift_m[3])
 {
-    static const double identity[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
-    static const double zero[3] = {0, 0, 0};
+    static const double identity[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+    static const double zero[3] = { 0, 0, 0 };
     const double *r = rotation != NULL ? rotation : identity;
     const double *p = shift_m != NULL ? shift_m : zero;
     int i, j, k;

@@ -284,8 +284,8 @@ void lep_priv_session_feed(lep_session *s, const uint8_t *data, size_t len, doub
             t = lower;
         if (s->gap_next) {
             double est = (t - s->gap_from) * s->nominal_hz - 1.0;
-            gap_event(s, LEP_EV_RECONNECTED, s->h.delivered, s->gap_from, t, clip_u32(floor(est + 0.5)),
-                      s->gap_error);
+            gap_event(s, LEP_EV_RECONNECTED, s->h.delivered, s->gap_from, t,
+                      clip_u32(floor(est + 0.5)), s->gap_error);
             flags |= LEP_SF_GAP;
             s->gap_next = false;
         } else if (s->sim != NULL && s->have_seq) {
@@ -406,7 +406,7 @@ static int reconnect_once(lep_session *s)
         s->port_missing = rc == LEP_E_NOT_FOUND;
         lep_priv_session_disconnect(s);
         s->backoff_ms = s->backoff_ms * 2 > s->opt.reconnect_max_ms ? s->opt.reconnect_max_ms
-                                                                      : s->backoff_ms * 2;
+                                                                    : s->backoff_ms * 2;
         s->next_attempt = lep_monotonic_seconds() + (double)s->backoff_ms / 1000.0;
         return rc;
     }
@@ -512,8 +512,7 @@ int lep_session_read(lep_session *s, lep_session_batch *b, int timeout_ms)
             }
             /* Attempt when the backoff is over, or at once when a port that
              * had vanished is back (checked every SESSION_WATCH_S). */
-            if (now < s->next_attempt &&
-                !(s->port_missing && access(s->opt.port, F_OK) == 0)) {
+            if (now < s->next_attempt && !(s->port_missing && access(s->opt.port, F_OK) == 0)) {
                 wake = s->next_attempt < deadline ? s->next_attempt : deadline;
                 if (s->port_missing && wake > now + SESSION_WATCH_S)
                     wake = now + SESSION_WATCH_S;

@@ -97,7 +97,7 @@ int lep_priv_sim_init_device(lep_sim *s, char *err, size_t errlen)
     }
     if (o->start_streaming) {
         /* A stream left running by an earlier program: start it ourselves. */
-        static const lep_command start = {LEP_CMD_START, 0};
+        static const lep_command start = { LEP_CMD_START, 0 };
         uint8_t frame[LEP_MAX_FRAME], ans[LEP_MAX_FRAME];
         size_t len = 0, ans_len = 0, off = 0;
         lep_device_event ev;

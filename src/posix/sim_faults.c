@@ -53,7 +53,7 @@ void lep_priv_sim_emit(lep_sim *s, const uint8_t *frame, size_t len, bool data)
 
 void lep_priv_sim_send_nak(lep_sim *s)
 {
-    static const uint8_t nak[2] = {LEP_DLE, LEP_NAK};
+    static const uint8_t nak[2] = { LEP_DLE, LEP_NAK };
     if (lep_priv_sim_queue(s, nak, sizeof nak))
         s->st.naks++;
 }

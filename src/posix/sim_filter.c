@@ -8,7 +8,7 @@
 
 double lep_priv_fir_cutoff_hz(uint8_t code)
 {
-    static const double hz[4] = {0.0, 10.0, 100.0, 200.0};
+    static const double hz[4] = { 0.0, 10.0, 100.0, 200.0 };
     return code < 4u ? hz[code] : 0.0;
 }
 
@@ -25,7 +25,7 @@ void lep_priv_fir_design(lep_sim_fir *f, uint8_t code, double rate_hz)
     f->taps = 1;
     f->h[0] = 1.0;
     if (fc <= 0.0 || fc >= rate_hz / 2.0)
-        return; /* off, or nothing to cut below the Nyquist frequency */
+        return;                          /* off, or nothing to cut below the Nyquist frequency */
     half = (size_t)(rate_hz / fc + 0.5); /* 2 * rate / fc + 1 taps */
     if (half > (LEP_SIM_FIR_MAX_TAPS - 1u) / 2u)
         half = (LEP_SIM_FIR_MAX_TAPS - 1u) / 2u;
@@ -53,10 +53,9 @@ static int input(const lep_sim_signal *g, uint64_t m, double x[LEP_AXES])
     return status;
 }
 
-void lep_priv_fir_sample(const lep_sim_fir *f, const lep_sim_signal *g, uint64_t n,
-                         lep_sample *out)
+void lep_priv_fir_sample(const lep_sim_fir *f, const lep_sim_signal *g, uint64_t n, lep_sample *out)
 {
-    double y[LEP_AXES] = {0}, x[LEP_AXES];
+    double y[LEP_AXES] = { 0 }, x[LEP_AXES];
     int status = input(g, n, x), i;
     size_t j;
     if (f->taps == 1) {
@@ -75,7 +74,7 @@ void lep_priv_fir_sample(const lep_sim_fir *f, const lep_sim_signal *g, uint64_t
 void lep_priv_fir_next(lep_sim_fir_state *st, const lep_sim_fir *f, const lep_sim_signal *g,
                        uint64_t n, lep_sample *out)
 {
-    double y[LEP_AXES] = {0}, x[LEP_AXES];
+    double y[LEP_AXES] = { 0 }, x[LEP_AXES];
     int status, i;
     size_t j, p;
     if (f->taps == 1) {

@@ -22,8 +22,8 @@ typedef struct lep_sim_fir {
 /* The last inputs, for computing a stream's samples in order cheaply. */
 typedef struct lep_sim_fir_state {
     double x[LEP_SIM_FIR_MAX_TAPS][LEP_AXES]; /* ring of inputs, clipped counts */
-    size_t pos;      /* slot of input next_n - 1 */
-    uint64_t next_n; /* the input index the ring expects next */
+    size_t pos;                               /* slot of input next_n - 1 */
+    uint64_t next_n;                          /* the input index the ring expects next */
     bool primed;
 } lep_sim_fir_state;
 

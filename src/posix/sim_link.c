@@ -118,8 +118,8 @@ static int open_lock(const char *path, char *err, size_t errlen)
     }
     if (errno != EEXIST) {
         lep_priv_set_err(err, errlen,
-                         "%s: cannot create the link's lock file: %s (nothing was changed)",
-                         path, strerror(errno));
+                         "%s: cannot create the link's lock file: %s (nothing was changed)", path,
+                         strerror(errno));
         return -1;
     }
     fd = open(path, O_RDWR | O_NOFOLLOW | O_CLOEXEC);
@@ -216,8 +216,7 @@ int lep_priv_sim_relink(const lep_sim *s, char *err, size_t errlen)
     if (lstat(tmp, &st) == 0 && S_ISLNK(st.st_mode))
         (void)unlink(tmp);
     if (symlink(s->pty, tmp) != 0) {
-        lep_priv_set_err(err, errlen, "link %s: cannot make %s: %s", s->link, tmp,
-                         strerror(errno));
+        lep_priv_set_err(err, errlen, "link %s: cannot make %s: %s", s->link, tmp, strerror(errno));
         return LEP_E_IO;
     }
     if (rename(tmp, s->link) != 0) {

@@ -11,14 +11,14 @@ struct preset {
 
 /* Spec 5.2: N, N, N, N m, N m, N m. */
 static const struct preset presets[] = {
-    {"CFS018CA201U", {100.0f, 100.0f, 200.0f, 1.0f, 1.0f, 1.0f}},
-    {"CFS034CA301U", {150.0f, 150.0f, 300.0f, 4.0f, 4.0f, 4.0f}},
-    {"PFS055YA501U6", {500.0f, 500.0f, 500.0f, 10.0f, 10.0f, 8.0f}},
-    {"PFS080YS102U6", {500.0f, 500.0f, 1000.0f, 40.0f, 40.0f, 30.0f}},
+    { "CFS018CA201U", { 100.0f, 100.0f, 200.0f, 1.0f, 1.0f, 1.0f } },
+    { "CFS034CA301U", { 150.0f, 150.0f, 300.0f, 4.0f, 4.0f, 4.0f } },
+    { "PFS055YA501U6", { 500.0f, 500.0f, 500.0f, 10.0f, 10.0f, 8.0f } },
+    { "PFS080YS102U6", { 500.0f, 500.0f, 1000.0f, 40.0f, 40.0f, 30.0f } },
 };
 
-static const char *const names[] = {"CFS018CA201U", "CFS034CA301U", "PFS055YA501U6",
-                                    "PFS080YS102U6", NULL};
+static const char *const names[] = { "CFS018CA201U", "CFS034CA301U", "PFS055YA501U6",
+                                     "PFS080YS102U6", NULL };
 
 const char *const *lep_sim_models(void)
 {

@@ -26,10 +26,14 @@ typedef struct row {
 } row;
 
 #define F(m) #m, offsetof(lep_sim_options, m), sizeof(((lep_sim_options *)0)->m)
-#define NUM(name, type, arg, help, def, lo, hi, excl, member, store) \
-    {{name, type, arg, help, def, lo, hi, excl}, F(member), store, T_ANY}
-#define TXT(name, type, arg, help, def, lo, hi, member, rule) \
-    {{name, type, arg, help, def, lo, hi, false}, F(member), S_CHARS, rule}
+#define NUM(name, type, arg, help, def, lo, hi, excl, member, store)          \
+    {                                                                         \
+        { name, type, arg, help, def, lo, hi, excl }, F(member), store, T_ANY \
+    }
+#define TXT(name, type, arg, help, def, lo, hi, member, rule)                   \
+    {                                                                           \
+        { name, type, arg, help, def, lo, hi, false }, F(member), S_CHARS, rule \
+    }
 
 /* Time options stop well short of 9.2e9 s, where nanoseconds leave int64. */
 #define MAX_SECONDS 1e6
@@ -53,41 +57,40 @@ static const row rows[] = {
         rate_hz, S_DOUBLE),
     NUM("seed", LEP_SIM_OPT_UINT, "N", "seed of the waveform noise and of the faults", "1", 0,
         18446744073709551615.0, false, seed, S_U64),
-    NUM("amplitude", LEP_SIM_OPT_DOUBLE, "F", "sine amplitude (or constant level), fraction of rated",
-        "0.2", 0, 4, false, amplitude, S_DOUBLE),
+    NUM("amplitude", LEP_SIM_OPT_DOUBLE, "F",
+        "sine amplitude (or constant level), fraction of rated", "0.2", 0, 4, false, amplitude,
+        S_DOUBLE),
     NUM("noise", LEP_SIM_OPT_DOUBLE, "F", "uniform noise amplitude, fraction of rated", "0.005", 0,
         1, false, noise, S_DOUBLE),
     NUM("constant", LEP_SIM_OPT_FLAG, NULL, "hold a constant load (the amplitude), no noise", NULL,
         0, 0, false, constant, S_BOOL),
     TXT("replay", LEP_SIM_OPT_STRING, "PATH",
-        "replay raw counts from a CSV file (a leptrino raw recording), looping",
-        NULL, 1, LEP_SIM_PATH_SIZE - 1, replay_csv, T_ANY),
+        "replay raw counts from a CSV file (a leptrino raw recording), looping", NULL, 1,
+        LEP_SIM_PATH_SIZE - 1, replay_csv, T_ANY),
     NUM("overload-every", LEP_SIM_OPT_DOUBLE, "S",
         "an overload episode every S s of a stream (0: never)", "0", 0, MAX_SECONDS, false,
         overload_every_s, S_DOUBLE),
     NUM("overload-duration", LEP_SIM_OPT_DOUBLE, "S",
-        "length of an overload episode in s (< overload-every)", "0.1", 0,
-        MAX_SECONDS, true, overload_duration_s, S_DOUBLE),
+        "length of an overload episode in s (< overload-every)", "0.1", 0, MAX_SECONDS, true,
+        overload_duration_s, S_DOUBLE),
     NUM("nak", LEP_SIM_OPT_DOUBLE, "P", "fault: probability of NAKing a valid command", "0", 0, 1,
         false, p_nak, S_DOUBLE),
-    NUM("corrupt", LEP_SIM_OPT_DOUBLE, "P",
-        "fault: probability of flipping a bit of a message", "0", 0, 1, false, p_corrupt,
-        S_DOUBLE),
-    NUM("garbage", LEP_SIM_OPT_DOUBLE, "P",
-        "fault: probability of garbage bytes before a message", "0", 0, 1, false,
-        p_garbage, S_DOUBLE),
-    NUM("drop", LEP_SIM_OPT_DOUBLE, "P", "fault: probability of dropping a data message", "0", 0,
-        1, false, p_drop, S_DOUBLE),
-    NUM("stall", LEP_SIM_OPT_INT, "MS", "fault: stall (send and answer nothing) for MS ms ...",
-        "0", 0, MAX_MS, false, stall_ms, S_INT),
+    NUM("corrupt", LEP_SIM_OPT_DOUBLE, "P", "fault: probability of flipping a bit of a message",
+        "0", 0, 1, false, p_corrupt, S_DOUBLE),
+    NUM("garbage", LEP_SIM_OPT_DOUBLE, "P", "fault: probability of garbage bytes before a message",
+        "0", 0, 1, false, p_garbage, S_DOUBLE),
+    NUM("drop", LEP_SIM_OPT_DOUBLE, "P", "fault: probability of dropping a data message", "0", 0, 1,
+        false, p_drop, S_DOUBLE),
+    NUM("stall", LEP_SIM_OPT_INT, "MS", "fault: stall (send and answer nothing) for MS ms ...", "0",
+        0, MAX_MS, false, stall_ms, S_INT),
     NUM("stall-after", LEP_SIM_OPT_DOUBLE, "S", "... S seconds after start (needs stall)", "0", 0,
         MAX_SECONDS, false, stall_after_s, S_DOUBLE),
     NUM("hangup-after", LEP_SIM_OPT_DOUBLE, "S",
-        "fault: hang up (a pulled cable) S s after start (0: never)", "0", 0,
-        MAX_SECONDS, false, hangup_after_s, S_DOUBLE),
+        "fault: hang up (a pulled cable) S s after start (0: never)", "0", 0, MAX_SECONDS, false,
+        hangup_after_s, S_DOUBLE),
     NUM("reopen-after", LEP_SIM_OPT_INT, "MS",
-        "after a hang-up, come back at the link after MS ms (-1: never)", "-1", -1,
-        MAX_MS, false, reopen_after_ms, S_INT),
+        "after a hang-up, come back at the link after MS ms (-1: never)", "-1", -1, MAX_MS, false,
+        reopen_after_ms, S_INT),
     NUM("start-streaming", LEP_SIM_OPT_FLAG, NULL,
         "power up already streaming (a stream left by an earlier program)", NULL, 0, 0, false,
         start_streaming, S_BOOL),
@@ -225,8 +228,8 @@ static int check_text(const row *r, const char *t, char *err, size_t errlen)
         char c = t[i];
         if ((r->rule == T_DIGITS && (c < '0' || c > '9')) ||
             (r->rule == T_PRINTABLE && (c < 0x20 || c > 0x7E))) {
-            lep_priv_set_err(err, errlen, "%s '%s': expected %.0f to %.0f %s", in->name, t,
-                             in->min, in->max,
+            lep_priv_set_err(err, errlen, "%s '%s': expected %.0f to %.0f %s", in->name, t, in->min,
+                             in->max,
                              r->rule == T_DIGITS ? "digits" : "printable ASCII characters");
             return LEP_E_ARG;
         }

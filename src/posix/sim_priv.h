@@ -32,7 +32,7 @@ struct lep_sim {
     /* shared with callers, under lock */
     pthread_mutex_t lock;
     bool req_stop, req_power_cycle, req_hangup;
-    int req_stall_ms; /* -1: none */
+    int req_stall_ms;         /* -1: none */
     lep_sim_trace *req_trace; /* lep_sim_trace_writes: handed to the serving thread */
     bool trace_requested;     /* lep_sim_trace_writes was called (once only) */
     lep_sim_stats stats;
@@ -53,7 +53,7 @@ struct lep_sim {
     double period_ns;
 
     /* owned by the serving thread */
-    lep_sim_stats st; /* working copy, published under lock */
+    lep_sim_stats st;            /* working copy, published under lock */
     lep_sim_fir_state fir_state; /* the stream's filter inputs */
     uint8_t fir_code;            /* the code fir_state was filled for */
     lep_device dev;
@@ -66,13 +66,13 @@ struct lep_sim {
     uint8_t out[OUTQ_SIZE];
     size_t out_len;
     bool streaming;
-    int64_t t0;  /* stream start */
-    uint64_t k;  /* index of the next stream sample */
+    int64_t t0; /* stream start */
+    uint64_t k; /* index of the next stream sample */
     int64_t power_on;
     int64_t stall_until, stall_at, hangup_at, reopen_at; /* 0: none */
     bool hung;
-    lep_sim_trace *trace;       /* write trace, or NULL (sim_trace.c) */
-    bool trace_was_streaming;   /* to mark the end of a stream in the trace */
+    lep_sim_trace *trace;     /* write trace, or NULL (sim_trace.c) */
+    bool trace_was_streaming; /* to mark the end of a stream in the trace */
 };
 
 /* sim_pty.c */

@@ -21,14 +21,14 @@
 #define MAX_FIELDS 64
 #define MAX_LINE 4096
 
-static const char *const axis_names[LEP_AXES] = {"fx", "fy", "fz", "mx", "my", "mz"};
+static const char *const axis_names[LEP_AXES] = { "fx", "fy", "fz", "mx", "my", "mz" };
 
 /* Where the values are: column indexes from a header, or -1. */
 typedef struct layout {
-    bool header;          /* columns by name (from a header line) */
+    bool header; /* columns by name (from a header line) */
     bool seen_header;
-    int axis[LEP_AXES];   /* fx_counts..mz_counts (or fx..mz) */
-    int status, sensor;   /* optional */
+    int axis[LEP_AXES]; /* fx_counts..mz_counts (or fx..mz) */
+    int status, sensor; /* optional */
     char first_sensor[64];
     bool have_sensor;
 } layout;
@@ -68,8 +68,8 @@ static int split(char *line, char *field[MAX_FIELDS])
 
 /* A header line names the columns: fx_counts..mz_counts (the project's
  * CSV names) or fx..mz, and optionally status and sensor. */
-static int read_header(layout *l, char **field, int n, const char *file, size_t lineno,
-                       char *err, size_t errlen)
+static int read_header(layout *l, char **field, int n, const char *file, size_t lineno, char *err,
+                       size_t errlen)
 {
     int i, a;
     for (a = 0; a < LEP_AXES; a++)
@@ -226,8 +226,9 @@ static int read_row(layout *l, char **field, int n, lep_sample *row, int16_t *st
     for (a = 0; a < LEP_AXES; a++) {
         int c = l->axis[a];
         if (c >= n || !parse_int(field[c], -32768, 32767, &v)) {
-            lep_priv_set_err(err, errlen, "%s:%zu: column %s_counts: '%s' is not a count (an "
-                                          "integer -32768..32767)",
+            lep_priv_set_err(err, errlen,
+                             "%s:%zu: column %s_counts: '%s' is not a count (an "
+                             "integer -32768..32767)",
                              file, lineno, axis_names[a], c < n ? field[c] : "");
             return LEP_E_VALUE;
         }
@@ -235,8 +236,8 @@ static int read_row(layout *l, char **field, int n, lep_sample *row, int16_t *st
     }
     if (l->status >= 0) {
         if (l->status >= n || !parse_int(field[l->status], 0, 255, &v)) {
-            lep_priv_set_err(err, errlen, "%s:%zu: column status: '%s' is not 0..255", file,
-                             lineno, l->status < n ? field[l->status] : "");
+            lep_priv_set_err(err, errlen, "%s:%zu: column status: '%s' is not 0..255", file, lineno,
+                             l->status < n ? field[l->status] : "");
             return LEP_E_VALUE;
         }
         *status = (int16_t)v;
@@ -296,13 +297,15 @@ int lep_priv_replay_load(lep_sim_signal *g, const char *file, char *err, size_t 
         while (*p == ' ' || *p == '\t')
             p++;
         if (*p == '\0' || *p == '\n' || *p == '\r' || *p == '#')
-            continue; /* blank, or a comment (metadata, events) */
+            continue;    /* blank, or a comment (metadata, events) */
         if (*p == '{') { /* JSON lines: the names make the header, the values a row */
             char *value[MAX_FIELDS];
             n = split_json(buf, field, value);
             if (n < 0) {
-                lep_priv_set_err(err, errlen, "%s:%zu: not a flat JSON object of the leptrino "
-                                 "tool's recordings", file, lineno);
+                lep_priv_set_err(err, errlen,
+                                 "%s:%zu: not a flat JSON object of the leptrino "
+                                 "tool's recordings",
+                                 file, lineno);
                 rc = LEP_E_VALUE;
                 break;
             }
@@ -318,8 +321,7 @@ int lep_priv_replay_load(lep_sim_signal *g, const char *file, char *err, size_t 
             n = split(buf, field);
         }
         if (n < 0) {
-            lep_priv_set_err(err, errlen, "%s:%zu: more than %d columns", file, lineno,
-                             MAX_FIELDS);
+            lep_priv_set_err(err, errlen, "%s:%zu: more than %d columns", file, lineno, MAX_FIELDS);
             rc = LEP_E_VALUE;
             break;
         }

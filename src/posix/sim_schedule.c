@@ -6,7 +6,6 @@
 #define _DEFAULT_SOURCE
 #endif
 
-
 #include "leptrino/error.h"
 #include "sim_priv.h"
 

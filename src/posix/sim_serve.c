@@ -40,9 +40,8 @@ static void hang_up(lep_sim *s, int64_t now)
     lep_priv_sim_trace_discard(s->trace);
     s->hung = true;
     s->st.hangups++;
-    s->reopen_at = s->opt.reopen_after_ms >= 0
-                       ? now + (int64_t)s->opt.reopen_after_ms * 1000000 + 1
-                       : 0;
+    s->reopen_at =
+        s->opt.reopen_after_ms >= 0 ? now + (int64_t)s->opt.reopen_after_ms * 1000000 + 1 : 0;
     lep_priv_sim_publish(s); /* before the client can notice */
     /* Like udev's by-id link on unplug: the name goes away with the device,
      * so nobody reaches a stranger's pty that reuses the number meanwhile. */
@@ -240,7 +239,7 @@ void *lep_priv_sim_serve(void *arg)
                 lep_priv_sim_handle_input(s, buf, (size_t)r);
             } else if (r < 0 && errno == EIO) {
                 /* no slave open (cannot happen while we hold one): wait a little */
-                struct timespec ts = {0, 10000000};
+                struct timespec ts = { 0, 10000000 };
                 idle = false;
                 nanosleep(&ts, NULL);
             }

@@ -31,7 +31,7 @@ double lep_priv_uniform(uint64_t *state)
 int lep_priv_signal_init(lep_sim_signal *g, const lep_sim_options *o, const lep_rated *rated,
                          char *err, size_t errlen)
 {
-    static const double base_hz[LEP_AXES] = {0.5, 0.7, 1.1, 1.3, 1.7, 1.9};
+    static const double base_hz[LEP_AXES] = { 0.5, 0.7, 1.1, 1.3, 1.7, 1.9 };
     uint64_t st;
     int i;
     memset(g, 0, sizeof *g);
@@ -92,8 +92,12 @@ double lep_priv_sine(double x)
     else if (r < -pi / 2)
         r = -pi - r;
     r2 = r * r;
-    return r * (1.0 - r2 / 6.0 * (1.0 - r2 / 20.0 * (1.0 - r2 / 42.0 * (1.0 - r2 / 72.0 *
-                (1.0 - r2 / 110.0 * (1.0 - r2 / 156.0))))));
+    return r * (1.0 -
+                r2 / 6.0 *
+                    (1.0 -
+                     r2 / 20.0 *
+                         (1.0 - r2 / 42.0 *
+                                    (1.0 - r2 / 72.0 * (1.0 - r2 / 110.0 * (1.0 - r2 / 156.0))))));
 }
 
 static int16_t saturate(double counts)

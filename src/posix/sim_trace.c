@@ -27,7 +27,7 @@
 
 struct lep_sim_trace {
     int fd;
-    size_t queued_n;                /* data frames in the output queue, oldest first */
+    size_t queued_n; /* data frames in the output queue, oldest first */
     uint64_t queued_k[TRACE_QUEUED];
     size_t queued_end[TRACE_QUEUED]; /* offset just past the frame in s->out */
     size_t buf_n;

@@ -49,9 +49,9 @@ int main(int argc, char **argv)
             lep_sim_stats st;
             lep_sim_get_stats(sim, &st);
             printf("streaming=%d samples=%llu filter=%u pending=%u commands=%llu hangups=%llu\n",
-                   st.streaming ? 1 : 0, (unsigned long long)st.samples_sent,
-                   (unsigned)st.filter, (unsigned)st.filter_pending,
-                   (unsigned long long)st.commands, (unsigned long long)st.hangups);
+                   st.streaming ? 1 : 0, (unsigned long long)st.samples_sent, (unsigned)st.filter,
+                   (unsigned)st.filter_pending, (unsigned long long)st.commands,
+                   (unsigned long long)st.hangups);
         } else if (strcmp(line, "power") == 0) {
             lep_sim_power_cycle(sim);
             printf("ok\n");

@@ -31,9 +31,9 @@ int main(int argc, char **argv)
     static lep_client client;
     static lep_device device;
     lep_product_info info;
-    lep_rated rated = {{500.0f, 500.0f, 500.0f, 10.0f, 10.0f, 8.0f}};
-    lep_io io = {capture, NULL, clock_ms, NULL};
-    lep_command cmd = {LEP_CMD_PRODUCT_INFO, 0};
+    lep_rated rated = { { 500.0f, 500.0f, 500.0f, 10.0f, 10.0f, 8.0f } };
+    lep_io io = { capture, NULL, clock_ms, NULL };
+    lep_command cmd = { LEP_CMD_PRODUCT_INFO, 0 };
     lep_device_event ev;
     uint8_t answer[LEP_MAX_FRAME];
     size_t answer_len = 0, used = 0, pos = 0;
@@ -50,13 +50,14 @@ int main(int argc, char **argv)
     strcpy(info.model, "PFS055YA501U6");
     strcpy(info.serial, "12345678");
     strcpy(info.firmware, "1.13");
-    if (lep_device_init(&device, &info, &rated, 0) != LEP_OK || lep_client_init(&client, &io) != LEP_OK ||
-        lep_client_send(&client, &cmd) != LEP_OK) {
+    if (lep_device_init(&device, &info, &rated, 0) != LEP_OK ||
+        lep_client_init(&client, &io) != LEP_OK || lep_client_send(&client, &cmd) != LEP_OK) {
         fprintf(stderr, "init/send failed\n");
         return 1;
     }
     while (pos < wire_len) {
-        pos += lep_device_feed(&device, wire + pos, wire_len - pos, &ev, answer, sizeof answer, &answer_len);
+        pos += lep_device_feed(&device, wire + pos, wire_len - pos, &ev, answer, sizeof answer,
+                               &answer_len);
     }
     for (pos = 0; pos < answer_len && rc == LEP_STEP_NONE; pos += used) {
         rc = lep_client_step(&client, answer + pos, answer_len - pos, &used);

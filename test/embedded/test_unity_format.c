@@ -6,8 +6,12 @@
 
 #include "unity.h"
 
-void setUp(void) {}
-void tearDown(void) {}
+void setUp(void)
+{
+}
+void tearDown(void)
+{
+}
 
 static const char *fmt(uint64_t bits, int is_signed, UNITY_DISPLAY_STYLE_T style)
 {
@@ -26,11 +30,14 @@ static uint64_t bits_of(int64_t v)
 
 static void test_signed_extremes(void)
 {
-    TEST_ASSERT_EQUAL_STRING("-9223372036854775808", fmt(bits_of(INT64_MIN), 1, UNITY_DISPLAY_STYLE_INT));
-    TEST_ASSERT_EQUAL_STRING("9223372036854775807", fmt(bits_of(INT64_MAX), 1, UNITY_DISPLAY_STYLE_INT));
+    TEST_ASSERT_EQUAL_STRING("-9223372036854775808",
+                             fmt(bits_of(INT64_MIN), 1, UNITY_DISPLAY_STYLE_INT));
+    TEST_ASSERT_EQUAL_STRING("9223372036854775807",
+                             fmt(bits_of(INT64_MAX), 1, UNITY_DISPLAY_STYLE_INT));
     TEST_ASSERT_EQUAL_STRING("-1", fmt(bits_of(-1), 1, UNITY_DISPLAY_STYLE_INT));
     TEST_ASSERT_EQUAL_STRING("0", fmt(0u, 1, UNITY_DISPLAY_STYLE_INT));
-    TEST_ASSERT_EQUAL_STRING("-4294967296", fmt(bits_of(-4294967296LL), 1, UNITY_DISPLAY_STYLE_INT));
+    TEST_ASSERT_EQUAL_STRING("-4294967296",
+                             fmt(bits_of(-4294967296LL), 1, UNITY_DISPLAY_STYLE_INT));
 }
 
 static void test_unsigned(void)
@@ -42,7 +49,8 @@ static void test_unsigned(void)
 
 static void test_hex_widths(void)
 {
-    TEST_ASSERT_EQUAL_STRING("0x8000000000000001", fmt(0x8000000000000001ULL, 0, UNITY_DISPLAY_STYLE_HEX64));
+    TEST_ASSERT_EQUAL_STRING("0x8000000000000001",
+                             fmt(0x8000000000000001ULL, 0, UNITY_DISPLAY_STYLE_HEX64));
     TEST_ASSERT_EQUAL_STRING("0x0000000000000000", fmt(0u, 0, UNITY_DISPLAY_STYLE_HEX64));
     TEST_ASSERT_EQUAL_STRING("0xDEADBEEF", fmt(0x12DEADBEEFULL, 0, UNITY_DISPLAY_STYLE_HEX32));
     TEST_ASSERT_EQUAL_STRING("0x00AB", fmt(0xAB, 0, UNITY_DISPLAY_STYLE_HEX16));
@@ -58,8 +66,8 @@ static void test_chars(void)
 static void test_truncation(void)
 {
     char small[5];
-    TEST_ASSERT_EQUAL_size_t(20u, UnityFormatNumber(small, sizeof small, UINT64_MAX, 0,
-                                                    UNITY_DISPLAY_STYLE_UINT));
+    TEST_ASSERT_EQUAL_size_t(
+        20u, UnityFormatNumber(small, sizeof small, UINT64_MAX, 0, UNITY_DISPLAY_STYLE_UINT));
     TEST_ASSERT_EQUAL_STRING("1844", small);
 }
 

@@ -20,7 +20,6 @@
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
-
 typedef struct line {
     const uint8_t *data;
     size_t len;
@@ -101,8 +100,15 @@ static int line_read(void *user, uint8_t *buf, size_t cap, int timeout_ms)
 static bool documented(int rc)
 {
     switch (rc) {
-    case LEP_OK: case LEP_E_SENSOR: case LEP_E_NAK: case LEP_E_TIMEOUT: case LEP_E_IO:
-    case LEP_E_DISCONNECTED: case LEP_E_STATE: case LEP_E_NO_SYNC: case LEP_E_STALLED:
+    case LEP_OK:
+    case LEP_E_SENSOR:
+    case LEP_E_NAK:
+    case LEP_E_TIMEOUT:
+    case LEP_E_IO:
+    case LEP_E_DISCONNECTED:
+    case LEP_E_STATE:
+    case LEP_E_NO_SYNC:
+    case LEP_E_STALLED:
         return true;
     default:
         return false;
@@ -159,7 +165,7 @@ static void blocking(lep_client *c, uint32_t *delivered)
 
 static void stepping(lep_client *c, line *l, uint32_t *delivered)
 {
-    lep_command cmds[3] = {{LEP_CMD_RATED, 0}, {LEP_CMD_START, 0}, {LEP_CMD_FILTER_SET, 2}};
+    lep_command cmds[3] = { { LEP_CMD_RATED, 0 }, { LEP_CMD_START, 0 }, { LEP_CMD_FILTER_SET, 2 } };
     unsigned k;
     if (lep_client_recover(c, 5) != LEP_OK) {
         return;

@@ -11,7 +11,6 @@
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
-
 static void answer_is_valid(const lep_device_event *ev, const uint8_t *out, size_t len)
 {
     lep_frame_decoder dec;
@@ -29,15 +28,16 @@ static void answer_is_valid(const lep_device_event *ev, const uint8_t *out, size
     check(fev.type == LEP_FRAME_MESSAGE);
     rc = lep_response_decode(fev.msg, fev.len, &r);
     check(r.code == ev->code && r.result == ev->result);
-    check(rc == (ev->result == LEP_RESULT_OK ? LEP_OK : LEP_E_SENSOR) ||
-          (ev->result != LEP_RESULT_OK && rc == LEP_E_UNEXPECTED)); /* unknown codes answered 0x02 */
+    check(
+        rc == (ev->result == LEP_RESULT_OK ? LEP_OK : LEP_E_SENSOR) ||
+        (ev->result != LEP_RESULT_OK && rc == LEP_E_UNEXPECTED)); /* unknown codes answered 0x02 */
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     lep_device dev;
     lep_product_info info;
-    lep_rated rated = {{500.0f, 500.0f, 1000.0f, 40.0f, 40.0f, 30.0f}};
+    lep_rated rated = { { 500.0f, 500.0f, 1000.0f, 40.0f, 40.0f, 30.0f } };
     lep_sample s;
     size_t pos = 0;
     unsigned k = 0;
@@ -60,8 +60,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             chunk = size - pos;
         }
         /* A small output buffer now and then: the answer is dropped, never overrun. */
-        used = lep_device_feed(&dev, data + pos, chunk, &ev, out, (k % 17u == 3u) ? 5u : sizeof(out),
-                               &out_len);
+        used = lep_device_feed(&dev, data + pos, chunk, &ev, out,
+                               (k % 17u == 3u) ? 5u : sizeof(out), &out_len);
         check(used >= 1 && used <= chunk);
         pos += used;
         k++;
@@ -81,7 +81,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         } else {
             check(lep_device_streaming(&dev) == was);
         }
-        check(lep_device_filter(&dev) <= LEP_FILTER_MAX && lep_device_filter_pending(&dev) <= LEP_FILTER_MAX);
+        check(lep_device_filter(&dev) <= LEP_FILTER_MAX &&
+              lep_device_filter_pending(&dev) <= LEP_FILTER_MAX);
         if (lep_device_streaming(&dev)) {
             size_t n;
             s.raw[k % LEP_AXES] = (int16_t)((int)(data[pos - 1] * 250u) - 32000); /* up to 31750 */

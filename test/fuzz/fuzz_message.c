@@ -13,7 +13,6 @@
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
-
 static void check_text(const char *s, size_t cap)
 {
     size_t i;
@@ -40,14 +39,20 @@ static void same_fields(const lep_response *a, const lep_response *b)
         check(a->u.info.has_output_rate == b->u.info.has_output_rate);
         check(a->u.info.output_rate_hz == b->u.info.output_rate_hz);
         break;
-    case LEP_CMD_RATED: check(memcmp(&a->u.rated, &b->u.rated, sizeof(a->u.rated)) == 0); break;
-    case LEP_CMD_FILTER_GET: check(a->u.filter == b->u.filter); break;
+    case LEP_CMD_RATED:
+        check(memcmp(&a->u.rated, &b->u.rated, sizeof(a->u.rated)) == 0);
+        break;
+    case LEP_CMD_FILTER_GET:
+        check(a->u.filter == b->u.filter);
+        break;
     case LEP_CMD_SAMPLE:
     case LEP_CMD_START:
         check(memcmp(a->u.sample.raw, b->u.sample.raw, sizeof(a->u.sample.raw)) == 0);
-        check(a->u.sample.reserved == b->u.sample.reserved && a->u.sample.status == b->u.sample.status);
+        check(a->u.sample.reserved == b->u.sample.reserved &&
+              a->u.sample.status == b->u.sample.status);
         break;
-    default: break;
+    default:
+        break;
     }
 }
 

@@ -28,7 +28,6 @@ static int sink_write(void *user, const uint8_t *d, size_t n)
     return 0;
 }
 
-
 /* A port serving the input in uneven chunks, 1 ms per chunk, then silence;
  * its clock starts just before the 32-bit wrap. */
 typedef struct fuzz_port {
@@ -73,11 +72,11 @@ static int port_read(void *user, uint8_t *buf, size_t cap, int timeout_ms)
  * to the end. Every call must return, and the counters must stay consistent. */
 static void blocking_client(const uint8_t *data, size_t size)
 {
-    static const uint8_t start_answer[] = {0x10, 0x02, 0x04, 0xFF, 0x32, 0x00, 0x10, 0x03, 0xCA};
-    fuzz_port port = {data, size, 0, 0xFFFFFF00u, 0};
-    lep_io io = {sink_write, port_read, port_clock, &port};
+    static const uint8_t start_answer[] = { 0x10, 0x02, 0x04, 0xFF, 0x32, 0x00, 0x10, 0x03, 0xCA };
+    fuzz_port port = { data, size, 0, 0xFFFFFF00u, 0 };
+    lep_io io = { sink_write, port_read, port_clock, &port };
     lep_client c;
-    lep_command start = {LEP_CMD_START, 0};
+    lep_command start = { LEP_CMD_START, 0 };
     lep_client_stats st;
     lep_sample batch[8];
     lep_rated rated;
@@ -134,10 +133,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     size_t shared_dle = (size_t)-1; /* position of a 0x10 BCC just delivered */
     lep_device dev;
     lep_product_info info;
-    lep_rated rated = {{1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f}};
+    lep_rated rated = { { 1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f } };
     lep_client client;
-    lep_io io = {sink_write, NULL, fixed_clock, NULL};
-    lep_command probe = {LEP_CMD_RATED, 0};
+    lep_io io = { sink_write, NULL, fixed_clock, NULL };
+    lep_command probe = { LEP_CMD_RATED, 0 };
 
     lep_frame_decoder_init(&whole);
     lep_frame_decoder_init(&bytewise);
@@ -200,7 +199,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         lep_device_event dev_ev;
         pos = 0;
         while (pos < size) {
-            size_t used = lep_device_feed(&dev, data + pos, size - pos, &dev_ev, out, sizeof(out), &out_len);
+            size_t used =
+                lep_device_feed(&dev, data + pos, size - pos, &dev_ev, out, sizeof(out), &out_len);
             check(used > 0 && out_len <= sizeof(out));
             pos += used;
         }

@@ -95,6 +95,7 @@ int main(void)
         LLVMFuzzerTestOneInput(buf, len);
         bytes += (unsigned long)len;
     }
-    printf("fuzz smoke: %u inputs, %lu bytes, invariants held\n", (unsigned)FUZZ_SMOKE_ITERATIONS, bytes);
+    printf("fuzz smoke: %u inputs, %lu bytes, invariants held\n", (unsigned)FUZZ_SMOKE_ITERATIONS,
+           bytes);
     return 0;
 }

@@ -69,7 +69,8 @@ int main(int argc, char **argv)
             o.port = argv[i];
             o.use_sim = false;
         } else {
-            fprintf(stderr, "usage: bench_session [--latency MS] [--seconds S] [--rate HZ] [PORT]\n");
+            fprintf(stderr,
+                    "usage: bench_session [--latency MS] [--seconds S] [--rate HZ] [PORT]\n");
             return 2;
         }
     }
@@ -103,10 +104,12 @@ int main(int argc, char **argv)
     lep_session_close(s);
     cpu = tv(r1.ru_utime) - tv(r0.ru_utime) + tv(r1.ru_stime) - tv(r0.ru_stime);
     sw = (r1.ru_nvcsw - r0.ru_nvcsw) + (r1.ru_nivcsw - r0.ru_nivcsw);
-    printf("{\"rate_hz\":%g,\"latency_ms\":%d,\"seconds\":%.3f,\"samples\":%llu,\"lost\":%llu,\"cpu_s\":%.4f,"
+    printf("{\"rate_hz\":%g,\"latency_ms\":%d,\"seconds\":%.3f,\"samples\":%llu,\"lost\":%llu,"
+           "\"cpu_s\":%.4f,"
            "\"cpu_percent\":%.3f,\"us_per_sample\":%.3f,\"switches_per_sample\":%.4f}\n",
-           h.nominal_hz, o.latency_ms, seconds, (unsigned long long)samples, (unsigned long long)h.lost, cpu,
-           100.0 * cpu / seconds, samples > 0 ? 1e6 * cpu / (double)samples : 0.0,
+           h.nominal_hz, o.latency_ms, seconds, (unsigned long long)samples,
+           (unsigned long long)h.lost, cpu, 100.0 * cpu / seconds,
+           samples > 0 ? 1e6 * cpu / (double)samples : 0.0,
            samples > 0 ? (double)sw / (double)samples : 0.0);
     return 0;
 }

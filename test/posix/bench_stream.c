@@ -60,7 +60,7 @@ int main(int argc, char **argv)
     lep_serial *port = NULL;
     lep_client client;
     lep_client_rx rx;
-    struct counting k = {{0}, 0, 0, 0, 0};
+    struct counting k = { { 0 }, 0, 0, 0, 0 };
     lep_io io;
     lep_sample smp;
     lep_sim_stats st;

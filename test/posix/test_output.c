@@ -18,18 +18,18 @@
 
 static char dir[64];
 static char path[128];
-static double t_mono[3] = {100.25, 100.2508333, 100.5};
-static double t_utc[3] = {1700000000.25, 1700000000.2508333, 1700000000.5};
-static int16_t raw[18] = {1, -2, 3, -4, 5, -6, 10000, 0, -10000, 32000, -32000, 7,
-                          0, 0, 0, 0, 0, 0};
-static double zeroed[18] = {0.5, -2.25, 3, -4, 5, -6.125, 9999.5, 0, -10000, 32000, -32000, 7,
-                            0, 0, 0, 0, 0, 1.0 / 3.0};
-static double si[18] = {0.025, -0.1, 0.15, -0.004, 0.005, -0.0048,
-                        500, 0, -500, 32, -32, 0.0056,
-                        1e-7, -1e-7, 0, 0, 0, 2.0 / 3.0};
-static uint8_t status[3] = {0, 4, 0};
-static uint8_t flags[3] = {0, 2, 1};
-static uint16_t seq[3] = {7, 8, 10};
+static double t_mono[3] = { 100.25, 100.2508333, 100.5 };
+static double t_utc[3] = { 1700000000.25, 1700000000.2508333, 1700000000.5 };
+static int16_t raw[18] = {
+    1, -2, 3, -4, 5, -6, 10000, 0, -10000, 32000, -32000, 7, 0, 0, 0, 0, 0, 0
+};
+static double zeroed[18] = { 0.5,   -2.25,  3, -4, 5, -6.125, 9999.5, 0, -10000,
+                             32000, -32000, 7, 0,  0, 0,      0,      0, 1.0 / 3.0 };
+static double si[18] = { 0.025, -0.1, 0.15,   -0.004, 0.005, -0.0048, 500, 0, -500,
+                         32,    -32,  0.0056, 1e-7,   -1e-7, 0,       0,   0, 2.0 / 3.0 };
+static uint8_t status[3] = { 0, 4, 0 };
+static uint8_t flags[3] = { 0, 2, 1 };
+static uint16_t seq[3] = { 7, 8, 10 };
 static lep_session_batch batch;
 
 void setUp(void)
@@ -87,20 +87,20 @@ static void test_csv_default_columns(void)
     TEST_ASSERT_EQUAL_INT(0, lep_output_add_sensor(w, NULL, META, 100.0));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_output_write(w, 0, &batch, 0, NULL, 0));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_output_close(w));
-    TEST_ASSERT_EQUAL_STRING("# leptrino-metadata: " META "\n"
-                             "t_s,fx_N,fy_N,fz_N,mx_Nm,my_Nm,mz_Nm,status\n"
-                             "0.250000,0.025000,-0.100000,0.150000,-0.004000,0.005000,-0.004800,0\n"
-                             "0.250833,500.000000,0.000000,-500.000000,32.000000,-32.000000,0.005600,4\n"
-                             "0.500000,0.000000,-0.000000,0.000000,0.000000,0.000000,0.666667,0\n",
-                             slurp(path));
+    TEST_ASSERT_EQUAL_STRING(
+        "# leptrino-metadata: " META "\n"
+        "t_s,fx_N,fy_N,fz_N,mx_Nm,my_Nm,mz_Nm,status\n"
+        "0.250000,0.025000,-0.100000,0.150000,-0.004000,0.005000,-0.004800,0\n"
+        "0.250833,500.000000,0.000000,-500.000000,32.000000,-32.000000,0.005600,4\n"
+        "0.500000,0.000000,-0.000000,0.000000,0.000000,0.000000,0.666667,0\n",
+        slurp(path));
 }
 
 static void test_csv_all_columns_mono_time(void)
 {
-    lep_output *w = open_with(LEP_OUTPUT_CSV, LEP_TIME_MONO,
-                              LEP_COL_RAW | LEP_COL_ZEROED | LEP_COL_STATUS | LEP_COL_FLAGS |
-                                  LEP_COL_SEQ,
-                              0.0);
+    lep_output *w =
+        open_with(LEP_OUTPUT_CSV, LEP_TIME_MONO,
+                  LEP_COL_RAW | LEP_COL_ZEROED | LEP_COL_STATUS | LEP_COL_FLAGS | LEP_COL_SEQ, 0.0);
     batch.n = 2;
     TEST_ASSERT_EQUAL_INT(0, lep_output_add_sensor(w, NULL, META, 100.0));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_output_write(w, 0, &batch, 0, NULL, 0));
@@ -185,15 +185,16 @@ static void test_csv_events_and_two_sensors_on_one_time_base(void)
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_output_write(w, 1, &b2, 1, &ev[1], 1));
     TEST_ASSERT_EQUAL_INT(LEP_E_STATE, lep_output_add_sensor(w, "late", "{}", 0.0));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_output_close(w));
-    TEST_ASSERT_EQUAL_STRING("# leptrino-metadata: {\"sensor\":\"left\",\"model\":\"M\",\"serial\":\"1\"}\n"
-                             "# leptrino-metadata: {\"sensor\":\"right\"}\n"
-                             "t_s,sensor,status\n"
-                             "0.250000,left,0\n"
-                             "# overload begin sensor=left at=0.250833 axes=24 status=4\n"
-                             "0.250833,left,4\n"
-                             "0.250833,right,4\n"
-                             "# gap sensor=right from=0.300000 to=0.600000 lost=359 reason=disconnected\n",
-                             slurp(path));
+    TEST_ASSERT_EQUAL_STRING(
+        "# leptrino-metadata: {\"sensor\":\"left\",\"model\":\"M\",\"serial\":\"1\"}\n"
+        "# leptrino-metadata: {\"sensor\":\"right\"}\n"
+        "t_s,sensor,status\n"
+        "0.250000,left,0\n"
+        "# overload begin sensor=left at=0.250833 axes=24 status=4\n"
+        "0.250833,left,4\n"
+        "0.250833,right,4\n"
+        "# gap sensor=right from=0.300000 to=0.600000 lost=359 reason=disconnected\n",
+        slurp(path));
 }
 
 static void test_refuses_to_overwrite_and_keeps_the_file(void)
@@ -215,8 +216,8 @@ static void test_refuses_to_overwrite_and_keeps_the_file(void)
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_output_open(path, &o, &w, err, sizeof err));
     TEST_ASSERT_EQUAL_INT(0, lep_output_add_sensor(w, NULL, "{}", 0.0));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_output_close(w));
-    TEST_ASSERT_EQUAL_STRING("# leptrino-metadata: {}\nt_s,fx_N,fy_N,fz_N,mx_Nm,my_Nm,mz_Nm,status\n",
-                             slurp(path));
+    TEST_ASSERT_EQUAL_STRING(
+        "# leptrino-metadata: {}\nt_s,fx_N,fy_N,fz_N,mx_Nm,my_Nm,mz_Nm,status\n", slurp(path));
 }
 
 static void test_bad_arguments(void)

@@ -28,7 +28,8 @@ void setUp(void)
     o.overload_every_s = 0.2;
     o.overload_duration_s = 0.05;
     TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_sim_start(&o, &sim, err, sizeof(err)), err);
-    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_serial_open(lep_sim_port(sim), &port, err, sizeof(err)), err);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK,
+                                  lep_serial_open(lep_sim_port(sim), &port, err, sizeof(err)), err);
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_serial_client_init(&client, port));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_sync(&client, 30, NULL));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_rated(&client, &rated));
@@ -57,7 +58,8 @@ static void test_bad_arguments(void)
 {
     lep_record_batch b = batch;
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_record_fill(NULL, &rated, &b, 0, 100));
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_record_fill(&client, NULL, &b, 0, 100)); /* si needs rated */
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG,
+                          lep_record_fill(&client, NULL, &b, 0, 100)); /* si needs rated */
     b.t = NULL;
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_record_fill(&client, &rated, &b, 0, 100));
     b = batch;
@@ -113,7 +115,8 @@ static void test_optional_columns_and_disconnect(void)
     b.cap = CAP;
     b.t = t;
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_record_fill(&client, NULL, &b, lep_monotonic_seconds() + 0.1, 500));
+    TEST_ASSERT_EQUAL_INT(LEP_OK,
+                          lep_record_fill(&client, NULL, &b, lep_monotonic_seconds() + 0.1, 500));
     TEST_ASSERT_TRUE(b.n > 0);
     lep_sim_hangup(sim);
     b.n = 0;

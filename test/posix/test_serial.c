@@ -160,7 +160,7 @@ static void test_read_takes_what_is_there(void)
 {
     uint8_t data[200], got[1024];
     lep_io io;
-    struct timespec ts = {0, 20000000};
+    struct timespec ts = { 0, 20000000 };
     memset(data, 0xA5, sizeof data);
     make_pty();
     open_port(slave_path);
@@ -175,7 +175,7 @@ static void test_timeout_precision(void)
 {
     uint8_t buf[16];
     lep_io io;
-    int ms[3] = {1, 50, 300};
+    int ms[3] = { 1, 50, 300 };
     int i;
     make_pty();
     open_port(slave_path);
@@ -220,7 +220,7 @@ static void test_disconnect_while_waiting(void)
     pid = fork();
     TEST_ASSERT_TRUE(pid >= 0);
     if (pid == 0) {
-        struct timespec ts = {0, 100000000};
+        struct timespec ts = { 0, 100000000 };
         nanosleep(&ts, NULL);
         _exit(0);
     }

@@ -70,7 +70,9 @@ static void test_open_start_read_stop(void)
         (void)clock_gettime(CLOCK_REALTIME, &r);
         (void)clock_gettime(CLOCK_MONOTONIC, &m1);
         off = (double)r.tv_sec + (double)r.tv_nsec / 1e9 -
-              ((double)m0.tv_sec + (double)m0.tv_nsec / 1e9 + (double)m1.tv_sec + (double)m1.tv_nsec / 1e9) / 2.0;
+              ((double)m0.tv_sec + (double)m0.tv_nsec / 1e9 + (double)m1.tv_sec +
+               (double)m1.tv_nsec / 1e9) /
+                  2.0;
         TEST_ASSERT_DOUBLE_WITHIN(0.05, off, b.t_utc[0] - b.t_mono[0]);
     }
     lep_session_get_health(s, &h);
@@ -97,7 +99,7 @@ static void test_count_and_start_tare_are_exact(void)
     lep_session *s;
     st_batch b;
     lep_session_event ev;
-    double off[LEP_AXES], sum[LEP_AXES] = {0};
+    double off[LEP_AXES], sum[LEP_AXES] = { 0 };
     int k, rc;
     lep_session_options_init(&o);
     o.count = 250;
@@ -276,7 +278,7 @@ static void test_two_sessions_at_once(void)
 /* The same samples, whatever the latency budget: only the wake-ups differ. */
 static void test_latency_budget_delivers_the_same_samples(void)
 {
-    int budgets[2] = {0, 100};
+    int budgets[2] = { 0, 100 };
     int j;
     for (j = 0; j < 2; j++) {
         lep_session_options o;
@@ -334,7 +336,7 @@ static void *poke(void *arg)
             (void)lep_session_untare(p->s);
         p->calls++;
         {
-            struct timespec ts = {0, 2000000};
+            struct timespec ts = { 0, 2000000 };
             nanosleep(&ts, NULL);
         }
     }

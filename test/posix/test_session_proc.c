@@ -47,7 +47,7 @@ static void test_tare_while_streaming_is_exact_and_never_stalls(void)
     lep_session_event ev;
     lep_rated rated;
     lep_session_metadata m;
-    double sum[LEP_AXES] = {0}, off[LEP_AXES];
+    double sum[LEP_AXES] = { 0 }, off[LEP_AXES];
     size_t i, first_taring = 0, n_taring = 0, start;
     int k;
 
@@ -76,7 +76,8 @@ static void test_tare_while_streaming_is_exact_and_never_stalls(void)
             n_taring++;
             for (k = 0; k < LEP_AXES; k++) {
                 sum[k] += (double)b.raw[i * 6 + (size_t)k];
-                TEST_ASSERT_EQUAL_DOUBLE((double)b.raw[i * 6 + (size_t)k], b.zeroed[i * 6 + (size_t)k]);
+                TEST_ASSERT_EQUAL_DOUBLE((double)b.raw[i * 6 + (size_t)k],
+                                         b.zeroed[i * 6 + (size_t)k]);
             }
         }
     }
@@ -114,7 +115,7 @@ static void test_tare_while_streaming_is_exact_and_never_stalls(void)
 
     /* set offsets explicitly */
     {
-        const double set[LEP_AXES] = {100.5, -200.25, 0.0, 1.0, 2.0, 3.0};
+        const double set[LEP_AXES] = { 100.5, -200.25, 0.0, 1.0, 2.0, 3.0 };
         TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_set_tare(s, set));
         start = b.b.n;
         read_until(s, &b, start + 50);
@@ -209,7 +210,8 @@ static void test_lowpass_step_response_is_a_butterworth(void)
             lo = hi;
             hi = t;
         }
-        TEST_ASSERT_TRUE_MESSAGE(y >= lo - 0.005 && y <= hi + 0.005, "step response off the Butterworth");
+        TEST_ASSERT_TRUE_MESSAGE(y >= lo - 0.005 && y <= hi + 0.005,
+                                 "step response off the Butterworth");
         /* the raw and zeroed columns are not filtered */
         TEST_ASSERT_EQUAL_DOUBLE(level, b.zeroed[i * 6 + LEP_FZ]);
     }
@@ -241,7 +243,7 @@ static void test_rotation_and_moment_point(void)
     lep_session_metadata m;
     st_batch b;
     double r[9];
-    const double p[3] = {0.01, -0.02, 0.1};
+    const double p[3] = { 0.01, -0.02, 0.1 };
     size_t i;
     int k;
 

@@ -188,11 +188,11 @@ static void test_product_info_with_output_rate(void)
 
 static void test_result_codes_and_nak(void)
 {
-    static const uint8_t bad_length[] = {0x05, 0xFF, 0x2A, 0x00, 0x00};
-    static const uint8_t unknown[] = {0x04, 0xFF, 0x77, 0x00};
-    static const uint8_t bad_filter[] = {0x08, 0xFF, 0xA6, 0x00, 0x09, 0x00, 0x00, 0x00};
-    static const uint8_t start[] = {0x04, 0xFF, 0x32, 0x00};
-    static const uint8_t info[] = {0x04, 0xFF, 0x2A, 0x00};
+    static const uint8_t bad_length[] = { 0x05, 0xFF, 0x2A, 0x00, 0x00 };
+    static const uint8_t unknown[] = { 0x04, 0xFF, 0x77, 0x00 };
+    static const uint8_t bad_filter[] = { 0x08, 0xFF, 0xA6, 0x00, 0x09, 0x00, 0x00, 0x00 };
+    static const uint8_t start[] = { 0x04, 0xFF, 0x32, 0x00 };
+    static const uint8_t info[] = { 0x04, 0xFF, 0x2A, 0x00 };
     uint8_t code = 0, result = 0xEE;
     start_default();
 
@@ -344,8 +344,8 @@ static void test_nobody_reading_blocks(void)
     TEST_ASSERT_EQUAL_UINT64(0, st.samples_dropped);
     /* every index of the stream is sent, blocked or skipped (the published
      * sequence is the next index, mod 65536) */
-    TEST_ASSERT_EQUAL_UINT16(st.sequence, (uint16_t)(st.samples_sent + st.samples_blocked +
-                                                     st.samples_skipped));
+    TEST_ASSERT_EQUAL_UINT16(st.sequence,
+                             (uint16_t)(st.samples_sent + st.samples_blocked + st.samples_skipped));
     open_client();
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_sync(&client, 30, &scratch_info));
     TEST_ASSERT_FALSE(stats_now().streaming);
@@ -678,8 +678,8 @@ static void test_stall_option_skips_samples(void)
 static unsigned stream_and_stop(unsigned stop_after, uint16_t *expect, uint64_t *gaps,
                                 unsigned *bad_frames)
 {
-    static const uint8_t start[] = {0x04, 0xFF, LEP_CMD_START, 0x00};
-    static const uint8_t stop[] = {0x04, 0xFF, LEP_CMD_STOP, 0x00};
+    static const uint8_t start[] = { 0x04, 0xFF, LEP_CMD_START, 0x00 };
+    static const uint8_t stop[] = { 0x04, 0xFF, LEP_CMD_STOP, 0x00 };
     lep_frame_decoder d;
     lep_io io;
     uint8_t buf[512];
@@ -748,14 +748,12 @@ static void test_drop_and_garbage_accounting(void)
                  "blocked %llu, garbage bytes %llu, bad frames %u",
                  got, (unsigned long long)gaps, (unsigned long long)st.samples_sent,
                  (unsigned long long)st.samples_dropped, (unsigned long long)st.samples_skipped,
-                 (unsigned long long)st.samples_blocked, (unsigned long long)st.garbage_bytes,
-                 bad);
+                 (unsigned long long)st.samples_blocked, (unsigned long long)st.garbage_bytes, bad);
         TEST_MESSAGE(msg);
         TEST_ASSERT_TRUE_MESSAGE(got >= 1200, msg);
         TEST_ASSERT_EQUAL_UINT64_MESSAGE(st.samples_sent, got, msg);
-        TEST_ASSERT_EQUAL_UINT64_MESSAGE(st.samples_dropped + st.samples_skipped +
-                                             st.samples_blocked,
-                                         gaps, msg);
+        TEST_ASSERT_EQUAL_UINT64_MESSAGE(
+            st.samples_dropped + st.samples_skipped + st.samples_blocked, gaps, msg);
         TEST_ASSERT_TRUE_MESSAGE(st.samples_dropped > 20, msg);
         TEST_ASSERT_TRUE_MESSAGE(st.garbage_bytes > 0, msg);
         TEST_ASSERT_EQUAL_UINT_MESSAGE(0, bad, msg); /* garbage never breaks a frame */
@@ -898,9 +896,10 @@ static void test_replay_of_a_raw_recording(void)
 {
     char file[64];
     lep_sample smp;
-    static const int16_t want[3][6] = {
-        {1, 2, 3, 4, 5, 6}, {-10, -20, -30, -40, -50, -60}, {32000, 0, -32000, 7, 8, 9}};
-    static const uint8_t want_status[3] = {0, 0x01, LEP_STATUS_OVERLOAD};
+    static const int16_t want[3][6] = { { 1, 2, 3, 4, 5, 6 },
+                                        { -10, -20, -30, -40, -50, -60 },
+                                        { 32000, 0, -32000, 7, 8, 9 } };
+    static const uint8_t want_status[3] = { 0, 0x01, LEP_STATUS_OVERLOAD };
     unsigned i;
     int a;
     replay_file(file, sizeof file,
@@ -944,17 +943,20 @@ static void test_replay_of_a_raw_recording(void)
     sim = NULL;
 
     /* an SI recording cannot be replayed: say what is missing */
-    replay_file(file, sizeof file, "# x\nt_s,fx_N,fy_N,fz_N,mx_Nm,my_Nm,mz_Nm,status\n0.1,1,2,3,4,5,6,0\n");
+    replay_file(file, sizeof file,
+                "# x\nt_s,fx_N,fy_N,fz_N,mx_Nm,my_Nm,mz_Nm,status\n0.1,1,2,3,4,5,6,0\n");
     TEST_ASSERT_EQUAL_INT(LEP_E_VALUE, start_replay(file));
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err, ":2: the header has no fx_counts column"), err);
     TEST_ASSERT_NULL(sim);
     /* a value that is not a count names its line and column */
-    replay_file(file, sizeof file, "fx_counts,fy_counts,fz_counts,mx_counts,my_counts,mz_counts\n"
-                                   "1,2,3,4,5,6\n1,2,3.5,4,5,6\n");
+    replay_file(file, sizeof file,
+                "fx_counts,fy_counts,fz_counts,mx_counts,my_counts,mz_counts\n"
+                "1,2,3,4,5,6\n1,2,3.5,4,5,6\n");
     TEST_ASSERT_EQUAL_INT(LEP_E_VALUE, start_replay(file));
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err, ":3: column fz_counts: '3.5'"), err);
-    replay_file(file, sizeof file, "fx_counts,fy_counts,fz_counts,mx_counts,my_counts,mz_counts\n"
-                                   "1,2,3,4,5,40000\n");
+    replay_file(file, sizeof file,
+                "fx_counts,fy_counts,fz_counts,mx_counts,my_counts,mz_counts\n"
+                "1,2,3,4,5,40000\n");
     TEST_ASSERT_EQUAL_INT(LEP_E_VALUE, start_replay(file));
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err, "mz_counts: '40000'"), err);
     replay_file(file, sizeof file, "fx_counts,fy_counts,fz_counts,mx_counts,my_counts,mz_counts\n");

@@ -37,8 +37,8 @@ void tearDown(void)
 static void start(const lep_sim_options *o)
 {
     TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_sim_start(o, &sim, err, sizeof err), err);
-    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_serial_open(lep_sim_port(sim), &port, err, sizeof err),
-                                  err);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK,
+                                  lep_serial_open(lep_sim_port(sim), &port, err, sizeof err), err);
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_serial_client_init(&client, port));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_timeout(&client, 2000));
 }
@@ -95,7 +95,7 @@ static void test_noise_reduction_per_code(void)
     /* sd 577 * sqrt(sum of h^2): about 1/sqrt(2 fc / 1200 * 0.7) smaller
      * (the Blackman window narrows the noise band of the ideal low-pass):
      * 10 Hz 72, 100 Hz 199, 200 Hz 280; bounds allow the noise of 1200 samples */
-    static const double lo[4] = {530, 58, 170, 240}, hi[4] = {625, 88, 230, 320};
+    static const double lo[4] = { 530, 58, 170, 240 }, hi[4] = { 625, 88, 230, 320 };
     uint8_t code;
     for (code = 0; code <= 3; code++) {
         lep_sim_options o;

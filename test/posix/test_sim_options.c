@@ -237,8 +237,8 @@ static void test_get_round_trips(void)
     for (i = 0; i < lep_sim_option_count(); i++) {
         const lep_sim_option_info *in = lep_sim_option_at(i);
         TEST_ASSERT_EQUAL_INT(LEP_OK, lep_sim_option_get(&o, in->name, buf, sizeof buf));
-        TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_sim_option_set(&copy, in->name, buf, err,
-                                                                 sizeof err), err);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(
+            LEP_OK, lep_sim_option_set(&copy, in->name, buf, err, sizeof err), err);
     }
     TEST_ASSERT_EQUAL_MEMORY(&o, &copy, sizeof o);
     TEST_ASSERT_EQUAL_INT(LEP_E_BUFFER, lep_sim_option_get(&o, "model", small, sizeof small));

@@ -116,8 +116,8 @@ static void test_session_and_clean_exit(void)
     int ofd, efd, i;
     snprintf(link, sizeof link, "/tmp/lep-simexe-%ld", (long)getpid());
     {
-        const char *args[] = {"--model", "CFS034CA301U", "--serial", "424242", "--link", link,
-                              "--output-rate-field", "--rate", "500", NULL};
+        const char *args[] = { "--model", "CFS034CA301U",        "--serial", "424242", "--link",
+                               link,      "--output-rate-field", "--rate",   "500",    NULL };
         spawn(args, line, sizeof line, &ofd, &efd);
     }
     TEST_ASSERT_EQUAL_STRING(link, line);
@@ -168,7 +168,7 @@ static void test_link_ownership_across_processes(void)
     snprintf(link, sizeof link, "/tmp/lep-simown-%ld", (long)getpid());
     snprintf(lock, sizeof lock, "%s.lock", link);
     {
-        const char *args[] = {"--link", link, NULL};
+        const char *args[] = { "--link", link, NULL };
         spawn(args, line, sizeof line, &ofd, &efd);
     }
     TEST_ASSERT_EQUAL_STRING(link, line);
@@ -204,7 +204,7 @@ static void test_sigint_exits_zero(void)
 {
     char line[256];
     int ofd, efd;
-    const char *args[] = {"--start-streaming", NULL};
+    const char *args[] = { "--start-streaming", NULL };
     spawn(args, line, sizeof line, &ofd, &efd);
     TEST_ASSERT_EQUAL_INT(0, strncmp(line, "/dev/", 5));
     kill(child, SIGINT);
@@ -250,16 +250,16 @@ static void expect_link_error(const char *const *args, const char *needle)
 
 static void test_bad_arguments(void)
 {
-    const char *a1[] = {"--model", "NOPE", NULL};
-    const char *a2[] = {"--rate", "fast", NULL};
-    const char *a3[] = {"--bogus", NULL};
-    const char *a4[] = {"--nak", "2", NULL};
-    const char *a5[] = {"--reopen-after", "100", NULL};
-    const char *a6[] = {"--filter", NULL};
-    const char *a7[] = {"--serial", "12ab", NULL};
-    const char *a8[] = {"--hangup-after", "inf", NULL};
+    const char *a1[] = { "--model", "NOPE", NULL };
+    const char *a2[] = { "--rate", "fast", NULL };
+    const char *a3[] = { "--bogus", NULL };
+    const char *a4[] = { "--nak", "2", NULL };
+    const char *a5[] = { "--reopen-after", "100", NULL };
+    const char *a6[] = { "--filter", NULL };
+    const char *a7[] = { "--serial", "12ab", NULL };
+    const char *a8[] = { "--hangup-after", "inf", NULL };
     char recording[64];
-    const char *a9[] = {"--link", recording, NULL};
+    const char *a9[] = { "--link", recording, NULL };
     FILE *f;
     expect_usage_error(a1, "NOPE");
     expect_usage_error(a2, "fast");
@@ -287,9 +287,9 @@ static void test_help_version_models(void)
 {
     char line[256];
     int ofd, efd;
-    const char *h[] = {"--help", NULL};
-    const char *v[] = {"--version", NULL};
-    const char *m[] = {"--list-models", NULL};
+    const char *h[] = { "--help", NULL };
+    const char *v[] = { "--version", NULL };
+    const char *m[] = { "--list-models", NULL };
     spawn(h, line, sizeof line, &ofd, &efd);
     TEST_ASSERT_NOT_NULL(strstr(line, "usage: leptrino-sim"));
     TEST_ASSERT_EQUAL_INT(0, wait_exit(3000));

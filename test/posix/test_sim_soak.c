@@ -69,8 +69,8 @@ static void test_short_soak_with_every_fault(void)
     TEST_ASSERT_TRUE(field("stalls") >= 1);
     TEST_ASSERT_TRUE(field("corrupted") >= 1);
     /* every sample generated is sent or lost to a named cause */
-    TEST_ASSERT_EQUAL_DOUBLE(field("generated"),
-                             field("sent") + field("dropped") + field("stalled") + field("blocked"));
+    TEST_ASSERT_EQUAL_DOUBLE(field("generated"), field("sent") + field("dropped") +
+                                                     field("stalled") + field("blocked"));
     TEST_ASSERT_NOT_NULL(strstr(out, "\"max_gap_ms\":"));
     TEST_ASSERT_NOT_NULL(strstr(out, "\"resent\":"));
     TEST_ASSERT_NOT_NULL(strstr(out, "\"failed\":"));

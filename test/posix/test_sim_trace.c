@@ -137,7 +137,7 @@ static void test_power_cycle_ends_the_stream(void)
     lep_sim_power_cycle(sim);
     for (n = 0; n < 200; n++) { /* applied by the sensor's thread */
         lep_sim_stats st;
-        struct timespec ts = {0, 10000000};
+        struct timespec ts = { 0, 10000000 };
         lep_sim_get_stats(sim, &st);
         if (st.power_cycles > 0)
             break;

@@ -158,14 +158,30 @@ static char *parse_string_raw(parser *ps)
         }
         c = *ps->p++;
         switch (c) {
-        case '"': out[n++] = '"'; break;
-        case '\\': out[n++] = '\\'; break;
-        case '/': out[n++] = '/'; break;
-        case 'b': out[n++] = '\b'; break;
-        case 'f': out[n++] = '\f'; break;
-        case 'n': out[n++] = '\n'; break;
-        case 'r': out[n++] = '\r'; break;
-        case 't': out[n++] = '\t'; break;
+        case '"':
+            out[n++] = '"';
+            break;
+        case '\\':
+            out[n++] = '\\';
+            break;
+        case '/':
+            out[n++] = '/';
+            break;
+        case 'b':
+            out[n++] = '\b';
+            break;
+        case 'f':
+            out[n++] = '\f';
+            break;
+        case 'n':
+            out[n++] = '\n';
+            break;
+        case 'r':
+            out[n++] = '\r';
+            break;
+        case 't':
+            out[n++] = '\t';
+            break;
         case 'u': {
             unsigned long cp;
             if (!read_u4(ps, &cp)) {
@@ -330,8 +346,10 @@ static lep_json *parse_value(parser *ps, int depth)
         return NULL;
     }
     switch (*ps->p) {
-    case '{': return parse_container(ps, depth, LEP_JSON_OBJECT);
-    case '[': return parse_container(ps, depth, LEP_JSON_ARRAY);
+    case '{':
+        return parse_container(ps, depth, LEP_JSON_OBJECT);
+    case '[':
+        return parse_container(ps, depth, LEP_JSON_ARRAY);
     case '"': {
         char *s = parse_string_raw(ps);
         if (s == NULL) {

@@ -8,7 +8,7 @@
 void script_io_init(script_io *s)
 {
     lep_product_info info;
-    lep_rated rated = {{500.0f, 500.0f, 500.0f, 10.0f, 10.0f, 8.0f}};
+    lep_rated rated = { { 500.0f, 500.0f, 500.0f, 10.0f, 10.0f, 8.0f } };
     memset(s, 0, sizeof(*s));
     memset(&info, 0, sizeof(info));
     strcpy(info.model, "PFS055YA501U6");
@@ -87,7 +87,7 @@ static int script_write(void *user, const uint8_t *data, size_t len)
             continue;
         }
         if (ev.type == LEP_DEVICE_COMMAND && s->naks_left > 0) {
-            static const uint8_t nak[2] = {LEP_DLE, LEP_NAK};
+            static const uint8_t nak[2] = { LEP_DLE, LEP_NAK };
             s->naks_left--;
             s->dev = before; /* a NAKed command changes nothing */
             script_push(s, nak, sizeof(nak));

@@ -23,27 +23,27 @@ typedef struct script_io {
     size_t in_pos;
     uint8_t out[SCRIPT_OUT_CAP]; /* everything the host wrote */
     size_t out_len;
-    unsigned writes;          /* write calls */
-    unsigned commands;        /* commands the device answered */
-    size_t max_chunk;         /* read returns at most this many bytes (0: no limit) */
-    int naks_left;            /* answer the next N commands with DLE NAK */
-    bool silent;              /* ignore commands: no answer, no effect */
-    unsigned inflight;        /* data frames sent before each answer while streaming */
-    bool endless_stream;      /* while streaming, an empty line grows a data frame per ms */
-    int read_error;           /* non-zero: read returns it */
-    int write_error;          /* non-zero: write returns it */
-    uint8_t forced[128];      /* raw bytes sent instead of the device's next answer */
+    unsigned writes;     /* write calls */
+    unsigned commands;   /* commands the device answered */
+    size_t max_chunk;    /* read returns at most this many bytes (0: no limit) */
+    int naks_left;       /* answer the next N commands with DLE NAK */
+    bool silent;         /* ignore commands: no answer, no effect */
+    unsigned inflight;   /* data frames sent before each answer while streaming */
+    bool endless_stream; /* while streaming, an empty line grows a data frame per ms */
+    int read_error;      /* non-zero: read returns it */
+    int write_error;     /* non-zero: write returns it */
+    uint8_t forced[128]; /* raw bytes sent instead of the device's next answer */
     size_t forced_len;
-    uint16_t seq;             /* sequence number put into generated data frames */
-    unsigned reads;           /* read calls (past SCRIPT_MAX_READS read fails: a runaway loop) */
-    int last_timeout;         /* timeout_ms of the last read call */
-    unsigned stall_reads;     /* the next N reads of an empty line find nothing, even streaming */
-    bool noise;               /* an empty line grows 64 bytes of noise (no frame) per ms */
-    int overclaim;            /* read reports this many bytes more than it copied */
-    size_t total_read;        /* bytes handed to the host by all reads */
-    unsigned lose_answers;    /* the next N commands are executed but their answers are lost */
-    unsigned lose_commands;   /* the next N commands never reach the device */
-    uint32_t tick;            /* the clock advances this many ms at every now_ms call */
+    uint16_t seq;           /* sequence number put into generated data frames */
+    unsigned reads;         /* read calls (past SCRIPT_MAX_READS read fails: a runaway loop) */
+    int last_timeout;       /* timeout_ms of the last read call */
+    unsigned stall_reads;   /* the next N reads of an empty line find nothing, even streaming */
+    bool noise;             /* an empty line grows 64 bytes of noise (no frame) per ms */
+    int overclaim;          /* read reports this many bytes more than it copied */
+    size_t total_read;      /* bytes handed to the host by all reads */
+    unsigned lose_answers;  /* the next N commands are executed but their answers are lost */
+    unsigned lose_commands; /* the next N commands never reach the device */
+    uint32_t tick;          /* the clock advances this many ms at every now_ms call */
     lep_device dev;
 } script_io;
 

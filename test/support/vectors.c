@@ -77,11 +77,11 @@ int lep_vectors_error(const char *name)
     static const struct {
         const char *name;
         int code;
-    } map[] = {{"arg", LEP_E_ARG},           {"buffer", LEP_E_BUFFER},
-               {"too_long", LEP_E_TOO_LONG}, {"bcc", LEP_E_BCC},
-               {"escape", LEP_E_ESCAPE},     {"length", LEP_E_LENGTH},
-               {"reserved", LEP_E_RESERVED}, {"unexpected", LEP_E_UNEXPECTED},
-               {"value", LEP_E_VALUE},       {"sensor", LEP_E_SENSOR}};
+    } map[] = { { "arg", LEP_E_ARG },           { "buffer", LEP_E_BUFFER },
+                { "too_long", LEP_E_TOO_LONG }, { "bcc", LEP_E_BCC },
+                { "escape", LEP_E_ESCAPE },     { "length", LEP_E_LENGTH },
+                { "reserved", LEP_E_RESERVED }, { "unexpected", LEP_E_UNEXPECTED },
+                { "value", LEP_E_VALUE },       { "sensor", LEP_E_SENSOR } };
     size_t i;
     TEST_ASSERT_NOT_NULL_MESSAGE(name, "vector without an error name");
     for (i = 0; i < sizeof(map) / sizeof(map[0]); i++) {

@@ -253,8 +253,8 @@ static void expected_was(uint64_t e, uint64_t a, int is_signed, UNITY_DISPLAY_ST
     print_number(a, is_signed, style);
 }
 
-void UnityAssertEqualSigned(int64_t expected, int64_t actual, const char *msg,
-                            UNITY_LINE_TYPE line, UNITY_DISPLAY_STYLE_T style)
+void UnityAssertEqualSigned(int64_t expected, int64_t actual, const char *msg, UNITY_LINE_TYPE line,
+                            UNITY_DISPLAY_STYLE_T style)
 {
     uint64_t e, a;
     if (expected == actual) {
@@ -283,36 +283,51 @@ void UnityAssertEqualUnsigned(uint64_t expected, uint64_t actual, const char *ms
 static const char *cmp_text(UNITY_COMPARISON_T cmp)
 {
     switch (cmp) {
-    case UNITY_GREATER_THAN: return "greater than";
-    case UNITY_GREATER_OR_EQUAL: return "greater than or equal to";
-    case UNITY_SMALLER_THAN: return "less than";
-    case UNITY_SMALLER_OR_EQUAL: return "less than or equal to";
+    case UNITY_GREATER_THAN:
+        return "greater than";
+    case UNITY_GREATER_OR_EQUAL:
+        return "greater than or equal to";
+    case UNITY_SMALLER_THAN:
+        return "less than";
+    case UNITY_SMALLER_OR_EQUAL:
+        return "less than or equal to";
     case UNITY_NOT_EQUAL:
-    default: return "not equal to";
+    default:
+        return "not equal to";
     }
 }
 
 static int cmp_holds_s(int64_t t, int64_t a, UNITY_COMPARISON_T cmp)
 {
     switch (cmp) {
-    case UNITY_GREATER_THAN: return a > t;
-    case UNITY_GREATER_OR_EQUAL: return a >= t;
-    case UNITY_SMALLER_THAN: return a < t;
-    case UNITY_SMALLER_OR_EQUAL: return a <= t;
+    case UNITY_GREATER_THAN:
+        return a > t;
+    case UNITY_GREATER_OR_EQUAL:
+        return a >= t;
+    case UNITY_SMALLER_THAN:
+        return a < t;
+    case UNITY_SMALLER_OR_EQUAL:
+        return a <= t;
     case UNITY_NOT_EQUAL:
-    default: return a != t;
+    default:
+        return a != t;
     }
 }
 
 static int cmp_holds_u(uint64_t t, uint64_t a, UNITY_COMPARISON_T cmp)
 {
     switch (cmp) {
-    case UNITY_GREATER_THAN: return a > t;
-    case UNITY_GREATER_OR_EQUAL: return a >= t;
-    case UNITY_SMALLER_THAN: return a < t;
-    case UNITY_SMALLER_OR_EQUAL: return a <= t;
+    case UNITY_GREATER_THAN:
+        return a > t;
+    case UNITY_GREATER_OR_EQUAL:
+        return a >= t;
+    case UNITY_SMALLER_THAN:
+        return a < t;
+    case UNITY_SMALLER_OR_EQUAL:
+        return a <= t;
     case UNITY_NOT_EQUAL:
-    default: return a != t;
+    default:
+        return a != t;
     }
 }
 
@@ -332,8 +347,7 @@ void UnityAssertCompareSigned(int64_t threshold, int64_t actual, UNITY_COMPARISO
 }
 
 void UnityAssertCompareUnsigned(uint64_t threshold, uint64_t actual, UNITY_COMPARISON_T cmp,
-                                const char *msg, UNITY_LINE_TYPE line,
-                                UNITY_DISPLAY_STYLE_T style)
+                                const char *msg, UNITY_LINE_TYPE line, UNITY_DISPLAY_STYLE_T style)
 {
     if (cmp_holds_u(threshold, actual, cmp)) {
         return;
@@ -371,9 +385,8 @@ void UnityAssertSignedWithin(uint64_t delta, int64_t expected, int64_t actual, c
     bail();
 }
 
-void UnityAssertUnsignedWithin(uint64_t delta, uint64_t expected, uint64_t actual,
-                               const char *msg, UNITY_LINE_TYPE line,
-                               UNITY_DISPLAY_STYLE_T style)
+void UnityAssertUnsignedWithin(uint64_t delta, uint64_t expected, uint64_t actual, const char *msg,
+                               UNITY_LINE_TYPE line, UNITY_DISPLAY_STYLE_T style)
 {
     uint64_t diff = actual >= expected ? actual - expected : expected - actual;
     if (diff <= delta) {
@@ -466,8 +479,8 @@ static int pointers_settle(const void *e, const void *a, size_t count, const cha
     return 0;
 }
 
-void UnityAssertEqualMemory(const void *expected, const void *actual, size_t len,
-                            const char *msg, UNITY_LINE_TYPE line)
+void UnityAssertEqualMemory(const void *expected, const void *actual, size_t len, const char *msg,
+                            UNITY_LINE_TYPE line)
 {
     const unsigned char *e = (const unsigned char *)expected;
     const unsigned char *a = (const unsigned char *)actual;
@@ -497,20 +510,54 @@ static uint64_t element(const void *p, size_t i, UNITY_ARRAY_T type, int *is_sig
     *is_signed = 0;
     *style = UNITY_DISPLAY_STYLE_UINT;
     switch (type) {
-    case UNITY_ARRAY_INT8: s = ((const int8_t *)p)[i]; *is_signed = 1; break;
-    case UNITY_ARRAY_INT16: s = ((const int16_t *)p)[i]; *is_signed = 1; break;
-    case UNITY_ARRAY_INT32: s = ((const int32_t *)p)[i]; *is_signed = 1; break;
-    case UNITY_ARRAY_INT64: s = ((const int64_t *)p)[i]; *is_signed = 1; break;
-    case UNITY_ARRAY_INT: s = ((const int *)p)[i]; *is_signed = 1; break;
-    case UNITY_ARRAY_UINT8: bits = ((const uint8_t *)p)[i]; break;
-    case UNITY_ARRAY_UINT16: bits = ((const uint16_t *)p)[i]; break;
-    case UNITY_ARRAY_UINT32: bits = ((const uint32_t *)p)[i]; break;
-    case UNITY_ARRAY_UINT64: bits = ((const uint64_t *)p)[i]; break;
-    case UNITY_ARRAY_UINT: bits = ((const unsigned int *)p)[i]; break;
-    case UNITY_ARRAY_HEX8: bits = ((const uint8_t *)p)[i]; *style = UNITY_DISPLAY_STYLE_HEX8; break;
-    case UNITY_ARRAY_HEX16: bits = ((const uint16_t *)p)[i]; *style = UNITY_DISPLAY_STYLE_HEX16; break;
+    case UNITY_ARRAY_INT8:
+        s = ((const int8_t *)p)[i];
+        *is_signed = 1;
+        break;
+    case UNITY_ARRAY_INT16:
+        s = ((const int16_t *)p)[i];
+        *is_signed = 1;
+        break;
+    case UNITY_ARRAY_INT32:
+        s = ((const int32_t *)p)[i];
+        *is_signed = 1;
+        break;
+    case UNITY_ARRAY_INT64:
+        s = ((const int64_t *)p)[i];
+        *is_signed = 1;
+        break;
+    case UNITY_ARRAY_INT:
+        s = ((const int *)p)[i];
+        *is_signed = 1;
+        break;
+    case UNITY_ARRAY_UINT8:
+        bits = ((const uint8_t *)p)[i];
+        break;
+    case UNITY_ARRAY_UINT16:
+        bits = ((const uint16_t *)p)[i];
+        break;
+    case UNITY_ARRAY_UINT32:
+        bits = ((const uint32_t *)p)[i];
+        break;
+    case UNITY_ARRAY_UINT64:
+        bits = ((const uint64_t *)p)[i];
+        break;
+    case UNITY_ARRAY_UINT:
+        bits = ((const unsigned int *)p)[i];
+        break;
+    case UNITY_ARRAY_HEX8:
+        bits = ((const uint8_t *)p)[i];
+        *style = UNITY_DISPLAY_STYLE_HEX8;
+        break;
+    case UNITY_ARRAY_HEX16:
+        bits = ((const uint16_t *)p)[i];
+        *style = UNITY_DISPLAY_STYLE_HEX16;
+        break;
     case UNITY_ARRAY_HEX32:
-    default: bits = ((const uint32_t *)p)[i]; *style = UNITY_DISPLAY_STYLE_HEX32; break;
+    default:
+        bits = ((const uint32_t *)p)[i];
+        *style = UNITY_DISPLAY_STYLE_HEX32;
+        break;
     }
     if (*is_signed) {
         memcpy(&bits, &s, sizeof bits);
@@ -605,8 +652,7 @@ void UnityAssertDoublesWithin(double delta, double expected, double actual, cons
     }
 }
 
-void UnityAssertEqualDouble(double expected, double actual, const char *msg,
-                            UNITY_LINE_TYPE line)
+void UnityAssertEqualDouble(double expected, double actual, const char *msg, UNITY_LINE_TYPE line)
 {
     double delta = expected * UNITY_DOUBLE_REL;
     if (expected == actual) {
@@ -617,8 +663,8 @@ void UnityAssertEqualDouble(double expected, double actual, const char *msg,
     }
 }
 
-void UnityAssertFloatSpecial(double value, int want_nan, int want_inf, int negate,
-                             const char *msg, UNITY_LINE_TYPE line)
+void UnityAssertFloatSpecial(double value, int want_nan, int want_inf, int negate, const char *msg,
+                             UNITY_LINE_TYPE line)
 {
     int is = 0;
     if (want_nan) {

@@ -90,26 +90,24 @@ void UnityIgnore(const char *msg, UNITY_LINE_TYPE line);
 void UnityPass(void);
 void UnityMessage(const char *msg, UNITY_LINE_TYPE line);
 void UnityAssertTrue(int condition, const char *what, const char *msg, UNITY_LINE_TYPE line);
-void UnityAssertEqualSigned(int64_t expected, int64_t actual, const char *msg,
-                            UNITY_LINE_TYPE line, UNITY_DISPLAY_STYLE_T style);
+void UnityAssertEqualSigned(int64_t expected, int64_t actual, const char *msg, UNITY_LINE_TYPE line,
+                            UNITY_DISPLAY_STYLE_T style);
 void UnityAssertEqualUnsigned(uint64_t expected, uint64_t actual, const char *msg,
                               UNITY_LINE_TYPE line, UNITY_DISPLAY_STYLE_T style);
 void UnityAssertCompareSigned(int64_t threshold, int64_t actual, UNITY_COMPARISON_T cmp,
                               const char *msg, UNITY_LINE_TYPE line);
 void UnityAssertCompareUnsigned(uint64_t threshold, uint64_t actual, UNITY_COMPARISON_T cmp,
-                                const char *msg, UNITY_LINE_TYPE line,
-                                UNITY_DISPLAY_STYLE_T style);
+                                const char *msg, UNITY_LINE_TYPE line, UNITY_DISPLAY_STYLE_T style);
 void UnityAssertSignedWithin(uint64_t delta, int64_t expected, int64_t actual, const char *msg,
                              UNITY_LINE_TYPE line);
-void UnityAssertUnsignedWithin(uint64_t delta, uint64_t expected, uint64_t actual,
-                               const char *msg, UNITY_LINE_TYPE line,
-                               UNITY_DISPLAY_STYLE_T style);
+void UnityAssertUnsignedWithin(uint64_t delta, uint64_t expected, uint64_t actual, const char *msg,
+                               UNITY_LINE_TYPE line, UNITY_DISPLAY_STYLE_T style);
 void UnityAssertEqualString(const char *expected, const char *actual, const char *msg,
                             UNITY_LINE_TYPE line);
 void UnityAssertEqualStringLen(const char *expected, const char *actual, size_t len,
                                const char *msg, UNITY_LINE_TYPE line);
-void UnityAssertEqualMemory(const void *expected, const void *actual, size_t len,
-                            const char *msg, UNITY_LINE_TYPE line);
+void UnityAssertEqualMemory(const void *expected, const void *actual, size_t len, const char *msg,
+                            UNITY_LINE_TYPE line);
 void UnityAssertEqualArray(const void *expected, const void *actual, size_t count,
                            UNITY_ARRAY_T type, const char *msg, UNITY_LINE_TYPE line);
 void UnityAssertFloatsWithin(float delta, float expected, float actual, const char *msg,
@@ -117,10 +115,9 @@ void UnityAssertFloatsWithin(float delta, float expected, float actual, const ch
 void UnityAssertEqualFloat(float expected, float actual, const char *msg, UNITY_LINE_TYPE line);
 void UnityAssertDoublesWithin(double delta, double expected, double actual, const char *msg,
                               UNITY_LINE_TYPE line);
-void UnityAssertEqualDouble(double expected, double actual, const char *msg,
-                            UNITY_LINE_TYPE line);
-void UnityAssertFloatSpecial(double value, int want_nan, int want_inf, int negate,
-                             const char *msg, UNITY_LINE_TYPE line);
+void UnityAssertEqualDouble(double expected, double actual, const char *msg, UNITY_LINE_TYPE line);
+void UnityAssertFloatSpecial(double value, int want_nan, int want_inf, int negate, const char *msg,
+                             UNITY_LINE_TYPE line);
 
 #define UNITY_LINE ((UNITY_LINE_TYPE)(__LINE__))
 #define UNITY_S(x) ((int64_t)(x))
@@ -156,8 +153,9 @@ void UnityAssertFloatSpecial(double value, int want_nan, int want_inf, int negat
 
 /* ---- integers: equality ------------------------------------------------ */
 
-#define UNITY_EQ_S(e, a, m, T) \
-    UnityAssertEqualSigned(UNITY_S((T)(e)), UNITY_S((T)(a)), (m), UNITY_LINE, UNITY_DISPLAY_STYLE_INT)
+#define UNITY_EQ_S(e, a, m, T)                                                \
+    UnityAssertEqualSigned(UNITY_S((T)(e)), UNITY_S((T)(a)), (m), UNITY_LINE, \
+                           UNITY_DISPLAY_STYLE_INT)
 #define UNITY_EQ_U(e, a, m, T, style) \
     UnityAssertEqualUnsigned(UNITY_U((T)(e)), UNITY_U((T)(a)), (m), UNITY_LINE, (style))
 
@@ -166,21 +164,33 @@ void UnityAssertFloatSpecial(double value, int want_nan, int want_inf, int negat
 #define TEST_ASSERT_EQUAL_INT16_MESSAGE(e, a, m) UNITY_EQ_S(e, a, m, int16_t)
 #define TEST_ASSERT_EQUAL_INT32_MESSAGE(e, a, m) UNITY_EQ_S(e, a, m, int32_t)
 #define TEST_ASSERT_EQUAL_INT64_MESSAGE(e, a, m) UNITY_EQ_S(e, a, m, int64_t)
-#define TEST_ASSERT_EQUAL_UINT_MESSAGE(e, a, m) UNITY_EQ_U(e, a, m, unsigned int, UNITY_DISPLAY_STYLE_UINT)
-#define TEST_ASSERT_EQUAL_UINT8_MESSAGE(e, a, m) UNITY_EQ_U(e, a, m, uint8_t, UNITY_DISPLAY_STYLE_UINT)
-#define TEST_ASSERT_EQUAL_UINT16_MESSAGE(e, a, m) UNITY_EQ_U(e, a, m, uint16_t, UNITY_DISPLAY_STYLE_UINT)
-#define TEST_ASSERT_EQUAL_UINT32_MESSAGE(e, a, m) UNITY_EQ_U(e, a, m, uint32_t, UNITY_DISPLAY_STYLE_UINT)
-#define TEST_ASSERT_EQUAL_UINT64_MESSAGE(e, a, m) UNITY_EQ_U(e, a, m, uint64_t, UNITY_DISPLAY_STYLE_UINT)
-#define TEST_ASSERT_EQUAL_size_t_MESSAGE(e, a, m) UNITY_EQ_U(e, a, m, size_t, UNITY_DISPLAY_STYLE_UINT)
-#define TEST_ASSERT_EQUAL_HEX8_MESSAGE(e, a, m) UNITY_EQ_U(e, a, m, uint8_t, UNITY_DISPLAY_STYLE_HEX8)
-#define TEST_ASSERT_EQUAL_HEX16_MESSAGE(e, a, m) UNITY_EQ_U(e, a, m, uint16_t, UNITY_DISPLAY_STYLE_HEX16)
-#define TEST_ASSERT_EQUAL_HEX32_MESSAGE(e, a, m) UNITY_EQ_U(e, a, m, uint32_t, UNITY_DISPLAY_STYLE_HEX32)
-#define TEST_ASSERT_EQUAL_HEX64_MESSAGE(e, a, m) UNITY_EQ_U(e, a, m, uint64_t, UNITY_DISPLAY_STYLE_HEX64)
-#define TEST_ASSERT_EQUAL_CHAR_MESSAGE(e, a, m) UNITY_EQ_U(e, a, m, unsigned char, UNITY_DISPLAY_STYLE_CHAR)
+#define TEST_ASSERT_EQUAL_UINT_MESSAGE(e, a, m) \
+    UNITY_EQ_U(e, a, m, unsigned int, UNITY_DISPLAY_STYLE_UINT)
+#define TEST_ASSERT_EQUAL_UINT8_MESSAGE(e, a, m) \
+    UNITY_EQ_U(e, a, m, uint8_t, UNITY_DISPLAY_STYLE_UINT)
+#define TEST_ASSERT_EQUAL_UINT16_MESSAGE(e, a, m) \
+    UNITY_EQ_U(e, a, m, uint16_t, UNITY_DISPLAY_STYLE_UINT)
+#define TEST_ASSERT_EQUAL_UINT32_MESSAGE(e, a, m) \
+    UNITY_EQ_U(e, a, m, uint32_t, UNITY_DISPLAY_STYLE_UINT)
+#define TEST_ASSERT_EQUAL_UINT64_MESSAGE(e, a, m) \
+    UNITY_EQ_U(e, a, m, uint64_t, UNITY_DISPLAY_STYLE_UINT)
+#define TEST_ASSERT_EQUAL_size_t_MESSAGE(e, a, m) \
+    UNITY_EQ_U(e, a, m, size_t, UNITY_DISPLAY_STYLE_UINT)
+#define TEST_ASSERT_EQUAL_HEX8_MESSAGE(e, a, m) \
+    UNITY_EQ_U(e, a, m, uint8_t, UNITY_DISPLAY_STYLE_HEX8)
+#define TEST_ASSERT_EQUAL_HEX16_MESSAGE(e, a, m) \
+    UNITY_EQ_U(e, a, m, uint16_t, UNITY_DISPLAY_STYLE_HEX16)
+#define TEST_ASSERT_EQUAL_HEX32_MESSAGE(e, a, m) \
+    UNITY_EQ_U(e, a, m, uint32_t, UNITY_DISPLAY_STYLE_HEX32)
+#define TEST_ASSERT_EQUAL_HEX64_MESSAGE(e, a, m) \
+    UNITY_EQ_U(e, a, m, uint64_t, UNITY_DISPLAY_STYLE_HEX64)
+#define TEST_ASSERT_EQUAL_CHAR_MESSAGE(e, a, m) \
+    UNITY_EQ_U(e, a, m, unsigned char, UNITY_DISPLAY_STYLE_CHAR)
 #define TEST_ASSERT_EQUAL_MESSAGE(e, a, m) TEST_ASSERT_EQUAL_INT_MESSAGE(e, a, m)
-#define TEST_ASSERT_EQUAL_PTR_MESSAGE(e, a, m) \
-    UnityAssertEqualUnsigned(UNITY_U((uintptr_t)(const void *)(e)), UNITY_U((uintptr_t)(const void *)(a)), \
-                             (m), UNITY_LINE, UNITY_DISPLAY_STYLE_HEX64)
+#define TEST_ASSERT_EQUAL_PTR_MESSAGE(e, a, m)                                       \
+    UnityAssertEqualUnsigned(UNITY_U((uintptr_t)(const void *)(e)),                  \
+                             UNITY_U((uintptr_t)(const void *)(a)), (m), UNITY_LINE, \
+                             UNITY_DISPLAY_STYLE_HEX64)
 
 #define TEST_ASSERT_EQUAL_INT(e, a) TEST_ASSERT_EQUAL_INT_MESSAGE(e, a, NULL)
 #define TEST_ASSERT_EQUAL_INT8(e, a) TEST_ASSERT_EQUAL_INT8_MESSAGE(e, a, NULL)
@@ -209,48 +219,78 @@ void UnityAssertFloatSpecial(double value, int want_nan, int want_inf, int negat
 #define TEST_ASSERT_NOT_EQUAL(e, a) TEST_ASSERT_NOT_EQUAL_MESSAGE(e, a, NULL)
 #define TEST_ASSERT_NOT_EQUAL_INT_MESSAGE(e, a, m) TEST_ASSERT_NOT_EQUAL_MESSAGE(e, a, m)
 #define TEST_ASSERT_NOT_EQUAL_INT(e, a) TEST_ASSERT_NOT_EQUAL_MESSAGE(e, a, NULL)
-#define TEST_ASSERT_NOT_EQUAL_UINT_MESSAGE(e, a, m) \
-    UnityAssertCompareUnsigned(UNITY_U(e), UNITY_U(a), UNITY_NOT_EQUAL, (m), UNITY_LINE, UNITY_DISPLAY_STYLE_UINT)
+#define TEST_ASSERT_NOT_EQUAL_UINT_MESSAGE(e, a, m)                                      \
+    UnityAssertCompareUnsigned(UNITY_U(e), UNITY_U(a), UNITY_NOT_EQUAL, (m), UNITY_LINE, \
+                               UNITY_DISPLAY_STYLE_UINT)
 #define TEST_ASSERT_NOT_EQUAL_UINT(e, a) TEST_ASSERT_NOT_EQUAL_UINT_MESSAGE(e, a, NULL)
 
 /* ---- integers: ordering (passes when actual <op> threshold) ------------ */
 
-#define UNITY_CMP_S(t, a, op, m, T) UnityAssertCompareSigned(UNITY_S((T)(t)), UNITY_S((T)(a)), (op), (m), UNITY_LINE)
-#define UNITY_CMP_U(t, a, op, m, T) \
-    UnityAssertCompareUnsigned(UNITY_U((T)(t)), UNITY_U((T)(a)), (op), (m), UNITY_LINE, UNITY_DISPLAY_STYLE_UINT)
+#define UNITY_CMP_S(t, a, op, m, T) \
+    UnityAssertCompareSigned(UNITY_S((T)(t)), UNITY_S((T)(a)), (op), (m), UNITY_LINE)
+#define UNITY_CMP_U(t, a, op, m, T)                                                     \
+    UnityAssertCompareUnsigned(UNITY_U((T)(t)), UNITY_U((T)(a)), (op), (m), UNITY_LINE, \
+                               UNITY_DISPLAY_STYLE_UINT)
 
 #define TEST_ASSERT_GREATER_THAN_MESSAGE(t, a, m) UNITY_CMP_S(t, a, UNITY_GREATER_THAN, m, int)
 #define TEST_ASSERT_GREATER_THAN_INT_MESSAGE(t, a, m) UNITY_CMP_S(t, a, UNITY_GREATER_THAN, m, int)
-#define TEST_ASSERT_GREATER_THAN_INT32_MESSAGE(t, a, m) UNITY_CMP_S(t, a, UNITY_GREATER_THAN, m, int32_t)
-#define TEST_ASSERT_GREATER_THAN_INT64_MESSAGE(t, a, m) UNITY_CMP_S(t, a, UNITY_GREATER_THAN, m, int64_t)
-#define TEST_ASSERT_GREATER_THAN_UINT_MESSAGE(t, a, m) UNITY_CMP_U(t, a, UNITY_GREATER_THAN, m, unsigned int)
-#define TEST_ASSERT_GREATER_THAN_UINT32_MESSAGE(t, a, m) UNITY_CMP_U(t, a, UNITY_GREATER_THAN, m, uint32_t)
-#define TEST_ASSERT_GREATER_THAN_UINT64_MESSAGE(t, a, m) UNITY_CMP_U(t, a, UNITY_GREATER_THAN, m, uint64_t)
-#define TEST_ASSERT_GREATER_THAN_size_t_MESSAGE(t, a, m) UNITY_CMP_U(t, a, UNITY_GREATER_THAN, m, size_t)
+#define TEST_ASSERT_GREATER_THAN_INT32_MESSAGE(t, a, m) \
+    UNITY_CMP_S(t, a, UNITY_GREATER_THAN, m, int32_t)
+#define TEST_ASSERT_GREATER_THAN_INT64_MESSAGE(t, a, m) \
+    UNITY_CMP_S(t, a, UNITY_GREATER_THAN, m, int64_t)
+#define TEST_ASSERT_GREATER_THAN_UINT_MESSAGE(t, a, m) \
+    UNITY_CMP_U(t, a, UNITY_GREATER_THAN, m, unsigned int)
+#define TEST_ASSERT_GREATER_THAN_UINT32_MESSAGE(t, a, m) \
+    UNITY_CMP_U(t, a, UNITY_GREATER_THAN, m, uint32_t)
+#define TEST_ASSERT_GREATER_THAN_UINT64_MESSAGE(t, a, m) \
+    UNITY_CMP_U(t, a, UNITY_GREATER_THAN, m, uint64_t)
+#define TEST_ASSERT_GREATER_THAN_size_t_MESSAGE(t, a, m) \
+    UNITY_CMP_U(t, a, UNITY_GREATER_THAN, m, size_t)
 #define TEST_ASSERT_LESS_THAN_MESSAGE(t, a, m) UNITY_CMP_S(t, a, UNITY_SMALLER_THAN, m, int)
 #define TEST_ASSERT_LESS_THAN_INT_MESSAGE(t, a, m) UNITY_CMP_S(t, a, UNITY_SMALLER_THAN, m, int)
-#define TEST_ASSERT_LESS_THAN_INT32_MESSAGE(t, a, m) UNITY_CMP_S(t, a, UNITY_SMALLER_THAN, m, int32_t)
-#define TEST_ASSERT_LESS_THAN_INT64_MESSAGE(t, a, m) UNITY_CMP_S(t, a, UNITY_SMALLER_THAN, m, int64_t)
-#define TEST_ASSERT_LESS_THAN_UINT_MESSAGE(t, a, m) UNITY_CMP_U(t, a, UNITY_SMALLER_THAN, m, unsigned int)
-#define TEST_ASSERT_LESS_THAN_UINT32_MESSAGE(t, a, m) UNITY_CMP_U(t, a, UNITY_SMALLER_THAN, m, uint32_t)
-#define TEST_ASSERT_LESS_THAN_UINT64_MESSAGE(t, a, m) UNITY_CMP_U(t, a, UNITY_SMALLER_THAN, m, uint64_t)
-#define TEST_ASSERT_LESS_THAN_size_t_MESSAGE(t, a, m) UNITY_CMP_U(t, a, UNITY_SMALLER_THAN, m, size_t)
-#define TEST_ASSERT_GREATER_OR_EQUAL_MESSAGE(t, a, m) UNITY_CMP_S(t, a, UNITY_GREATER_OR_EQUAL, m, int)
-#define TEST_ASSERT_GREATER_OR_EQUAL_INT_MESSAGE(t, a, m) UNITY_CMP_S(t, a, UNITY_GREATER_OR_EQUAL, m, int)
-#define TEST_ASSERT_GREATER_OR_EQUAL_INT32_MESSAGE(t, a, m) UNITY_CMP_S(t, a, UNITY_GREATER_OR_EQUAL, m, int32_t)
-#define TEST_ASSERT_GREATER_OR_EQUAL_INT64_MESSAGE(t, a, m) UNITY_CMP_S(t, a, UNITY_GREATER_OR_EQUAL, m, int64_t)
-#define TEST_ASSERT_GREATER_OR_EQUAL_UINT_MESSAGE(t, a, m) UNITY_CMP_U(t, a, UNITY_GREATER_OR_EQUAL, m, unsigned int)
-#define TEST_ASSERT_GREATER_OR_EQUAL_UINT32_MESSAGE(t, a, m) UNITY_CMP_U(t, a, UNITY_GREATER_OR_EQUAL, m, uint32_t)
-#define TEST_ASSERT_GREATER_OR_EQUAL_UINT64_MESSAGE(t, a, m) UNITY_CMP_U(t, a, UNITY_GREATER_OR_EQUAL, m, uint64_t)
-#define TEST_ASSERT_GREATER_OR_EQUAL_size_t_MESSAGE(t, a, m) UNITY_CMP_U(t, a, UNITY_GREATER_OR_EQUAL, m, size_t)
+#define TEST_ASSERT_LESS_THAN_INT32_MESSAGE(t, a, m) \
+    UNITY_CMP_S(t, a, UNITY_SMALLER_THAN, m, int32_t)
+#define TEST_ASSERT_LESS_THAN_INT64_MESSAGE(t, a, m) \
+    UNITY_CMP_S(t, a, UNITY_SMALLER_THAN, m, int64_t)
+#define TEST_ASSERT_LESS_THAN_UINT_MESSAGE(t, a, m) \
+    UNITY_CMP_U(t, a, UNITY_SMALLER_THAN, m, unsigned int)
+#define TEST_ASSERT_LESS_THAN_UINT32_MESSAGE(t, a, m) \
+    UNITY_CMP_U(t, a, UNITY_SMALLER_THAN, m, uint32_t)
+#define TEST_ASSERT_LESS_THAN_UINT64_MESSAGE(t, a, m) \
+    UNITY_CMP_U(t, a, UNITY_SMALLER_THAN, m, uint64_t)
+#define TEST_ASSERT_LESS_THAN_size_t_MESSAGE(t, a, m) \
+    UNITY_CMP_U(t, a, UNITY_SMALLER_THAN, m, size_t)
+#define TEST_ASSERT_GREATER_OR_EQUAL_MESSAGE(t, a, m) \
+    UNITY_CMP_S(t, a, UNITY_GREATER_OR_EQUAL, m, int)
+#define TEST_ASSERT_GREATER_OR_EQUAL_INT_MESSAGE(t, a, m) \
+    UNITY_CMP_S(t, a, UNITY_GREATER_OR_EQUAL, m, int)
+#define TEST_ASSERT_GREATER_OR_EQUAL_INT32_MESSAGE(t, a, m) \
+    UNITY_CMP_S(t, a, UNITY_GREATER_OR_EQUAL, m, int32_t)
+#define TEST_ASSERT_GREATER_OR_EQUAL_INT64_MESSAGE(t, a, m) \
+    UNITY_CMP_S(t, a, UNITY_GREATER_OR_EQUAL, m, int64_t)
+#define TEST_ASSERT_GREATER_OR_EQUAL_UINT_MESSAGE(t, a, m) \
+    UNITY_CMP_U(t, a, UNITY_GREATER_OR_EQUAL, m, unsigned int)
+#define TEST_ASSERT_GREATER_OR_EQUAL_UINT32_MESSAGE(t, a, m) \
+    UNITY_CMP_U(t, a, UNITY_GREATER_OR_EQUAL, m, uint32_t)
+#define TEST_ASSERT_GREATER_OR_EQUAL_UINT64_MESSAGE(t, a, m) \
+    UNITY_CMP_U(t, a, UNITY_GREATER_OR_EQUAL, m, uint64_t)
+#define TEST_ASSERT_GREATER_OR_EQUAL_size_t_MESSAGE(t, a, m) \
+    UNITY_CMP_U(t, a, UNITY_GREATER_OR_EQUAL, m, size_t)
 #define TEST_ASSERT_LESS_OR_EQUAL_MESSAGE(t, a, m) UNITY_CMP_S(t, a, UNITY_SMALLER_OR_EQUAL, m, int)
-#define TEST_ASSERT_LESS_OR_EQUAL_INT_MESSAGE(t, a, m) UNITY_CMP_S(t, a, UNITY_SMALLER_OR_EQUAL, m, int)
-#define TEST_ASSERT_LESS_OR_EQUAL_INT32_MESSAGE(t, a, m) UNITY_CMP_S(t, a, UNITY_SMALLER_OR_EQUAL, m, int32_t)
-#define TEST_ASSERT_LESS_OR_EQUAL_INT64_MESSAGE(t, a, m) UNITY_CMP_S(t, a, UNITY_SMALLER_OR_EQUAL, m, int64_t)
-#define TEST_ASSERT_LESS_OR_EQUAL_UINT_MESSAGE(t, a, m) UNITY_CMP_U(t, a, UNITY_SMALLER_OR_EQUAL, m, unsigned int)
-#define TEST_ASSERT_LESS_OR_EQUAL_UINT32_MESSAGE(t, a, m) UNITY_CMP_U(t, a, UNITY_SMALLER_OR_EQUAL, m, uint32_t)
-#define TEST_ASSERT_LESS_OR_EQUAL_UINT64_MESSAGE(t, a, m) UNITY_CMP_U(t, a, UNITY_SMALLER_OR_EQUAL, m, uint64_t)
-#define TEST_ASSERT_LESS_OR_EQUAL_size_t_MESSAGE(t, a, m) UNITY_CMP_U(t, a, UNITY_SMALLER_OR_EQUAL, m, size_t)
+#define TEST_ASSERT_LESS_OR_EQUAL_INT_MESSAGE(t, a, m) \
+    UNITY_CMP_S(t, a, UNITY_SMALLER_OR_EQUAL, m, int)
+#define TEST_ASSERT_LESS_OR_EQUAL_INT32_MESSAGE(t, a, m) \
+    UNITY_CMP_S(t, a, UNITY_SMALLER_OR_EQUAL, m, int32_t)
+#define TEST_ASSERT_LESS_OR_EQUAL_INT64_MESSAGE(t, a, m) \
+    UNITY_CMP_S(t, a, UNITY_SMALLER_OR_EQUAL, m, int64_t)
+#define TEST_ASSERT_LESS_OR_EQUAL_UINT_MESSAGE(t, a, m) \
+    UNITY_CMP_U(t, a, UNITY_SMALLER_OR_EQUAL, m, unsigned int)
+#define TEST_ASSERT_LESS_OR_EQUAL_UINT32_MESSAGE(t, a, m) \
+    UNITY_CMP_U(t, a, UNITY_SMALLER_OR_EQUAL, m, uint32_t)
+#define TEST_ASSERT_LESS_OR_EQUAL_UINT64_MESSAGE(t, a, m) \
+    UNITY_CMP_U(t, a, UNITY_SMALLER_OR_EQUAL, m, uint64_t)
+#define TEST_ASSERT_LESS_OR_EQUAL_size_t_MESSAGE(t, a, m) \
+    UNITY_CMP_U(t, a, UNITY_SMALLER_OR_EQUAL, m, size_t)
 
 #define TEST_ASSERT_GREATER_THAN(t, a) TEST_ASSERT_GREATER_THAN_MESSAGE(t, a, NULL)
 #define TEST_ASSERT_GREATER_THAN_INT(t, a) TEST_ASSERT_GREATER_THAN_INT_MESSAGE(t, a, NULL)
@@ -270,12 +310,18 @@ void UnityAssertFloatSpecial(double value, int want_nan, int want_inf, int negat
 #define TEST_ASSERT_LESS_THAN_size_t(t, a) TEST_ASSERT_LESS_THAN_size_t_MESSAGE(t, a, NULL)
 #define TEST_ASSERT_GREATER_OR_EQUAL(t, a) TEST_ASSERT_GREATER_OR_EQUAL_MESSAGE(t, a, NULL)
 #define TEST_ASSERT_GREATER_OR_EQUAL_INT(t, a) TEST_ASSERT_GREATER_OR_EQUAL_INT_MESSAGE(t, a, NULL)
-#define TEST_ASSERT_GREATER_OR_EQUAL_INT32(t, a) TEST_ASSERT_GREATER_OR_EQUAL_INT32_MESSAGE(t, a, NULL)
-#define TEST_ASSERT_GREATER_OR_EQUAL_INT64(t, a) TEST_ASSERT_GREATER_OR_EQUAL_INT64_MESSAGE(t, a, NULL)
-#define TEST_ASSERT_GREATER_OR_EQUAL_UINT(t, a) TEST_ASSERT_GREATER_OR_EQUAL_UINT_MESSAGE(t, a, NULL)
-#define TEST_ASSERT_GREATER_OR_EQUAL_UINT32(t, a) TEST_ASSERT_GREATER_OR_EQUAL_UINT32_MESSAGE(t, a, NULL)
-#define TEST_ASSERT_GREATER_OR_EQUAL_UINT64(t, a) TEST_ASSERT_GREATER_OR_EQUAL_UINT64_MESSAGE(t, a, NULL)
-#define TEST_ASSERT_GREATER_OR_EQUAL_size_t(t, a) TEST_ASSERT_GREATER_OR_EQUAL_size_t_MESSAGE(t, a, NULL)
+#define TEST_ASSERT_GREATER_OR_EQUAL_INT32(t, a) \
+    TEST_ASSERT_GREATER_OR_EQUAL_INT32_MESSAGE(t, a, NULL)
+#define TEST_ASSERT_GREATER_OR_EQUAL_INT64(t, a) \
+    TEST_ASSERT_GREATER_OR_EQUAL_INT64_MESSAGE(t, a, NULL)
+#define TEST_ASSERT_GREATER_OR_EQUAL_UINT(t, a) \
+    TEST_ASSERT_GREATER_OR_EQUAL_UINT_MESSAGE(t, a, NULL)
+#define TEST_ASSERT_GREATER_OR_EQUAL_UINT32(t, a) \
+    TEST_ASSERT_GREATER_OR_EQUAL_UINT32_MESSAGE(t, a, NULL)
+#define TEST_ASSERT_GREATER_OR_EQUAL_UINT64(t, a) \
+    TEST_ASSERT_GREATER_OR_EQUAL_UINT64_MESSAGE(t, a, NULL)
+#define TEST_ASSERT_GREATER_OR_EQUAL_size_t(t, a) \
+    TEST_ASSERT_GREATER_OR_EQUAL_size_t_MESSAGE(t, a, NULL)
 #define TEST_ASSERT_LESS_OR_EQUAL(t, a) TEST_ASSERT_LESS_OR_EQUAL_MESSAGE(t, a, NULL)
 #define TEST_ASSERT_LESS_OR_EQUAL_INT(t, a) TEST_ASSERT_LESS_OR_EQUAL_INT_MESSAGE(t, a, NULL)
 #define TEST_ASSERT_LESS_OR_EQUAL_INT32(t, a) TEST_ASSERT_LESS_OR_EQUAL_INT32_MESSAGE(t, a, NULL)
@@ -289,19 +335,21 @@ void UnityAssertFloatSpecial(double value, int want_nan, int want_inf, int negat
 
 #define TEST_ASSERT_INT_WITHIN_MESSAGE(d, e, a, m) \
     UnityAssertSignedWithin(UNITY_U(d), UNITY_S((int)(e)), UNITY_S((int)(a)), (m), UNITY_LINE)
-#define TEST_ASSERT_INT32_WITHIN_MESSAGE(d, e, a, m) \
-    UnityAssertSignedWithin(UNITY_U(d), UNITY_S((int32_t)(e)), UNITY_S((int32_t)(a)), (m), UNITY_LINE)
-#define TEST_ASSERT_INT64_WITHIN_MESSAGE(d, e, a, m) \
-    UnityAssertSignedWithin(UNITY_U(d), UNITY_S((int64_t)(e)), UNITY_S((int64_t)(a)), (m), UNITY_LINE)
-#define TEST_ASSERT_UINT_WITHIN_MESSAGE(d, e, a, m) \
-    UnityAssertUnsignedWithin(UNITY_U(d), UNITY_U((unsigned int)(e)), UNITY_U((unsigned int)(a)), (m), \
+#define TEST_ASSERT_INT32_WITHIN_MESSAGE(d, e, a, m)                                       \
+    UnityAssertSignedWithin(UNITY_U(d), UNITY_S((int32_t)(e)), UNITY_S((int32_t)(a)), (m), \
+                            UNITY_LINE)
+#define TEST_ASSERT_INT64_WITHIN_MESSAGE(d, e, a, m)                                       \
+    UnityAssertSignedWithin(UNITY_U(d), UNITY_S((int64_t)(e)), UNITY_S((int64_t)(a)), (m), \
+                            UNITY_LINE)
+#define TEST_ASSERT_UINT_WITHIN_MESSAGE(d, e, a, m)                                               \
+    UnityAssertUnsignedWithin(UNITY_U(d), UNITY_U((unsigned int)(e)), UNITY_U((unsigned int)(a)), \
+                              (m), UNITY_LINE, UNITY_DISPLAY_STYLE_UINT)
+#define TEST_ASSERT_UINT32_WITHIN_MESSAGE(d, e, a, m)                                          \
+    UnityAssertUnsignedWithin(UNITY_U(d), UNITY_U((uint32_t)(e)), UNITY_U((uint32_t)(a)), (m), \
                               UNITY_LINE, UNITY_DISPLAY_STYLE_UINT)
-#define TEST_ASSERT_UINT32_WITHIN_MESSAGE(d, e, a, m) \
-    UnityAssertUnsignedWithin(UNITY_U(d), UNITY_U((uint32_t)(e)), UNITY_U((uint32_t)(a)), (m), UNITY_LINE, \
-                              UNITY_DISPLAY_STYLE_UINT)
-#define TEST_ASSERT_UINT64_WITHIN_MESSAGE(d, e, a, m) \
-    UnityAssertUnsignedWithin(UNITY_U(d), UNITY_U((uint64_t)(e)), UNITY_U((uint64_t)(a)), (m), UNITY_LINE, \
-                              UNITY_DISPLAY_STYLE_UINT)
+#define TEST_ASSERT_UINT64_WITHIN_MESSAGE(d, e, a, m)                                          \
+    UnityAssertUnsignedWithin(UNITY_U(d), UNITY_U((uint64_t)(e)), UNITY_U((uint64_t)(a)), (m), \
+                              UNITY_LINE, UNITY_DISPLAY_STYLE_UINT)
 #define TEST_ASSERT_INT_WITHIN(d, e, a) TEST_ASSERT_INT_WITHIN_MESSAGE(d, e, a, NULL)
 #define TEST_ASSERT_INT32_WITHIN(d, e, a) TEST_ASSERT_INT32_WITHIN_MESSAGE(d, e, a, NULL)
 #define TEST_ASSERT_INT64_WITHIN(d, e, a) TEST_ASSERT_INT64_WITHIN_MESSAGE(d, e, a, NULL)
@@ -311,13 +359,14 @@ void UnityAssertFloatSpecial(double value, int want_nan, int want_inf, int negat
 
 /* ---- bits -------------------------------------------------------------- */
 
-#define TEST_ASSERT_BITS_MESSAGE(mask, e, a, m) \
-    UnityAssertEqualUnsigned(UNITY_U(e) & UNITY_U(mask), UNITY_U(a) & UNITY_U(mask), (m), UNITY_LINE, \
-                             UNITY_DISPLAY_STYLE_HEX32)
+#define TEST_ASSERT_BITS_MESSAGE(mask, e, a, m)                                           \
+    UnityAssertEqualUnsigned(UNITY_U(e) & UNITY_U(mask), UNITY_U(a) & UNITY_U(mask), (m), \
+                             UNITY_LINE, UNITY_DISPLAY_STYLE_HEX32)
 #define TEST_ASSERT_BITS(mask, e, a) TEST_ASSERT_BITS_MESSAGE(mask, e, a, NULL)
 #define TEST_ASSERT_BITS_HIGH(mask, a) TEST_ASSERT_BITS_MESSAGE(mask, UINT64_MAX, a, NULL)
 #define TEST_ASSERT_BITS_LOW(mask, a) TEST_ASSERT_BITS_MESSAGE(mask, 0u, a, NULL)
-#define TEST_ASSERT_BIT_HIGH(bit, a) TEST_ASSERT_BITS_MESSAGE(UNITY_U(1) << (bit), UINT64_MAX, a, NULL)
+#define TEST_ASSERT_BIT_HIGH(bit, a) \
+    TEST_ASSERT_BITS_MESSAGE(UNITY_U(1) << (bit), UINT64_MAX, a, NULL)
 #define TEST_ASSERT_BIT_LOW(bit, a) TEST_ASSERT_BITS_MESSAGE(UNITY_U(1) << (bit), 0u, a, NULL)
 
 /* ---- strings, memory, arrays ------------------------------------------ */
@@ -327,7 +376,8 @@ void UnityAssertFloatSpecial(double value, int want_nan, int want_inf, int negat
 #define TEST_ASSERT_EQUAL_STRING_LEN_MESSAGE(e, a, n, m) \
     UnityAssertEqualStringLen((e), (a), (size_t)(n), (m), UNITY_LINE)
 #define TEST_ASSERT_EQUAL_STRING_LEN(e, a, n) TEST_ASSERT_EQUAL_STRING_LEN_MESSAGE(e, a, n, NULL)
-#define TEST_ASSERT_EQUAL_MEMORY_MESSAGE(e, a, n, m) UnityAssertEqualMemory((e), (a), (size_t)(n), (m), UNITY_LINE)
+#define TEST_ASSERT_EQUAL_MEMORY_MESSAGE(e, a, n, m) \
+    UnityAssertEqualMemory((e), (a), (size_t)(n), (m), UNITY_LINE)
 #define TEST_ASSERT_EQUAL_MEMORY(e, a, n) TEST_ASSERT_EQUAL_MEMORY_MESSAGE(e, a, n, NULL)
 
 #define UNITY_ARR(e, a, n, T, m) UnityAssertEqualArray((e), (a), (size_t)(n), (T), (m), UNITY_LINE)
@@ -350,9 +400,12 @@ void UnityAssertFloatSpecial(double value, int want_nan, int want_inf, int negat
 #define TEST_ASSERT_EQUAL_INT64_ARRAY(e, a, n) TEST_ASSERT_EQUAL_INT64_ARRAY_MESSAGE(e, a, n, NULL)
 #define TEST_ASSERT_EQUAL_INT_ARRAY(e, a, n) TEST_ASSERT_EQUAL_INT_ARRAY_MESSAGE(e, a, n, NULL)
 #define TEST_ASSERT_EQUAL_UINT8_ARRAY(e, a, n) TEST_ASSERT_EQUAL_UINT8_ARRAY_MESSAGE(e, a, n, NULL)
-#define TEST_ASSERT_EQUAL_UINT16_ARRAY(e, a, n) TEST_ASSERT_EQUAL_UINT16_ARRAY_MESSAGE(e, a, n, NULL)
-#define TEST_ASSERT_EQUAL_UINT32_ARRAY(e, a, n) TEST_ASSERT_EQUAL_UINT32_ARRAY_MESSAGE(e, a, n, NULL)
-#define TEST_ASSERT_EQUAL_UINT64_ARRAY(e, a, n) TEST_ASSERT_EQUAL_UINT64_ARRAY_MESSAGE(e, a, n, NULL)
+#define TEST_ASSERT_EQUAL_UINT16_ARRAY(e, a, n) \
+    TEST_ASSERT_EQUAL_UINT16_ARRAY_MESSAGE(e, a, n, NULL)
+#define TEST_ASSERT_EQUAL_UINT32_ARRAY(e, a, n) \
+    TEST_ASSERT_EQUAL_UINT32_ARRAY_MESSAGE(e, a, n, NULL)
+#define TEST_ASSERT_EQUAL_UINT64_ARRAY(e, a, n) \
+    TEST_ASSERT_EQUAL_UINT64_ARRAY_MESSAGE(e, a, n, NULL)
 #define TEST_ASSERT_EQUAL_UINT_ARRAY(e, a, n) TEST_ASSERT_EQUAL_UINT_ARRAY_MESSAGE(e, a, n, NULL)
 #define TEST_ASSERT_EQUAL_HEX8_ARRAY(e, a, n) TEST_ASSERT_EQUAL_HEX8_ARRAY_MESSAGE(e, a, n, NULL)
 #define TEST_ASSERT_EQUAL_HEX16_ARRAY(e, a, n) TEST_ASSERT_EQUAL_HEX16_ARRAY_MESSAGE(e, a, n, NULL)
@@ -363,17 +416,21 @@ void UnityAssertFloatSpecial(double value, int want_nan, int want_inf, int negat
 #define TEST_ASSERT_FLOAT_WITHIN_MESSAGE(d, e, a, m) \
     UnityAssertFloatsWithin((float)(d), (float)(e), (float)(a), (m), UNITY_LINE)
 #define TEST_ASSERT_FLOAT_WITHIN(d, e, a) TEST_ASSERT_FLOAT_WITHIN_MESSAGE(d, e, a, NULL)
-#define TEST_ASSERT_EQUAL_FLOAT_MESSAGE(e, a, m) UnityAssertEqualFloat((float)(e), (float)(a), (m), UNITY_LINE)
+#define TEST_ASSERT_EQUAL_FLOAT_MESSAGE(e, a, m) \
+    UnityAssertEqualFloat((float)(e), (float)(a), (m), UNITY_LINE)
 #define TEST_ASSERT_EQUAL_FLOAT(e, a) TEST_ASSERT_EQUAL_FLOAT_MESSAGE(e, a, NULL)
 #define TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(d, e, a, m) \
     UnityAssertDoublesWithin((double)(d), (double)(e), (double)(a), (m), UNITY_LINE)
 #define TEST_ASSERT_DOUBLE_WITHIN(d, e, a) TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(d, e, a, NULL)
-#define TEST_ASSERT_EQUAL_DOUBLE_MESSAGE(e, a, m) UnityAssertEqualDouble((double)(e), (double)(a), (m), UNITY_LINE)
+#define TEST_ASSERT_EQUAL_DOUBLE_MESSAGE(e, a, m) \
+    UnityAssertEqualDouble((double)(e), (double)(a), (m), UNITY_LINE)
 #define TEST_ASSERT_EQUAL_DOUBLE(e, a) TEST_ASSERT_EQUAL_DOUBLE_MESSAGE(e, a, NULL)
 #define TEST_ASSERT_FLOAT_IS_NAN(a) UnityAssertFloatSpecial((double)(a), 1, 0, 0, NULL, UNITY_LINE)
-#define TEST_ASSERT_FLOAT_IS_NOT_NAN(a) UnityAssertFloatSpecial((double)(a), 1, 0, 1, NULL, UNITY_LINE)
+#define TEST_ASSERT_FLOAT_IS_NOT_NAN(a) \
+    UnityAssertFloatSpecial((double)(a), 1, 0, 1, NULL, UNITY_LINE)
 #define TEST_ASSERT_FLOAT_IS_INF(a) UnityAssertFloatSpecial((double)(a), 0, 1, 0, NULL, UNITY_LINE)
-#define TEST_ASSERT_FLOAT_IS_NOT_INF(a) UnityAssertFloatSpecial((double)(a), 0, 1, 1, NULL, UNITY_LINE)
+#define TEST_ASSERT_FLOAT_IS_NOT_INF(a) \
+    UnityAssertFloatSpecial((double)(a), 0, 1, 1, NULL, UNITY_LINE)
 #define TEST_ASSERT_DOUBLE_IS_NAN(a) TEST_ASSERT_FLOAT_IS_NAN(a)
 #define TEST_ASSERT_DOUBLE_IS_NOT_NAN(a) TEST_ASSERT_FLOAT_IS_NOT_NAN(a)
 #define TEST_ASSERT_DOUBLE_IS_INF(a) TEST_ASSERT_FLOAT_IS_INF(a)

@@ -36,7 +36,7 @@ static size_t make_message(int kind, uint64_t *rng, uint8_t *msg, size_t cap)
         for (i = 0; i < LEP_AXES; i++)
             r.u.sample.raw[i] = (int16_t)((int)(mix(rng) % 64001u) - 32000);
         r.u.sample.status = (uint8_t)(mix(rng) & 0x07u); /* the defined bits */
-        r.u.sample.reserved = (uint16_t)mix(rng);       /* a sequence number */
+        r.u.sample.reserved = (uint16_t)mix(rng);        /* a sequence number */
     } else if (kind == 1) {
         r.code = LEP_CMD_PRODUCT_INFO;
         memcpy(r.u.info.model, "PFS055YA501U6", 14);
@@ -107,7 +107,7 @@ static void print_tally(const char *name, const tally *t, int comma)
 
 int soak_bit_errors(uint64_t trials, uint64_t seed)
 {
-    static const char *const names[3] = {"stream_data", "product_info", "rated"};
+    static const char *const names[3] = { "stream_data", "product_info", "rated" };
     tally t[3];
     uint64_t rng = seed ^ 0xB17E55u, i;
     int k;

@@ -28,8 +28,8 @@
 
 /* The sensor's faults unless the command line says otherwise. */
 static const char *const fault_defaults[][2] = {
-    {"corrupt", "0.01"},   {"nak", "0.05"},      {"garbage", "0.02"},
-    {"drop", "0.005"},     {"start-streaming", "1"}, {"reopen-after", "300"},
+    { "corrupt", "0.01" }, { "nak", "0.05" },          { "garbage", "0.02" },
+    { "drop", "0.005" },   { "start-streaming", "1" }, { "reopen-after", "300" },
 };
 
 static const char usage[] =
@@ -304,8 +304,8 @@ static double cpu_seconds(void)
 
 static void report(const soak *k, const lep_sim_stats *st, double elapsed, double cpu)
 {
-    uint64_t generated = st->samples_sent + st->samples_dropped + st->samples_skipped +
-                         st->samples_blocked;
+    uint64_t generated =
+        st->samples_sent + st->samples_dropped + st->samples_skipped + st->samples_blocked;
     uint64_t unique = k->delivered - k->duplicated - k->out_of_order;
     printf("{\"duration_s\":%.3f,\"seed\":%llu,\"generated\":%llu,\"sent\":%llu,"
            "\"delivered\":%llu,\"lost\":{\"dropped\":%llu,\"stalled\":%llu,\"blocked\":%llu,"
@@ -323,16 +323,14 @@ static void report(const soak *k, const lep_sim_stats *st, double elapsed, doubl
            (unsigned long long)(st->samples_sent > unique ? st->samples_sent - unique : 0u),
            (unsigned long long)k->duplicated, (unsigned long long)k->out_of_order,
            (unsigned long long)k->wrong, (unsigned long long)k->answers_wrong,
-           (unsigned long long)k->commands,
-           (unsigned long long)(k->resent_nak + k->resent_timeout),
+           (unsigned long long)k->commands, (unsigned long long)(k->resent_nak + k->resent_timeout),
            (unsigned long long)k->resent_nak, (unsigned long long)k->resent_timeout,
            (unsigned long long)k->resent_confirmed, (unsigned long long)k->recoveries,
            (unsigned long long)k->failed, (unsigned long long)k->timeouts,
-           (unsigned long long)k->reconnects, k->max_gap_s * 1000.0,
-           (unsigned long long)k->streams, (unsigned long long)st->bytes_corrupted,
-           (unsigned long long)st->faked_naks, (unsigned long long)st->garbage_bytes,
-           (unsigned long long)st->stalls, (unsigned long long)st->hangups,
-           (unsigned long long)st->reopens, cpu);
+           (unsigned long long)k->reconnects, k->max_gap_s * 1000.0, (unsigned long long)k->streams,
+           (unsigned long long)st->bytes_corrupted, (unsigned long long)st->faked_naks,
+           (unsigned long long)st->garbage_bytes, (unsigned long long)st->stalls,
+           (unsigned long long)st->hangups, (unsigned long long)st->reopens, cpu);
 }
 
 static int bad(const char *opt, const char *msg)
@@ -399,9 +397,8 @@ static int parse(int argc, char **argv, soak *k)
             if (val == NULL || end == val || *end != '\0' || errno != 0 || val[0] == '-' ||
                 k->bit_errors == 0)
                 return bad(name, "expected a count of frames > 0");
-        }
-        else if (strncmp(name, "--", 2) == 0 && (in = lep_sim_option_find(name + 2)) != NULL &&
-                 strcmp(in->name, name + 2) == 0) {
+        } else if (strncmp(name, "--", 2) == 0 && (in = lep_sim_option_find(name + 2)) != NULL &&
+                   strcmp(in->name, name + 2) == 0) {
             if (in->type == LEP_SIM_OPT_FLAG) {
                 val = NULL;
                 used = 1;
@@ -440,8 +437,7 @@ int main(int argc, char **argv)
         /* the port comes back under the same name after a hang-up */
         const char *dir = getenv("TMPDIR");
         snprintf(k.opt.link, sizeof k.opt.link, "%s/leptrino-soak-%ld",
-                 dir != NULL && dir[0] != '\0' && strlen(dir) < 256 ? dir : "/tmp",
-                 (long)getpid());
+                 dir != NULL && dir[0] != '\0' && strlen(dir) < 256 ? dir : "/tmp", (long)getpid());
     }
     k.rng = k.opt.seed ^ 0x50A4u;
     rc = lep_sim_start(&k.opt, &k.sim, err, sizeof err);

@@ -45,15 +45,15 @@ enum cli_exit {
 typedef struct cli_args {
     int argc;
     char **argv;
-    int next;             /* index of the next argv element */
-    const char *cmd;      /* command name for messages */
-    const char *cur;      /* current element as given */
-    char name[64];        /* option name without an inline value */
+    int next;                 /* index of the next argv element */
+    const char *cmd;          /* command name for messages */
+    const char *cur;          /* current element as given */
+    char name[64];            /* option name without an inline value */
     const char *inline_value; /* after '=' in --name=value, else NULL */
-    bool positional;      /* cur is a positional argument */
-    bool only_positional; /* after "--" */
-    bool matched;         /* the current option was recognised */
-    bool failed;          /* an error was printed */
+    bool positional;          /* cur is a positional argument */
+    bool only_positional;     /* after "--" */
+    bool matched;             /* the current option was recognised */
+    bool failed;              /* an error was printed */
 } cli_args;
 
 void cli_args_init(cli_args *a, int argc, char **argv, const char *cmd);
@@ -83,10 +83,10 @@ void cli_args_error(cli_args *a, const char *fmt, ...)
 
 /* ---- sensors.c: PORT... / --sim... into sessions ---- */
 typedef struct cli_sensor {
-    const char *port;      /* PORT as given, or NULL for a virtual sensor */
-    lep_sim_options sim;   /* its options (virtual sensor) */
-    char name[64];         /* label: the port, or sim1, sim2, ... */
-    lep_session *session;  /* after cli_sensors_open */
+    const char *port;     /* PORT as given, or NULL for a virtual sensor */
+    lep_sim_options sim;  /* its options (virtual sensor) */
+    char name[64];        /* label: the port, or sim1, sim2, ... */
+    lep_session *session; /* after cli_sensors_open */
 } cli_sensor;
 
 typedef struct cli_port_opts {
@@ -115,8 +115,7 @@ void cli_port_help(FILE *f, bool several);
 int cli_sensors_open(cli_port_opts *po, const lep_session_options *o, const char *cmd);
 void cli_sensors_close(cli_port_opts *po);
 /* Print "leptrino: CMD: PORT: WHAT: <error>"; returns the exit code for err. */
-int cli_session_fail(lep_session *s, const char *cmd, const char *port, const char *what,
-                     int err);
+int cli_session_fail(lep_session *s, const char *cmd, const char *port, const char *what, int err);
 /* Exit code for a LEP_E_* code. */
 int cli_exit_code(int err);
 
@@ -178,12 +177,12 @@ typedef struct cli_watch_view {
     lep_session_metadata meta;
     lep_session_health health;
     bool have_sample;
-    double si[LEP_AXES];     /* the latest sample, zeroed SI */
-    uint8_t status;          /* its status bits */
-    uint8_t overload_axes;   /* axes in an overload episode */
+    double si[LEP_AXES];   /* the latest sample, zeroed SI */
+    uint8_t status;        /* its status bits */
+    uint8_t overload_axes; /* axes in an overload episode */
     bool taring;
     char lowpass_text[32];
-    char message[160];       /* the last event, already safe to print */
+    char message[160]; /* the last event, already safe to print */
 } cli_watch_view;
 
 /* Draw the whole view for a cols x rows window with one write() to fd. */

@@ -40,7 +40,7 @@ int cli_cmd_filter(int argc, char **argv)
     lep_session_options so;
     lep_session *sess;
     const char *setting = NULL;
-    const char *pos[2] = {NULL, NULL};
+    const char *pos[2] = { NULL, NULL };
     int npos = 0;
     uint8_t code = 0;
     int rc, exit_code;

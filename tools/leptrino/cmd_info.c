@@ -68,10 +68,10 @@ int cli_cmd_info(int argc, char **argv)
         printf("%-14s%s\n", "output rate:", "not reported");
     }
     field("protocol:", m.protocol);
-    printf("%-14sFx %g N, Fy %g N, Fz %g N, Mx %g N m, My %g N m, Mz %g N m\n", "rated:",
-           (double)m.rated.axis[LEP_FX], (double)m.rated.axis[LEP_FY],
-           (double)m.rated.axis[LEP_FZ], (double)m.rated.axis[LEP_MX],
-           (double)m.rated.axis[LEP_MY], (double)m.rated.axis[LEP_MZ]);
+    printf("%-14sFx %g N, Fy %g N, Fz %g N, Mx %g N m, My %g N m, Mz %g N m\n",
+           "rated:", (double)m.rated.axis[LEP_FX], (double)m.rated.axis[LEP_FY],
+           (double)m.rated.axis[LEP_FZ], (double)m.rated.axis[LEP_MX], (double)m.rated.axis[LEP_MY],
+           (double)m.rated.axis[LEP_MZ]);
     if (m.sensor_filter >= 0)
         printf("%-14s%d (%s)\n", "filter:", m.sensor_filter, m.sensor_filter_label);
     else

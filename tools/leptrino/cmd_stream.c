@@ -35,11 +35,11 @@ typedef struct stream_opts {
 typedef struct sensor_run {
     cli_sensor *sensor;
     lep_session *s;
-    lep_output *w;          /* its writer (shared when all go to one file) */
-    int index;              /* its sensor index in w */
+    lep_output *w; /* its writer (shared when all go to one file) */
+    int index;     /* its sensor index in w */
     bool own_writer;
-    bool done;              /* reached duration/count */
-    int failed;             /* LEP_E_* that ended it, 0 while fine */
+    bool done;  /* reached duration/count */
+    int failed; /* LEP_E_* that ended it, 0 while fine */
 } sensor_run;
 
 static void help(void)
@@ -120,9 +120,9 @@ static bool parse_columns(const char *v, unsigned *out)
         const char *name;
         unsigned bit;
     } NAMES[] = {
-        {"raw", LEP_COL_RAW},       {"zeroed", LEP_COL_ZEROED}, {"si", LEP_COL_SI},
-        {"status", LEP_COL_STATUS}, {"flags", LEP_COL_FLAGS},   {"seq", LEP_COL_SEQ},
-        {"sensor", LEP_COL_SENSOR},
+        { "raw", LEP_COL_RAW },       { "zeroed", LEP_COL_ZEROED }, { "si", LEP_COL_SI },
+        { "status", LEP_COL_STATUS }, { "flags", LEP_COL_FLAGS },   { "seq", LEP_COL_SEQ },
+        { "sensor", LEP_COL_SENSOR },
     };
     const char *p = v;
     *out = 0;
@@ -186,8 +186,9 @@ static int parse(int argc, char **argv, stream_opts *o)
             v = cli_args_value(&a);
             o->columns_given = true;
             if (v != NULL && !parse_columns(v, &o->out.columns))
-                cli_args_error(&a, "option --columns: '%s' is not a list of raw, zeroed, si, "
-                                   "status, flags, seq, sensor (each once)",
+                cli_args_error(&a,
+                               "option --columns: '%s' is not a list of raw, zeroed, si, "
+                               "status, flags, seq, sensor (each once)",
                                v);
         } else if (cli_args_is(&a, "-u", "--units")) {
             v = cli_args_value(&a);
@@ -297,11 +298,11 @@ typedef struct stream_state {
     stream_opts o;
     sensor_run run[CLI_MAX_SENSORS];
     size_t n;
-    double t0;          /* the one time base: the earliest start */
+    double t0; /* the one time base: the earliest start */
     cli_status st;
     bool keys;
-    bool stopped;       /* by a signal */
-    int write_error;    /* errno of a failed output, 0 while fine */
+    bool stopped;    /* by a signal */
+    int write_error; /* errno of a failed output, 0 while fine */
     /* one batch, reused */
     double t_mono[BATCH], t_utc[BATCH], zeroed[BATCH * LEP_AXES], si[BATCH * LEP_AXES];
     int16_t raw[BATCH * LEP_AXES];
@@ -393,8 +394,8 @@ static void status_line(stream_state *st)
         len = snprintf(text + used, sizeof text - used,
                        "%s%s%s%llu samples %.1f Hz %llu err %llu gaps", i > 0 ? " | " : "",
                        st->n > 1 ? st->run[i].sensor->name : "", st->n > 1 ? " " : "",
-                       (unsigned long long)h.delivered, h.recent_hz,
-                       (unsigned long long)h.errors, (unsigned long long)h.gaps);
+                       (unsigned long long)h.delivered, h.recent_hz, (unsigned long long)h.errors,
+                       (unsigned long long)h.gaps);
         used = len < 0 ? used : used + (size_t)len;
         if (used > sizeof text - 1)
             used = sizeof text - 1; /* truncated: the line is cut there */
@@ -491,11 +492,14 @@ static void summary(stream_state *st)
                 r->sensor->name, (unsigned long long)h.delivered, h.elapsed_s, h.measured_hz,
                 h.nominal_hz, (unsigned long long)h.errors, (unsigned long long)h.overloads,
                 (unsigned long long)h.gaps, (unsigned long long)h.lost, h.max_gap_s,
-                st->o.so.tare_samples == 0 ? "" : tared ? ", tared" : ", tare incomplete",
+                st->o.so.tare_samples == 0 ? ""
+                : tared                    ? ", tared"
+                                           : ", tare incomplete",
                 st->stopped ? "; stopped by signal" : "");
         if (h.shortfall)
-            fprintf(stderr, "leptrino: stream: %s: RATE SHORTFALL: %.1f Hz is %.1f %% below the "
-                            "nominal %.0f Hz (samples were lost or the sensor runs slow)\n",
+            fprintf(stderr,
+                    "leptrino: stream: %s: RATE SHORTFALL: %.1f Hz is %.1f %% below the "
+                    "nominal %.0f Hz (samples were lost or the sensor runs slow)\n",
                     r->sensor->name, h.measured_hz,
                     100.0 * (h.nominal_hz - h.measured_hz) / h.nominal_hz, h.nominal_hz);
     }
@@ -516,8 +520,10 @@ static int check_split_targets(stream_state *st)
         if (!split_path(st->o.split, st->run[i].sensor, i, path, sizeof path))
             continue; /* reported by open_outputs */
         if (stat(path, &sb) == 0 && (S_ISREG(sb.st_mode) || S_ISDIR(sb.st_mode))) {
-            fprintf(stderr, "leptrino: stream: %s: already exists; not overwritten (choose another "
-                            "name, or --overwrite); no file was written\n", path);
+            fprintf(stderr,
+                    "leptrino: stream: %s: already exists; not overwritten (choose another "
+                    "name, or --overwrite); no file was written\n",
+                    path);
             return CLI_FAIL;
         }
     }
@@ -621,8 +627,8 @@ int cli_cmd_stream(int argc, char **argv)
         code = open_outputs(&st);
     }
     if (code == CLI_OK) {
-        bool to_stdout = st.o.split == NULL &&
-                         (st.o.output == NULL || strcmp(st.o.output, "-") == 0);
+        bool to_stdout =
+            st.o.split == NULL && (st.o.output == NULL || strcmp(st.o.output, "-") == 0);
         cli_status_init(&st.st, to_stdout ? STDOUT_FILENO : -1);
         st.keys = cli_term_keys_begin();
         ran = true;

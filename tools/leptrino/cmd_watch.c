@@ -15,7 +15,7 @@
 
 typedef struct watch_opts {
     cli_port_opts po;
-    unsigned tare_n;     /* samples a tare averages */
+    unsigned tare_n; /* samples a tare averages */
     double lowpass;
     bool reconnect;
     double data_timeout;
@@ -88,8 +88,7 @@ static void note_event(cli_watch_view *v, const lep_session_event *ev, double t0
     switch (ev->type) {
     case LEP_EV_GAP:
         snprintf(v->message, sizeof v->message, "gap of %.0f ms at %.1f s (%lu samples lost)",
-                 (ev->gap_to - ev->gap_from) * 1000.0, ev->gap_from - t0,
-                 (unsigned long)ev->lost);
+                 (ev->gap_to - ev->gap_from) * 1000.0, ev->gap_from - t0, (unsigned long)ev->lost);
         break;
     case LEP_EV_DISCONNECTED:
         snprintf(v->message, sizeof v->message, "%s at %.1f s",
@@ -236,8 +235,9 @@ int cli_cmd_watch(int argc, char **argv)
         cli_session_fail(s, "watch", port, "stream", rc);
     } else {
         lep_session_stop(s);
-        fprintf(stderr, "leptrino: watch: %llu samples, %.1f Hz (nominal %.0f), %llu errors, "
-                        "%llu gaps, %llu overloads\n",
+        fprintf(stderr,
+                "leptrino: watch: %llu samples, %.1f Hz (nominal %.0f), %llu errors, "
+                "%llu gaps, %llu overloads\n",
                 (unsigned long long)v.health.received, v.health.measured_hz, v.health.nominal_hz,
                 (unsigned long long)v.health.errors, (unsigned long long)v.health.gaps,
                 (unsigned long long)v.health.overloads);

@@ -11,12 +11,12 @@ typedef struct cli_command {
 } cli_command;
 
 static const cli_command COMMANDS[] = {
-    {"list", cli_cmd_list, "list serial ports, marking likely sensors"},
-    {"info", cli_cmd_info, "show model, serial, firmware, rated values, filter"},
-    {"read", cli_cmd_read, "read N samples one by one (handshake mode)"},
-    {"stream", cli_cmd_stream, "record one or more sensors to CSV or JSON lines"},
-    {"watch", cli_cmd_watch, "live view in the terminal: bars, rate, errors; keys t, u, q"},
-    {"filter", cli_cmd_filter, "show or set the digital filter"},
+    { "list", cli_cmd_list, "list serial ports, marking likely sensors" },
+    { "info", cli_cmd_info, "show model, serial, firmware, rated values, filter" },
+    { "read", cli_cmd_read, "read N samples one by one (handshake mode)" },
+    { "stream", cli_cmd_stream, "record one or more sensors to CSV or JSON lines" },
+    { "watch", cli_cmd_watch, "live view in the terminal: bars, rate, errors; keys t, u, q" },
+    { "filter", cli_cmd_filter, "show or set the digital filter" },
 };
 
 #define N_COMMANDS (sizeof COMMANDS / sizeof COMMANDS[0])
@@ -124,7 +124,8 @@ int main(int argc, char **argv)
         return cmd->run(2, sub);
     }
     if (argv[1][0] == '-') {
-        fprintf(stderr, "leptrino: unknown option '%s' before the command (see 'leptrino --help')\n",
+        fprintf(stderr,
+                "leptrino: unknown option '%s' before the command (see 'leptrino --help')\n",
                 argv[1]);
         return CLI_USAGE;
     }

@@ -268,14 +268,13 @@ int cli_exit_code(int err)
     }
 }
 
-int cli_session_fail(lep_session *s, const char *cmd, const char *port, const char *what,
-                     int err)
+int cli_session_fail(lep_session *s, const char *cmd, const char *port, const char *what, int err)
 {
     lep_client *c = s != NULL ? lep_session_client(s) : NULL;
     if (err == LEP_E_SENSOR && c != NULL) {
         uint8_t r = lep_client_last_result(c);
-        fprintf(stderr, "leptrino: %s: %s: %s: the sensor answered result 0x%02X (%s)\n", cmd,
-                port, what, (unsigned)r, lep_result_str(r));
+        fprintf(stderr, "leptrino: %s: %s: %s: the sensor answered result 0x%02X (%s)\n", cmd, port,
+                what, (unsigned)r, lep_result_str(r));
     } else if (err == LEP_E_DISCONNECTED) {
         fprintf(stderr, "leptrino: %s: %s: %s: disconnected (the port went away)\n", cmd, port,
                 what);
@@ -307,8 +306,7 @@ int cli_sensors_open(cli_port_opts *po, const lep_session_options *o, const char
                 code = CLI_FAIL; /* e.g. a missing --sim-replay file: not a port problem */
             if (rc == LEP_E_ARG || rc == LEP_E_VALUE)
                 code = CLI_USAGE; /* options that do not go together, a cut-off too high */
-            fprintf(stderr, "leptrino: %s: %s\n", cmd,
-                    err[0] != '\0' ? err : lep_strerror(rc));
+            fprintf(stderr, "leptrino: %s: %s\n", cmd, err[0] != '\0' ? err : lep_strerror(rc));
             cli_sensors_close(po);
             return code == CLI_OK ? CLI_FAIL : code;
         }

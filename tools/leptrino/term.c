@@ -18,7 +18,7 @@
 #include "cli.h"
 
 static struct termios saved_termios;
-static volatile sig_atomic_t keys_on = 0;   /* saved_termios holds stdin's settings */
+static volatile sig_atomic_t keys_on = 0;    /* saved_termios holds stdin's settings */
 static volatile sig_atomic_t screen_fd = -1; /* the full-screen view is on this fd */
 
 /* Leave the alternate screen and show the cursor again. */

@@ -125,7 +125,7 @@ static void write_all(int fd, const char *p, size_t n)
     }
 }
 
-static const char *const AXIS[LEP_AXES] = {"Fx", "Fy", "Fz", "Mx", "My", "Mz"};
+static const char *const AXIS[LEP_AXES] = { "Fx", "Fy", "Fz", "Mx", "My", "Mz" };
 
 void cli_watch_draw(int fd, const cli_watch_view *v, int cols, int rows)
 {
@@ -152,10 +152,10 @@ void cli_watch_draw(int fd, const cli_watch_view *v, int cols, int rows)
     cli_safe_text(m->info.firmware, firmware, sizeof firmware);
     line(&s, "leptrino watch  %s  serial %s  firmware %s  %s%s", model, serial, firmware, m->port,
          m->sim ? " (virtual)" : "");
-    line(&s, "rated %g %g %g N, %g %g %g N m   filter %s   low-pass %s",
-         (double)m->rated.axis[0], (double)m->rated.axis[1], (double)m->rated.axis[2],
-         (double)m->rated.axis[3], (double)m->rated.axis[4], (double)m->rated.axis[5],
-         m->sensor_filter_label, v->lowpass_text);
+    line(&s, "rated %g %g %g N, %g %g %g N m   filter %s   low-pass %s", (double)m->rated.axis[0],
+         (double)m->rated.axis[1], (double)m->rated.axis[2], (double)m->rated.axis[3],
+         (double)m->rated.axis[4], (double)m->rated.axis[5], m->sensor_filter_label,
+         v->lowpass_text);
     line(&s, "%s", "");
     /* "  Fx  -123.456 N   " = 19 columns, then the bar, then " -100.0 %" */
     bw = cols - 19 - 10;
@@ -172,8 +172,8 @@ void cli_watch_draw(int fd, const cli_watch_view *v, int cols, int rows)
         if (!v->have_sample)
             line(&s, "  %s  %9s %-3s %s", AXIS[i], "-", i < 3 ? "N" : "N m", b);
         else
-            line(&s, "%s  %s  %9.3f %-3s %s %6.1f %%%s", over ? "\033[7m" : "", AXIS[i],
-                 v->si[i], i < 3 ? "N" : "N m", b, 100.0 * f, over ? "\033[0m" : "");
+            line(&s, "%s  %s  %9.3f %-3s %s %6.1f %%%s", over ? "\033[7m" : "", AXIS[i], v->si[i],
+                 i < 3 ? "N" : "N m", b, 100.0 * f, over ? "\033[0m" : "");
     }
     line(&s, "%s", "");
     if (!v->have_sample)
@@ -185,11 +185,12 @@ void cli_watch_draw(int fd, const cli_watch_view *v, int cols, int rows)
              (v->status & LEP_STATUS_SENSOR_FAULT) != 0 ? "SENSOR-FAULT" : "");
     line(&s, "rate      %.1f Hz now, %.1f Hz mean, nominal %.0f Hz%s", h->recent_hz, h->measured_hz,
          h->nominal_hz, h->shortfall ? "  SHORTFALL" : "");
-    line(&s, "counts    %llu samples  %llu errors  %llu gaps (%llu lost)  %llu overloads  "
-             "%llu reconnects",
+    line(&s,
+         "counts    %llu samples  %llu errors  %llu gaps (%llu lost)  %llu overloads  "
+         "%llu reconnects",
          (unsigned long long)h->received, (unsigned long long)h->errors,
-         (unsigned long long)h->gaps, (unsigned long long)h->lost,
-         (unsigned long long)h->overloads, (unsigned long long)h->reconnects);
+         (unsigned long long)h->gaps, (unsigned long long)h->lost, (unsigned long long)h->overloads,
+         (unsigned long long)h->reconnects);
     line(&s, "tare      %s", v->taring ? "averaging..." : m->tared ? "on" : "off");
     line(&s, "last      %s", v->message);
     line(&s, "%s", "");

@@ -94,14 +94,14 @@ static void simple(const char *name, uint8_t code, uint8_t result)
 
 int main(void)
 {
-    static const int16_t spec_raw[LEP_AXES] = {16, -16, 10000, -10000, 4112, 32000};
-    static const int16_t dle_raw[LEP_AXES] = {0x1010, 0x1010, 0x1010, 0x1010, 0x1010, 0x1010};
-    static const int16_t bcc10_raw[LEP_AXES] = {201, 1, 2, 3, 4, 5};
-    static const int16_t ctl_raw[LEP_AXES] = {0x0210, 0x0310, 0x1510, 0x1010, 0, 0};
-    static const int16_t ext_raw[LEP_AXES] = {32000, -32000, -1, 1, 15000, -15000};
-    static const float pfs055[LEP_AXES] = {500.0f, 500.0f, 500.0f, 10.0f, 10.0f, 8.0f};
-    static const float cfs018[LEP_AXES] = {100.0f, 100.0f, 200.0f, 1.0f, 1.0f, 1.0f};
-    static const float fractions[LEP_AXES] = {0.5f, 2.25f, 1234.5f, 0.125f, 3.75f, 1e-3f};
+    static const int16_t spec_raw[LEP_AXES] = { 16, -16, 10000, -10000, 4112, 32000 };
+    static const int16_t dle_raw[LEP_AXES] = { 0x1010, 0x1010, 0x1010, 0x1010, 0x1010, 0x1010 };
+    static const int16_t bcc10_raw[LEP_AXES] = { 201, 1, 2, 3, 4, 5 };
+    static const int16_t ctl_raw[LEP_AXES] = { 0x0210, 0x0310, 0x1510, 0x1010, 0, 0 };
+    static const int16_t ext_raw[LEP_AXES] = { 32000, -32000, -1, 1, 15000, -15000 };
+    static const float pfs055[LEP_AXES] = { 500.0f, 500.0f, 500.0f, 10.0f, 10.0f, 8.0f };
+    static const float cfs018[LEP_AXES] = { 100.0f, 100.0f, 200.0f, 1.0f, 1.0f, 1.0f };
+    static const float fractions[LEP_AXES] = { 0.5f, 2.25f, 1234.5f, 0.125f, 3.75f, 1e-3f };
     lep_sample s;
     uint8_t wire[LEP_MAX_FRAME];
     size_t n = 0;

@@ -17,8 +17,12 @@ void _init(void);
 void _fini(void);
 
 /* Called by newlib around main (no C++ constructors here): nothing to do. */
-void _init(void) {}
-void _fini(void) {}
+void _init(void)
+{
+}
+void _fini(void)
+{
+}
 
 extern uint32_t __stack_top;
 extern uint32_t __data_load, __data_start, __data_end;
@@ -46,7 +50,10 @@ __attribute__((section(".vectors"), used)) const lep_vector lep_vectors[16] = {
     lep_fault_handler,
     lep_fault_handler,
     lep_fault_handler,
-    0, 0, 0, 0,
+    0,
+    0,
+    0,
+    0,
     lep_fault_handler,
     lep_fault_handler,
     0,

@@ -4,7 +4,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
-static const uint8_t bytes[8] = {1, 2, 3, 4, 5, 6, 7, 8};
+static const uint8_t bytes[8] = { 1, 2, 3, 4, 5, 6, 7, 8 };
 
 int main(void)
 {
