@@ -59,7 +59,7 @@ static void test_init_rejects_incomplete_io(void)
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_init(NULL, &io));
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_set_timeout(&client, 0));
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_set_retries(&client, 256));
-    TEST_ASSERT_EQUAL_size_t(sizeof(lep_client), lep_client_size());
+    TEST_ASSERT_EQUAL_size_t(sizeof(lep_client), lep_client_sizeof());
 }
 
 /* lep_client_init zeroes the whole context and does not call
@@ -1552,7 +1552,8 @@ static void test_null_arguments(void)
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_step(NULL, NULL, 0, &used));
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_step(&client, NULL, 0, NULL));
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_step(&client, NULL, 1, &used));
-    { /* the one-byte fast path checks its arguments too */
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_step_byte(NULL, 0x41, &smp));
+    { /* a single byte is checked the same way */
         const uint8_t one = 0x41;
         TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_step(NULL, &one, 1, &used));
         TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_step(&client, &one, 1, NULL));

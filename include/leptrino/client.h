@@ -89,32 +89,42 @@ typedef struct lep_client_rx {
     uint8_t buf[LEP_CLIENT_RX_SIZE];
 } lep_client_rx;
 
-/* Client context. Caller-allocated; fields are private. At most 256 bytes
- * on a 32-bit MCU (the read buffer of the blocking calls is not in it). */
+/* Client context. Caller-allocated (static memory on an MCU is fine); its
+ * fields are private. A binding that cannot see this declaration allocates
+ * lep_client_sizeof() bytes, aligned for a pointer and a uint32_t. */
 typedef struct lep_client {
-    /* (Small fields first: short offsets make small code on Thumb-1 and AVR.) */
-    uint8_t state;
-    uint8_t phase;
-    uint8_t tries;
-    uint8_t max_retries;
-    uint8_t last_result;
-    lep_command cmd; /* pending command (its filter is read only by a filter set) */
-    uint8_t msg_len; /* length of the last outcome's message (at dec.buf), or 0 */
+    uint8_t phase;       /* what the client waits for (client.c's enum phase) */
+    uint8_t tries;       /* copies of the pending command sent again */
+    uint8_t max_retries; /* resends allowed per transaction */
+    uint8_t last_result; /* result code of the last sensor answer */
+    lep_command cmd;     /* the pending command (its filter is read only by a filter set) */
+    bool streaming;      /* continuous output is on */
+    bool fresh;          /* a sample arrived since the watchdog last looked */
+    uint8_t kept_len;    /* length of the last outcome's message (in dec.buf), 0: none */
+    uint8_t clock_in;    /* single-byte steps left before the clock is looked at */
     uint16_t watchdog_ms;
     uint16_t quiet_ms; /* the drain's quiet time (0: LEP_CLIENT_DEFAULT_QUIET_MS) */
-    uint16_t fast;     /* counts single-byte steps up to the next look at the clock */
-    uint16_t msg_at;   /* fast when the message was kept: current while they agree */
     uint32_t t_start;  /* when the transaction attempt or the quiet time began */
     uint32_t t_aux;    /* when the drain began, or the watchdog's reference time */
     uint32_t timeout_ms;
     lep_client_rx *rx; /* read buffer of the blocking calls, or NULL */
     lep_io io;
-    uint32_t count[10]; /* the client's own counters: lep_client_stats from retries on */
-    lep_frame_decoder dec;
+    /* The client's own counters (lep_client_stats has their meaning). */
+    uint32_t retries;
+    uint32_t unexpected;
+    uint32_t invalid;
+    uint32_t timeouts;
+    uint32_t samples;
+    uint32_t resent_after_timeout;
+    uint32_t resent_confirmed;
+    uint32_t recoveries;
+    uint32_t reserved_nonzero;
+    uint32_t stalls;
+    lep_frame_decoder dec; /* the frame decoder; it also holds the kept message */
 } lep_client;
 
-/* sizeof(lep_client), for FFI callers that allocate it as bytes. */
-LEP_API size_t lep_client_size(void);
+/* sizeof(lep_client), for callers that allocate it as bytes. */
+LEP_API size_t lep_client_sizeof(void);
 
 /* Bind c to io (copied) with the default timeout and retry limit, no read
  * buffer and no watchdog. Returns LEP_E_ARG when c or io is NULL or io lacks
@@ -202,59 +212,17 @@ LEP_API int lep_client_recover(lep_client *c, uint16_t quiet_ms);
  * call with len != 1 and at least every 32 single-byte steps (len == 1, or
  * lep_client_step_byte; every one during a recovery), so timeouts are noticed
  * within 32 bytes when input never pauses; feed len 0 when the line is idle
- * (e.g. on each tick). */
+ * (e.g. on each tick). Never blocks; calls io.write only to send a command
+ * again (or the next command of a recovery). */
 LEP_API int lep_client_step(lep_client *c, const uint8_t *data, size_t len, size_t *consumed);
-
-/* The out-of-line rest of lep_client_step_byte, which has already counted
- * the step: call lep_client_step_byte (or lep_client_step), not this. */
-LEP_API int lep_client_step_byte_slow(lep_client *c, uint8_t b, lep_sample *out);
 
 /* One received byte b: lep_client_step(c, &b, 1, &used) in effect (the same
  * outcomes, counters and clock reads; the two may be mixed), for a caller fed
  * one byte at a time (an ISR-fed ring buffer): pop a byte, step, act on the
  * outcome. When it returns LEP_STEP_SAMPLE and out is not NULL, *out also
- * receives the sample (what lep_client_get_sample gives, without decoding the
- * message again). c must not be NULL. Not re-entrant for one c (like every
- * call here). Inline: a byte that completes nothing while the clock is not due
- * costs a few instructions (no call); builds optimised for size (-Os) keep
- * only the count and the call. */
-static inline int lep_client_step_byte(lep_client *c, uint8_t b, lep_sample *out)
-{
-    /* Count the step (0: look at the clock); that also ends the last outcome's message. */
-    c->fast = (uint16_t)(c->fast + 1u);
-#if !defined(__OPTIMIZE_SIZE__)
-    if (LEP_FRAME_LIKELY_(c->fast != 0u && lep_frame_decoder_push1(&c->dec, b))) {
-        return LEP_STEP_NONE;
-    }
-#endif
-    return lep_client_step_byte_slow(c, b, out);
-}
-
-/* lep_client_step's one-byte case without a call (the checks, *consumed and
- * lep_client_step_byte), any other input through the function: private, see
- * the macro below. */
-static inline int lep_client_step_inline_(lep_client *c, const uint8_t *data, size_t len,
-                                          size_t *consumed)
-{
-    if (LEP_FRAME_LIKELY_(len == 1u && c != NULL && data != NULL && consumed != NULL)) {
-        *consumed = 1u;
-        return lep_client_step_byte(c, data[0], NULL);
-    }
-    return (lep_client_step)(c, data, len, consumed);
-}
-
-/* When optimising for speed, lep_client_step is also a function-like macro
- * (as C's library functions may be): a call fed one byte at a time then costs
- * no more than lep_client_step_byte. The same behaviour either way; the
- * exported function stays for bindings, function pointers and
- * (lep_client_step)(...). Size builds (-Os) call the function. Like any
- * function-like macro it also expands in `obj.lep_client_step(...)` or
- * `ops->lep_client_step(...)` (a member of the same name): write
- * `(ops->lep_client_step)(...)`, or define LEP_CONFIG_NO_STEP_MACRO before
- * including leptrino headers to turn the macro off. */
-#if !defined(__OPTIMIZE_SIZE__) && !defined(LEP_CONFIG_NO_STEP_MACRO)
-#define lep_client_step(c, data, len, consumed) lep_client_step_inline_(c, data, len, consumed)
-#endif
+ * receives the sample (what lep_client_get_sample gives). LEP_E_ARG when c is
+ * NULL. */
+LEP_API int lep_client_step_byte(lep_client *c, uint8_t b, lep_sample *out);
 
 /* True while a transaction or a recovery waits for its answer. */
 LEP_API bool lep_client_busy(const lep_client *c);

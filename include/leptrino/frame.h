@@ -1,6 +1,7 @@
 /* Frame codec (spec 2.3): DLE STX | stuffed message | DLE ETX | BCC.
  *
- * Sans-I/O: pure functions and a push decoder. No allocation, no clock.
+ * Sans-I/O: pure functions and a push decoder. No allocation, no clock, no
+ * blocking; NULL arguments as leptrino.h says.
  * The decoder gives identical events for any chunking of the same input.
  * Its rules where the spec is silent (restart at DLE STX, NAK inside a frame,
  * over-long frames, resync after a lost BCC byte) are listed with the shared
@@ -72,16 +73,22 @@ typedef struct lep_frame_stats {
     uint32_t bytes_discarded; /* wire bytes not part of a delivered message or NAK */
 } lep_frame_stats;
 
-/* Push decoder state. Caller-allocated; fields are private (their layout is
- * kept stable for bindings that allocate it). */
+/* Push decoder. Caller-allocated (static memory is fine); its fields are
+ * private: read the counters with lep_frame_decoder_get_stats. A binding that
+ * cannot see this declaration allocates lep_frame_decoder_sizeof() bytes,
+ * aligned for a uint32_t. One decoder must not be fed from two contexts at once;
+ * distinct decoders are independent. */
 typedef struct lep_frame_decoder {
     uint8_t state;
-    uint8_t bcc;  /* XOR of the message bytes so far */
-    uint16_t len; /* message bytes so far */
-    uint16_t raw; /* the frame's other wire bytes so far (DLE STX, stuffing, DLE ETX) */
+    uint8_t bcc;
+    uint16_t len;
+    uint16_t raw;
     uint8_t buf[LEP_MAX_MESSAGE];
     lep_frame_stats stats;
 } lep_frame_decoder;
+
+/* sizeof(lep_frame_decoder), for callers that allocate it as bytes. */
+LEP_API size_t lep_frame_decoder_sizeof(void);
 
 /* Reset the decoder to hunt for DLE STX and zero its counters. */
 LEP_API void lep_frame_decoder_init(lep_frame_decoder *d);
@@ -90,8 +97,8 @@ LEP_API void lep_frame_decoder_init(lep_frame_decoder *d);
  * completes an event, and return how many were consumed (at least 1 when
  * len > 0). Call again with the rest. ev->type is LEP_FRAME_NONE when all
  * input was consumed without an event (the other fields of ev are set only
- * with the event types that use them). Costs O(len), allocates nothing,
- * keeps no pointer to data; ev->msg points into d.
+ * with the event types that use them). Allocates nothing, keeps no pointer to
+ * data; ev->msg points into d.
  *
  * Bad arguments: when d or ev is NULL, or data is NULL with len > 0, nothing
  * is consumed, 0 is returned and ev (when not NULL) is an LEP_FRAME_ERROR event
@@ -106,8 +113,7 @@ LEP_API size_t lep_frame_decoder_feed(lep_frame_decoder *d, const uint8_t *data,
  * an ISR ring buffer). ev->type is LEP_FRAME_NONE when b completes no event.
  * Returns LEP_OK, or LEP_E_ARG when d or ev is NULL: then b is not consumed,
  * d is unchanged and ev (when not NULL) is an LEP_FRAME_ERROR event with error
- * LEP_E_ARG. Constant time, allocates nothing, no clock; re-entrant across
- * decoders (one decoder must not be fed from two contexts at once). */
+ * LEP_E_ARG. */
 LEP_API int lep_frame_decoder_feed_byte(lep_frame_decoder *d, uint8_t b, lep_frame_event *ev);
 
 /* Called by lep_frame_decoder_feed_all for each event, in input order. ev and
@@ -117,85 +123,17 @@ typedef void (*lep_frame_handler)(void *user, const lep_frame_event *ev);
 
 /* Consume all of data[0..len), calling on_event(user, ev) for every event it
  * completes. Gives exactly the events and counters of lep_frame_decoder_feed
- * on the same input, for any chunking and mixed with it, at a lower cost
- * per byte (one call per chunk instead of one per event). Allocates nothing;
- * runs in O(len) plus the handler's time. Returns LEP_OK, or LEP_E_ARG (d or
- * on_event NULL, or data NULL with len > 0: nothing consumed, d unchanged). */
+ * on the same input, for any chunking and mixed with it. Allocates nothing.
+ * Returns LEP_OK, or LEP_E_ARG (d or on_event NULL, or data NULL with len > 0:
+ * nothing consumed, d unchanged). */
 LEP_API int lep_frame_decoder_feed_all(lep_frame_decoder *d, const uint8_t *data, size_t len,
                                        lep_frame_handler on_event, void *user);
 
-/* The decoder's state numbers that lep_frame_decoder_push1 below handles
- * (private: frame.c's enum uses the same numbers). */
-#define LEP_FRAME_ST_IDLE_ 0u     /* between frames */
-#define LEP_FRAME_ST_IDLE_DLE_ 1u /* between frames, after a DLE */
-#define LEP_FRAME_ST_BODY_ 2u     /* inside a frame body */
-#define LEP_FRAME_ST_BODY_DLE_ 3u /* inside a frame body, after a DLE */
-#define LEP_FRAME_ST_BCC_ 4u      /* after DLE ETX */
-
-/* A branch the one-byte paths below expect to take (private). */
-#if defined(__GNUC__)
-#define LEP_FRAME_LIKELY_(x) __builtin_expect(!!(x), 1)
-#else
-#define LEP_FRAME_LIKELY_(x) (x)
-#endif
-
-/* The one-byte fast path, inline for a caller fed one byte at a time (an ISR
- * ring buffer). When b completes no event and changes no counter (a message
- * byte with room for it, stuffed or not, a DLE inside a body, or the DLE STX /
- * DLE ETX of a frame after a plain idle line or a body) it takes b and returns
- * true.
- * Otherwise it changes nothing and returns false: the caller then feeds b with
- * lep_frame_decoder_feed_byte (or lep_frame_decoder_feed). Mixing both gives
- * exactly the events and counters of lep_frame_decoder_feed alone. d must not
- * be NULL. */
-static inline bool lep_frame_decoder_push1(lep_frame_decoder *d, uint8_t b)
-{
-    uint8_t st = d->state;
-    if (LEP_FRAME_LIKELY_(st == LEP_FRAME_ST_BODY_)) {
-        if (!LEP_FRAME_LIKELY_(b != LEP_DLE)) {
-            d->state = LEP_FRAME_ST_BODY_DLE_;
-            return true;
-        }
-        if (LEP_FRAME_LIKELY_(d->len < LEP_MAX_MESSAGE)) { /* the usual byte */
-            d->buf[d->len] = b;
-            d->len = (uint16_t)(d->len + 1u);
-            d->bcc = (uint8_t)(d->bcc ^ b);
-            return true;
-        }
-        return false;
-    }
-    if (b == LEP_DLE) {
-        if (st == LEP_FRAME_ST_IDLE_) {
-            d->state = LEP_FRAME_ST_IDLE_DLE_;
-            return true;
-        }
-        if (st == LEP_FRAME_ST_BODY_DLE_ && d->len < LEP_MAX_MESSAGE) { /* a stuffed DLE */
-            d->buf[d->len] = LEP_DLE;
-            d->len = (uint16_t)(d->len + 1u);
-            d->bcc = (uint8_t)(d->bcc ^ LEP_DLE);
-            d->raw = (uint16_t)(d->raw + 1u);
-            d->state = LEP_FRAME_ST_BODY_;
-            return true;
-        }
-        return false;
-    }
-    if (st == LEP_FRAME_ST_IDLE_DLE_ && b == LEP_STX) { /* a frame begins */
-        d->raw = 2;
-        d->len = 0;
-        d->bcc = 0;
-        d->state = LEP_FRAME_ST_BODY_;
-        return true;
-    }
-    if (st == LEP_FRAME_ST_BODY_DLE_ && b == LEP_ETX) { /* the body ends: the BCC follows */
-        d->raw = (uint16_t)(d->raw + 2u);
-        d->state = LEP_FRAME_ST_BCC_;
-        return true;
-    }
-    return false;
-}
-
 /* True when the decoder is inside a frame (between DLE STX and its BCC). */
 LEP_API bool lep_frame_decoder_busy(const lep_frame_decoder *d);
+
+/* Copy the decoder's counters into *out. */
+LEP_API void lep_frame_decoder_get_stats(const lep_frame_decoder *d, lep_frame_stats *out);
 
 #ifdef __cplusplus
 }

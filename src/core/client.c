@@ -1,4 +1,19 @@
-/* Host-side client: transactions with resending, streaming, recovery, watchdog. */
+/* Host-side client: transactions with resending, streaming, recovery, watchdog.
+ *
+ * How this file is organised, top to bottom:
+ *  1. the phases (what the client waits for) and the small accessors;
+ *  2. starting a transaction: begin() writes the pending command (c->cmd);
+ *  3. what happens when an attempt ends: settle(), on_answer(),
+ *     attempt_failed();
+ *  4. the decoder's events: on_message() and on_event();
+ *  5. the clock: the attempt's timeout, a recovery's drain, the watchdog;
+ *  6. stepping: step() feeds input to the frame decoder and handles its events
+ *     until an outcome; lep_client_step and lep_client_step_byte call it;
+ *  7. the blocking calls, one waiting loop (wait_for) over step().
+ *
+ * The message of the last outcome (LEP_STEP_RESPONSE or LEP_STEP_SAMPLE) stays
+ * in the frame decoder's buffer until the next step: c->kept_len says how long
+ * it is (0: none), and lep_client_response decodes it from there. */
 #include "leptrino/client.h"
 
 #include <stddef.h>
@@ -6,89 +21,27 @@
 
 #include "leptrino/error.h"
 
-#define ST_STREAM 0x01u /* continuous output is on */
-#define ST_FRESH 0x02u  /* a sample arrived since the watchdog last looked */
-
-/* Phases: what the client waits for (PH_NONE: nothing). Numbered so that a
- * transaction (or a recovery's stop) waits for its answer in the phases 1..4,
- * a recovery's stop phase + 2 is its drain, the drains are the phases >=
- * PH_DRAIN_SYNC, and a drain's phase - 4 is the phase of what it sends next. */
-enum {
+/* What the client waits for (lep_client.phase). A transaction and a recovery's
+ * stop wait for an answer (PH_PLAIN .. PH_STOP_START: waiting()); a recovery's
+ * drain waits for a quiet line (PH_DRAIN_SYNC, PH_DRAIN_START: draining()). */
+enum phase {
     PH_NONE = 0,       /* no transaction or recovery */
-    PH_PLAIN = 1,      /* a plain transaction */
-    PH_RESTARTED = 2,  /* the start sent after a recovery (not recovered twice) */
-    PH_STOP_SYNC = 3,  /* recovery: its stop is out */
-    PH_STOP_START = 4, /* a start refused with 0x04: the stop is out */
-    PH_DRAIN_SYNC = 5, /* recovery: waiting for a quiet line, then identify */
-    PH_DRAIN_START = 6 /* start recovery: waiting for a quiet line, then start again */
+    PH_PLAIN = 1,      /* a transaction */
+    PH_RESTARTED = 2,  /* the start sent again after a recovery (not recovered twice) */
+    PH_STOP_SYNC = 3,  /* lep_client_recover: its stop is out */
+    PH_STOP_START = 4, /* a start refused with 0x04: the stop of its recovery is out */
+    PH_DRAIN_SYNC = 5, /* lep_client_recover: waiting for a quiet line, then the query */
+    PH_DRAIN_START = 6 /* a start's recovery: waiting for a quiet line, then start again */
 };
 
-/* What a drain sends next: the product-info query (PH_DRAIN_SYNC) or the
- * start again (PH_DRAIN_START), as one multiply-add on the phase. */
-#define DRAIN_NEXT_CODE(phase) ((phase)*8u + 2u)
-typedef char lep_client_drain_codes[DRAIN_NEXT_CODE(PH_DRAIN_SYNC) == LEP_CMD_PRODUCT_INFO &&
-                                            DRAIN_NEXT_CODE(PH_DRAIN_START) == LEP_CMD_START
-                                        ? 1
-                                        : -1];
-
-/* The client's own counters (lep_client.count), in lep_client_stats order from retries on. */
-enum {
-    N_RETRIES,
-    N_UNEXPECTED,
-    N_INVALID,
-    N_TIMEOUTS,
-    N_SAMPLES,
-    N_RESENT_TIMEOUT,
-    N_RESENT_CONFIRMED,
-    N_RECOVERIES,
-    N_RESERVED,
-    N_STALLS,
-    N_COUNTERS
-};
-
-/* get_stats copies the counters as one block: the layouts must agree. */
-#define COUNTERS_FIT                                                             \
-    (sizeof(((lep_client *)0)->count) == N_COUNTERS * sizeof(uint32_t) &&        \
-     offsetof(lep_client_stats, stalls) - offsetof(lep_client_stats, retries) == \
-         (N_COUNTERS - 1) * sizeof(uint32_t))
-typedef char lep_client_counters_fit[COUNTERS_FIT ? 1 : -1];
-
-/* lep_client.fast counts single-byte steps up (lep_client_step_byte adds 1
- * first); the step that brings it to 0 looks at the clock (and at the state).
- * Its values after a look: */
-#define CHECK_EVERY 32u                       /* single-byte steps between two clock reads */
-#define FAST_CHECKED (0x10000u - CHECK_EVERY) /* a deadline is armed */
-#define FAST_LOOK_NEXT 0xFFFFu                /* look at the clock on the next step */
-typedef char lep_client_fast_values
-    [(uint16_t) ~(CHECK_EVERY - 1u) == FAST_CHECKED && (uint16_t)~0u == FAST_LOOK_NEXT ? 1 : -1];
-/* The event handling is inlined into both step entries when optimising for
- * speed (the one-byte entry then makes one call less per frame). */
-#if defined(__GNUC__) && defined(__OPTIMIZE__) && !defined(__OPTIMIZE_SIZE__)
-#define HOT static inline __attribute__((always_inline))
-#else
-#define HOT static
-#endif
-
-/* Helpers called from several places stay out of line in size builds. */
-#if defined(__GNUC__) && defined(__OPTIMIZE_SIZE__)
-#define SHARED static __attribute__((noinline))
-#else
-#define SHARED static
-#endif
-
-/* A one-liner that costs less than its call's argument set-up everywhere. */
-#if defined(__GNUC__)
-#define TINY static inline __attribute__((always_inline))
-#else
-#define TINY static
-#endif
-
+/* Single-byte steps between two looks at the clock while a deadline is armed. */
+#define CHECK_EVERY 32u
 /* A deadline that is not armed. */
 #define NEVER 0xFFFFFFFFu
 /* The drain's timeout part is capped so the limit stays below 2^31 ms. */
 #define DRAIN_TIMEOUT_CAP ((0x7FFFFFFFu - 0xFFFFu) / LEP_CLIENT_DRAIN_TIMEOUTS)
 
-size_t lep_client_size(void)
+size_t lep_client_sizeof(void)
 {
     return sizeof(lep_client);
 }
@@ -143,10 +96,8 @@ int lep_client_set_watchdog(lep_client *c, uint16_t ms)
         return LEP_E_ARG;
     }
     c->watchdog_ms = ms;
-    /* The next step looks at the clock (the last outcome's message stays current). */
-    c->msg_at = (uint16_t)(c->msg_at - c->fast + FAST_LOOK_NEXT);
-    c->fast = (uint16_t)FAST_LOOK_NEXT;
-    c->state = (uint8_t)(c->state | ST_FRESH); /* the watchdog's time runs from the next check */
+    c->clock_in = 0; /* the next step looks at the clock */
+    c->fresh = true; /* the watchdog's time runs from that look */
     return LEP_OK;
 }
 
@@ -162,7 +113,16 @@ void lep_client_get_stats(const lep_client *c, lep_client_stats *out)
     out->frame_errors = f->escape_errors + f->overruns + f->restarts;
     out->bytes_discarded = f->bytes_discarded;
     out->naks = f->naks;
-    memcpy((unsigned char *)out + offsetof(lep_client_stats, retries), c->count, sizeof(c->count));
+    out->retries = c->retries;
+    out->unexpected = c->unexpected;
+    out->invalid = c->invalid;
+    out->timeouts = c->timeouts;
+    out->samples = c->samples;
+    out->resent_after_timeout = c->resent_after_timeout;
+    out->resent_confirmed = c->resent_confirmed;
+    out->recoveries = c->recoveries;
+    out->reserved_nonzero = c->reserved_nonzero;
+    out->stalls = c->stalls;
 }
 
 uint8_t lep_client_last_result(const lep_client *c)
@@ -172,7 +132,7 @@ uint8_t lep_client_last_result(const lep_client *c)
 
 bool lep_client_streaming(const lep_client *c)
 {
-    return c != NULL && (c->state & ST_STREAM) != 0u;
+    return c != NULL && c->streaming;
 }
 
 bool lep_client_busy(const lep_client *c)
@@ -180,67 +140,47 @@ bool lep_client_busy(const lep_client *c)
     return c != NULL && c->phase != PH_NONE;
 }
 
-/* When optimising for speed, a message that passed validation leaves its
- * decoded sample member (what lep_client_get_sample gives for a 20-byte one)
- * at the end of the decoder's buffer, past the longest valid message (room
- * the decoder writes only with a later frame's bytes, so it lives as long as
- * the message): a sample is read out without decoding the message again.
- * Size builds decode the kept message again instead (the same sample). */
-#if !defined(__OPTIMIZE_SIZE__)
-#define SPARE_SAMPLE(c) ((c)->dec.buf + (LEP_MAX_MESSAGE - sizeof(lep_sample)))
-typedef char lep_client_spare_fits[LEP_LEN_PRODUCT_INFO_RATE + sizeof(lep_sample) <= LEP_MAX_MESSAGE
-                                       ? 1
-                                       : -1];
-#endif
-
-/* The message of the last outcome: LEP_OK, LEP_E_ARG (c or out NULL), or
- * LEP_E_STATE (none, or a single-byte step came since). */
-static int outcome_kept(const lep_client *c, const void *out)
+int lep_client_response(const lep_client *c, lep_response *out)
 {
     if (c == NULL || out == NULL) {
         return LEP_E_ARG;
     }
-    return c->msg_len == 0u || c->msg_at != c->fast ? LEP_E_STATE : LEP_OK;
-}
-
-int lep_client_response(const lep_client *c, lep_response *out)
-{
-    int rc = outcome_kept(c, out);
-    if (rc == LEP_OK) {
-        /* validated when it arrived; a refusal (0x04) gives LEP_E_SENSOR */
-        (void)lep_response_decode(c->dec.buf, c->msg_len, out);
+    if (c->kept_len == 0u) {
+        return LEP_E_STATE;
     }
-    return rc;
+    /* validated when it arrived; a refusal (0x04) gives LEP_E_SENSOR */
+    (void)lep_response_decode(c->dec.buf, c->kept_len, out);
+    return LEP_OK;
 }
 
 int lep_client_get_sample(const lep_client *c, lep_sample *out)
 {
-#if defined(__OPTIMIZE_SIZE__)
     lep_response r;
-    int rc = out == NULL ? LEP_E_ARG : lep_client_response(c, &r); /* (LEP_E_ARG, LEP_E_STATE) */
-    if (rc == LEP_OK && c->msg_len != LEP_LEN_SAMPLE) {
+    int rc = out == NULL ? LEP_E_ARG : lep_client_response(c, &r);
+    if (rc == LEP_OK && c->kept_len != LEP_LEN_SAMPLE) {
         rc = LEP_E_STATE; /* (a sample is the only 20-byte message that makes an outcome) */
     }
     if (rc == LEP_OK) {
         *out = r.u.sample;
     }
     return rc;
-#else
-    if (c == NULL || out == NULL) {
-        return LEP_E_ARG;
-    }
-    /* (a sample is the only 20-byte message that makes an outcome) */
-    if (c->msg_len != LEP_LEN_SAMPLE || c->msg_at != c->fast) {
-        return LEP_E_STATE;
-    }
-    memcpy(out, SPARE_SAMPLE(c), sizeof(*out));
-    return LEP_OK;
-#endif
 }
 
-TINY uint32_t now(const lep_client *c)
+static uint32_t now(const lep_client *c)
 {
     return c->io.now_ms(c->io.user);
+}
+
+/* A transaction (or a recovery's stop) waits for its answer. */
+static bool waiting(const lep_client *c)
+{
+    return c->phase >= PH_PLAIN && c->phase <= PH_STOP_START;
+}
+
+/* A recovery waits for a quiet line. */
+static bool draining(const lep_client *c)
+{
+    return c->phase >= PH_DRAIN_SYNC;
 }
 
 /* The transaction or recovery is over; returns rc, its outcome. */
@@ -250,11 +190,7 @@ static int finish(lep_client *c, int rc)
     return rc;
 }
 
-/* A transaction (or a recovery's stop) waits for its answer. */
-static bool waiting(const lep_client *c)
-{
-    return (uint8_t)(c->phase - PH_PLAIN) < PH_DRAIN_SYNC - PH_PLAIN;
-}
+/* ---- Starting a transaction ---- */
 
 /* Write the pending command (again) and restart the attempt's clock. */
 static int write_pending(lep_client *c)
@@ -262,7 +198,7 @@ static int write_pending(lep_client *c)
     uint8_t frame[2u * LEP_LEN_FILTER_SET_CMD + 5u]; /* the longest command, every byte stuffed */
     size_t n;
     int rc;
-    c->fast = (uint16_t)FAST_LOOK_NEXT; /* a deadline is armed */
+    c->clock_in = 0; /* a deadline is armed: look at the clock on the next step */
     rc = lep_command_frame(&c->cmd, frame, sizeof(frame), &n);
     if (rc == LEP_OK) {
         rc = c->io.write(c->io.user, frame, n);
@@ -274,12 +210,13 @@ static int write_pending(lep_client *c)
     return LEP_OK;
 }
 
-/* Begin sending code (a new transaction or the next step of a recovery); the
- * filter code stays as it is (lep_command_encode reads it only for a filter set). */
-SHARED int begin(lep_client *c, unsigned code, unsigned phase)
+/* Begin sending code (a new transaction or the next part of a recovery) in
+ * phase; the filter code stays as it is (lep_command_encode reads it only for
+ * a filter set). */
+static int begin(lep_client *c, uint8_t code, enum phase phase)
 {
-    c->msg_len = 0; /* (already 0 when a step begins the next part of a recovery) */
-    c->cmd.code = (uint8_t)code;
+    c->kept_len = 0;
+    c->cmd.code = code;
     c->tries = 0;
     c->phase = (uint8_t)phase;
     return write_pending(c);
@@ -299,44 +236,35 @@ int lep_client_recover(lep_client *c, uint16_t quiet_ms)
     if (c == NULL) {
         return LEP_E_ARG;
     }
-    c->quiet_ms = quiet_ms;                      /* (0: the default, see quiet_of) */
-    c->state = (uint8_t)(c->state & ~ST_STREAM); /* a stream's data is stale from here on */
+    c->quiet_ms = quiet_ms; /* (0: the default, see quiet_of) */
+    c->streaming = false;   /* a stream's data is stale from here on */
     return begin(c, LEP_CMD_STOP, PH_STOP_SYNC);
 }
 
-/* A recovery's stop is over (answered, refused or never got through): the
- * drain begins. False when no recovery's stop was pending. */
-static bool stop_over(lep_client *c)
-{
-    if (c->phase != PH_STOP_SYNC && c->phase != PH_STOP_START) {
-        return false;
-    }
-    c->phase = (uint8_t)(c->phase + 2u); /* (streaming is already off) */
-    c->t_start = now(c);
-    c->t_aux = c->t_start;
-    return true;
-}
+/* ---- The end of an attempt ---- */
 
 /* The attempt is over with rc (LEP_STEP_RESPONSE: it ended well, streaming
- * follows the command; else its error). A recovery's stop goes on to its
- * drain instead (answered, refused or never got through: LEP_STEP_NONE). */
-SHARED int settle(lep_client *c, int rc)
+ * follows the command; else its error). A recovery's stop (answered, refused
+ * or never got through) goes on to its drain instead: LEP_STEP_NONE. */
+static int settle(lep_client *c, int rc)
 {
-    if (stop_over(c)) {
+    if (c->phase == PH_STOP_SYNC || c->phase == PH_STOP_START) {
+        c->phase = c->phase == PH_STOP_SYNC ? PH_DRAIN_SYNC : PH_DRAIN_START;
+        c->t_start = now(c); /* the quiet time and the drain's limit run from here */
+        c->t_aux = c->t_start;
         return LEP_STEP_NONE;
     }
     if (rc == LEP_E_TIMEOUT) {
-        c->count[N_TIMEOUTS]++;
+        c->timeouts++;
     }
-    if (rc == LEP_STEP_RESPONSE) {
-        if (c->cmd.code == LEP_CMD_START) {
-            if (c->phase == PH_RESTARTED) {
-                c->count[N_RECOVERIES]++;
-            }
-            c->state = (uint8_t)(c->state | ST_STREAM | ST_FRESH);
-        } else if (c->cmd.code == LEP_CMD_STOP) {
-            c->state = (uint8_t)(c->state & ~ST_STREAM);
+    if (rc == LEP_STEP_RESPONSE && c->cmd.code == LEP_CMD_START) {
+        if (c->phase == PH_RESTARTED) {
+            c->recoveries++;
         }
+        c->streaming = true;
+        c->fresh = true;
+    } else if (rc == LEP_STEP_RESPONSE && c->cmd.code == LEP_CMD_STOP) {
+        c->streaming = false;
     }
     return finish(c, rc);
 }
@@ -344,43 +272,66 @@ SHARED int settle(lep_client *c, int rc)
 /* The answer to the pending command arrived: kept is its result code, result
  * what it means here (the same, or LEP_RESULT_STATE for data of a stream a
  * resent start began, whose first copy was executed). */
-SHARED int on_answer(lep_client *c, uint8_t kept, unsigned result)
+static int on_answer(lep_client *c, uint8_t kept, unsigned result)
 {
     c->last_result = kept;
     if (result == LEP_RESULT_STATE &&
         (c->cmd.code == LEP_CMD_START || c->cmd.code == LEP_CMD_STOP) &&
         c->phase <= PH_RESTARTED) { /* (not a recovery's stop: any answer to it will do) */
         if (c->tries > 0u) {
-            c->count[N_RESENT_CONFIRMED]++; /* an earlier copy was executed */
+            c->resent_confirmed++; /* an earlier copy was executed */
             result = LEP_RESULT_OK;
-        } else if (c->cmd.code == LEP_CMD_START && c->phase == PH_PLAIN &&
-                   (c->state & ST_STREAM) == 0u) {
-            /* A stream we did not start (a stale one) already runs. */
+        } else if (c->cmd.code == LEP_CMD_START && c->phase == PH_PLAIN && !c->streaming) {
+            /* A stream we did not start (a stale one) already runs: recover. */
             return begin(c, LEP_CMD_STOP, PH_STOP_START); /* LEP_OK is LEP_STEP_NONE */
         }
     }
     return settle(c, result == LEP_RESULT_OK ? LEP_STEP_RESPONSE : LEP_E_SENSOR);
 }
 
-/* Handle one good frame; returns an outcome, or LEP_STEP_NONE to go on. */
-HOT int on_message(lep_client *c, const lep_frame_event *ev)
+/* The attempt failed, after a NAK or a timeout (after_nak false): send again
+ * (counted in retries or resent_after_timeout), or give up with LEP_E_NAK or
+ * LEP_E_TIMEOUT. */
+static int attempt_failed(lep_client *c, bool after_nak)
+{
+    if (!waiting(c)) {
+        return LEP_STEP_NONE; /* (a NAK or a deadline of no attempt) */
+    }
+    if (c->tries < c->max_retries) {
+        c->tries++;
+        if (after_nak) {
+            c->retries++;
+        } else {
+            c->resent_after_timeout++;
+        }
+        return write_pending(c);
+    }
+    /* (a stop of a recovery that never got through does not end it) */
+    return settle(c, after_nak ? LEP_E_NAK : LEP_E_TIMEOUT);
+}
+
+/* ---- The decoder's events ---- */
+
+/* Handle one good frame; returns an outcome, or LEP_STEP_NONE to go on. A
+ * stream sample is also stored in *sample when sample is not NULL. */
+static int on_message(lep_client *c, const lep_frame_event *ev, lep_sample *sample)
 {
     lep_response r;
     int rc = lep_response_decode(ev->msg, ev->len, &r);
     bool mine;
     if (rc != LEP_OK && rc != LEP_E_SENSOR) {
-        c->count[N_INVALID]++;
+        c->invalid++;
         return LEP_STEP_NONE;
     }
-#if !defined(__OPTIMIZE_SIZE__)
-    memcpy(SPARE_SAMPLE(c), &r.u.sample, sizeof(r.u.sample));
-#endif
-    if (r.stream && (c->state & ST_STREAM) != 0u) {
+    if (r.stream && c->streaming) {
         if (c->cmd.code == LEP_CMD_STOP && waiting(c)) {
             return LEP_STEP_NONE; /* our data still in flight before the stop answer */
         }
-        c->count[N_SAMPLES]++;
-        c->state = (uint8_t)(c->state | ST_FRESH);
+        c->samples++;
+        c->fresh = true;
+        if (sample != NULL) {
+            *sample = r.u.sample;
+        }
         return LEP_STEP_SAMPLE;
     }
     mine = waiting(c) && r.code == c->cmd.code; /* (a data message's code is the start's) */
@@ -390,44 +341,36 @@ HOT int on_message(lep_client *c, const lep_frame_event *ev)
          * (the data's result is 0, which is kept). */
         return on_answer(c, r.result, r.result | (r.stream ? LEP_RESULT_STATE : 0u));
     }
-    c->count[N_UNEXPECTED]++; /* e.g. a stream we did not start (a stale one), a late answer */
+    c->unexpected++; /* e.g. a stream we did not start (a stale one), a late answer */
     return LEP_STEP_NONE;
 }
 
-/* The attempt failed, after a NAK (which is N_RETRIES) or a timeout (which is
- * N_RESENT_TIMEOUT): send again (counted in count[which]), or give up with
- * LEP_E_NAK or LEP_E_TIMEOUT. */
-SHARED int attempt_failed(lep_client *c, unsigned which)
+/* Handle the decoder's event ev (LEP_FRAME_NONE: nothing): an outcome, or
+ * LEP_STEP_NONE to go on. An outcome's message is kept (c->kept_len). */
+static int on_event(lep_client *c, const lep_frame_event *ev, lep_sample *sample)
 {
-    if (!waiting(c)) {
-        return LEP_STEP_NONE; /* (a NAK or a deadline of no attempt) */
-    }
-    if (c->tries < c->max_retries) {
-        c->tries++;
-        c->count[which]++;
-        return write_pending(c);
-    }
-    /* (a stop of a recovery that never got through does not end it) */
-    return settle(c, which == N_RETRIES ? LEP_E_NAK : LEP_E_TIMEOUT);
-}
-
-HOT int on_event(lep_client *c, const lep_frame_event *ev)
-{
+    int rc = LEP_STEP_NONE;
     if (ev->type == LEP_FRAME_MESSAGE) {
-        return on_message(c, ev);
+        rc = on_message(c, ev, sample);
+    } else if (ev->type == LEP_FRAME_NAK) {
+        rc = attempt_failed(c, true);
+    } else if (ev->type == LEP_FRAME_ERROR && ev->error == LEP_E_LENGTH) {
+        c->invalid++; /* an empty frame */
     }
-    if (ev->type == LEP_FRAME_NAK) {
-        return attempt_failed(c, N_RETRIES);
+    if (rc > 0) { /* a response or a sample: its message stays at dec.buf */
+        c->kept_len = (uint8_t)ev->len;
+        if (ev->len == LEP_LEN_SAMPLE && ev->msg[LEP_LEN_SAMPLE - 1u] != 0u) {
+            c->reserved_nonzero++; /* a sample's last reserved byte (unspecified) */
+        }
     }
-    if (ev->error == LEP_E_LENGTH) {
-        c->count[N_INVALID]++; /* an empty frame */
-    }
-    return LEP_STEP_NONE;
+    return rc;
 }
+
+/* ---- The clock ---- */
 
 /* What is left at t of span begun at t0 (0 once it has passed); NEVER when
  * span is 0 (the timer is not armed). */
-SHARED uint32_t left_of(uint32_t t, uint32_t t0, uint32_t span)
+static uint32_t left_of(uint32_t t, uint32_t t0, uint32_t span)
 {
     uint32_t spent = t - t0;
     if (span == 0u) {
@@ -444,7 +387,7 @@ static bool expired(uint32_t t, uint32_t t0, uint32_t span)
 
 /* The drain's quiet time: quiet_ms, where 0 (what lep_client_init leaves) is
  * the default. */
-TINY uint32_t quiet_of(const lep_client *c)
+static uint32_t quiet_of(const lep_client *c)
 {
     return c->quiet_ms != 0u ? c->quiet_ms : LEP_CLIENT_DEFAULT_QUIET_MS;
 }
@@ -457,163 +400,116 @@ static uint32_t drain_limit(const lep_client *c, uint32_t quiet)
            quiet;
 }
 
+/* A drain at the clock's time t, fed saying bytes came in: still draining,
+ * given up (LEP_E_NO_SYNC), or quiet: the query (lep_client_recover) or the
+ * start again (a start's recovery) goes out. */
+static int check_drain(lep_client *c, uint32_t t, bool fed)
+{
+    uint32_t quiet = quiet_of(c);
+    if (fed) {
+        c->t_start = t; /* not quiet yet */
+    }
+    if (expired(t, c->t_aux, drain_limit(c, quiet))) {
+        return finish(c, LEP_E_NO_SYNC);
+    }
+    if (!expired(t, c->t_start, quiet)) {
+        return LEP_STEP_NONE;
+    }
+    if (c->phase == PH_DRAIN_SYNC) {
+        return begin(c, LEP_CMD_PRODUCT_INFO, PH_PLAIN);
+    }
+    return begin(c, LEP_CMD_START, PH_RESTARTED);
+}
+
 /* The deadlines at the clock's time, fed saying bytes came in. Two timers:
  * the attempt's (the answer's timeout, or a drain's quiet time; from t_start)
  * and the other (a drain's limit, or the stream watchdog; from t_aux). A
  * drain's are armed throughout (quiet_ms and timeout_ms are never 0) and it
  * runs with streaming off; otherwise the attempt's is armed while a
- * transaction waits, the watchdog while streaming with watchdog_ms not 0. */
+ * transaction waits, the watchdog (watch) while streaming with watchdog_ms not 0. */
 static int check_clock(lep_client *c, bool fed, bool watch)
 {
     uint32_t t = now(c);
-    if (c->phase >= PH_DRAIN_SYNC) {
-        uint32_t quiet = quiet_of(c);
-        if (fed) {
-            c->t_start = t; /* not quiet yet */
-        }
-        if (expired(t, c->t_aux, drain_limit(c, quiet))) {
-            return finish(c, LEP_E_NO_SYNC);
-        }
-        if (expired(t, c->t_start, quiet)) {
-            return begin(c, DRAIN_NEXT_CODE(c->phase), c->phase - 4u);
-        }
-        return LEP_STEP_NONE;
+    if (draining(c)) {
+        return check_drain(c, t, fed);
     }
-    if ((c->state & ST_FRESH) != 0u) {
+    if (c->fresh) {
         /* The watchdog's time runs from here. (Without streaming t_aux is not
-         * read here; a start that succeeds sets ST_FRESH again.) */
-        c->state = (uint8_t)(c->state & ~ST_FRESH);
+         * read here; a start that succeeds sets fresh again.) */
+        c->fresh = false;
         c->t_aux = t;
     }
     if (expired(t, c->t_start, c->timeout_ms)) { /* (attempt_failed: if one waits) */
-        int rc = attempt_failed(c, N_RESENT_TIMEOUT);
+        int rc = attempt_failed(c, false);
         if (rc != LEP_STEP_NONE) {
             return rc;
         }
     }
     if (watch && expired(t, c->t_aux, c->watchdog_ms)) {
         c->t_aux = t;
-        c->count[N_STALLS]++;
+        c->stalls++;
         return LEP_E_STALLED;
     }
     return LEP_STEP_NONE;
 }
 
-/* After the input (len bytes) is consumed without an outcome: watch the
- * clock, on single-byte steps only when c->fast has come round to 0 (every
- * CHECK_EVERY steps, every step during a recovery), and only while a deadline
- * is armed (otherwise c->fast just goes on counting). */
-SHARED int step_clock(lep_client *c, size_t len)
+/* A step consumed its input without an outcome and the clock is due: look at
+ * it if a deadline is armed. Then the next look is due after CHECK_EVERY
+ * single-byte steps at most a plain transaction waits, else at the next step. */
+static int clock_due(lep_client *c, bool fed)
 {
-    bool watch;
-    if (len == 1u && c->fast != 0u) {
-        return LEP_STEP_NONE;
-    }
-    watch = (c->state & ST_STREAM) != 0u && c->watchdog_ms != 0u; /* the watchdog */
-    if (c->phase == PH_NONE && !watch) {
-        return LEP_STEP_NONE; /* no deadline to watch */
-    }
-    /* FAST_CHECKED (~31) when at most a plain transaction waits, else
-     * FAST_LOOK_NEXT (~0): no branch, no literal */
-    c->fast = (uint16_t) ~((c->phase <= PH_PLAIN) * (CHECK_EVERY - 1u));
-    return check_clock(c, len > 0u, watch); /* (nothing there changes watch) */
+    const bool watch = c->streaming && c->watchdog_ms != 0u;
+    const bool armed = c->phase != PH_NONE || watch;
+    c->clock_in = (uint8_t)(c->phase <= PH_PLAIN ? CHECK_EVERY - 1u : 0u);
+    return armed ? check_clock(c, fed, watch) : LEP_STEP_NONE;
 }
 
-/* Handle the decoder's event ev (LEP_FRAME_NONE: nothing): an outcome, or
- * LEP_STEP_NONE to go on. */
-HOT int take(lep_client *c, const lep_frame_event *ev)
-{
-    int rc;
-    if (ev->type == LEP_FRAME_NONE) {
-        return LEP_STEP_NONE;
-    }
-    rc = on_event(c, ev);
-    if (rc == LEP_STEP_NONE) {
-        return rc;
-    }
-    if (c->fast == 0u) {
-        c->fast = (uint16_t)FAST_LOOK_NEXT; /* the clock was due: look on the next step */
-    }
-    if (rc > 0) { /* a response or a sample: keep its message (feed delivers it at dec.buf) */
-        c->msg_len = (uint8_t)ev->len;
-        c->msg_at = c->fast;
-        if (ev->len == LEP_LEN_SAMPLE && ev->msg[LEP_LEN_SAMPLE - 1u] != 0u) {
-            c->count[N_RESERVED]++; /* a sample's last reserved byte (unspecified) */
-        }
-    }
-    return rc;
-}
+/* ---- Stepping ---- */
 
-/* lep_client_step for any input but a single byte (at -Os: any input). Out
- * of line when optimising for speed, so the one-byte path saves no registers. */
-#if defined(__GNUC__) && !defined(__OPTIMIZE_SIZE__)
-__attribute__((noinline))
-#endif
-static int
-step_input(lep_client *c, const uint8_t *data, size_t len, size_t *consumed)
+/* Feed data[0..len) to the decoder and handle its events, up to and including
+ * the byte that completes an outcome (*consumed: the bytes taken). Without an
+ * outcome, the clock is looked at: at every step but a single byte, and
+ * every CHECK_EVERY-th single-byte step (c->clock_in counts them down). A
+ * stream sample is also stored in *sample when sample is not NULL. */
+static int step(lep_client *c, const uint8_t *data, size_t len, size_t *consumed,
+                lep_sample *sample)
 {
     size_t pos = 0;
-    c->msg_len = 0;
+    bool due = true;
+    c->kept_len = 0; /* the last outcome's message may be overwritten from here */
+    if (len == 1u && c->clock_in > 0u) {
+        c->clock_in--;
+        due = false;
+    }
     while (pos < len) {
         lep_frame_event ev;
         int rc;
-#if defined(__OPTIMIZE_SIZE__) /* a byte at a time: the firmware links no feed loop */
-        (void)lep_frame_decoder_feed_byte(&c->dec, data[pos], &ev);
-        pos++;
-#else
         pos += lep_frame_decoder_feed(&c->dec, data + pos, len - pos, &ev);
-#endif
-        rc = take(c, &ev);
+        rc = on_event(c, &ev, sample);
         if (rc != LEP_STEP_NONE) {
-            *consumed = pos;
+            *consumed = pos; /* (a clock that was due stays due) */
             return rc;
         }
     }
     *consumed = len;
-    return step_clock(c, len);
+    return due ? clock_due(c, len > 0u) : LEP_STEP_NONE;
 }
 
-int(lep_client_step)(lep_client *c, const uint8_t *data, size_t len, size_t *consumed)
+int lep_client_step(lep_client *c, const uint8_t *data, size_t len, size_t *consumed)
 {
     if (c == NULL || consumed == NULL || (data == NULL && len > 0)) {
         return LEP_E_ARG;
     }
-#if defined(__OPTIMIZE_SIZE__)
-    if (len == 1u) {
-        c->fast++; /* counted like lep_client_step_byte */
-    }
-#else
-    if (len == 1u) { /* the same, without the loop */
-        *consumed = 1;
-        return lep_client_step_byte(c, data[0], NULL);
-    }
-#endif
-    return step_input(c, data, len, consumed);
+    return step(c, data, len, consumed, NULL);
 }
 
-/* (lep_client_step_byte counted the step in c->fast.) */
-int lep_client_step_byte_slow(lep_client *c, uint8_t b, lep_sample *out)
+int lep_client_step_byte(lep_client *c, uint8_t b, lep_sample *out)
 {
-    int rc;
-#if defined(__OPTIMIZE_SIZE__)
     size_t used;
-    rc = step_input(c, &b, 1, &used);
-#else /* step_input for one byte, without its loop */
-    lep_frame_event ev;
-    c->msg_len = 0;
-    if (c->fast == 0u && lep_frame_decoder_push1(&c->dec, b)) {
-        return step_clock(c, 1); /* only the clock was due (the inline path left b alone) */
+    if (c == NULL) {
+        return LEP_E_ARG;
     }
-    (void)lep_frame_decoder_feed(&c->dec, &b, 1, &ev);
-    rc = take(c, &ev);
-    if (rc == LEP_STEP_NONE) {
-        return step_clock(c, 1);
-    }
-#endif
-    if (rc == LEP_STEP_SAMPLE) {
-        (void)lep_client_get_sample(c, out); /* (nothing when out is NULL) */
-    }
-    return rc;
+    return step(c, &b, 1u, &used, out);
 }
 
 /* ---- Blocking calls ---- */
@@ -626,14 +522,14 @@ static uint32_t next_deadline(const lep_client *c)
     uint32_t t = now(c);
     uint32_t span = c->timeout_ms;
     uint32_t other = c->watchdog_ms;
-    if (c->phase >= PH_DRAIN_SYNC) {
+    if (draining(c)) {
         span = quiet_of(c);
         other = drain_limit(c, span);
     } else {
         if (c->phase == PH_NONE) {
             span = 0;
         }
-        if ((c->state & ST_STREAM) == 0u) {
+        if (!c->streaming) {
             other = 0;
         }
     }
@@ -668,17 +564,17 @@ static reader reader_of(lep_client *c, lep_client_rx *local)
 /* Step over the bytes already read, then (when they are all stepped without
  * an outcome, or there were none) check the clock: a blocking call never
  * reads past a deadline. */
-static int step_buffered(lep_client *c, const reader *rd)
+static int step_buffered(lep_client *c, const reader *rd, lep_sample *sample)
 {
     size_t used = 0;
     lep_client_rx *rx = rd->rx;
     int rc = LEP_STEP_NONE;
     if (rx->pos < rx->len) {
-        rc = lep_client_step(c, rx->buf + rx->pos, (size_t)(rx->len - rx->pos), &used);
+        rc = step(c, rx->buf + rx->pos, (size_t)(rx->len - rx->pos), &used, sample);
         rx->pos = (uint16_t)(rx->pos + used);
     }
     if (rc == LEP_STEP_NONE) { /* (all of it was consumed) */
-        rc = lep_client_step(c, NULL, 0, &used);
+        rc = step(c, NULL, 0, &used, sample);
     }
     return rc;
 }
@@ -714,7 +610,7 @@ static int wait_for(lep_client *c, lep_sample *out, int timeout_ms, bool count_t
     uint32_t start = timeout_ms >= 0 ? now(c) : 0u;
     bool polled = false; /* the read after the time was up has been made */
     for (;;) {
-        int rc = step_buffered(c, &rd);
+        int rc = step_buffered(c, &rd, out);
         int n;
         int wait = timeout_ms;
         uint32_t clock;
@@ -726,11 +622,11 @@ static int wait_for(lep_client *c, lep_sample *out, int timeout_ms, bool count_t
                 return LEP_OK;
             }
             if (rc == LEP_STEP_SAMPLE) {
-                c->count[N_SAMPLES]--; /* not delivered: skipped while waiting for another answer */
-                c->count[N_UNEXPECTED]++;
+                c->samples--; /* not delivered: skipped while waiting for another answer */
+                c->unexpected++;
             }
         } else if (rc == LEP_STEP_SAMPLE) {
-            return lep_client_get_sample(c, out);
+            return LEP_OK; /* (step stored the sample in *out) */
         }
         if (rc < 0) {
             return rc;
@@ -757,7 +653,7 @@ static int wait_for(lep_client *c, lep_sample *out, int timeout_ms, bool count_t
         }
     }
     if (count_timeout) {
-        c->count[N_TIMEOUTS]++;
+        c->timeouts++;
     }
     return LEP_E_TIMEOUT;
 }
@@ -767,7 +663,7 @@ int lep_client_next_sample(lep_client *c, lep_sample *out, int timeout_ms)
     if (c == NULL || out == NULL || c->io.read == NULL) {
         return LEP_E_ARG;
     }
-    if ((c->state & ST_STREAM) == 0u) {
+    if (!c->streaming) {
         return LEP_E_STATE;
     }
     return wait_for(c, out, timeout_ms, true);
@@ -797,7 +693,7 @@ int lep_client_next_samples(lep_client *c, lep_sample *out, size_t max, size_t *
  * to its outcome. When it ends well and out is not NULL, out[0..size)
  * receives its answer: the whole lep_response when size is its size, else
  * the member of its union (every member begins at the union's start). */
-SHARED int complete(lep_client *c, int rc, void *out, size_t size)
+static int complete(lep_client *c, int rc, void *out, size_t size)
 {
     lep_response r;
     if (rc == LEP_OK) {
@@ -811,7 +707,7 @@ SHARED int complete(lep_client *c, int rc, void *out, size_t size)
 }
 
 /* A blocking transaction of cmd, its answer copied as complete says. */
-SHARED int transact(lep_client *c, const lep_command *cmd, void *out, size_t size)
+static int transact(lep_client *c, const lep_command *cmd, void *out, size_t size)
 {
     if (c == NULL || cmd == NULL || c->io.read == NULL) {
         return LEP_E_ARG;
@@ -827,7 +723,7 @@ int lep_client_transact(lep_client *c, const lep_command *cmd, lep_response *res
 /* A transaction of code (with the filter code filter), its answer's member
  * copied into out[0..size). LEP_E_ARG when the query needs out (size > 0)
  * and it is NULL. */
-SHARED int query(lep_client *c, uint8_t code, uint8_t filter, void *out, size_t size)
+static int query(lep_client *c, uint8_t code, uint8_t filter, void *out, size_t size)
 {
     lep_command cmd;
     cmd.code = code;
@@ -873,7 +769,7 @@ int lep_client_filter_set(lep_client *c, uint8_t code)
 
 int lep_client_sample(lep_client *c, lep_sample *out)
 {
-    if (c != NULL && out != NULL && (c->state & ST_STREAM) != 0u) {
+    if (c != NULL && out != NULL && c->streaming) {
         return LEP_E_STATE;
     }
     return query(c, LEP_CMD_SAMPLE, 0, out, sizeof(*out));

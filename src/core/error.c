@@ -48,12 +48,8 @@ static const unsigned char k_result_text[] = { 0u,
                                                UNKNOWN_ERROR + 2u,
                                                UNKNOWN_ERROR + 3u };
 
-/* The text at index i of k_texts (one copy in size builds). */
-#if defined(__GNUC__) && defined(__OPTIMIZE_SIZE__)
-__attribute__((noinline))
-#endif
-static const char *
-nth(unsigned i)
+/* The text at index i of k_texts. */
+static const char *nth(unsigned i)
 {
     const char *s = k_texts;
     while (i > 0u) {

@@ -16,23 +16,6 @@
 /* DLE STX in front of a message, DLE ETX BCC behind it */
 #define FRAME_EXTRA 5u
 
-/* Helpers called from several functions stay out of line in size builds. */
-#if defined(__GNUC__) && defined(__OPTIMIZE_SIZE__)
-#define SHARED static __attribute__((noinline))
-#else
-#define SHARED static
-#endif
-
-/* Speed builds decode the stream's sample message in straight lines ahead
- * of the general checks (the client decodes one per 25 bytes of stream);
- * size builds (-Os, or LEPTRINO_CODEC_SMALL as test_message_small builds
- * it) keep one path for every message. The results are the same. */
-#if defined(__OPTIMIZE_SIZE__) || defined(LEPTRINO_CODEC_SMALL)
-#define SAMPLE_FAST 0
-#else
-#define SAMPLE_FAST 1
-#endif
-
 /* The rated values travel as IEEE-754 binary32. */
 typedef char lep_float_is_binary32[(sizeof(float) == 4u) ? 1 : -1];
 
@@ -316,9 +299,6 @@ static int decode_info(const uint8_t *msg, size_t len, lep_product_info *info)
 static int decode_sample(const uint8_t *msg, lep_sample *s)
 {
     size_t i;
-#if SAMPLE_FAST && (defined(__clang__) || (defined(__GNUC__) && __GNUC__ >= 8))
-#pragma GCC unroll 6 /* straight lines: -O2 does not unroll on its own */
-#endif
     for (i = 0; i < LEP_AXES; i++) {
         uint32_t u = get_le(msg + 4 + 2 * i, 2);
         int16_t v = u >= 0x8000u ? (int16_t)((int32_t)u - (int32_t)65536L) : (int16_t)u;
@@ -332,27 +312,6 @@ static int decode_sample(const uint8_t *msg, lep_sample *s)
     return LEP_OK;
 }
 
-#if SAMPLE_FAST
-/* A well-formed header of a sample message: 20 bytes, result 0, the code of
- * the handshake (0x30) or of the stream (0x32). Any other 20-byte message
- * fails a check of lep_response_decode before its data (length, reserved
- * byte, code or result), so this test takes the place of those checks. */
-static bool sample_header(const uint8_t *msg, size_t len)
-{
-    uint32_t head;
-    if (len != LEP_LEN_SAMPLE) {
-        return false; /* (and msg may be shorter than a header) */
-    }
-    /* the four header bytes as one word (one load at -O2); 0x30 | 0x02 and
-     * 0x32 | 0x02 alone give 0x32 */
-    head =
-        (uint32_t)msg[0] | (uint32_t)msg[1] << 8 | (uint32_t)msg[2] << 16 | (uint32_t)msg[3] << 24;
-    return (head | (uint32_t)0x02u << 16) ==
-           (LEP_LEN_SAMPLE | RESERVED_FF << 8 | (uint32_t)LEP_CMD_START << 16 |
-            (uint32_t)LEP_RESULT_OK << 24);
-}
-#endif
-
 int lep_response_decode(const uint8_t *msg, size_t len, lep_response *r)
 {
     unsigned k;
@@ -361,13 +320,6 @@ int lep_response_decode(const uint8_t *msg, size_t len, lep_response *r)
         return LEP_E_ARG;
     }
     memset(r, 0, sizeof(*r));
-#if SAMPLE_FAST
-    if (sample_header(msg, len)) { /* the stream's message, ahead of the rest */
-        r->code = msg[2];
-        r->stream = r->code == LEP_CMD_START;
-        return decode_sample(msg, &r->u.sample);
-    }
-#endif
     if (!length_ok(msg, len)) {
         return LEP_E_LENGTH;
     }
@@ -391,11 +343,9 @@ int lep_response_decode(const uint8_t *msg, size_t len, lep_response *r)
         return LEP_OK;
     case LEP_LEN_FILTER:
         return get_filter(msg, &r->u.filter);
-#if !SAMPLE_FAST         /* (speed builds took the sample above) */
-    case LEP_LEN_SAMPLE: /* the handshake sample, or start's first data message */
+    case LEP_LEN_SAMPLE: /* the handshake sample, or start's data message */
         r->stream = k == I_START;
         return decode_sample(msg, &r->u.sample);
-#endif
     case LEP_LEN_RATED:
         for (i = 0; i < LEP_AXES; i++) {
             uint32_t bits = get_le(msg + 4 + 4 * i, 4);
@@ -550,7 +500,7 @@ uint8_t lep_sample_saturated(const lep_sample *s, int16_t limit)
 }
 
 /* Entry i of a list of NUL-separated texts. */
-SHARED const char *text_at(const char *list, unsigned i)
+static const char *text_at(const char *list, unsigned i)
 {
     while (i > 0u) {
         if (*list++ == '\0') {
