@@ -475,24 +475,25 @@ static int step(lep_client *c, const uint8_t *data, size_t len, size_t *consumed
                 lep_sample *sample)
 {
     size_t pos = 0;
+    int rc = LEP_STEP_NONE;
     bool due = true;
     c->kept_len = 0; /* the last outcome's message may be overwritten from here */
     if (len == 1u && c->clock_in > 0u) {
         c->clock_in--;
         due = false;
     }
-    while (pos < len) {
+    while (pos < len && rc == LEP_STEP_NONE) {
         lep_frame_event ev;
-        int rc;
         pos += lep_frame_decoder_feed(&c->dec, data + pos, len - pos, &ev);
-        rc = on_event(c, &ev, sample);
-        if (rc != LEP_STEP_NONE) {
-            *consumed = pos; /* (a clock that was due stays due) */
-            return rc;
+        if (ev.type != LEP_FRAME_NONE) {
+            rc = on_event(c, &ev, sample);
         }
     }
-    *consumed = len;
-    return due ? clock_due(c, len > 0u) : LEP_STEP_NONE;
+    *consumed = pos;
+    if (rc != LEP_STEP_NONE || !due) {
+        return rc; /* (a clock that was due stays due after an outcome) */
+    }
+    return clock_due(c, len > 0u);
 }
 
 int lep_client_step(lep_client *c, const uint8_t *data, size_t len, size_t *consumed)

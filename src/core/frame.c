@@ -4,12 +4,14 @@
  *  1. the encoder side: lep_bcc, lep_frame_size, lep_frame_encode;
  *  2. the decoder's states (enum state) and the helpers that count a rejected
  *     frame and fill in an event;
- *  3. run(), THE decoder: one switch on the state per byte, the only code that
- *     changes a decoder's state. Inside a frame body it copies the run of plain
- *     message bytes that follows a message byte in one short loop;
- *  4. the public entry points, each a thin loop around run():
- *     lep_frame_decoder_feed (stops at the first event), _feed_byte (one byte),
- *     _feed_all (hands every event to a handler).
+ *  3. take_byte(), THE decoder: one switch on the state, one arm per state,
+ *     taking one byte; the only code that changes a decoder's state;
+ *  4. run(), the loop that feeds take_byte a chunk of input up to the first
+ *     event. In the body state it copies the run of plain message bytes that
+ *     follows in one go (copy_body_run: what take_byte would do with each);
+ *  5. the public entry points, each a call of run(): lep_frame_decoder_feed
+ *     (up to the first event), _feed_byte (one byte), _feed_all (run again
+ *     after each event, handing it to a handler).
  *
  * Every byte on the wire is accounted for: it ends up in a delivered message
  * or NAK, or it is added to stats.bytes_discarded. Bytes of a frame still in
@@ -167,17 +169,157 @@ static void begin_frame(lep_frame_decoder *d, uint16_t raw)
     d->state = S_BODY;
 }
 
-/* The message byte b (there is room for it), then the run of plain message
- * bytes that follows it in p[0..end), up to a DLE, the input's end or a full
- * buffer. Returns where the run stopped. */
-static const uint8_t *append_run(lep_frame_decoder *d, uint8_t b, const uint8_t *p,
-                                 const uint8_t *end)
+/* Take the one byte b: the transition of the current state. Returns true when
+ * b completes an event, stored in *ev (otherwise ev is left alone). */
+static bool take_byte(lep_frame_decoder *d, uint8_t b, lep_frame_event *ev)
+{
+    switch ((enum state)d->state) {
+    case S_BODY:
+        if (b == LEP_DLE) {
+            d->state = S_BODY_DLE;
+        } else if (d->len < LEP_MAX_MESSAGE) { /* a message byte */
+            d->buf[d->len++] = b;
+            d->bcc ^= b;
+        } else { /* the 129th message byte: follow the frame to its end */
+            reject(d, ev, LEP_E_TOO_LONG, frame_wire(d) + 1u);
+            d->state = S_SKIP;
+            return true;
+        }
+        return false;
+
+    case S_BODY_DLE:
+        if (b == LEP_ETX) { /* the message is complete: its BCC follows */
+            d->raw = (uint16_t)(d->raw + 2u);
+            d->state = S_BCC;
+        } else if (b == LEP_DLE && d->len < LEP_MAX_MESSAGE) { /* a stuffed 0x10 */
+            d->buf[d->len++] = LEP_DLE;
+            d->bcc ^= LEP_DLE;
+            d->raw++;
+            d->state = S_BODY;
+        } else if (b == LEP_DLE) { /* a stuffed 129th message byte */
+            reject(d, ev, LEP_E_TOO_LONG, frame_wire(d) + 2u);
+            d->state = S_SKIP;
+            return true;
+        } else if (b == LEP_STX) { /* a new frame: the partial one is abandoned */
+            d->stats.restarts++;
+            d->stats.bytes_discarded += frame_wire(d);
+            begin_frame(d, 2u);
+        } else if (b == LEP_NAK) {
+            /* The sensor NAKs while a frame of its is broken off: drop the
+             * partial frame (an escape error, no event of its own) but never
+             * lose the NAK. */
+            d->stats.escape_errors++;
+            d->stats.bytes_discarded += frame_wire(d);
+            d->stats.naks++;
+            event(ev, LEP_FRAME_NAK, LEP_OK);
+            d->state = S_IDLE;
+            return true;
+        } else { /* DLE and an illegal byte: hunt again from the next byte */
+            reject(d, ev, LEP_E_ESCAPE, frame_wire(d) + 2u);
+            d->state = S_IDLE;
+            return true;
+        }
+        return false;
+
+    case S_BCC: /* every BCC byte completes an event */
+        d->state = S_IDLE;
+        if (b != (uint8_t)(d->bcc ^ LEP_ETX)) {
+            if (b == LEP_DLE) {
+                /* The BCC byte was lost (or hit): this DLE may open the next
+                 * frame, so it is not counted with this one. */
+                reject(d, ev, LEP_E_BCC, frame_wire(d));
+                d->state = S_IDLE_DLE;
+            } else {
+                reject(d, ev, LEP_E_BCC, frame_wire(d) + 1u);
+            }
+        } else if (d->len == 0u) { /* DLE STX DLE ETX BCC: nothing to deliver */
+            reject(d, ev, LEP_E_LENGTH, frame_wire(d) + 1u);
+        } else {
+            d->stats.messages++;
+            ev->type = LEP_FRAME_MESSAGE;
+            ev->error = LEP_OK;
+            ev->msg = d->buf;
+            ev->len = d->len;
+            if (b == LEP_DLE) { /* (a BCC of 0x10 may also be the next DLE) */
+                d->state = S_BCC_DLE;
+            }
+        }
+        return true;
+
+    case S_IDLE:
+        if (b == LEP_DLE) {
+            d->state = S_IDLE_DLE;
+        } else {
+            d->stats.bytes_discarded++;
+        }
+        return false;
+
+    case S_IDLE_DLE:
+    case S_BCC_DLE:
+        if (b == LEP_STX) {
+            /* after a 0x10 BCC, the DLE was counted with the message */
+            begin_frame(d, d->state == S_BCC_DLE ? 1u : 2u);
+        } else if (b == LEP_NAK) {
+            d->stats.naks++;
+            event(ev, LEP_FRAME_NAK, LEP_OK);
+            d->state = S_IDLE;
+            return true;
+        } else {
+            /* The DLE before was noise (unless it was a message's BCC); a
+             * DLE now may start a frame itself. */
+            d->stats.bytes_discarded += d->state == S_IDLE_DLE ? 1u : 0u;
+            if (b == LEP_DLE) {
+                d->state = S_IDLE_DLE;
+            } else {
+                d->stats.bytes_discarded++;
+                d->state = S_IDLE;
+            }
+        }
+        return false;
+
+    case S_SKIP:
+        if (b == LEP_DLE) {
+            d->state = S_SKIP_DLE;
+        } else {
+            d->stats.bytes_discarded++;
+        }
+        return false;
+
+    case S_SKIP_DLE:
+        if (b == LEP_STX) { /* the next frame */
+            begin_frame(d, 2u);
+        } else if (b == LEP_NAK) {
+            d->stats.naks++;
+            event(ev, LEP_FRAME_NAK, LEP_OK);
+            d->state = S_IDLE;
+            return true;
+        } else {
+            d->stats.bytes_discarded += 2u;
+            d->state = b == LEP_ETX ? S_SKIP_BCC : b == LEP_DLE ? S_SKIP : S_IDLE;
+        }
+        return false;
+
+    default: /* S_SKIP_BCC: a DLE here may be the BCC or the next frame's DLE */
+        if (b == LEP_DLE) {
+            d->state = S_IDLE_DLE;
+        } else {
+            d->stats.bytes_discarded++;
+            d->state = S_IDLE;
+        }
+        return false;
+    }
+}
+
+/* In the body state, plain message bytes (not a DLE, with room in the buffer)
+ * change nothing but the message: copy the run of them at p in one loop,
+ * exactly what take_byte would do with each, up to a DLE, the end of the input
+ * or a full buffer. Returns where the run stopped. */
+static const uint8_t *copy_body_run(lep_frame_decoder *d, const uint8_t *p, const uint8_t *end)
 {
     size_t n = d->len;
-    uint8_t bcc = (uint8_t)(d->bcc ^ b);
-    const size_t room = LEP_MAX_MESSAGE - 1u - n; /* after b */
+    uint8_t bcc = d->bcc;
+    const size_t room = LEP_MAX_MESSAGE - n;
     const uint8_t *stop = (size_t)(end - p) < room ? end : p + room;
-    d->buf[n++] = b;
     while (p < stop && *p != LEP_DLE) {
         bcc ^= *p;
         d->buf[n++] = *p++;
@@ -187,149 +329,19 @@ static const uint8_t *append_run(lep_frame_decoder *d, uint8_t b, const uint8_t 
     return p;
 }
 
-/* The decoder: take the bytes p[0..end) one state transition at a time, and
- * stop after the byte that completes an event (the arms that make one return
- * at once) or at the end of the input (ev->type LEP_FRAME_NONE). Returns where
- * it stopped. */
+/* The decoder over the bytes p[0..end): stops after the byte that completes
+ * an event, or at the end of the input (ev->type LEP_FRAME_NONE). Returns
+ * where it stopped. */
 static const uint8_t *run(lep_frame_decoder *d, const uint8_t *p, const uint8_t *end,
                           lep_frame_event *ev)
 {
     ev->type = LEP_FRAME_NONE;
     while (p < end) {
-        const uint8_t b = *p++;
-        switch ((enum state)d->state) {
-        case S_BODY:
-            if (b == LEP_DLE) {
-                d->state = S_BODY_DLE;
-            } else if (d->len < LEP_MAX_MESSAGE) {
-                p = append_run(d, b, p, end);
-            } else { /* the 129th message byte: follow the frame to its end */
-                reject(d, ev, LEP_E_TOO_LONG, frame_wire(d) + 1u);
-                d->state = S_SKIP;
-                return p;
-            }
+        if (take_byte(d, *p++, ev)) {
             break;
-
-        case S_BODY_DLE:
-            if (b == LEP_ETX) { /* the message is complete: its BCC follows */
-                d->raw = (uint16_t)(d->raw + 2u);
-                d->state = S_BCC;
-            } else if (b == LEP_DLE && d->len < LEP_MAX_MESSAGE) { /* a stuffed 0x10 */
-                d->buf[d->len++] = LEP_DLE;
-                d->bcc ^= LEP_DLE;
-                d->raw++;
-                d->state = S_BODY;
-            } else if (b == LEP_DLE) { /* a stuffed 129th message byte */
-                reject(d, ev, LEP_E_TOO_LONG, frame_wire(d) + 2u);
-                d->state = S_SKIP;
-                return p;
-            } else if (b == LEP_STX) { /* a new frame: the partial one is abandoned */
-                d->stats.restarts++;
-                d->stats.bytes_discarded += frame_wire(d);
-                begin_frame(d, 2u);
-            } else if (b == LEP_NAK) {
-                /* The sensor NAKs while a frame of its is broken off: drop the
-                 * partial frame (an escape error, no event of its own) but never
-                 * lose the NAK. */
-                d->stats.escape_errors++;
-                d->stats.bytes_discarded += frame_wire(d);
-                d->stats.naks++;
-                event(ev, LEP_FRAME_NAK, LEP_OK);
-                d->state = S_IDLE;
-                return p;
-            } else { /* DLE and an illegal byte: hunt again from the next byte */
-                reject(d, ev, LEP_E_ESCAPE, frame_wire(d) + 2u);
-                d->state = S_IDLE;
-                return p;
-            }
-            break;
-
-        case S_BCC:
-            d->state = S_IDLE;
-            if (b != (uint8_t)(d->bcc ^ LEP_ETX)) {
-                if (b == LEP_DLE) {
-                    /* The BCC byte was lost (or hit): this DLE may open the next
-                     * frame, so it is not counted with this one. */
-                    reject(d, ev, LEP_E_BCC, frame_wire(d));
-                    d->state = S_IDLE_DLE;
-                } else {
-                    reject(d, ev, LEP_E_BCC, frame_wire(d) + 1u);
-                }
-            } else if (d->len == 0u) { /* DLE STX DLE ETX BCC: nothing to deliver */
-                reject(d, ev, LEP_E_LENGTH, frame_wire(d) + 1u);
-            } else {
-                d->stats.messages++;
-                ev->type = LEP_FRAME_MESSAGE;
-                ev->error = LEP_OK;
-                ev->msg = d->buf;
-                ev->len = d->len;
-                if (b == LEP_DLE) { /* (a BCC of 0x10 may also be the next DLE) */
-                    d->state = S_BCC_DLE;
-                }
-            }
-            return p; /* every BCC completes an event */
-
-        case S_IDLE:
-            if (b == LEP_DLE) {
-                d->state = S_IDLE_DLE;
-            } else {
-                d->stats.bytes_discarded++;
-            }
-            break;
-
-        case S_IDLE_DLE:
-        case S_BCC_DLE:
-            if (b == LEP_STX) {
-                /* after a 0x10 BCC, the DLE was counted with the message */
-                begin_frame(d, d->state == S_BCC_DLE ? 1u : 2u);
-            } else if (b == LEP_NAK) {
-                d->stats.naks++;
-                event(ev, LEP_FRAME_NAK, LEP_OK);
-                d->state = S_IDLE;
-                return p;
-            } else {
-                /* The DLE before was noise (unless it was a message's BCC); a
-                 * DLE now may start a frame itself. */
-                d->stats.bytes_discarded += d->state == S_IDLE_DLE ? 1u : 0u;
-                if (b == LEP_DLE) {
-                    d->state = S_IDLE_DLE;
-                } else {
-                    d->stats.bytes_discarded++;
-                    d->state = S_IDLE;
-                }
-            }
-            break;
-
-        case S_SKIP:
-            if (b == LEP_DLE) {
-                d->state = S_SKIP_DLE;
-            } else {
-                d->stats.bytes_discarded++;
-            }
-            break;
-
-        case S_SKIP_DLE:
-            if (b == LEP_STX) { /* the next frame */
-                begin_frame(d, 2u);
-            } else if (b == LEP_NAK) {
-                d->stats.naks++;
-                event(ev, LEP_FRAME_NAK, LEP_OK);
-                d->state = S_IDLE;
-                return p;
-            } else {
-                d->stats.bytes_discarded += 2u;
-                d->state = b == LEP_ETX ? S_SKIP_BCC : b == LEP_DLE ? S_SKIP : S_IDLE;
-            }
-            break;
-
-        default: /* S_SKIP_BCC: a DLE here may be the BCC or the next frame's DLE */
-            if (b == LEP_DLE) {
-                d->state = S_IDLE_DLE;
-            } else {
-                d->stats.bytes_discarded++;
-                d->state = S_IDLE;
-            }
-            break;
+        }
+        if (d->state == S_BODY && p < end && *p != LEP_DLE) {
+            p = copy_body_run(d, p, end);
         }
     }
     return p;

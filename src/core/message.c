@@ -76,6 +76,12 @@ static uint32_t get_le(const uint8_t *p, unsigned n)
     return v;
 }
 
+/* Two little-endian bytes (the sample's fields). */
+static uint16_t get_le16(const uint8_t *p)
+{
+    return (uint16_t)(p[0] | (unsigned)p[1] << 8);
+}
+
 static void put_le(uint8_t *p, uint32_t v, unsigned n)
 {
     unsigned i;
@@ -300,14 +306,14 @@ static int decode_sample(const uint8_t *msg, lep_sample *s)
 {
     size_t i;
     for (i = 0; i < LEP_AXES; i++) {
-        uint32_t u = get_le(msg + 4 + 2 * i, 2);
+        uint16_t u = get_le16(msg + 4 + 2 * i);
         int16_t v = u >= 0x8000u ? (int16_t)((int32_t)u - (int32_t)65536L) : (int16_t)u;
         if (!raw_ok(v)) {
             return LEP_E_VALUE;
         }
         s->raw[i] = v;
     }
-    s->reserved = (uint16_t)get_le(msg + 16, 2);
+    s->reserved = get_le16(msg + 16);
     s->status = msg[18];
     return LEP_OK;
 }
