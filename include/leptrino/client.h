@@ -103,7 +103,7 @@ typedef struct lep_client {
     uint8_t kept_len;    /* length of the last outcome's message (in dec.buf), 0: none */
     uint8_t clock_in;    /* single-byte steps left before the clock is looked at */
     uint16_t watchdog_ms;
-    uint16_t quiet_ms; /* the drain's quiet time (0: LEP_CLIENT_DEFAULT_QUIET_MS) */
+    uint16_t quiet_ms; /* the drain's quiet time */
     uint32_t t_start;  /* when the transaction attempt or the quiet time began */
     uint32_t t_aux;    /* when the drain began, or the watchdog's reference time */
     uint32_t timeout_ms;

@@ -83,8 +83,8 @@ typedef struct lep_frame_decoder {
     uint8_t bcc;
     uint16_t len;
     uint16_t raw;
-    uint8_t buf[LEP_MAX_MESSAGE];
     lep_frame_stats stats;
+    uint8_t buf[LEP_MAX_MESSAGE];
 } lep_frame_decoder;
 
 /* sizeof(lep_frame_decoder), for callers that allocate it as bytes. */

@@ -2,7 +2,7 @@
  *
  * How this file is organised, top to bottom:
  *  1. the phases (what the client waits for) and the small accessors;
- *  2. starting a transaction: begin() writes the pending command (c->cmd);
+ *  2. sending a command: transmit() writes it and arms its deadline;
  *  3. what happens when an attempt ends: settle(), on_answer(),
  *     attempt_failed();
  *  4. the decoder's events: on_message() and on_event();
@@ -56,6 +56,7 @@ int lep_client_init(lep_client *c, const lep_io *io)
     c->io = *io;
     c->timeout_ms = LEP_CLIENT_DEFAULT_TIMEOUT_MS;
     c->max_retries = (uint8_t)LEP_CLIENT_DEFAULT_RETRIES;
+    c->quiet_ms = (uint16_t)LEP_CLIENT_DEFAULT_QUIET_MS;
     return LEP_OK;
 }
 
@@ -156,14 +157,15 @@ int lep_client_response(const lep_client *c, lep_response *out)
 int lep_client_get_sample(const lep_client *c, lep_sample *out)
 {
     lep_response r;
-    int rc = out == NULL ? LEP_E_ARG : lep_client_response(c, &r);
-    if (rc == LEP_OK && c->kept_len != LEP_LEN_SAMPLE) {
-        rc = LEP_E_STATE; /* (a sample is the only 20-byte message that makes an outcome) */
+    if (c == NULL || out == NULL) {
+        return LEP_E_ARG;
     }
-    if (rc == LEP_OK) {
-        *out = r.u.sample;
+    if (c->kept_len != LEP_LEN_SAMPLE) {
+        return LEP_E_STATE; /* (a sample is the only 20-byte message that makes an outcome) */
     }
-    return rc;
+    (void)lep_response_decode(c->dec.buf, LEP_LEN_SAMPLE, &r); /* (validated when it came) */
+    *out = r.u.sample;
+    return LEP_OK;
 }
 
 static uint32_t now(const lep_client *c)
@@ -192,12 +194,19 @@ static int finish(lep_client *c, int rc)
 
 /* ---- Starting a transaction ---- */
 
-/* Write the pending command (again) and restart the attempt's clock. */
-static int write_pending(lep_client *c)
+/* Send the command code (with the filter code of c->cmd, which
+ * lep_command_encode reads only for a filter set) in phase, as copy number
+ * tries + 1 of it (tries 0: a new transaction or the next part of a recovery;
+ * more: sent again), and restart the attempt's clock. */
+static int transmit(lep_client *c, uint8_t code, enum phase phase, uint8_t tries)
 {
     uint8_t frame[2u * LEP_LEN_FILTER_SET_CMD + 5u]; /* the longest command, every byte stuffed */
     size_t n;
     int rc;
+    c->kept_len = 0;
+    c->cmd.code = code;
+    c->phase = (uint8_t)phase;
+    c->tries = tries;
     c->clock_in = 0; /* a deadline is armed: look at the clock on the next step */
     rc = lep_command_frame(&c->cmd, frame, sizeof(frame), &n);
     if (rc == LEP_OK) {
@@ -210,25 +219,13 @@ static int write_pending(lep_client *c)
     return LEP_OK;
 }
 
-/* Begin sending code (a new transaction or the next part of a recovery) in
- * phase; the filter code stays as it is (lep_command_encode reads it only for
- * a filter set). */
-static int begin(lep_client *c, uint8_t code, enum phase phase)
-{
-    c->kept_len = 0;
-    c->cmd.code = code;
-    c->tries = 0;
-    c->phase = (uint8_t)phase;
-    return write_pending(c);
-}
-
 int lep_client_send(lep_client *c, const lep_command *cmd)
 {
     if (c == NULL || cmd == NULL) {
         return LEP_E_ARG;
     }
     c->cmd.filter = cmd->filter;
-    return begin(c, cmd->code, PH_PLAIN);
+    return transmit(c, cmd->code, PH_PLAIN, 0u);
 }
 
 int lep_client_recover(lep_client *c, uint16_t quiet_ms)
@@ -236,9 +233,9 @@ int lep_client_recover(lep_client *c, uint16_t quiet_ms)
     if (c == NULL) {
         return LEP_E_ARG;
     }
-    c->quiet_ms = quiet_ms; /* (0: the default, see quiet_of) */
-    c->streaming = false;   /* a stream's data is stale from here on */
-    return begin(c, LEP_CMD_STOP, PH_STOP_SYNC);
+    c->quiet_ms = quiet_ms != 0u ? quiet_ms : (uint16_t)LEP_CLIENT_DEFAULT_QUIET_MS;
+    c->streaming = false; /* a stream's data is stale from here on */
+    return transmit(c, LEP_CMD_STOP, PH_STOP_SYNC, 0u);
 }
 
 /* ---- The end of an attempt ---- */
@@ -283,7 +280,7 @@ static int on_answer(lep_client *c, uint8_t kept, unsigned result)
             result = LEP_RESULT_OK;
         } else if (c->cmd.code == LEP_CMD_START && c->phase == PH_PLAIN && !c->streaming) {
             /* A stream we did not start (a stale one) already runs: recover. */
-            return begin(c, LEP_CMD_STOP, PH_STOP_START); /* LEP_OK is LEP_STEP_NONE */
+            return transmit(c, LEP_CMD_STOP, PH_STOP_START, 0u); /* LEP_OK is LEP_STEP_NONE */
         }
     }
     return settle(c, result == LEP_RESULT_OK ? LEP_STEP_RESPONSE : LEP_E_SENSOR);
@@ -298,13 +295,12 @@ static int attempt_failed(lep_client *c, bool after_nak)
         return LEP_STEP_NONE; /* (a NAK or a deadline of no attempt) */
     }
     if (c->tries < c->max_retries) {
-        c->tries++;
         if (after_nak) {
             c->retries++;
         } else {
             c->resent_after_timeout++;
         }
-        return write_pending(c);
+        return transmit(c, c->cmd.code, (enum phase)c->phase, (uint8_t)(c->tries + 1u));
     }
     /* (a stop of a recovery that never got through does not end it) */
     return settle(c, after_nak ? LEP_E_NAK : LEP_E_TIMEOUT);
@@ -312,9 +308,8 @@ static int attempt_failed(lep_client *c, bool after_nak)
 
 /* ---- The decoder's events ---- */
 
-/* Handle one good frame; returns an outcome, or LEP_STEP_NONE to go on. A
- * stream sample is also stored in *sample when sample is not NULL. */
-static int on_message(lep_client *c, const lep_frame_event *ev, lep_sample *sample)
+/* Handle one good frame; returns an outcome, or LEP_STEP_NONE to go on. */
+static int on_message(lep_client *c, const lep_frame_event *ev)
 {
     lep_response r;
     int rc = lep_response_decode(ev->msg, ev->len, &r);
@@ -329,9 +324,6 @@ static int on_message(lep_client *c, const lep_frame_event *ev, lep_sample *samp
         }
         c->samples++;
         c->fresh = true;
-        if (sample != NULL) {
-            *sample = r.u.sample;
-        }
         return LEP_STEP_SAMPLE;
     }
     mine = waiting(c) && r.code == c->cmd.code; /* (a data message's code is the start's) */
@@ -347,11 +339,11 @@ static int on_message(lep_client *c, const lep_frame_event *ev, lep_sample *samp
 
 /* Handle the decoder's event ev (LEP_FRAME_NONE: nothing): an outcome, or
  * LEP_STEP_NONE to go on. An outcome's message is kept (c->kept_len). */
-static int on_event(lep_client *c, const lep_frame_event *ev, lep_sample *sample)
+static int on_event(lep_client *c, const lep_frame_event *ev)
 {
     int rc = LEP_STEP_NONE;
     if (ev->type == LEP_FRAME_MESSAGE) {
-        rc = on_message(c, ev, sample);
+        rc = on_message(c, ev);
     } else if (ev->type == LEP_FRAME_NAK) {
         rc = attempt_failed(c, true);
     } else if (ev->type == LEP_FRAME_ERROR && ev->error == LEP_E_LENGTH) {
@@ -385,13 +377,6 @@ static bool expired(uint32_t t, uint32_t t0, uint32_t span)
     return t - t0 >= span;
 }
 
-/* The drain's quiet time: quiet_ms, where 0 (what lep_client_init leaves) is
- * the default. */
-static uint32_t quiet_of(const lep_client *c)
-{
-    return c->quiet_ms != 0u ? c->quiet_ms : LEP_CLIENT_DEFAULT_QUIET_MS;
-}
-
 /* The drain's limit: LEP_CLIENT_DRAIN_TIMEOUTS timeouts plus the quiet time. */
 static uint32_t drain_limit(const lep_client *c, uint32_t quiet)
 {
@@ -405,7 +390,8 @@ static uint32_t drain_limit(const lep_client *c, uint32_t quiet)
  * start again (a start's recovery) goes out. */
 static int check_drain(lep_client *c, uint32_t t, bool fed)
 {
-    uint32_t quiet = quiet_of(c);
+    uint32_t quiet = c->quiet_ms;
+    bool sync;
     if (fed) {
         c->t_start = t; /* not quiet yet */
     }
@@ -415,10 +401,9 @@ static int check_drain(lep_client *c, uint32_t t, bool fed)
     if (!expired(t, c->t_start, quiet)) {
         return LEP_STEP_NONE;
     }
-    if (c->phase == PH_DRAIN_SYNC) {
-        return begin(c, LEP_CMD_PRODUCT_INFO, PH_PLAIN);
-    }
-    return begin(c, LEP_CMD_START, PH_RESTARTED);
+    sync = c->phase == PH_DRAIN_SYNC;
+    return transmit(c, sync ? LEP_CMD_PRODUCT_INFO : LEP_CMD_START, sync ? PH_PLAIN : PH_RESTARTED,
+                    0u);
 }
 
 /* The deadlines at the clock's time, fed saying bytes came in. Two timers:
@@ -469,10 +454,8 @@ static int clock_due(lep_client *c, bool fed)
 /* Feed data[0..len) to the decoder and handle its events, up to and including
  * the byte that completes an outcome (*consumed: the bytes taken). Without an
  * outcome, the clock is looked at: at every step but a single byte, and
- * every CHECK_EVERY-th single-byte step (c->clock_in counts them down). A
- * stream sample is also stored in *sample when sample is not NULL. */
-static int step(lep_client *c, const uint8_t *data, size_t len, size_t *consumed,
-                lep_sample *sample)
+ * every CHECK_EVERY-th single-byte step (c->clock_in counts them down). */
+static int step(lep_client *c, const uint8_t *data, size_t len, size_t *consumed)
 {
     size_t pos = 0;
     int rc = LEP_STEP_NONE;
@@ -484,9 +467,9 @@ static int step(lep_client *c, const uint8_t *data, size_t len, size_t *consumed
     }
     while (pos < len && rc == LEP_STEP_NONE) {
         lep_frame_event ev;
-        pos += lep_frame_decoder_feed(&c->dec, data + pos, len - pos, &ev);
+        (void)lep_frame_decoder_feed_byte(&c->dec, data[pos++], &ev);
         if (ev.type != LEP_FRAME_NONE) {
-            rc = on_event(c, &ev, sample);
+            rc = on_event(c, &ev);
         }
     }
     *consumed = pos;
@@ -501,16 +484,21 @@ int lep_client_step(lep_client *c, const uint8_t *data, size_t len, size_t *cons
     if (c == NULL || consumed == NULL || (data == NULL && len > 0)) {
         return LEP_E_ARG;
     }
-    return step(c, data, len, consumed, NULL);
+    return step(c, data, len, consumed);
 }
 
 int lep_client_step_byte(lep_client *c, uint8_t b, lep_sample *out)
 {
     size_t used;
+    int rc;
     if (c == NULL) {
         return LEP_E_ARG;
     }
-    return step(c, &b, 1u, &used, out);
+    rc = step(c, &b, 1u, &used);
+    if (rc == LEP_STEP_SAMPLE && out != NULL) {
+        (void)lep_client_get_sample(c, out); /* (LEP_OK: the sample just came) */
+    }
+    return rc;
 }
 
 /* ---- Blocking calls ---- */
@@ -524,7 +512,7 @@ static uint32_t next_deadline(const lep_client *c)
     uint32_t span = c->timeout_ms;
     uint32_t other = c->watchdog_ms;
     if (draining(c)) {
-        span = quiet_of(c);
+        span = c->quiet_ms;
         other = drain_limit(c, span);
     } else {
         if (c->phase == PH_NONE) {
@@ -565,17 +553,17 @@ static reader reader_of(lep_client *c, lep_client_rx *local)
 /* Step over the bytes already read, then (when they are all stepped without
  * an outcome, or there were none) check the clock: a blocking call never
  * reads past a deadline. */
-static int step_buffered(lep_client *c, const reader *rd, lep_sample *sample)
+static int step_buffered(lep_client *c, const reader *rd)
 {
     size_t used = 0;
     lep_client_rx *rx = rd->rx;
     int rc = LEP_STEP_NONE;
     if (rx->pos < rx->len) {
-        rc = step(c, rx->buf + rx->pos, (size_t)(rx->len - rx->pos), &used, sample);
+        rc = step(c, rx->buf + rx->pos, (size_t)(rx->len - rx->pos), &used);
         rx->pos = (uint16_t)(rx->pos + used);
     }
     if (rc == LEP_STEP_NONE) { /* (all of it was consumed) */
-        rc = step(c, NULL, 0, &used, sample);
+        rc = step(c, NULL, 0, &used);
     }
     return rc;
 }
@@ -611,7 +599,7 @@ static int wait_for(lep_client *c, lep_sample *out, int timeout_ms, bool count_t
     uint32_t start = timeout_ms >= 0 ? now(c) : 0u;
     bool polled = false; /* the read after the time was up has been made */
     for (;;) {
-        int rc = step_buffered(c, &rd, out);
+        int rc = step_buffered(c, &rd);
         int n;
         int wait = timeout_ms;
         uint32_t clock;
@@ -627,7 +615,7 @@ static int wait_for(lep_client *c, lep_sample *out, int timeout_ms, bool count_t
                 c->unexpected++;
             }
         } else if (rc == LEP_STEP_SAMPLE) {
-            return LEP_OK; /* (step stored the sample in *out) */
+            return lep_client_get_sample(c, out);
         }
         if (rc < 0) {
             return rc;

@@ -2,10 +2,10 @@
  *
  * How this file is organised, top to bottom:
  *  1. the encoder side: lep_bcc, lep_frame_size, lep_frame_encode;
- *  2. the decoder's states (enum state) and the helpers that count a rejected
- *     frame and fill in an event;
- *  3. take_byte(), THE decoder: one switch on the state, one arm per state,
- *     taking one byte; the only code that changes a decoder's state;
+ *  2. the decoder's states (enum state);
+ *  3. take_byte(), THE decoder: one switch on the state taking one byte, with
+ *     its counters; the only code that changes a decoder's state. It returns
+ *     what the byte completed, and make_event() turns that into the event;
  *  4. run(), the loop that feeds take_byte a chunk of input up to the first
  *     event. In the body state it copies the run of plain message bytes that
  *     follows in one go (copy_body_run: what take_byte would do with each);
@@ -135,30 +135,6 @@ static uint32_t frame_wire(const lep_frame_decoder *d)
     return (uint32_t)d->len + d->raw;
 }
 
-/* An event without a message: a NAK (error LEP_OK) or an error. */
-static void event(lep_frame_event *ev, int type, int error)
-{
-    ev->type = type;
-    ev->error = error;
-    ev->msg = NULL;
-    ev->len = 0;
-}
-
-/* A frame of `wire` wire bytes is rejected for error: count it (its bytes as
- * discarded) and make it the event. */
-static void reject(lep_frame_decoder *d, lep_frame_event *ev, int error, uint32_t wire)
-{
-    d->stats.bytes_discarded += wire;
-    if (error == LEP_E_BCC) {
-        d->stats.bcc_errors++;
-    } else if (error == LEP_E_ESCAPE) {
-        d->stats.escape_errors++;
-    } else if (error == LEP_E_TOO_LONG) {
-        d->stats.overruns++;
-    } /* (LEP_E_LENGTH, an empty frame, is counted in bytes_discarded only) */
-    event(ev, LEP_FRAME_ERROR, error);
-}
-
 /* DLE STX: a frame begins. `raw` is its DLE STX's share of the wire bytes (1
  * when its DLE was counted already, as a message's 0x10 BCC). */
 static void begin_frame(lep_frame_decoder *d, uint16_t raw)
@@ -169,113 +145,129 @@ static void begin_frame(lep_frame_decoder *d, uint16_t raw)
     d->state = S_BODY;
 }
 
-/* Take the one byte b: the transition of the current state. Returns true when
- * b completes an event, stored in *ev (otherwise ev is left alone). */
-static bool take_byte(lep_frame_decoder *d, uint8_t b, lep_frame_event *ev)
+/* The frame in progress is dropped: its wire bytes so far, and `more` after
+ * them, are counted as discarded. */
+static void drop_frame(lep_frame_decoder *d, uint32_t more)
+{
+    d->stats.bytes_discarded += frame_wire(d) + more;
+}
+
+/* A message byte b (plain or stuffed) in the body state: appended, or the
+ * 129th one, which rejects the frame (its bytes so far and b are discarded). */
+static int message_byte(lep_frame_decoder *d, uint8_t b)
+{
+    if (d->len == LEP_MAX_MESSAGE) { /* follow the frame to its end */
+        d->stats.overruns++;
+        drop_frame(d, 1u);
+        d->state = S_SKIP;
+        return LEP_E_TOO_LONG;
+    }
+    d->buf[d->len++] = b;
+    d->bcc ^= b;
+    return LEP_FRAME_NONE;
+}
+
+/* Between frames: a DLE may start a frame, any other byte is discarded. */
+static int hunt(lep_frame_decoder *d, uint8_t b)
+{
+    d->state = S_IDLE_DLE;
+    if (b != LEP_DLE) {
+        d->stats.bytes_discarded++;
+        d->state = S_IDLE;
+    }
+    return LEP_FRAME_NONE;
+}
+
+/* Take the one byte b: the transition of the current state, with its
+ * counters. Returns what b completes: LEP_FRAME_NONE (nothing),
+ * LEP_FRAME_MESSAGE, LEP_FRAME_NAK, or the LEP_E_* error of a rejected frame
+ * (its wire bytes are counted as discarded here). */
+static int take_byte(lep_frame_decoder *d, uint8_t b)
 {
     switch ((enum state)d->state) {
     case S_BODY:
         if (b == LEP_DLE) {
             d->state = S_BODY_DLE;
-        } else if (d->len < LEP_MAX_MESSAGE) { /* a message byte */
-            d->buf[d->len++] = b;
-            d->bcc ^= b;
-        } else { /* the 129th message byte: follow the frame to its end */
-            reject(d, ev, LEP_E_TOO_LONG, frame_wire(d) + 1u);
-            d->state = S_SKIP;
-            return true;
+            return LEP_FRAME_NONE;
         }
-        return false;
+        return message_byte(d, b);
 
     case S_BODY_DLE:
         if (b == LEP_ETX) { /* the message is complete: its BCC follows */
             d->raw = (uint16_t)(d->raw + 2u);
             d->state = S_BCC;
-        } else if (b == LEP_DLE && d->len < LEP_MAX_MESSAGE) { /* a stuffed 0x10 */
-            d->buf[d->len++] = LEP_DLE;
-            d->bcc ^= LEP_DLE;
+        } else if (b == LEP_DLE) { /* a stuffed 0x10: the first DLE was stuffing */
             d->raw++;
             d->state = S_BODY;
-        } else if (b == LEP_DLE) { /* a stuffed 129th message byte */
-            reject(d, ev, LEP_E_TOO_LONG, frame_wire(d) + 2u);
-            d->state = S_SKIP;
-            return true;
+            return message_byte(d, b);
         } else if (b == LEP_STX) { /* a new frame: the partial one is abandoned */
             d->stats.restarts++;
-            d->stats.bytes_discarded += frame_wire(d);
+            drop_frame(d, 0u);
             begin_frame(d, 2u);
         } else if (b == LEP_NAK) {
             /* The sensor NAKs while a frame of its is broken off: drop the
              * partial frame (an escape error, no event of its own) but never
              * lose the NAK. */
             d->stats.escape_errors++;
-            d->stats.bytes_discarded += frame_wire(d);
+            drop_frame(d, 0u);
             d->stats.naks++;
-            event(ev, LEP_FRAME_NAK, LEP_OK);
             d->state = S_IDLE;
-            return true;
+            return LEP_FRAME_NAK;
         } else { /* DLE and an illegal byte: hunt again from the next byte */
-            reject(d, ev, LEP_E_ESCAPE, frame_wire(d) + 2u);
+            d->stats.escape_errors++;
+            drop_frame(d, 2u);
             d->state = S_IDLE;
-            return true;
+            return LEP_E_ESCAPE;
         }
-        return false;
+        return LEP_FRAME_NONE;
 
     case S_BCC: /* every BCC byte completes an event */
         d->state = S_IDLE;
-        if (b != (uint8_t)(d->bcc ^ LEP_ETX)) {
-            if (b == LEP_DLE) {
-                /* The BCC byte was lost (or hit): this DLE may open the next
-                 * frame, so it is not counted with this one. */
-                reject(d, ev, LEP_E_BCC, frame_wire(d));
-                d->state = S_IDLE_DLE;
-            } else {
-                reject(d, ev, LEP_E_BCC, frame_wire(d) + 1u);
-            }
-        } else if (d->len == 0u) { /* DLE STX DLE ETX BCC: nothing to deliver */
-            reject(d, ev, LEP_E_LENGTH, frame_wire(d) + 1u);
-        } else {
+        if (b == (uint8_t)(d->bcc ^ LEP_ETX) && d->len != 0u) {
             d->stats.messages++;
-            ev->type = LEP_FRAME_MESSAGE;
-            ev->error = LEP_OK;
-            ev->msg = d->buf;
-            ev->len = d->len;
             if (b == LEP_DLE) { /* (a BCC of 0x10 may also be the next DLE) */
                 d->state = S_BCC_DLE;
             }
+            return LEP_FRAME_MESSAGE;
         }
-        return true;
+        drop_frame(d, 1u);
+        if (d->len == 0u && b == LEP_ETX) { /* DLE STX DLE ETX BCC: nothing to deliver */
+            return LEP_E_LENGTH;            /* (counted as discarded bytes only) */
+        }
+        d->stats.bcc_errors++;
+        if (b == LEP_DLE) {
+            /* The BCC byte was lost (or hit): this DLE may open the next
+             * frame, so it is not counted with this one. */
+            d->stats.bytes_discarded--;
+            d->state = S_IDLE_DLE;
+        }
+        return LEP_E_BCC;
 
     case S_IDLE:
-        if (b == LEP_DLE) {
-            d->state = S_IDLE_DLE;
-        } else {
-            d->stats.bytes_discarded++;
-        }
-        return false;
+        return hunt(d, b);
 
     case S_IDLE_DLE:
     case S_BCC_DLE:
+    case S_SKIP_DLE:
         if (b == LEP_STX) {
-            /* after a 0x10 BCC, the DLE was counted with the message */
+            /* a frame begins; after a 0x10 BCC its DLE was counted with the message */
             begin_frame(d, d->state == S_BCC_DLE ? 1u : 2u);
-        } else if (b == LEP_NAK) {
-            d->stats.naks++;
-            event(ev, LEP_FRAME_NAK, LEP_OK);
-            d->state = S_IDLE;
-            return true;
-        } else {
-            /* The DLE before was noise (unless it was a message's BCC); a
-             * DLE now may start a frame itself. */
-            d->stats.bytes_discarded += d->state == S_IDLE_DLE ? 1u : 0u;
-            if (b == LEP_DLE) {
-                d->state = S_IDLE_DLE;
-            } else {
-                d->stats.bytes_discarded++;
-                d->state = S_IDLE;
-            }
+            return LEP_FRAME_NONE;
         }
-        return false;
+        if (b == LEP_NAK) {
+            d->stats.naks++;
+            d->state = S_IDLE;
+            return LEP_FRAME_NAK;
+        }
+        if (d->state == S_SKIP_DLE) { /* inside a rejected frame: its DLE and b */
+            d->stats.bytes_discarded += 2u;
+            d->state = b == LEP_ETX ? S_SKIP_BCC : b == LEP_DLE ? S_SKIP : S_IDLE;
+            return LEP_FRAME_NONE;
+        }
+        if (d->state == S_IDLE_DLE) { /* (a message's 0x10 BCC was counted with it) */
+            d->stats.bytes_discarded++;
+        }
+        return hunt(d, b);
 
     case S_SKIP:
         if (b == LEP_DLE) {
@@ -283,31 +275,21 @@ static bool take_byte(lep_frame_decoder *d, uint8_t b, lep_frame_event *ev)
         } else {
             d->stats.bytes_discarded++;
         }
-        return false;
-
-    case S_SKIP_DLE:
-        if (b == LEP_STX) { /* the next frame */
-            begin_frame(d, 2u);
-        } else if (b == LEP_NAK) {
-            d->stats.naks++;
-            event(ev, LEP_FRAME_NAK, LEP_OK);
-            d->state = S_IDLE;
-            return true;
-        } else {
-            d->stats.bytes_discarded += 2u;
-            d->state = b == LEP_ETX ? S_SKIP_BCC : b == LEP_DLE ? S_SKIP : S_IDLE;
-        }
-        return false;
+        return LEP_FRAME_NONE;
 
     default: /* S_SKIP_BCC: a DLE here may be the BCC or the next frame's DLE */
-        if (b == LEP_DLE) {
-            d->state = S_IDLE_DLE;
-        } else {
-            d->stats.bytes_discarded++;
-            d->state = S_IDLE;
-        }
-        return false;
+        return hunt(d, b);
     }
+}
+
+/* The event of what take_byte returned (not LEP_FRAME_NONE). */
+static void make_event(const lep_frame_decoder *d, int what, lep_frame_event *ev)
+{
+    const bool message = what == LEP_FRAME_MESSAGE;
+    ev->type = what < 0 ? LEP_FRAME_ERROR : what;
+    ev->error = what < 0 ? what : LEP_OK;
+    ev->msg = message ? d->buf : NULL;
+    ev->len = message ? d->len : 0u;
 }
 
 /* In the body state, plain message bytes (not a DLE, with room in the buffer)
@@ -318,9 +300,7 @@ static const uint8_t *copy_body_run(lep_frame_decoder *d, const uint8_t *p, cons
 {
     size_t n = d->len;
     uint8_t bcc = d->bcc;
-    const size_t room = LEP_MAX_MESSAGE - n;
-    const uint8_t *stop = (size_t)(end - p) < room ? end : p + room;
-    while (p < stop && *p != LEP_DLE) {
+    while (p < end && *p != LEP_DLE && n < LEP_MAX_MESSAGE) {
         bcc ^= *p;
         d->buf[n++] = *p++;
     }
@@ -337,7 +317,9 @@ static const uint8_t *run(lep_frame_decoder *d, const uint8_t *p, const uint8_t 
 {
     ev->type = LEP_FRAME_NONE;
     while (p < end) {
-        if (take_byte(d, *p++, ev)) {
+        const int what = take_byte(d, *p++);
+        if (what != LEP_FRAME_NONE) {
+            make_event(d, what, ev);
             break;
         }
         if (d->state == S_BODY && p < end && *p != LEP_DLE) {
@@ -352,8 +334,10 @@ static void bad_call(const lep_frame_decoder *d, size_t len, lep_frame_event *ev
 {
     if (ev != NULL) {
         const bool nothing_to_read = d != NULL && len == 0; /* only data was NULL */
-        event(ev, nothing_to_read ? LEP_FRAME_NONE : LEP_FRAME_ERROR,
-              nothing_to_read ? LEP_OK : LEP_E_ARG);
+        ev->type = nothing_to_read ? LEP_FRAME_NONE : LEP_FRAME_ERROR;
+        ev->error = nothing_to_read ? LEP_OK : LEP_E_ARG;
+        ev->msg = NULL;
+        ev->len = 0;
     }
 }
 

@@ -35,21 +35,17 @@ typedef struct lep_frame_stats {
     uint32_t bytes_discarded;
 } lep_frame_stats;
 
-typedef struct lep_frame_decoder {
-    uint8_t state;
-    uint8_t bcc;
-    uint16_t len;
-    uint16_t raw;
-    uint8_t buf[128];
-    lep_frame_stats stats;
-} lep_frame_decoder;
+/* (allocated as lep_frame_decoder_sizeof() bytes) */
+typedef struct lep_frame_decoder lep_frame_decoder;
 
 uint8_t lep_bcc(const uint8_t *msg, size_t len);
 int lep_frame_encode(const uint8_t *msg, size_t len, uint8_t *out, size_t cap, size_t *out_len);
+size_t lep_frame_decoder_sizeof(void);
 void lep_frame_decoder_init(lep_frame_decoder *d);
 size_t lep_frame_decoder_feed(lep_frame_decoder *d, const uint8_t *data, size_t len,
                               lep_frame_event *ev);
 bool lep_frame_decoder_busy(const lep_frame_decoder *d);
+void lep_frame_decoder_get_stats(const lep_frame_decoder *d, lep_frame_stats *out);
 
 /* message.h */
 typedef struct lep_command {
@@ -97,7 +93,7 @@ uint8_t lep_sample_saturated(const lep_sample *s, int16_t limit);
 const char *lep_filter_label(uint8_t code);
 const char *lep_command_name(uint8_t code);
 
-/* client.h (the context is allocated as lep_client_size() bytes) */
+/* client.h (the context is allocated as lep_client_sizeof() bytes) */
 typedef struct lep_client lep_client;
 
 typedef struct lep_client_stats {
@@ -118,7 +114,7 @@ typedef struct lep_client_stats {
     uint32_t stalls;
 } lep_client_stats;
 
-size_t lep_client_size(void);
+size_t lep_client_sizeof(void);
 int lep_client_set_timeout(lep_client *c, int timeout_ms);
 int lep_client_set_retries(lep_client *c, unsigned retries);
 void lep_client_get_stats(const lep_client *c, lep_client_stats *out);

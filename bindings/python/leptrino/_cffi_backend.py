@@ -81,10 +81,15 @@ class CffiBackend:
         """The struct a returned pointer points to."""
         return ptr[0]
 
-    def new_client(self) -> Any:
-        size = int(self.lib.lep_client_size())
+    def new_opaque(self, ctype: str) -> Any:
+        """A zeroed context of private layout, (pointer, memory to keep alive):
+        ctype_sizeof() bytes, 8-aligned."""
+        size = int(getattr(self.lib, ctype + "_sizeof")())
         words = self.ffi.new("uint64_t[]", (size + 7) // 8)
-        return (self.ffi.cast("lep_client *", words), words)
+        return (self.ffi.cast(ctype + " *", words), words)
+
+    def new_client(self) -> Any:
+        return self.new_opaque("lep_client")
 
     def new_text(self, size: int) -> Any:
         return self.ffi.new("char[]", size)

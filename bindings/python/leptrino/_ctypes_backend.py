@@ -53,14 +53,7 @@ class lep_frame_stats(Structure):
 
 
 class lep_frame_decoder(Structure):
-    _fields_ = [
-        ("state", c_uint8),
-        ("bcc", c_uint8),
-        ("len", c_uint16),
-        ("raw", c_uint16),
-        ("buf", c_uint8 * 128),
-        ("stats", lep_frame_stats),
-    ]
+    """Opaque here: allocated as lep_frame_decoder_sizeof() bytes."""
 
 
 class lep_command(Structure):
@@ -109,7 +102,7 @@ class lep_response(Structure):
 
 
 class lep_client(Structure):
-    """Opaque here: allocated as lep_client_size() bytes."""
+    """Opaque here: allocated as lep_client_sizeof() bytes."""
 
 
 class lep_client_stats(Structure):
@@ -389,7 +382,7 @@ STRUCTS: Dict[str, Any] = {
 }
 
 #: Types allocated by the library (or as bytes): no fields declared here.
-OPAQUE = ("lep_client", "lep_serial", "lep_sim", "lep_session", "lep_output")
+OPAQUE = ("lep_frame_decoder", "lep_client", "lep_serial", "lep_sim", "lep_session", "lep_output")
 
 _u8p = POINTER(c_uint8)
 _P = POINTER
@@ -403,12 +396,14 @@ FUNCTIONS: Dict[str, Tuple[Any, List[Any]]] = {
     # frame.h
     "lep_bcc": (c_uint8, [_u8p, c_size_t]),
     "lep_frame_encode": (c_int, [_u8p, c_size_t, _u8p, c_size_t, _P(c_size_t)]),
+    "lep_frame_decoder_sizeof": (c_size_t, []),
     "lep_frame_decoder_init": (None, [_P(lep_frame_decoder)]),
     "lep_frame_decoder_feed": (
         c_size_t,
         [_P(lep_frame_decoder), _u8p, c_size_t, _P(lep_frame_event)],
     ),
     "lep_frame_decoder_busy": (c_bool, [_P(lep_frame_decoder)]),
+    "lep_frame_decoder_get_stats": (None, [_P(lep_frame_decoder), _P(lep_frame_stats)]),
     # message.h
     "lep_command_encode": (c_int, [_P(lep_command), _u8p, c_size_t, _P(c_size_t)]),
     "lep_command_decode": (c_int, [_u8p, c_size_t, _P(lep_command), _u8p]),
@@ -419,7 +414,7 @@ FUNCTIONS: Dict[str, Tuple[Any, List[Any]]] = {
     "lep_filter_label": (c_char_p, [c_uint8]),
     "lep_command_name": (c_char_p, [c_uint8]),
     # client.h
-    "lep_client_size": (c_size_t, []),
+    "lep_client_sizeof": (c_size_t, []),
     "lep_client_set_timeout": (c_int, [_P(lep_client), c_int]),
     "lep_client_set_retries": (c_int, [_P(lep_client), c_uint]),
     "lep_client_get_stats": (None, [_P(lep_client), _P(lep_client_stats)]),
@@ -587,11 +582,16 @@ class CtypesBackend:
         """The struct a returned pointer points to."""
         return ptr.contents
 
-    def new_client(self) -> Any:
-        size = int(self.lib.lep_client_size())
+    def new_opaque(self, ctype: str) -> Any:
+        """A zeroed context of private layout, (pointer, memory to keep alive):
+        ctype_sizeof() bytes, 8-aligned."""
+        size = int(getattr(self.lib, ctype + "_sizeof")())
         words = (c_uint64 * ((size + 7) // 8))()
-        ptr = ctypes.cast(words, POINTER(lep_client))
+        ptr = ctypes.cast(words, POINTER(STRUCTS[ctype]))
         return (ptr, words)
+
+    def new_client(self) -> Any:
+        return self.new_opaque("lep_client")
 
     def new_text(self, size: int) -> Any:
         return ctypes.create_string_buffer(size)

@@ -148,7 +148,7 @@ class Decoder:
         self._be = be = get_backend(backend)
         self.direction = direction
         self._codec = _Codec(be)
-        self._dec = be.new("lep_frame_decoder")
+        self._dec, self._dec_mem = be.new_opaque("lep_frame_decoder")
         be.lib.lep_frame_decoder_init(self._dec)
         self._ev = be.new("lep_frame_event")
         self._pos = 0
@@ -157,7 +157,8 @@ class Decoder:
     def stats(self) -> Dict[str, int]:
         """Frame decoder counters (lep_frame_stats): messages, naks, bcc_errors,
         escape_errors, overruns, restarts, bytes_discarded."""
-        s = self._dec.stats
+        s = self._be.new("lep_frame_stats")
+        self._be.lib.lep_frame_decoder_get_stats(self._dec, s)
         return {name: int(getattr(s, name)) for name in (
             "messages", "naks", "bcc_errors", "escape_errors", "overruns", "restarts",
             "bytes_discarded")}

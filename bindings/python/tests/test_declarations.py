@@ -302,11 +302,11 @@ def test_constants_match_headers(headers: cheaders.Headers) -> None:
 
 
 def test_client_size_covers_the_header_layout(backend: str) -> None:
-    """lep_client is allocated as lep_client_size() bytes: sane and 8-aligned use."""
+    """lep_client is allocated as lep_client_sizeof() bytes: sane and 8-aligned use."""
     import leptrino
 
     be = leptrino.get_backend(backend)
-    size = int(be.lib.lep_client_size())
+    size = int(be.lib.lep_client_sizeof())
     assert 200 <= size <= 4096
 
 
