@@ -78,14 +78,14 @@ static void on_response(gateway *g)
 
 static void on_sample(gateway *g)
 {
-    lep_sample s;
+    lep_response r; /* the sample's message, decoded (r.u.sample) */
     float si[LEP_AXES];
-    if (lep_client_get_sample(&g->client, &s) != LEP_OK) {
+    if (lep_client_response(&g->client, &r) != LEP_OK) {
         return;
     }
-    lep_sample_to_si_f(&s, &g->rated, si);
+    lep_sample_to_si_f(&r.u.sample, &g->rated, si);
     g->counts.samples++;
-    board_publish(&s, si);
+    board_publish(&r.u.sample, si);
 }
 
 static void on_outcome(gateway *g, int rc)

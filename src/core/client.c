@@ -253,8 +253,7 @@ static int settle(lep_client *c, int rc)
     }
     if (rc == LEP_E_TIMEOUT) {
         c->timeouts++;
-    }
-    if (rc == LEP_STEP_RESPONSE && c->cmd.code == LEP_CMD_START) {
+    } else if (rc == LEP_STEP_RESPONSE && c->cmd.code == LEP_CMD_START) {
         if (c->phase == PH_RESTARTED) {
             c->recoveries++;
         }
@@ -337,7 +336,7 @@ static int on_message(lep_client *c, const lep_frame_event *ev)
     return LEP_STEP_NONE;
 }
 
-/* Handle the decoder's event ev (LEP_FRAME_NONE: nothing): an outcome, or
+/* Handle the decoder's event ev (not LEP_FRAME_NONE): an outcome, or
  * LEP_STEP_NONE to go on. An outcome's message is kept (c->kept_len). */
 static int on_event(lep_client *c, const lep_frame_event *ev)
 {
@@ -346,8 +345,8 @@ static int on_event(lep_client *c, const lep_frame_event *ev)
         rc = on_message(c, ev);
     } else if (ev->type == LEP_FRAME_NAK) {
         rc = attempt_failed(c, true);
-    } else if (ev->type == LEP_FRAME_ERROR && ev->error == LEP_E_LENGTH) {
-        c->invalid++; /* an empty frame */
+    } else if (ev->error == LEP_E_LENGTH) { /* (a rejected frame's error) */
+        c->invalid++;                       /* an empty frame */
     }
     if (rc > 0) { /* a response or a sample: its message stays at dec.buf */
         c->kept_len = (uint8_t)ev->len;
