@@ -5,7 +5,8 @@
 #     against a scripted sensor, big-endian s390x (qemu-user) and -m32, each
 #     with the host's results; the core built by a plain compiler command;
 #  2. the Cortex-M4F and AVR (16-bit int) builds, warnings as errors;
-#  3. each firmware configuration option built and leaving code out;
+#  3. each firmware configuration option built and leaving code out, and its
+#     unit tests run on the host (test/embedded/config_builds.sh);
 #  4. the Cortex-M0+ size report and its budgets.
 # Every step runs and prints its figures; the check fails if any failed.
 set -uo pipefail

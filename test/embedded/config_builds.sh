@@ -2,7 +2,11 @@
 # Firmware configurations of the portable core: each compile-time option
 # (LEP_CONFIG_*) built for a Cortex-M0+ with the project's warnings as errors,
 # and it must really leave code out (a smaller .text than the default build);
-# then all of them together.
+# then all of them together. Then each configuration (and all together) is
+# built on the host with its CMake option (LEP_CONFIG_NO_X is LEPTRINO_NO_X)
+# and its unit tests run: test_config checks the option took its feature out,
+# and the tests of what remains (frame, message; client and device with the
+# device side; the texts with the strings) must pass.
 # usage: config_builds.sh SOURCE_DIR OPTION...
 set -uo pipefail
 src=$1
@@ -42,6 +46,7 @@ for opt in "$@"; do
   fi
 done
 # All of them together.
+all_opts=("$@")
 if [ $# -gt 1 ]; then
   defs=()
   for opt in "$@"; do defs+=("-D$opt=1"); done
@@ -50,5 +55,30 @@ if [ $# -gt 1 ]; then
   else
     echo "FAIL all options together: does not build warning-free"; fail=1
   fi
+fi
+# The unit tests of each configuration, on the host.
+host_tests() { # NAME CMAKE_OPTIONS...: configure, build, ctest in build/config-NAME
+  local name=$1 dir="$src/build/config-$1" log
+  shift
+  log="$dir.log"
+  if cmake -S "$src" -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DLEPTRINO_CORE_ONLY=ON \
+       -DLEPTRINO_BUILD_SHARED=OFF -DLEPTRINO_UNIT_TESTS_ONLY=ON "$@" >"$log" 2>&1 &&
+     cmake --build "$dir" >>"$log" 2>&1 &&
+     ctest --test-dir "$dir" --output-on-failure >>"$log" 2>&1; then
+    echo "ok   tests of $name: $(grep -Eo '[0-9]+ tests? failed out of [0-9]+' "$log" | tail -1)"
+  else
+    cat "$log"
+    echo "FAIL tests of $name"
+    return 1
+  fi
+}
+cmake_opts=()
+for opt in "${all_opts[@]}"; do
+  cmake_opt="-DLEPTRINO_${opt#LEP_CONFIG_}=ON"
+  cmake_opts+=("$cmake_opt")
+  host_tests "$opt" "$cmake_opt" || fail=1
+done
+if [ ${#all_opts[@]} -gt 1 ]; then
+  host_tests all "${cmake_opts[@]}" || fail=1
 fi
 exit $fail
