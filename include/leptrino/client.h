@@ -9,7 +9,8 @@
  *    which use io.read with timeouts and io.now_ms for deadlines;
  *  - the step API (lep_client_send + lep_client_step), which never reads:
  *    the caller feeds received bytes (from a super-loop or an ISR-fed ring
- *    buffer) and polls the outcome. The blocking calls are built on it. */
+ *    buffer) and polls the outcome. The blocking calls are built on it.
+ * NULL arguments as leptrino.h says. */
 #ifndef LEPTRINO_CLIENT_H
 #define LEPTRINO_CLIENT_H
 

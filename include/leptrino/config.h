@@ -8,7 +8,8 @@
  *    nothing; device.h declares no functions). The OS layer, the virtual
  *    sensor and the tests need it, so it is for core-only builds.
  *  - LEP_CONFIG_NO_ERROR_STRINGS: lep_strerror() and lep_result_str() return
- *    "" instead of a description (saves their text in flash). */
+ *    "" instead of a description (the texts are left out).
+ * Each is built and its tests run in CI (test/embedded/config_builds.sh). */
 #ifndef LEPTRINO_CONFIG_H
 #define LEPTRINO_CONFIG_H
 

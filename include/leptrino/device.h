@@ -10,7 +10,8 @@
  *    streaming; stop while idle is accepted (0x00) so recovery is idempotent;
  *    queries and the handshake sample are answered in every state;
  *  - a filter set takes effect at the next lep_device_power_cycle().
- * Not thread-safe; caller-allocated; no allocation. */
+ * Not thread-safe; caller-allocated; no allocation.
+ * NULL arguments as leptrino.h says. */
 #ifndef LEPTRINO_DEVICE_H
 #define LEPTRINO_DEVICE_H
 

@@ -31,7 +31,8 @@ extern "C" {
 /* Longest frame on the wire: every message byte stuffed, plus 5 control bytes. */
 #define LEP_MAX_FRAME (2u * LEP_MAX_MESSAGE + 5u)
 
-/* BCC of an unstuffed message: XOR of its bytes and ETX. */
+/* BCC of an unstuffed message: XOR of its bytes and ETX (NULL: that of no
+ * bytes, ETX). */
 LEP_API uint8_t lep_bcc(const uint8_t *msg, size_t len);
 
 /* Encode msg[0..len) as a frame into out[0..cap); *out_len receives its size.

@@ -2,7 +2,19 @@
  *
  * Umbrella header of the portable core: frame codec, message codec, host
  * client, sensor-side device. Not thread-safe; one context per port.
- * OS backends have their own headers (leptrino/serial.h, leptrino/sim.h). */
+ * OS backends have their own headers (leptrino/serial.h, leptrino/sim.h).
+ *
+ * NULL arguments, one rule for every function of the core (frame.h,
+ * message.h, client.h, device.h, error.h): a NULL pointer where a function
+ * needs an object is never dereferenced and the call has no other effect
+ * (but an output count or length it was given may be set to 0). A function
+ * that returns an int status then returns LEP_E_ARG; one that returns a
+ * count, a flag, a code or a text returns 0, false, 0 or "" unless its
+ * header names another value; a void function does nothing. A pointer with
+ * a length of 0 may be NULL, and a pointer its header calls optional ("may
+ * be NULL", "when not NULL") means "not wanted" when NULL. A call that
+ * reports through an event (lep_frame_event, lep_device_event) also says so
+ * in the event when the event pointer is not NULL. */
 #ifndef LEPTRINO_H
 #define LEPTRINO_H
 

@@ -2,7 +2,8 @@
  *
  * Works on unstuffed messages (Length .. end of Data); see frame.h for the
  * wire framing. Host side: lep_command_encode, lep_response_decode. Sensor
- * side: lep_command_decode, lep_response_encode. Pure functions. */
+ * side: lep_command_decode, lep_response_encode. Pure functions.
+ * NULL arguments as leptrino.h says. */
 #ifndef LEPTRINO_MESSAGE_H
 #define LEPTRINO_MESSAGE_H
 
