@@ -50,6 +50,7 @@ clang:
 # Every figure of BENCHMARKS.md: leptrino-bench run 3 times, medians (a few minutes).
 bench: all
 	$(PYTHON) bench/bench_runs.py --runs 3 --out build/dev/bench.json build/dev/bench/leptrino-bench
+	$(PYTHON) bench/stream_vs_cat.py --leptrino $(LEPTRINO) --sim build/dev/tools/leptrino-sim/leptrino-sim
 
 clean:
 	rm -rf build
