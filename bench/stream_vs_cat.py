@@ -16,7 +16,8 @@ start-up (recovery, queries: about 0.1 s of wall time, a few ms of CPU).
 Medians over the rounds, and the ratios leptrino / cat.
 
     python3 bench/stream_vs_cat.py --leptrino build/dev/tools/leptrino/leptrino \\
-        --sim build/dev/tools/leptrino-sim/leptrino-sim [--seconds 10] [--rounds 3]
+        --sim build/dev/tools/leptrino-sim/leptrino-sim [--seconds 10] [--rounds 3] \\
+        [--compare OTHER_LEPTRINO]
 """
 
 from __future__ import annotations
@@ -71,6 +72,8 @@ def main() -> int:
     ap.add_argument("--sim", required=True)
     ap.add_argument("--seconds", type=float, default=10.0)
     ap.add_argument("--rounds", type=int, default=3)
+    ap.add_argument("--compare", metavar="LEPTRINO",
+                    help="another leptrino binary (e.g. an older build), measured in the same rounds")
     a = ap.parse_args()
 
     sim = subprocess.Popen([a.sim, "--rate", "1200"], stdout=subprocess.PIPE, text=True)
@@ -79,12 +82,17 @@ def main() -> int:
         if not port:
             sys.exit("leptrino-sim printed no port")
         runs: Dict[str, List[float]] = {"cat": [], "leptrino": [], "leptrino_latency_100": []}
-        stream = [a.leptrino, "stream", port, "--duration", str(a.seconds), "-o", "/dev/null"]
+        binaries = {"leptrino": a.leptrino}
+        if a.compare:
+            binaries["compare"] = a.compare
+            runs.update({"compare": [], "compare_latency_100": []})
         for _ in range(a.rounds):
             runs["cat"].append(cat_cpu(port, a.seconds))
-            runs["leptrino"].append(cpu_of(stream, a.seconds, stop=False))
-            runs["leptrino_latency_100"].append(
-                cpu_of(stream + ["--latency", "100"], a.seconds, stop=False))
+            for name, binary in binaries.items():
+                stream = [binary, "stream", port, "--duration", str(a.seconds), "-o", "/dev/null"]
+                runs[name].append(cpu_of(stream, a.seconds, stop=False))
+                runs[name + "_latency_100"].append(
+                    cpu_of(stream + ["--latency", "100"], a.seconds, stop=False))
     finally:
         sim.send_signal(signal.SIGTERM)
         sim.wait()
@@ -96,11 +104,8 @@ def main() -> int:
         "load_average": os.getloadavg()[0],
         "cpu_s": {k: {"median": med[k], "runs": v} for k, v in runs.items()},
         "cpu_share_of_a_core": {k: med[k] / a.seconds for k in med},
-        "ratio_to_cat": {
-            "leptrino": med["leptrino"] / med["cat"] if med["cat"] > 0 else None,
-            "leptrino_latency_100": (med["leptrino_latency_100"] / med["cat"]
-                                     if med["cat"] > 0 else None),
-        },
+        "ratio_to_cat": {k: (med[k] / med["cat"] if med["cat"] > 0 else None)
+                         for k in med if k != "cat"},
         "guard_rails": {"leptrino": 2.0, "leptrino_latency_100": 0.3},
     }
     print(json.dumps(out, indent=2))

@@ -466,7 +466,7 @@ static int step(lep_client *c, const uint8_t *data, size_t len, size_t *consumed
     }
     while (pos < len && rc == LEP_STEP_NONE) {
         lep_frame_event ev;
-        (void)lep_frame_decoder_feed_byte(&c->dec, data[pos++], &ev);
+        pos += lep_frame_decoder_feed(&c->dec, data + pos, len - pos, &ev);
         if (ev.type != LEP_FRAME_NONE) {
             rc = on_event(c, &ev);
         }

@@ -2,10 +2,12 @@
  *
  * How this file is organised, top to bottom:
  *  1. the encoder side: lep_bcc, lep_frame_size, lep_frame_encode;
- *  2. the decoder's states (enum state);
+ *  2. the decoder's states (enum state), and the small steps that several
+ *     transitions share (begin a frame, drop it, take a message byte, hunt
+ *     for the next frame);
  *  3. take_byte(), THE decoder: one switch on the state taking one byte, with
- *     its counters; the only code that changes a decoder's state. It returns
- *     what the byte completed, and make_event() turns that into the event;
+ *     its counters; nothing else decides a transition. It returns what the
+ *     byte completed, and make_event() turns that into the event;
  *  4. run(), the loop that feeds take_byte a chunk of input up to the first
  *     event. In the body state it copies the run of plain message bytes that
  *     follows in one go (copy_body_run: what take_byte would do with each);
