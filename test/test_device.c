@@ -273,6 +273,8 @@ static void test_null_arguments(void)
     static const uint8_t byte = 0x10;
     memset(&info, 0, sizeof(info));
     memset(&s, 0, sizeof(s));
+    TEST_ASSERT_EQUAL_size_t(sizeof(lep_device),
+                             lep_device_sizeof()); /* what a binding allocates */
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_device_init(NULL, &info, &rated, 0));
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_device_init(&dev, NULL, &rated, 0));
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_device_init(&dev, &info, NULL, 0));

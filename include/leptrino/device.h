@@ -42,9 +42,11 @@ typedef struct lep_device_event {
     uint8_t filter; /* LEP_DEVICE_COMMAND with a filter set: the code requested */
 } lep_device_event;
 
-/* Device context. Caller-allocated; fields are private. */
+/* Device context. Caller-allocated; its fields are private. A binding that
+ * cannot see this declaration allocates lep_device_sizeof() bytes, aligned for
+ * a uint32_t and a float. */
 typedef struct lep_device {
-    uint8_t filter_active; /* the small fields first: short offsets on Thumb-1 */
+    uint8_t filter_active;
     uint8_t filter_pending;
     bool streaming;
     lep_frame_decoder dec;
@@ -54,6 +56,9 @@ typedef struct lep_device {
 } lep_device;
 
 #if LEP_HAVE_DEVICE
+
+/* sizeof(lep_device), for callers that allocate it as bytes. */
+LEP_API size_t lep_device_sizeof(void);
 
 /* Reset d with its identity, ratings and active filter code (copied).
  * LEP_E_ARG for NULL; LEP_E_VALUE for a filter code > 3, invalid ratings, or

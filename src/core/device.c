@@ -31,6 +31,11 @@ static bool identity_ok(const lep_product_info *info, const lep_rated *rated)
            encodable(&r, LEP_CMD_PRODUCT_INFO, info, sizeof(*info));
 }
 
+size_t lep_device_sizeof(void)
+{
+    return sizeof(lep_device);
+}
+
 int lep_device_init(lep_device *d, const lep_product_info *info, const lep_rated *rated,
                     uint8_t filter)
 {
