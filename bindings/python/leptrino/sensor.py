@@ -352,7 +352,8 @@ class Sensor:
             shortfall=bool(h.shortfall), received=int(h.received), delivered=int(h.delivered),
             lost=int(h.lost), gaps=int(h.gaps), errors=int(h.errors),
             overloads=int(h.overloads), disconnects=int(h.disconnects),
-            reconnects=int(h.reconnects), max_gap_s=float(h.max_gap_s),
+            reconnects=int(h.reconnects), events_dropped=int(h.events_dropped),
+            max_gap_s=float(h.max_gap_s),
             client=copy_fields(ClientStats, h.client),
         )
 

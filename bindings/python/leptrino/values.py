@@ -305,6 +305,7 @@ class Health:
     overloads: int  # overload episodes begun
     disconnects: int
     reconnects: int
+    events_dropped: int  # events pushed out of the session's full queue, never read
     max_gap_s: float
     client: "ClientStats"  # the current connection's counters
 
