@@ -250,6 +250,7 @@ int cli_exit_code(int err)
     case LEP_E_TIMEOUT:
     case LEP_E_NO_SYNC:
     case LEP_E_STALLED:
+    case LEP_E_LOST:
         return CLI_TIMEOUT;
     case LEP_E_DISCONNECTED:
         return CLI_DISCONNECTED;
