@@ -29,6 +29,7 @@
 #include "client.h"
 #include "export.h"
 #include "message.h"
+#include "serial.h"
 #include "sim.h"
 
 #ifdef __cplusplus
@@ -289,6 +290,10 @@ LEP_API lep_sim *lep_session_sim(lep_session *s);
 /* The port's path; the fd to poll for input (-1 while disconnected). */
 LEP_API const char *lep_session_port(const lep_session *s);
 LEP_API int lep_session_fd(const lep_session *s);
+/* The latency settings lep_serial_open applied to the port of the current
+ * connection (leptrino/serial.h). LEP_E_DISCONNECTED while disconnected (out
+ * zeroed), LEP_E_ARG for NULL. Driving thread. */
+LEP_API int lep_session_serial_info(const lep_session *s, lep_serial_info *out);
 LEP_API bool lep_session_streaming(const lep_session *s);
 
 #ifdef __cplusplus

@@ -46,6 +46,18 @@ void lep_priv_session_disconnect(lep_session *s)
     s->conn = CONN_DOWN;
 }
 
+int lep_session_serial_info(const lep_session *s, lep_serial_info *out)
+{
+    if (out != NULL)
+        memset(out, 0, sizeof *out);
+    if (s == NULL || out == NULL)
+        return LEP_E_ARG;
+    if (s->conn != CONN_UP)
+        return LEP_E_DISCONNECTED;
+    lep_serial_get_info(s->serial, out);
+    return LEP_OK;
+}
+
 bool lep_priv_session_same_sensor(lep_session *s)
 {
     bool same;

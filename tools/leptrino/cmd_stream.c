@@ -496,6 +496,11 @@ static void summary(stream_state *st)
                 : tared                    ? ", tared"
                                            : ", tare incomplete",
                 st->stopped ? "; stopped by signal" : "");
+        if (h.events_dropped > 0)
+            fprintf(stderr,
+                    "leptrino: stream: %s: %llu events dropped (the session's event queue was "
+                    "full): the output lacks them\n",
+                    r->sensor->name, (unsigned long long)h.events_dropped);
         if (h.shortfall)
             fprintf(stderr,
                     "leptrino: stream: %s: RATE SHORTFALL: %.1f Hz is %.1f %% below the "
