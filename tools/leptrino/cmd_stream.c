@@ -356,13 +356,11 @@ static void emit(stream_state *st, sensor_run *r, const lep_session_batch *b)
             nev++;
         more = nev == EVENTS;
         for (k = 0; k < nev; ++k) {
-            if (ev[k].type == LEP_EV_DISCONNECTED) {
-                if (!st->o.so.reconnect)
-                    r->failed = ev[k].error;
-                else
-                    note(st, r, "%s at t=%.3f s; reopening the port (Ctrl-C to stop)",
-                         ev[k].error == LEP_E_TIMEOUT ? "no data" : "disconnected",
-                         ev[k].gap_from - st->t0);
+            /* without reconnect, the next read says the stream is over */
+            if (ev[k].type == LEP_EV_DISCONNECTED && st->o.so.reconnect) {
+                note(st, r, "%s at t=%.3f s; reopening the port (Ctrl-C to stop)",
+                     ev[k].error == LEP_E_TIMEOUT ? "no data" : "disconnected",
+                     ev[k].gap_from - st->t0);
             } else if (ev[k].type == LEP_EV_RECONNECTED) {
                 note(st, r, "back at t=%.3f s after %.1f s; streaming resumed",
                      ev[k].t_mono - st->t0, ev[k].gap_to - ev[k].gap_from);
