@@ -28,7 +28,9 @@ import sys
 # then fails on growth and prints the target as not met. Lower a ceiling to
 # its target as soon as the code fits; never raise one without saying why.
 BUDGETS = [
-    ("core_flash_bytes", 5 * 1024, 5811, ("core", "total", "flash")),
+    # 5811 + 12: LEP_E_LOST's text "stream lost" (issue 21: the session's lost
+    # stream is its own code, and every code has its text in the core)
+    ("core_flash_bytes", 5 * 1024, 5823, ("core", "total", "flash")),
     ("core_data_bss_bytes", 0, 0, ("core", "total", "data_bss")),
     ("firmware_leptrino_code_bytes", 2 * 1024, 2205, ("firmware", "leptrino", "flash")),
     ("firmware_leptrino_data_bss_bytes", 0, 0, ("firmware", "leptrino", "data_bss")),
