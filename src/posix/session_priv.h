@@ -5,19 +5,21 @@
  *
  *   session.c           options, open, close, start, stop, accessors (lep_session)
  *   session_read.c      lep_session_read, lep_session_read_one: waiting,
- *                       the latency budget, reading the port (no struct of its own)
+ *                       the latency budget, reading the port (rbuf, backlog)
  *   session_reconnect.c loss of the stream and reconnection (session_reconnect)
  *   session_port.c      connecting and disconnecting the port: open, start-up
  *                       recovery, identity check (the port fields of lep_session)
  *   session_feed.c      port bytes -> frames -> samples -> stamped, processed
  *                       rows (no struct of its own)
  *   session_timing.c    arrival times, gaps from sequence numbers and from
- *                       arrival times, held rows of a suspected hole (session_timing)
+ *                       arrival times (session_timing); it sets rows.held for a
+ *                       suspected hole and restarts the low-pass's settling count
  *   session_rows.c      processed rows waiting for a read, delivery into a
  *                       batch (session_rows)
  *   session_proc.c      overload, tare, low-pass, decimation, rotation, end of
  *                       run (session_proc)
- *   session_health.c    health counters (session_health_state)
+ *   session_health.c    health counters (session_health_state; session_proc.c
+ *                       counts h.delivered and h.overloads itself)
  *   session_events.c    the event queue (session_events)
  *   session_clock.c     UTC offset of the monotonic clock, waits in ms
  *   session_meta.c      metadata and its JSON (reads the structs above)
@@ -188,7 +190,7 @@ struct lep_session {
     /* ---- streaming (driving thread) ---- */
     bool streaming;
     bool backlog; /* more may be waiting: read again before sleeping (session_read.c) */
-    uint8_t rbuf[SESSION_RBUF];
+    uint8_t rbuf[SESSION_RBUF]; /* session_read.c */
     session_rows rows;
     session_timing tm;
     session_reconnect rc;
