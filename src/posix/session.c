@@ -243,7 +243,7 @@ int lep_session_start(lep_session *s)
     now = lep_monotonic_seconds();
     pthread_mutex_lock(&s->mu);
     lep_priv_health_start(&s->hs, s->nominal_hz, &base);
-    s->events.dropped = 0;
+    lep_priv_events_start(&s->events);
     s->start_mono = now;
     s->tm.utc_off = lep_priv_utc_offset();
     s->start_utc = now + s->tm.utc_off;

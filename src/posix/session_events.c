@@ -14,6 +14,11 @@ void lep_priv_event_init(lep_session_event *ev, int type, uint64_t sample, doubl
     ev->t_utc = t_mono + lep_priv_utc_offset();
 }
 
+void lep_priv_events_start(session_events *q)
+{
+    q->dropped = 0; /* a health counter: since start; the queue itself goes on */
+}
+
 void lep_priv_events_push(session_events *q, const lep_session_event *ev)
 {
     if (q->len == SESSION_EVENTS) { /* full: the oldest goes */

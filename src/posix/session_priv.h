@@ -293,6 +293,8 @@ void lep_priv_health_reconnected(session_health_state *hs, const lep_client_stat
 
 /* ---- session_events.c ---- */
 void lep_priv_event_init(lep_session_event *ev, int type, uint64_t sample, double t_mono);
+/* A stream starts: the dropped count starts over (events queued stay). [mu] held. */
+void lep_priv_events_start(session_events *q);
 /* Queue ev; a full queue drops its oldest (counted). [mu] held. */
 void lep_priv_events_push(session_events *q, const lep_session_event *ev);
 bool lep_priv_events_pop(session_events *q, lep_session_event *ev); /* [mu] held */
