@@ -241,11 +241,11 @@ int lep_session_start(lep_session *s)
         return rc;
     lep_client_get_stats(&s->client, &base);
     now = lep_monotonic_seconds();
+    lep_priv_timing_start(&s->tm); /* measures the UTC offset */
     pthread_mutex_lock(&s->mu);
     lep_priv_health_start(&s->hs, s->nominal_hz, &base);
     lep_priv_events_start(&s->events);
     s->start_mono = now;
-    s->tm.utc_off = lep_priv_utc_offset();
     s->start_utc = now + s->tm.utc_off;
     lep_priv_proc_start(s);
     pthread_mutex_unlock(&s->mu);
@@ -253,7 +253,6 @@ int lep_session_start(lep_session *s)
     s->backlog = false;
     lep_priv_reconnect_start(&s->rc);
     lep_priv_rows_clear(&s->rows);
-    lep_priv_timing_start(&s->tm);
     lep_priv_session_stream_reset(s, now);
     return LEP_OK;
 }

@@ -230,6 +230,7 @@ void lep_priv_session_feed(lep_session *s, const uint8_t *data, size_t len, doub
 void lep_priv_session_stream_reset(lep_session *s, double now);
 
 /* ---- session_timing.c ---- */
+/* A stream starts: gaps start over, the UTC offset is measured. */
 void lep_priv_timing_start(session_timing *tm);
 /* A loss: a suspected hole ends in it, arrival times start over. */
 void lep_priv_timing_lost(lep_session *s);

@@ -8,6 +8,7 @@
 
 void lep_priv_timing_start(session_timing *tm)
 {
+    tm->utc_off = lep_priv_utc_offset();
     tm->started = false;
     tm->have_seq = false;
     tm->gap_next = false;
