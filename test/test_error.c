@@ -50,7 +50,8 @@ static void test_error_texts(void)
               { LEP_E_NO_SYNC, "line never went quiet" },
               { LEP_E_UNSUPPORTED, "not supported" },
               { LEP_E_END, "duration or count reached" },
-              { LEP_E_STALLED, "no stream data within the watchdog time" } };
+              { LEP_E_STALLED, "no stream data within the watchdog time" },
+              { LEP_E_LOST, "stream lost" } };
     size_t i;
     for (i = 0; i < sizeof(k) / sizeof(k[0]); i++) {
         TEST_ASSERT_EQUAL_STRING(k[i].text, lep_strerror(k[i].err));
@@ -60,7 +61,7 @@ static void test_error_texts(void)
 /* Codes outside the list, up to the ends of int (no overflow negating them). */
 static void test_unknown_errors(void)
 {
-    static const int k[] = { 1,    2,        127,         INT_MAX, LEP_E_STALLED - 1,
+    static const int k[] = { 1,    2,        127,         INT_MAX, LEP_E_LOST - 1,
                              -100, -1000000, INT_MIN + 1, INT_MIN };
     size_t i;
     for (i = 0; i < sizeof(k) / sizeof(k[0]); i++) {

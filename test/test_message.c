@@ -727,7 +727,7 @@ static void test_strerror_every_code(void)
         LEP_E_ESCAPE,  LEP_E_LENGTH,      LEP_E_RESERVED,   LEP_E_UNEXPECTED, LEP_E_VALUE,
         LEP_E_SENSOR,  LEP_E_NAK,         LEP_E_TIMEOUT,    LEP_E_IO,         LEP_E_DISCONNECTED,
         LEP_E_BUSY,    LEP_E_NOT_FOUND,   LEP_E_PERMISSION, LEP_E_NOT_TTY,    LEP_E_STATE,
-        LEP_E_NO_SYNC, LEP_E_UNSUPPORTED, LEP_E_END,        LEP_E_STALLED
+        LEP_E_NO_SYNC, LEP_E_UNSUPPORTED, LEP_E_END,        LEP_E_STALLED,    LEP_E_LOST
     };
     const char *s[sizeof(codes) / sizeof(codes[0]) + 1];
     size_t i;
@@ -742,7 +742,8 @@ static void test_strerror_every_code(void)
     TEST_ASSERT_EQUAL_STRING("no stream data within the watchdog time",
                              lep_strerror(LEP_E_STALLED));
     TEST_ASSERT_EQUAL_STRING("unknown error", lep_strerror(1));
-    TEST_ASSERT_EQUAL_STRING("unknown error", lep_strerror(LEP_E_STALLED - 1));
+    TEST_ASSERT_EQUAL_STRING("stream lost", lep_strerror(LEP_E_LOST));
+    TEST_ASSERT_EQUAL_STRING("unknown error", lep_strerror(LEP_E_LOST - 1));
 }
 
 static void test_result_str(void)

@@ -39,7 +39,8 @@ enum lep_error {
     LEP_E_NO_SYNC = -20,      /* the line never went quiet during recovery */
     LEP_E_UNSUPPORTED = -21,  /* not supported on this platform or port */
     LEP_E_END = -22,          /* a session reached its duration or count (not a failure) */
-    LEP_E_STALLED = -23       /* streaming, but no sample within the watchdog time */
+    LEP_E_STALLED = -23,      /* streaming, but no sample within the watchdog time */
+    LEP_E_LOST = -24          /* a session's stream is lost (no data for its data timeout) */
 };
 
 /* Sensor result codes (spec 3.2.1). */

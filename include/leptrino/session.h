@@ -29,6 +29,7 @@
 #include "client.h"
 #include "export.h"
 #include "message.h"
+#include "serial.h"
 #include "sim.h"
 
 #ifdef __cplusplus
@@ -138,6 +139,8 @@ typedef struct lep_session_health {
     uint64_t overloads; /* overload episodes begun */
     uint64_t disconnects;
     uint64_t reconnects;
+    uint64_t events_dropped; /* events pushed out of the full queue (1024) before
+                                lep_session_next_event took them */
     double max_gap_s;
     lep_client_stats client; /* the current connection's counters */
 } lep_session_health;
@@ -195,14 +198,19 @@ LEP_API int lep_session_stop(lep_session *s);
  * (< 0 forever) for the first one; then returns when b is full, or at once
  * when the latency budget is 0, or when the budget since the first new
  * sample's arrival has run out. Returns LEP_OK when at least one sample was
- * appended or an event was queued; LEP_E_TIMEOUT when nothing came (without
- * reconnect, after data_timeout_ms of silence the stream counts as lost:
- * LEP_E_TIMEOUT then and on later calls); LEP_E_END once duration_s or count
- * is reached (the samples up to the limit are appended first);
- * LEP_E_DISCONNECTED without reconnect; LEP_E_STATE when not streaming;
- * LEP_E_ARG. Samples are never lost across calls: a full b leaves the rest
- * queued for the next call. With reconnect the session reconnects inside this
- * call and reports it as events. */
+ * appended or an event was queued; LEP_E_TIMEOUT when nothing came within
+ * timeout_ms, and only then: the stream may still come (a front end waits
+ * again); LEP_E_LOST when the stream is lost: without reconnect, after
+ * data_timeout_ms without a sample (LEP_EV_DISCONNECTED with error
+ * LEP_E_TIMEOUT is queued), then and on every later call until stop: a front
+ * end gives up on LEP_E_LOST, never on LEP_E_TIMEOUT; LEP_E_END once
+ * duration_s or count is reached (the samples up to the limit are appended
+ * first); LEP_E_DISCONNECTED when the port went away without reconnect, or
+ * reconnect_give_up_ms passed (then and on later calls); LEP_E_STATE when not
+ * streaming; LEP_E_ARG. Samples are never lost across calls: a full b leaves
+ * the rest queued for the next call. With reconnect the session reconnects
+ * inside this call and reports it as events (a data timeout is then never
+ * LEP_E_LOST). */
 LEP_API int lep_session_read(lep_session *s, lep_session_batch *b, int timeout_ms);
 /* With reconnect, a port that comes back with another sensor (model or
  * serial number differ) is not streamed from: LEP_E_UNEXPECTED, then and on
@@ -215,7 +223,22 @@ LEP_API int lep_session_read(lep_session *s, lep_session_batch *b, int timeout_m
  * late by more than gap_periods is held back until the next read confirms
  * the hole or sees the late samples arrive. */
 
-/* Pop the oldest queued event into *ev; false when none. */
+/* One sample in handshake mode (command 0x30), outside the stream, appended
+ * to b as lep_session_read appends a stream sample: raw counts, zeroed with
+ * the tare offsets in force, SI values through the rated values, rotation and
+ * moment-point shift in force, the status bits, LEP_SF_OVERLOAD when the
+ * sensor reports overload or an axis is at saturation, t_mono and t_utc when
+ * the answer arrived. The host low-pass, decimation and tare averaging are
+ * the stream's and do not apply (a lone sample has no history); no event is
+ * queued and the health counters do not change. Blocks for one transaction
+ * (timeout_ms per attempt, with the client's resends). LEP_OK; LEP_E_STATE
+ * while streaming; LEP_E_DISCONNECTED while disconnected; LEP_E_ARG for NULL
+ * or a full b (b->n >= b->cap); the client's error otherwise (b unchanged). */
+LEP_API int lep_session_read_one(lep_session *s, lep_session_batch *b);
+
+/* Pop the oldest queued event into *ev; false when none. A full queue (1024
+ * events) drops its oldest to take a new one: counted in
+ * lep_session_health.events_dropped. */
 LEP_API bool lep_session_next_event(lep_session *s, lep_session_event *ev);
 
 /* Tare: average the raw counts of the next n samples (or of duration_s
@@ -259,8 +282,7 @@ LEP_API void lep_session_get_metadata(lep_session *s, lep_session_metadata *out)
  * usable). Every front end writes this same object. */
 LEP_API int lep_session_metadata_json(lep_session *s, char *buf, size_t cap, size_t *len);
 
-/* The client, for commands the session does not wrap (a single sample,
- * filter set). Do not start or stop the stream through it. NULL while
+/* The client, for commands the session does not wrap (filter set). Do not start or stop the stream through it. NULL while
  * disconnected. */
 LEP_API lep_client *lep_session_client(lep_session *s);
 /* The virtual sensor when use_sim, else NULL (for fault injection). */
@@ -268,6 +290,10 @@ LEP_API lep_sim *lep_session_sim(lep_session *s);
 /* The port's path; the fd to poll for input (-1 while disconnected). */
 LEP_API const char *lep_session_port(const lep_session *s);
 LEP_API int lep_session_fd(const lep_session *s);
+/* The latency settings lep_serial_open applied to the port of the current
+ * connection (leptrino/serial.h). LEP_E_DISCONNECTED while disconnected (out
+ * zeroed), LEP_E_ARG for NULL. Driving thread. */
+LEP_API int lep_session_serial_info(const lep_session *s, lep_serial_info *out);
 LEP_API bool lep_session_streaming(const lep_session *s);
 
 #ifdef __cplusplus

@@ -8,9 +8,9 @@
 #include "leptrino/error.h"
 
 #if LEP_HAVE_ERROR_STRINGS
-/* LEP_OK, LEP_E_ARG (-1) .. LEP_E_STALLED (-23), unknown error (24); then
- * undefined command (25), state error (26), unknown result code (27). */
-#define UNKNOWN_ERROR ((unsigned)-LEP_E_STALLED + 1u)
+/* LEP_OK, LEP_E_ARG (-1) .. LEP_E_LOST (-24), unknown error (25); then
+ * undefined command (26), state error (27), unknown result code (28). */
+#define UNKNOWN_ERROR ((unsigned)-LEP_E_LOST + 1u)
 static const char k_texts[] = "success\0"
                               "invalid argument\0"
                               "buffer too small\0"
@@ -35,6 +35,7 @@ static const char k_texts[] = "success\0"
                               "not supported\0"
                               "duration or count reached\0"
                               "no stream data within the watchdog time\0"
+                              "stream lost\0"
                               "unknown error\0"
                               "undefined command\0"
                               "state error\0"
@@ -70,7 +71,7 @@ const char *lep_strerror(int err)
     (void)err;
     return "";
 #else
-    unsigned i = 0u - (unsigned)err; /* 0 .. 23 for the codes; above for the others */
+    unsigned i = 0u - (unsigned)err; /* 0 .. 24 for the codes; above for the others */
     return nth(i < UNKNOWN_ERROR ? i : UNKNOWN_ERROR);
 #endif
 }

@@ -1,5 +1,6 @@
 /* Host session: options, open (port or virtual sensor, start-up recovery,
- * identity, rated values, filter), start, stop, close, and the accessors. */
+ * identity, rated values, filter), start, stop, close, and the accessors.
+ * The top of the pipeline (session_priv.h): it calls the stages, none calls it. */
 #if defined(__APPLE__)
 #define _DARWIN_C_SOURCE
 #else
@@ -103,42 +104,6 @@ static int16_t saturation_for(const char *firmware)
     return LEP_SATURATION_V113;
 }
 
-/* Open the port, start-up recovery, identify. Rated values and the filter
- * on the first connection only (the metadata keeps them). */
-int lep_priv_session_connect(lep_session *s, char *err, size_t errlen)
-{
-    lep_product_info info;
-    int rc = lep_serial_open(s->opt.port, &s->serial, err, errlen);
-    if (rc != LEP_OK) {
-        s->serial = NULL;
-        return rc;
-    }
-    rc = lep_serial_client_init(&s->client, s->serial);
-    if (rc == LEP_OK)
-        rc = lep_client_set_timeout(&s->client, s->opt.timeout_ms);
-    if (rc == LEP_OK)
-        rc =
-            lep_client_sync(&s->client, s->opt.sync_quiet_ms > 0 ? s->opt.sync_quiet_ms : 1, &info);
-    if (rc != LEP_OK) {
-        lep_priv_set_err(err, errlen, "%s: start-up recovery (stop, drain, product info): %s",
-                         s->opt.port, lep_strerror(rc));
-        lep_priv_session_disconnect(s);
-        return rc;
-    }
-    pthread_mutex_lock(&s->mu); /* the metadata may be read from another thread */
-    s->info = info;
-    pthread_mutex_unlock(&s->mu);
-    s->conn = CONN_UP;
-    return LEP_OK;
-}
-
-void lep_priv_session_disconnect(lep_session *s)
-{
-    lep_serial_close(s->serial);
-    s->serial = NULL;
-    s->conn = CONN_DOWN;
-}
-
 static int read_identity(lep_session *s, char *err, size_t errlen)
 {
     uint8_t code = 0;
@@ -227,9 +192,9 @@ int lep_session_open(const lep_session_options *o, lep_session **out, char *err,
         lep_session_close(s);
         return rc;
     }
-    memcpy(s->rot, o->rotation, sizeof s->rot);
-    memcpy(s->shift, o->shift_m, sizeof s->shift);
-    s->decimate = o->decimate;
+    memcpy(s->proc.rot, o->rotation, sizeof s->proc.rot);
+    memcpy(s->proc.shift, o->shift_m, sizeof s->proc.shift);
+    s->proc.decimate = o->decimate;
     rc = lep_session_set_rotation(s, o->rotation, o->shift_m);
     if (rc != LEP_OK) {
         lep_priv_set_err(err, errlen, "session: rotation is not a rotation matrix (R R^T != I)");
@@ -262,6 +227,7 @@ void lep_session_close(lep_session *s)
 
 int lep_session_start(lep_session *s)
 {
+    lep_client_stats base;
     int rc;
     double now;
     if (s == NULL)
@@ -273,34 +239,20 @@ int lep_session_start(lep_session *s)
     rc = lep_client_start(&s->client);
     if (rc != LEP_OK)
         return rc;
+    lep_client_get_stats(&s->client, &base);
     now = lep_monotonic_seconds();
+    lep_priv_timing_start(&s->tm); /* measures the UTC offset */
     pthread_mutex_lock(&s->mu);
-    memset(&s->h, 0, sizeof s->h);
-    s->h.nominal_hz = s->nominal_hz;
-    s->errors_before = 0;
-    s->data_timeouts = 0;
+    lep_priv_health_start(&s->hs, s->nominal_hz, &base);
+    lep_priv_events_start(&s->events);
     s->start_mono = now;
-    s->utc_off = lep_priv_utc_offset();
-    s->start_utc = now + s->utc_off;
-    if (s->opt.tare_samples > 0)
-        lep_priv_session_begin_tare(s, s->opt.tare_samples, 0.0, true);
-    lep_priv_lowpass_restart(&s->lp);
+    s->start_utc = now + s->tm.utc_off;
+    lep_priv_proc_start(s);
     pthread_mutex_unlock(&s->mu);
-    lep_client_get_stats(&s->client, &s->base_stats);
     s->streaming = true;
-    s->failed = 0;
-    s->ended = false;
-    s->pend_head = s->pend_len = 0;
-    s->held = 0;
     s->backlog = false;
-    s->tm_started = false;
-    s->have_sample = false;
-    s->have_seq = false;
-    s->carry_flags = 0;
-    s->gap_next = false;
-    s->dec_phase = 0;
-    s->first_delivered_t = 0.0;
-    s->overloaded = false;
+    lep_priv_reconnect_start(&s->rc);
+    lep_priv_rows_clear(&s->rows);
     lep_priv_session_stream_reset(s, now);
     return LEP_OK;
 }
@@ -326,16 +278,14 @@ int lep_session_stop(lep_session *s)
     if (!s->streaming)
         return LEP_E_STATE;
     s->streaming = false;
-    s->pend_head = s->pend_len = 0;
-    s->held = 0;
+    lep_priv_rows_clear(&s->rows);
     if (s->conn == CONN_UP && lep_client_streaming(&s->client)) {
         rc = lep_client_stop(&s->client);
         if (rc != LEP_OK && rc != LEP_E_DISCONNECTED)
             rc = lep_client_stop(&s->client); /* one more try, e.g. after a lost answer */
     }
     pthread_mutex_lock(&s->mu);
-    s->taring = false;
-    s->tare_hold = false;
+    lep_priv_proc_stop(&s->proc);
     pthread_mutex_unlock(&s->mu);
     return rc == LEP_E_DISCONNECTED ? LEP_OK : rc;
 }

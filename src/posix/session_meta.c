@@ -51,16 +51,16 @@ void lep_session_get_metadata(lep_session *s, lep_session_metadata *out)
     out->sim = s->sim != NULL;
     copy_str(out->library_version, sizeof out->library_version, lep_version());
     pthread_mutex_lock(&s->mu);
-    out->lowpass_hz = s->lp.cutoff_hz;
-    if (s->lp.cutoff_hz > 0.0) {
+    out->lowpass_hz = s->proc.lp.cutoff_hz;
+    if (s->proc.lp.cutoff_hz > 0.0) {
         copy_str(out->lowpass_name, sizeof out->lowpass_name, LOWPASS_NAME);
-        out->lowpass_delay_s = s->lp.delay_s;
+        out->lowpass_delay_s = s->proc.lp.delay_s;
     }
-    out->decimate = s->decimate;
-    memcpy(out->rotation, s->rot, sizeof out->rotation);
-    memcpy(out->shift_m, s->shift, sizeof out->shift_m);
-    out->tared = s->tared;
-    memcpy(out->tare, s->tare, sizeof out->tare);
+    out->decimate = s->proc.decimate;
+    memcpy(out->rotation, s->proc.rot, sizeof out->rotation);
+    memcpy(out->shift_m, s->proc.shift, sizeof out->shift_m);
+    out->tared = s->proc.tared;
+    memcpy(out->tare, s->proc.tare, sizeof out->tare);
     out->start_utc = s->start_utc;
     out->start_mono = s->start_mono;
     pthread_mutex_unlock(&s->mu);

@@ -1,7 +1,31 @@
-/* Private: the session's state, shared by session.c (open/close/start/stop,
- * reconnect), session_stream.c (reading, timestamps, gaps, health, events),
- * session_proc.c (tare, low-pass, decimation, rotation) and session_meta.c
- * (metadata and its JSON). */
+/* Private: the session's state and who owns which part of it.
+ *
+ * The session is a pipeline; each file calls only the files listed after it
+ * (test/checks/depgraph.py fails the build on a cycle):
+ *
+ *   session.c           options, open, close, start, stop, accessors (lep_session)
+ *   session_read.c      lep_session_read, lep_session_read_one: waiting,
+ *                       the latency budget, reading the port (rbuf, backlog)
+ *   session_reconnect.c loss of the stream and reconnection (session_reconnect)
+ *   session_port.c      connecting and disconnecting the port: open, start-up
+ *                       recovery, identity check (the port fields of lep_session)
+ *   session_feed.c      port bytes -> frames -> samples -> stamped, processed
+ *                       rows (no struct of its own)
+ *   session_timing.c    arrival times, gaps from sequence numbers and from
+ *                       arrival times (session_timing); it sets rows.held for a
+ *                       suspected hole and restarts the low-pass's settling count
+ *   session_rows.c      processed rows waiting for a read, delivery into a
+ *                       batch (session_rows)
+ *   session_proc.c      overload, tare, low-pass, decimation, rotation, end of
+ *                       run (session_proc)
+ *   session_health.c    health counters (session_health_state; session_proc.c
+ *                       counts h.delivered and h.overloads itself)
+ *   session_events.c    the event queue (session_events)
+ *   session_clock.c     UTC offset of the monotonic clock, waits in ms
+ *   session_meta.c      metadata and its JSON (reads the structs above)
+ *
+ * Threads: the driving thread owns everything not marked [mu]; [mu] parts
+ * are also read or written by the any-thread calls, under s->mu. */
 #ifndef LEPTRINO_POSIX_SESSION_PRIV_H
 #define LEPTRINO_POSIX_SESSION_PRIV_H
 
@@ -30,8 +54,11 @@
 #define SESSION_CONFIRM_S 0.02
 /* How often a vanished port is looked for while reconnecting. */
 #define SESSION_WATCH_S 0.02
-/* Events kept until lep_session_next_event takes them; beyond, the oldest go. */
+/* Events kept until lep_session_next_event takes them; beyond, the oldest go
+ * (counted in lep_session_health.events_dropped). */
 #define SESSION_EVENTS 1024u
+/* A wall-clock step smaller than this is measurement jitter, not a step. */
+#define SESSION_UTC_STEP_S 1e-3
 
 /* A processed sample waiting for lep_session_read. */
 typedef struct session_row {
@@ -45,8 +72,27 @@ typedef struct session_row {
     uint16_t seq;
 } session_row;
 
-/* 2nd-order Butterworth low-pass, one section per axis (direct form II
- * transposed), run on raw counts. */
+/* session_events.c: [mu] events kept until lep_session_next_event. */
+typedef struct session_events {
+    lep_session_event ev[SESSION_EVENTS];
+    size_t head, len;
+    uint64_t pushed;  /* queued since open (tells a read it has news) */
+    uint64_t dropped; /* pushed out of a full queue since start */
+} session_events;
+
+/* session_health.c: [mu] the health counters and what they are computed from. */
+typedef struct session_health_state {
+    lep_session_health h;
+    double first_t;
+    double window_t;
+    uint64_t window_n;
+    uint64_t errors_before;      /* errors counted on earlier connections */
+    uint64_t data_timeouts;      /* data timeouts (each counted as an error) */
+    lep_client_stats base_stats; /* the connection's counters at start or reconnect */
+} session_health_state;
+
+/* session_proc.c: 2nd-order Butterworth low-pass, one section per axis
+ * (direct form II transposed), run on raw counts. */
 typedef struct session_lowpass {
     double cutoff_hz; /* 0: off */
     double b0, b1, b2, a1, a2;
@@ -57,62 +103,8 @@ typedef struct session_lowpass {
     double delay_s;    /* group delay at 0 Hz */
 } session_lowpass;
 
-enum session_conn { CONN_UP = 0, CONN_DOWN = 1 };
-
-struct lep_session {
-    lep_session_options opt; /* copied; strings point into the buffers below */
-    char port_buf[256];
-    char link_buf[128];
-    lep_sim *sim;
-    lep_serial *serial; /* NULL while disconnected */
-    lep_client client;
-    lep_product_info info;       /* [mu] of the current connection */
-    lep_product_info first_info; /* of the connection at open (a reconnect must find the same) */
-    lep_rated rated;
-    int sensor_filter; /* -1: refused or unanswered */
-    double nominal_hz;
-    double period_s;
-    int16_t saturation;
-
-    pthread_mutex_t mu; /* guards everything below marked [mu] */
-
-    /* ---- streaming state (driving thread) ---- */
-    bool streaming;
-    int conn;   /* enum session_conn */
-    int failed; /* sticky error after a loss without reconnect (0: none) */
-    bool ended; /* duration or count reached */
-    uint8_t rbuf[SESSION_RBUF];
-    session_row pending[SESSION_PENDING];
-    size_t pend_head, pend_len;
-    bool backlog;            /* more may be waiting: read again before sleeping */
-    double last_read_t;      /* when the last read returned */
-    double last_data_read_t; /* when the last read that completed a sample returned */
-    double last_sample_t;    /* reconstructed arrival of the last sample */
-    bool have_sample;        /* a sample came since start (or since the reconnect) */
-    bool have_seq;
-    uint16_t last_seq;
-    uint8_t carry_flags; /* LEP_SF_GAP of a sample that decimation dropped */
-    bool gap_next;       /* the next sample follows a gap (reconnect) */
-    double gap_from;
-    int gap_error; /* what caused the disconnect before a reconnect */
-    double down_since;
-    double next_attempt;
-    bool port_missing; /* the last reconnect attempt found no port */
-    int backoff_ms;
-    uint32_t dec_phase;
-    double first_delivered_t;
-    bool overloaded;
-    /* holes found from arrival times (no sequence numbers) */
-    bool tm_started;
-    double tm_anchor_t;
-    uint64_t tm_anchor_k, tm_k;
-    double tm_window_t, tm_window_min;
-    size_t held; /* newest pending rows held back: a suspected hole before them */
-    double suspect_from, suspect_to;
-    uint64_t suspect_index;
-    lep_client_stats base_stats; /* the connection's counters at start or reconnect */
-
-    /* ---- [mu] processing ---- */
+/* session_proc.c: [mu] the processing of each sample. */
+typedef struct session_proc {
     double tare[LEP_AXES];
     bool tared;
     bool taring;
@@ -126,54 +118,195 @@ struct lep_session {
     double rot[9];
     double shift[3];
     unsigned decimate;
+    uint32_t dec_phase;
+    uint8_t carry_flags; /* LEP_SF_GAP of a sample that decimation dropped */
+    bool overloaded;
+    bool ended; /* duration or count reached */
+    double first_delivered_t;
+} session_proc;
 
-    /* ---- [mu] health ---- */
-    lep_session_health h;
-    double first_t;
-    double window_t;
-    uint64_t window_n;
-    uint64_t errors_before; /* errors counted on earlier connections */
-    uint64_t data_timeouts;
+/* session_rows.c: processed rows waiting for a read (driving thread). */
+typedef struct session_rows {
+    session_row pending[SESSION_PENDING];
+    size_t head, len;
+    size_t held; /* newest rows held back: a suspected hole before them */
+} session_rows;
 
-    /* UTC - monotonic offset the samples are stamped with (the reading thread
-     * only): held between batches so UTC intervals equal monotonic ones, and
-     * moved only when the wall clock steps by more than SESSION_UTC_STEP_S. */
+/* session_timing.c: arrival times and gaps (driving thread; its gap events
+ * and counters go through [mu]). */
+typedef struct session_timing {
+    double last_read_t;      /* when the last read returned */
+    double last_data_read_t; /* when the last read that completed a sample returned */
+    double last_sample_t;    /* reconstructed arrival of the last sample */
+    bool have_seq;
+    uint16_t last_seq;
+    bool gap_next; /* the next sample follows a gap (reconnect) */
+    double gap_from;
+    int gap_error; /* what caused the disconnect before a reconnect */
+    /* holes found from arrival times (no sequence numbers) */
+    bool started;
+    double anchor_t;
+    uint64_t anchor_k, k;
+    double window_t, window_min;
+    double suspect_from, suspect_to;
+    uint64_t suspect_index;
+    /* UTC - monotonic offset the samples are stamped with: held between
+     * batches so UTC intervals equal monotonic ones, and moved only when the
+     * wall clock steps by more than SESSION_UTC_STEP_S. */
     double utc_off;
+} session_timing;
 
-    /* ---- [mu] metadata ---- */
-    double start_utc;
+/* session_reconnect.c: loss and reconnection (driving thread). */
+typedef struct session_reconnect {
+    int failed; /* sticky outcome after a loss that is not reconnected (0: none) */
+    double down_since;
+    double next_attempt;
+    bool port_missing; /* the last attempt found no port */
+    int backoff_ms;
+} session_reconnect;
+
+enum session_conn { CONN_UP = 0, CONN_DOWN = 1 };
+
+struct lep_session {
+    lep_session_options opt; /* copied; strings point into the buffers below */
+    char port_buf[256];
+    char link_buf[128];
+    lep_sim *sim;
+    /* ---- the port (session_port.c) ---- */
+    lep_serial *serial; /* NULL while disconnected */
+    lep_client client;
+    int conn;                    /* enum session_conn */
+    lep_product_info info;       /* [mu] of the current connection */
+    lep_product_info first_info; /* of the connection at open (a reconnect must find the same) */
+    /* ---- identity, set at open (session.c) ---- */
+    lep_rated rated;
+    int sensor_filter; /* -1: refused or unanswered */
+    double nominal_hz;
+    double period_s;
+    int16_t saturation;
+
+    pthread_mutex_t mu; /* guards every part marked [mu] */
+
+    /* ---- streaming (driving thread) ---- */
+    bool streaming;
+    bool backlog; /* more may be waiting: read again before sleeping (session_read.c) */
+    uint8_t rbuf[SESSION_RBUF]; /* session_read.c */
+    session_rows rows;
+    session_timing tm;
+    session_reconnect rc;
+
+    /* ---- [mu] ---- */
+    session_proc proc;
+    session_health_state hs;
+    session_events events;
+    double start_utc; /* metadata */
     double start_mono;
-
-    /* ---- [mu] events ---- */
-    lep_session_event ev[SESSION_EVENTS];
-    size_t ev_head, ev_len;
-    uint64_t ev_pushed; /* events queued since open (to tell a read it has news) */
 };
 
-/* session.c */
+/* ---- session_reconnect.c ---- */
+void lep_priv_reconnect_start(session_reconnect *r);
+/* The stream is lost at now (error: LEP_E_DISCONNECTED, port gone, or
+ * LEP_E_TIMEOUT, no data for data_timeout_ms): the event, the counters;
+ * without reconnect the sticky outcome (LEP_E_LOST after a data timeout,
+ * LEP_E_DISCONNECTED), with it the port is closed and the backoff begins. */
+void lep_priv_reconnect_lost(lep_session *s, int error, double now);
+/* While disconnected: give up (sets failed), sleep towards the next attempt
+ * (no later than deadline), or attempt. False when deadline passed asleep. */
+bool lep_priv_reconnect_wait(lep_session *s, double now, double deadline);
+
+/* ---- session_port.c ---- */
+/* Open the port, start-up recovery, identify (s->info). */
 int lep_priv_session_connect(lep_session *s, char *err, size_t errlen);
 void lep_priv_session_disconnect(lep_session *s);
-/* Take over the bytes the client read past the start answer into rbuf-free
- * processing (they are stepped at once). */
-void lep_priv_session_stream_reset(lep_session *s, double now);
+/* The sensor that answered a reconnect is the one the session opened. */
+bool lep_priv_session_same_sensor(lep_session *s);
 
-/* session_stream.c */
-void lep_priv_session_push_event(lep_session *s, const lep_session_event *ev); /* [mu] held */
-void lep_priv_session_event_init(lep_session_event *ev, int type, uint64_t sample, double t_mono);
-double lep_priv_utc_offset(void);
-/* A wall-clock step smaller than this is measurement jitter, not a step. */
-#define SESSION_UTC_STEP_S 1e-3
+/* ---- session_feed.c ---- */
 /* Step bytes through the client and process the samples they complete,
  * stamped as arriving by t_read. [mu] not held. */
 void lep_priv_session_feed(lep_session *s, const uint8_t *data, size_t len, double t_read);
+/* The stream (re)starts at now: take over the bytes the client read past the
+ * start answer (they are stepped at once). */
+void lep_priv_session_stream_reset(lep_session *s, double now);
 
-/* session_proc.c */
-/* Process one sample: tare, low-pass, decimation, rotation; false when it is
- * not delivered (start-up tare, decimation, end reached). [mu] held. */
+/* ---- session_timing.c ---- */
+/* A stream starts: gaps start over, the UTC offset is measured. */
+void lep_priv_timing_start(session_timing *tm);
+/* A loss: a suspected hole ends in it, arrival times start over. */
+void lep_priv_timing_lost(lep_session *s);
+/* The next sample follows a reconnect: gap from gap_from, caused by error. */
+void lep_priv_timing_reconnected(session_timing *tm, double gap_from, int error);
+/* Arrival of sample i of n completed by a read at t_read, never before lower. */
+double lep_priv_timing_stamp(const lep_session *s, size_t i, size_t n, double t_read, double lower);
+/* Gap before sample smp arriving at t (reconnect, or missing sequence
+ * numbers of the virtual sensor): queues the event, returns LEP_SF_GAP or 0.
+ * [mu] held. */
+uint8_t lep_priv_timing_sample(lep_session *s, const lep_sample *smp, double t);
+/* After a read's n samples (on a port without sequence numbers): holes from
+ * arrival times. rows_before: rows pending before this read; before_t,
+ * first_t: arrival of the sample before it and of its first. [mu] held. */
+void lep_priv_timing_read(lep_session *s, size_t n, double t_read, double before_t, double first_t,
+                          size_t rows_before);
+
+/* ---- session_rows.c ---- */
+void lep_priv_rows_clear(session_rows *r);
+/* The slot the next row is written to, or NULL when full. */
+session_row *lep_priv_rows_slot(session_rows *r);
+/* Keep the row written to the slot. */
+void lep_priv_rows_push(session_rows *r);
+/* The row `back` rows before the newest pending one (0: the newest). */
+session_row *lep_priv_rows_back(session_rows *r, size_t back);
+/* Append one row to b (b->n < b->cap). */
+void lep_priv_rows_append(lep_session_batch *b, const session_row *r);
+/* Move rows not held back into b; *first gets the arrival of the first moved
+ * (unchanged when none). */
+void lep_priv_rows_deliver(session_rows *r, lep_session_batch *b, double *first);
+
+/* ---- session_proc.c ---- */
+/* Process one sample: overload, tare, low-pass, decimation, rotation; false
+ * when it is not delivered (start-up tare, decimation, end reached). [mu] held. */
 bool lep_priv_session_process(lep_session *s, const lep_sample *smp, double t, double t_utc,
                               uint8_t flags, session_row *row);
+/* A handshake sample (outside the stream) into row: the tare offsets, SI
+ * units and output frame in force; LEP_SF_OVERLOAD when overloaded. No
+ * low-pass, decimation or tare averaging (they are the stream's), no event.
+ * [mu] held. */
+void lep_priv_proc_one(const lep_session *s, const lep_sample *smp, double t, double t_utc,
+                       session_row *row);
+/* A new stream: the start-up tare when asked, the low-pass restarted. [mu] held. */
+void lep_priv_proc_start(lep_session *s);
+/* The stream stopped: a tare in progress ends without a result. [mu] held. */
+void lep_priv_proc_stop(session_proc *p);
 void lep_priv_lowpass_design(session_lowpass *lp, double cutoff_hz, double fs);
 void lep_priv_lowpass_restart(session_lowpass *lp);
-void lep_priv_session_begin_tare(lep_session *s, unsigned n, double duration_s, bool hold);
+
+/* ---- session_health.c ([mu] held for all) ---- */
+void lep_priv_health_start(session_health_state *hs, double nominal_hz,
+                           const lep_client_stats *base);
+/* The client's counters now: errors and the current connection's stats. */
+void lep_priv_health_client(session_health_state *hs, const lep_client_stats *st);
+void lep_priv_health_sample(session_health_state *hs, double t);
+void lep_priv_health_gap(session_health_state *hs, double from, double to, uint32_t lost);
+/* The connection ended (error: LEP_E_TIMEOUT counts a data timeout). */
+void lep_priv_health_lost(session_health_state *hs, const lep_client_stats *st, int error);
+/* A new connection's counters start at base. */
+void lep_priv_health_reconnected(session_health_state *hs, const lep_client_stats *base);
+
+/* ---- session_events.c ---- */
+void lep_priv_event_init(lep_session_event *ev, int type, uint64_t sample, double t_mono);
+/* A stream starts: the dropped count starts over (events queued stay). [mu] held. */
+void lep_priv_events_start(session_events *q);
+/* Queue ev; a full queue drops its oldest (counted). [mu] held. */
+void lep_priv_events_push(session_events *q, const lep_session_event *ev);
+bool lep_priv_events_pop(session_events *q, lep_session_event *ev); /* [mu] held */
+
+/* ---- session_clock.c ---- */
+/* UTC - monotonic offset, measured (the narrowest of three brackets). */
+double lep_priv_utc_offset(void);
+/* Whether the wall clock may have left utc_off +- SESSION_UTC_STEP_S, from
+ * one read bracketed by t_before (monotonic) and now. */
+bool lep_priv_utc_may_have_moved(double utc_off, double t_before);
+/* Milliseconds from now until t, rounded up, clipped to int; -1 for infinity. */
+int lep_priv_ms_until(double t, double now);
 
 #endif

@@ -81,7 +81,7 @@ int lep_session_set_lowpass(lep_session *s, double cutoff_hz)
     if (!isfinite(cutoff_hz) || cutoff_hz < 0.0 || cutoff_hz > 0.45 * s->nominal_hz)
         return LEP_E_VALUE;
     pthread_mutex_lock(&s->mu);
-    lep_priv_lowpass_design(&s->lp, cutoff_hz, s->nominal_hz);
+    lep_priv_lowpass_design(&s->proc.lp, cutoff_hz, s->nominal_hz);
     pthread_mutex_unlock(&s->mu);
     return LEP_OK;
 }
@@ -132,16 +132,16 @@ int lep_session_set_rotation(lep_session *s, const double rotation[9], const dou
         }
     }
     pthread_mutex_lock(&s->mu);
-    memcpy(s->rot, r, sizeof s->rot);
-    memcpy(s->shift, p, sizeof s->shift);
+    memcpy(s->proc.rot, r, sizeof s->proc.rot);
+    memcpy(s->proc.shift, p, sizeof s->proc.shift);
     pthread_mutex_unlock(&s->mu);
     return LEP_OK;
 }
 
 /* f' = R f, m' = R m - r x f' (the moment about the point r). */
-static void rotate(const lep_session *s, double v[LEP_AXES])
+static void rotate(const session_proc *pr, double v[LEP_AXES])
 {
-    const double *r = s->rot, *p = s->shift;
+    const double *r = pr->rot, *p = pr->shift;
     double f[3], m[3];
     int i;
     for (i = 0; i < 3; i++) {
@@ -158,23 +158,42 @@ static void rotate(const lep_session *s, double v[LEP_AXES])
 
 /* ---- tare ---- */
 
-void lep_priv_session_begin_tare(lep_session *s, unsigned n, double duration_s, bool hold)
+static void begin_tare(lep_session *s, unsigned n, double duration_s, bool hold)
 {
-    s->taring = true;
-    s->tare_hold = hold;
-    s->tare_n_goal = n;
-    s->tare_duration = duration_s;
-    s->tare_until = 0.0;
-    s->tare_n = 0;
-    memset(s->tare_sum, 0, sizeof s->tare_sum);
+    s->proc.taring = true;
+    s->proc.tare_hold = hold;
+    s->proc.tare_n_goal = n;
+    s->proc.tare_duration = duration_s;
+    s->proc.tare_until = 0.0;
+    s->proc.tare_n = 0;
+    memset(s->proc.tare_sum, 0, sizeof s->proc.tare_sum);
+}
+
+void lep_priv_proc_start(lep_session *s)
+{
+    session_proc *p = &s->proc;
+    if (s->opt.tare_samples > 0)
+        begin_tare(s, s->opt.tare_samples, 0.0, true);
+    lep_priv_lowpass_restart(&p->lp);
+    p->dec_phase = 0;
+    p->carry_flags = 0;
+    p->overloaded = false;
+    p->ended = false;
+    p->first_delivered_t = 0.0;
+}
+
+void lep_priv_proc_stop(session_proc *p)
+{
+    p->taring = false;
+    p->tare_hold = false;
 }
 
 static void tare_event(lep_session *s, double t, uint64_t sample)
 {
     lep_session_event ev;
-    lep_priv_session_event_init(&ev, LEP_EV_TARE, sample, t);
-    memcpy(ev.tare, s->tare, sizeof ev.tare);
-    lep_priv_session_push_event(s, &ev);
+    lep_priv_event_init(&ev, LEP_EV_TARE, sample, t);
+    memcpy(ev.tare, s->proc.tare, sizeof ev.tare);
+    lep_priv_events_push(&s->events, &ev);
 }
 
 /* The new offset applies from delivered sample number `sample` on. */
@@ -182,10 +201,10 @@ static void tare_finish(lep_session *s, double t, uint64_t sample)
 {
     int k;
     for (k = 0; k < LEP_AXES; k++)
-        s->tare[k] = s->tare_sum[k] / (double)s->tare_n;
-    s->tared = true;
-    s->taring = false;
-    s->tare_hold = false;
+        s->proc.tare[k] = s->proc.tare_sum[k] / (double)s->proc.tare_n;
+    s->proc.tared = true;
+    s->proc.taring = false;
+    s->proc.tare_hold = false;
     tare_event(s, t, sample);
 }
 
@@ -194,7 +213,7 @@ int lep_session_tare(lep_session *s, unsigned n, double duration_s)
     if (s == NULL || !isfinite(duration_s) || duration_s < 0.0 || (n == 0 && duration_s <= 0.0))
         return LEP_E_ARG;
     pthread_mutex_lock(&s->mu);
-    lep_priv_session_begin_tare(s, n, n > 0 ? 0.0 : duration_s, false);
+    begin_tare(s, n, n > 0 ? 0.0 : duration_s, false);
     pthread_mutex_unlock(&s->mu);
     return LEP_OK;
 }
@@ -204,11 +223,11 @@ int lep_session_untare(lep_session *s)
     if (s == NULL)
         return LEP_E_ARG;
     pthread_mutex_lock(&s->mu);
-    s->taring = false;
-    s->tare_hold = false;
-    s->tared = false;
-    memset(s->tare, 0, sizeof s->tare);
-    tare_event(s, lep_monotonic_seconds(), s->h.delivered);
+    s->proc.taring = false;
+    s->proc.tare_hold = false;
+    s->proc.tared = false;
+    memset(s->proc.tare, 0, sizeof s->proc.tare);
+    tare_event(s, lep_monotonic_seconds(), s->hs.h.delivered);
     pthread_mutex_unlock(&s->mu);
     return LEP_OK;
 }
@@ -222,11 +241,11 @@ int lep_session_set_tare(lep_session *s, const double offset[LEP_AXES])
         if (!isfinite(offset[k]))
             return LEP_E_ARG;
     pthread_mutex_lock(&s->mu);
-    s->taring = false;
-    s->tare_hold = false;
-    s->tared = true;
-    memcpy(s->tare, offset, sizeof s->tare);
-    tare_event(s, lep_monotonic_seconds(), s->h.delivered);
+    s->proc.taring = false;
+    s->proc.tare_hold = false;
+    s->proc.tared = true;
+    memcpy(s->proc.tare, offset, sizeof s->proc.tare);
+    tare_event(s, lep_monotonic_seconds(), s->hs.h.delivered);
     pthread_mutex_unlock(&s->mu);
     return LEP_OK;
 }
@@ -241,8 +260,8 @@ bool lep_session_get_tare(lep_session *s, double offset[LEP_AXES])
     }
     pthread_mutex_lock(&s->mu);
     if (offset != NULL)
-        memcpy(offset, s->tare, sizeof s->tare);
-    tared = s->tared;
+        memcpy(offset, s->proc.tare, sizeof s->proc.tare);
+    tared = s->proc.tared;
     pthread_mutex_unlock(&s->mu);
     return tared;
 }
@@ -253,7 +272,7 @@ bool lep_session_taring(lep_session *s)
     if (s == NULL)
         return false;
     pthread_mutex_lock(&s->mu);
-    taring = s->taring;
+    taring = s->proc.taring;
     pthread_mutex_unlock(&s->mu);
     return taring;
 }
@@ -267,16 +286,48 @@ static void overload(lep_session *s, const lep_sample *smp, double t, uint8_t *f
     lep_session_event ev;
     if (over)
         *flags |= LEP_SF_OVERLOAD;
-    if (over == s->overloaded)
+    if (over == s->proc.overloaded)
         return;
-    s->overloaded = over;
-    lep_priv_session_event_init(&ev, over ? LEP_EV_OVERLOAD_BEGIN : LEP_EV_OVERLOAD_END,
-                                s->h.delivered, t);
+    s->proc.overloaded = over;
+    lep_priv_event_init(&ev, over ? LEP_EV_OVERLOAD_BEGIN : LEP_EV_OVERLOAD_END, s->hs.h.delivered,
+                        t);
     ev.axes = axes;
     ev.status = smp->status;
-    lep_priv_session_push_event(s, &ev);
+    lep_priv_events_push(&s->events, &ev);
     if (over)
-        s->h.overloads++;
+        s->hs.h.overloads++;
+}
+
+/* zeroed, si (tare after the filter: exact, as the filter's gain at 0 Hz is
+ * 1), rotated and shifted; the sample's own fields. */
+static void fill_row(const lep_session *s, const lep_sample *smp, const double y[LEP_AXES],
+                     const double off[LEP_AXES], session_row *row)
+{
+    int k;
+    memcpy(row->raw, smp->raw, sizeof row->raw);
+    for (k = 0; k < LEP_AXES; k++) {
+        row->zeroed[k] = (double)smp->raw[k] - off[k];
+        row->si[k] = (y[k] - off[k]) * (double)s->rated.axis[k] / (double)LEP_RAW_FULL_SCALE;
+    }
+    rotate(&s->proc, row->si);
+    row->status = smp->status;
+    row->seq = smp->reserved;
+}
+
+void lep_priv_proc_one(const lep_session *s, const lep_sample *smp, double t, double t_utc,
+                       session_row *row)
+{
+    double y[LEP_AXES];
+    int k;
+    for (k = 0; k < LEP_AXES; k++)
+        y[k] = (double)smp->raw[k];
+    fill_row(s, smp, y, s->proc.tare, row);
+    row->t_mono = t;
+    row->t_utc = t_utc;
+    row->flags =
+        (smp->status & LEP_STATUS_OVERLOAD) != 0u || lep_sample_saturated(smp, s->saturation) != 0u
+            ? LEP_SF_OVERLOAD
+            : 0u;
 }
 
 bool lep_priv_session_process(lep_session *s, const lep_sample *smp, double t, double t_utc,
@@ -286,67 +337,59 @@ bool lep_priv_session_process(lep_session *s, const lep_sample *smp, double t, d
     int k;
     uint32_t phase;
 
-    if (s->ended)
+    if (s->proc.ended)
         return false;
     overload(s, smp, t, &flags);
-    if (s->lp.cutoff_hz > 0.0) {
-        if (lowpass_run(&s->lp, smp->raw, y))
+    if (s->proc.lp.cutoff_hz > 0.0) {
+        if (lowpass_run(&s->proc.lp, smp->raw, y))
             flags |= LEP_SF_SETTLING;
     } else {
         for (k = 0; k < LEP_AXES; k++)
             y[k] = (double)smp->raw[k];
     }
-    memcpy(off, s->tare, sizeof off); /* a sample averaged by a tare keeps the old offset */
-    if (s->taring) {
-        bool by_time = s->tare_n_goal == 0;
-        if (by_time && s->tare_n == 0)
-            s->tare_until = t + s->tare_duration;
-        if (by_time && t >= s->tare_until && s->tare_n > 0) {
-            tare_finish(s, t, s->h.delivered); /* this sample comes after the averaging time */
-            memcpy(off, s->tare, sizeof off);
+    memcpy(off, s->proc.tare, sizeof off); /* a sample averaged by a tare keeps the old offset */
+    if (s->proc.taring) {
+        bool by_time = s->proc.tare_n_goal == 0;
+        if (by_time && s->proc.tare_n == 0)
+            s->proc.tare_until = t + s->proc.tare_duration;
+        if (by_time && t >= s->proc.tare_until && s->proc.tare_n > 0) {
+            tare_finish(s, t, s->hs.h.delivered); /* this sample comes after the averaging time */
+            memcpy(off, s->proc.tare, sizeof off);
         } else {
-            bool hold = s->tare_hold;
+            bool hold = s->proc.tare_hold;
             for (k = 0; k < LEP_AXES; k++)
-                s->tare_sum[k] += (double)smp->raw[k];
-            s->tare_n++;
+                s->proc.tare_sum[k] += (double)smp->raw[k];
+            s->proc.tare_n++;
             flags |= LEP_SF_TARING;
-            if (!by_time && s->tare_n >= s->tare_n_goal)
-                tare_finish(s, t, s->h.delivered + (hold || s->dec_phase != 0u ? 0u : 1u));
+            if (!by_time && s->proc.tare_n >= s->proc.tare_n_goal)
+                tare_finish(s, t, s->hs.h.delivered + (hold || s->proc.dec_phase != 0u ? 0u : 1u));
             if (hold) {
-                s->carry_flags |= flags & LEP_SF_GAP;
+                s->proc.carry_flags |= flags & LEP_SF_GAP;
                 return false;
             }
         }
     }
-    phase = s->dec_phase;
-    s->dec_phase = s->decimate > 1u ? (phase + 1u) % s->decimate : 0u;
+    phase = s->proc.dec_phase;
+    s->proc.dec_phase = s->proc.decimate > 1u ? (phase + 1u) % s->proc.decimate : 0u;
     if (phase != 0u) {
-        s->carry_flags |= flags & LEP_SF_GAP;
+        s->proc.carry_flags |= flags & LEP_SF_GAP;
         return false;
     }
-    if (s->opt.duration_s > 0.0 && s->h.delivered > 0 &&
-        t - s->first_delivered_t >= s->opt.duration_s) {
-        s->ended = true;
+    if (s->opt.duration_s > 0.0 && s->hs.h.delivered > 0 &&
+        t - s->proc.first_delivered_t >= s->opt.duration_s) {
+        s->proc.ended = true;
         return false;
     }
-    flags |= s->carry_flags;
-    s->carry_flags = 0;
+    flags |= s->proc.carry_flags;
+    s->proc.carry_flags = 0;
     row->t_mono = t;
     row->t_utc = t_utc;
-    memcpy(row->raw, smp->raw, sizeof row->raw);
-    for (k = 0; k < LEP_AXES; k++) {
-        row->zeroed[k] = (double)smp->raw[k] - off[k];
-        /* tare after the filter: exact, as the filter's gain at 0 Hz is 1 */
-        row->si[k] = (y[k] - off[k]) * (double)s->rated.axis[k] / (double)LEP_RAW_FULL_SCALE;
-    }
-    rotate(s, row->si);
-    row->status = smp->status;
+    fill_row(s, smp, y, off, row);
     row->flags = flags;
-    row->seq = smp->reserved;
-    if (s->h.delivered == 0)
-        s->first_delivered_t = t;
-    s->h.delivered++;
-    if (s->opt.count > 0 && s->h.delivered >= s->opt.count)
-        s->ended = true;
+    if (s->hs.h.delivered == 0)
+        s->proc.first_delivered_t = t;
+    s->hs.h.delivered++;
+    if (s->opt.count > 0 && s->hs.h.delivered >= s->opt.count)
+        s->proc.ended = true;
     return true;
 }

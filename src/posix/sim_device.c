@@ -1,5 +1,8 @@
-/* Virtual sensor: the device side of the core fed with commands, its answers
- * sent, power cycles, and the device set up from the options. */
+/* Virtual sensor: the device side of the core fed with the commands that
+ * reach it (the input's NAK fault may withhold one), its answers sent through
+ * the faults, the start of a stream, power cycles, and the device set up from
+ * the options. Called by the serving thread and the API; calls the faults,
+ * the pty's queue and the trace. */
 #if defined(__APPLE__)
 #define _DARWIN_C_SOURCE
 #else
@@ -14,16 +17,25 @@
 #include "posix_clock.h"
 #include "sim_priv.h"
 
+/* The stream starts now: sample deadlines count from here. */
+static void stream_begins(lep_sim *s, int64_t now)
+{
+    s->streaming = true;
+    s->t0 = now;
+    s->k = 0;
+    lep_priv_sim_trace_mark(s->trace, LEP_SIM_TRACE_START, now);
+}
+
 static void check_streaming(lep_sim *s)
 {
     bool on = lep_device_streaming(&s->dev);
     if (on && !s->streaming)
-        lep_priv_sim_stream_begins(s, lep_priv_monotonic_ns());
+        stream_begins(s, lep_priv_monotonic_ns());
     s->streaming = on;
 }
 
 /* Feed bytes to the device and send what it answers. */
-void lep_priv_sim_feed_device(lep_sim *s, const uint8_t *p, size_t len)
+static void feed_device(lep_sim *s, const uint8_t *p, size_t len)
 {
     while (len > 0) {
         lep_device_event ev;
@@ -45,7 +57,7 @@ void lep_priv_sim_feed_device(lep_sim *s, const uint8_t *p, size_t len)
     }
 }
 
-void lep_priv_sim_handshake_sample(lep_sim *s)
+static void handshake_sample(lep_sim *s)
 {
     lep_sample smp;
     int64_t since = lep_priv_monotonic_ns() - s->power_on;
@@ -54,7 +66,42 @@ void lep_priv_sim_handshake_sample(lep_sim *s)
     lep_device_set_sample(&s->dev, &smp);
 }
 
-void lep_priv_sim_power_cycle(lep_sim *s)
+static void flush_pend(lep_sim *s)
+{
+    if (s->pend_len > 0)
+        feed_device(s, s->pend, s->pend_len);
+    s->pend_len = 0;
+}
+
+void lep_priv_sim_handle_input(lep_sim *s, const uint8_t *p, size_t len)
+{
+    while (len > 0) {
+        lep_frame_event ev;
+        size_t used = lep_frame_decoder_feed(&s->shadow, p, len, &ev);
+        if (s->pend_len + used > PEND_SIZE)
+            flush_pend(s);
+        if (used > PEND_SIZE) { /* cannot happen: frames are bounded */
+            feed_device(s, p, used);
+        } else {
+            memcpy(s->pend + s->pend_len, p, used);
+            s->pend_len += used;
+        }
+        p += used;
+        len -= used;
+        if (ev.type == LEP_FRAME_MESSAGE) {
+            if (ev.len >= 3 && ev.msg[2] == LEP_CMD_SAMPLE)
+                handshake_sample(s);
+            if (lep_priv_sim_nak_fault(s))
+                s->pend_len = 0; /* the device never sees it */
+            else
+                flush_pend(s);
+        } else if (ev.type != LEP_FRAME_NONE || !lep_frame_decoder_busy(&s->shadow)) {
+            flush_pend(s);
+        }
+    }
+}
+
+void lep_priv_sim_power_off(lep_sim *s)
 {
     lep_device_power_cycle(&s->dev);
     lep_frame_decoder_init(&s->shadow);
@@ -62,9 +109,13 @@ void lep_priv_sim_power_cycle(lep_sim *s)
     s->streaming = false;
     s->out_len = 0; /* bytes in flight die with the power */
     lep_priv_sim_trace_discard(s->trace);
+}
+
+void lep_priv_sim_power_cycle(lep_sim *s)
+{
+    lep_priv_sim_power_off(s);
     s->power_on = lep_priv_monotonic_ns();
     s->st.power_cycles++;
-    lep_priv_sim_publish(s);
 }
 
 static void copy_field(char *dst, size_t cap, const char *src)
@@ -107,7 +158,7 @@ int lep_priv_sim_init_device(lep_sim *s, char *err, size_t errlen)
                                        &ans_len);
         }
         if (lep_device_streaming(&s->dev))
-            lep_priv_sim_stream_begins(s, lep_priv_monotonic_ns());
+            stream_begins(s, lep_priv_monotonic_ns());
     }
     return LEP_OK;
 }

@@ -1,5 +1,6 @@
 /* Virtual sensor: fault injection on the way out (drop, garbage, corrupt) and
- * the NAK fault on the way in (a command withheld from the device). */
+ * the NAK fault on the way in (the roll that withholds a command from the
+ * device, and the NAK sent instead). Calls the pty's queue only. */
 #if defined(__APPLE__)
 #define _DARWIN_C_SOURCE
 #else
@@ -58,40 +59,11 @@ void lep_priv_sim_send_nak(lep_sim *s)
         s->st.naks++;
 }
 
-static void flush_pend(lep_sim *s)
+bool lep_priv_sim_nak_fault(lep_sim *s)
 {
-    if (s->pend_len > 0)
-        lep_priv_sim_feed_device(s, s->pend, s->pend_len);
-    s->pend_len = 0;
-}
-
-void lep_priv_sim_handle_input(lep_sim *s, const uint8_t *p, size_t len)
-{
-    while (len > 0) {
-        lep_frame_event ev;
-        size_t used = lep_frame_decoder_feed(&s->shadow, p, len, &ev);
-        if (s->pend_len + used > PEND_SIZE)
-            flush_pend(s);
-        if (used > PEND_SIZE) { /* cannot happen: frames are bounded */
-            lep_priv_sim_feed_device(s, p, used);
-        } else {
-            memcpy(s->pend + s->pend_len, p, used);
-            s->pend_len += used;
-        }
-        p += used;
-        len -= used;
-        if (ev.type == LEP_FRAME_MESSAGE) {
-            if (ev.len >= 3 && ev.msg[2] == LEP_CMD_SAMPLE)
-                lep_priv_sim_handshake_sample(s);
-            if (roll(s, s->opt.p_nak)) {
-                s->pend_len = 0; /* the device never sees it */
-                s->st.faked_naks++;
-                lep_priv_sim_send_nak(s);
-            } else {
-                flush_pend(s);
-            }
-        } else if (ev.type != LEP_FRAME_NONE || !lep_frame_decoder_busy(&s->shadow)) {
-            flush_pend(s);
-        }
-    }
+    if (!roll(s, s->opt.p_nak))
+        return false;
+    s->st.faked_naks++;
+    lep_priv_sim_send_nak(s);
+    return true;
 }

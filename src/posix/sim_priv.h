@@ -1,5 +1,22 @@
-/* Private: the virtual sensor's state and the functions its files share
- * (pty, link, faults, device, schedule, serving thread, API). */
+/* Private: the virtual sensor's state and the functions its files share.
+ *
+ * Each file calls only the files listed after it (test/checks/depgraph.py
+ * fails the build on a cycle):
+ *
+ *   sim_api.c       lep_sim_start/stop, requests from callers, stats (public)
+ *   sim_serve.c     the serving thread: waits for input, deadlines and
+ *                   requests; stalls, hang-up and reopen; publishing counters
+ *   sim_schedule.c  when stream samples are due; sending or skipping them
+ *   sim_device.c    the core's device fed with the commands that reach it,
+ *                   the start of a stream, power cycles, set-up from options
+ *   sim_faults.c    faults on the way out (drop, garbage, corrupt) and the
+ *                   input's NAK fault
+ *   sim_pty.c       the pty and the output queue written to it
+ *   sim_link.c      ownership of the link path; sim_trace.c the write trace
+ *   sim_filter.c, sim_signal.c, sim_replay.c, sim_models.c, sim_options.c:
+ *                   the signal, the sensor's filter, the options (no state here)
+ *
+ * struct lep_sim is shared; each field group below says which file writes it. */
 #ifndef LEPTRINO_SIM_PRIV_H
 #define LEPTRINO_SIM_PRIV_H
 
@@ -52,23 +69,28 @@ struct lep_sim {
     lep_sim_fir fir[LEP_FILTER_MAX + 1]; /* the sensor's filter, per code */
     double period_ns;
 
-    /* owned by the serving thread */
-    lep_sim_stats st;            /* working copy, published under lock */
+    /* ---- owned by the serving thread ---- */
+    lep_sim_stats st; /* working copy, published under lock (every file counts in it) */
+    /* sim_schedule.c */
     lep_sim_fir_state fir_state; /* the stream's filter inputs */
     uint8_t fir_code;            /* the code fir_state was filled for */
+    uint64_t k;                  /* index of the next stream sample (0 at stream start) */
+    /* sim_device.c */
     lep_device dev;
     lep_frame_decoder shadow; /* sees frames first, so a NAK fault can withhold one */
     uint8_t pend[PEND_SIZE];
     size_t pend_len;
+    bool streaming;
+    int64_t t0;       /* stream start */
+    int64_t power_on; /* also set by sim_serve.c's reopen */
+    /* sim_faults.c */
+    uint64_t rng;
+    /* sim_pty.c (emptied by sim_device.c's power-off) */
     int master, slave;
     char pty[PATH_MAX];
-    uint64_t rng;
     uint8_t out[OUTQ_SIZE];
     size_t out_len;
-    bool streaming;
-    int64_t t0; /* stream start */
-    uint64_t k; /* index of the next stream sample */
-    int64_t power_on;
+    /* sim_serve.c */
     int64_t stall_until, stall_at, hangup_at, reopen_at; /* 0: none */
     bool hung;
     lep_sim_trace *trace;     /* write trace, or NULL (sim_trace.c) */
@@ -97,18 +119,24 @@ void lep_priv_sim_remove_link(const lep_sim *s);
 void lep_priv_sim_link_release(lep_sim *s);
 
 /* sim_faults.c */
+/* Send a message frame (data: a stream sample) through the garbage, corrupt
+ * and drop faults into the output queue. */
 void lep_priv_sim_emit(lep_sim *s, const uint8_t *frame, size_t len, bool data);
 void lep_priv_sim_send_nak(lep_sim *s);
-void lep_priv_sim_handle_input(lep_sim *s, const uint8_t *p, size_t len);
+/* The input's NAK fault: true when a command is withheld (a NAK was sent). */
+bool lep_priv_sim_nak_fault(lep_sim *s);
 
 /* sim_device.c */
-void lep_priv_sim_feed_device(lep_sim *s, const uint8_t *p, size_t len);
-void lep_priv_sim_handshake_sample(lep_sim *s);
+/* Bytes from the host: through the shadow decoder and the NAK fault to the
+ * device; its answers sent. */
+void lep_priv_sim_handle_input(lep_sim *s, const uint8_t *p, size_t len);
+/* The device loses power: stream, input and output in flight gone. */
+void lep_priv_sim_power_off(lep_sim *s);
+/* Power off and on again (counted); the caller publishes. */
 void lep_priv_sim_power_cycle(lep_sim *s);
 int lep_priv_sim_init_device(lep_sim *s, char *err, size_t errlen);
 
 /* sim_schedule.c */
-void lep_priv_sim_stream_begins(lep_sim *s, int64_t now);
 int64_t lep_priv_sim_deadline(const lep_sim *s, uint64_t k);
 void lep_priv_sim_stream_due(lep_sim *s, int64_t now);
 void lep_priv_sim_skip_due(lep_sim *s, int64_t now);

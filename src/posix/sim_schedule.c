@@ -1,5 +1,6 @@
 /* Virtual sensor: when stream samples are due (absolute deadlines from the
- * stream start) and sending or skipping them. */
+ * stream start the device set) and sending them through the faults, or
+ * skipping them. Called by the serving thread; calls the faults and the pty. */
 #if defined(__APPLE__)
 #define _DARWIN_C_SOURCE
 #else
@@ -8,14 +9,6 @@
 
 #include "leptrino/error.h"
 #include "sim_priv.h"
-
-void lep_priv_sim_stream_begins(lep_sim *s, int64_t now)
-{
-    s->streaming = true;
-    s->t0 = now;
-    s->k = 0;
-    lep_priv_sim_trace_mark(s->trace, LEP_SIM_TRACE_START, now);
-}
 
 int64_t lep_priv_sim_deadline(const lep_sim *s, uint64_t k)
 {

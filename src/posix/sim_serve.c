@@ -32,12 +32,7 @@ void lep_priv_sim_publish(lep_sim *s)
 
 static void hang_up(lep_sim *s, int64_t now)
 {
-    lep_device_power_cycle(&s->dev); /* unplugged: a USB sensor loses power */
-    lep_frame_decoder_init(&s->shadow);
-    s->pend_len = 0;
-    s->streaming = false;
-    s->out_len = 0;
-    lep_priv_sim_trace_discard(s->trace);
+    lep_priv_sim_power_off(s); /* unplugged: a USB sensor loses power */
     s->hung = true;
     s->st.hangups++;
     s->reopen_at =
@@ -218,8 +213,10 @@ void *lep_priv_sim_serve(void *arg)
         if (stop)
             break;
         now = lep_priv_monotonic_ns();
-        if (cycle && !s->hung)
+        if (cycle && !s->hung) {
             lep_priv_sim_power_cycle(s);
+            lep_priv_sim_publish(s);
+        }
         if (hangup && !s->hung)
             hang_up(s, now);
         if (stall_ms >= 0) {

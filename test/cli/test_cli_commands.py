@@ -28,6 +28,8 @@ def test_info_sim_default_model() -> None:
     assert "32-byte" in f["protocol"]
     assert f["rated"].startswith("Fx 500 N,") and "N m" in f["rated"]
     assert f["filter"] == "0 (off)"
+    # the port's latency settings (a pty: no low-latency flag, not an FTDI adapter)
+    assert f["latency"] == "low-latency flag not set"
 
 
 def test_info_sim_options() -> None:

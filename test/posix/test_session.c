@@ -437,6 +437,90 @@ static void test_recording_from_a_session(void)
     st_batch_free(&b);
 }
 
+/* One handshake sample through the session's tare, units and output frame;
+ * only outside the stream; the stream's counters untouched. */
+static void test_read_one_uses_the_sessions_processing(void)
+{
+    static const double yaw90[9] = { 0, -1, 0, 1, 0, 0, 0, 0, 1 };
+    static const double offset[LEP_AXES] = { 100, -50, 25, 10, -10, 5 };
+    lep_session_options o;
+    lep_session *s = open_sim(&o, NULL);
+    lep_session_metadata m;
+    lep_session_health h;
+    st_batch b;
+    double v[LEP_AXES];
+    int k;
+
+    st_batch_init(&b, 2);
+    lep_session_get_metadata(s, &m);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_read_one(s, &b.b));
+    TEST_ASSERT_EQUAL_size_t(1, b.b.n);
+    TEST_ASSERT_TRUE(b.t_mono[0] > 0.0 && b.t_utc[0] > 1e9);
+    for (k = 0; k < LEP_AXES; k++) {
+        TEST_ASSERT_EQUAL_DOUBLE((double)b.raw[k], b.zeroed[k]);
+        TEST_ASSERT_DOUBLE_WITHIN(1e-9, (double)b.raw[k] * (double)m.rated.axis[k] / 10000.0,
+                                  b.si[k]);
+    }
+    TEST_ASSERT_EQUAL_UINT8(0, b.flags[0]);
+
+    /* a tare and a frame: x' = -y, y' = x, z' = z for forces and moments */
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_set_tare(s, offset));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_set_rotation(s, yaw90, NULL));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_read_one(s, &b.b));
+    TEST_ASSERT_EQUAL_size_t(2, b.b.n);
+    for (k = 0; k < LEP_AXES; k++) {
+        double zeroed = (double)b.raw[LEP_AXES + k] - offset[k];
+        TEST_ASSERT_EQUAL_DOUBLE(zeroed, b.zeroed[LEP_AXES + k]);
+        v[k] = zeroed * (double)m.rated.axis[k] / 10000.0;
+    }
+    for (k = 0; k < 6; k += 3) {
+        TEST_ASSERT_DOUBLE_WITHIN(1e-9, -v[k + 1], b.si[LEP_AXES + k]);
+        TEST_ASSERT_DOUBLE_WITHIN(1e-9, v[k], b.si[LEP_AXES + k + 1]);
+        TEST_ASSERT_DOUBLE_WITHIN(1e-9, v[k + 2], b.si[LEP_AXES + k + 2]);
+    }
+
+    /* a full batch, NULLs; refused while streaming; the health untouched */
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_session_read_one(s, &b.b));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_session_read_one(s, NULL));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_session_read_one(NULL, &b.b));
+    b.b.n = 0;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
+    TEST_ASSERT_EQUAL_INT(LEP_E_STATE, lep_session_read_one(s, &b.b));
+    TEST_ASSERT_EQUAL_size_t(0, b.b.n);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_stop(s));
+    lep_session_get_health(s, &h);
+    TEST_ASSERT_EQUAL_UINT64(0, h.delivered);
+    lep_session_close(s);
+    st_batch_free(&b);
+}
+
+/* A full event queue drops its oldest and counts them; none is lost silently. */
+static void test_a_full_event_queue_counts_what_it_drops(void)
+{
+    lep_session_options o;
+    lep_session *s = open_sim(&o, NULL);
+    lep_session_health h;
+    lep_session_event ev;
+    unsigned i, popped = 0;
+
+    for (i = 0; i < 1030; i++)
+        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_untare(s)); /* one LEP_EV_TARE each */
+    lep_session_get_health(s, &h);
+    TEST_ASSERT_EQUAL_UINT64(6, h.events_dropped);
+    while (lep_session_next_event(s, &ev)) {
+        TEST_ASSERT_EQUAL_INT(LEP_EV_TARE, ev.type);
+        popped++;
+    }
+    TEST_ASSERT_EQUAL_UINT(1024, popped);
+    lep_session_get_health(s, &h);
+    TEST_ASSERT_EQUAL_UINT64(6, h.events_dropped);
+    /* health counts since start */
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
+    lep_session_get_health(s, &h);
+    TEST_ASSERT_EQUAL_UINT64(0, h.events_dropped);
+    lep_session_close(s);
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -449,5 +533,7 @@ int main(void)
     RUN_TEST(test_latency_budget_delivers_the_same_samples);
     RUN_TEST(test_settings_from_another_thread);
     RUN_TEST(test_recording_from_a_session);
+    RUN_TEST(test_read_one_uses_the_sessions_processing);
+    RUN_TEST(test_a_full_event_queue_counts_what_it_drops);
     return UNITY_END();
 }

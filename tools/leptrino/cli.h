@@ -1,6 +1,8 @@
 /* Private interface between the files of the `leptrino` command-line tool.
  *
- * main.c dispatches to one cmd_*.c per command. args.c parses options,
+ * Files depend one way (test/checks/depgraph.py): main.c dispatches to one
+ * cmd_*.c per command; the commands call the shared helpers below them,
+ * never main.c. help.c prints the help's common end, args.c parses options,
  * sensors.c turns PORT / --sim / --sim-* into sessions (leptrino/session.h:
  * the one place that starts a sensor up) and maps errors to exit codes,
  * term.c and signals.c deal with the terminal and signals, status.c draws
@@ -188,7 +190,7 @@ typedef struct cli_watch_view {
 /* Draw the whole view for a cols x rows window with one write() to fd. */
 void cli_watch_draw(int fd, const cli_watch_view *v, int cols, int rows);
 
-/* ---- main.c ---- */
+/* ---- help.c ---- */
 void cli_print_exit_codes(FILE *f);
 /* The end of a command's help: the sensor options (sensors 1: one, 2:
  * several, 0: none), then the exit codes. */

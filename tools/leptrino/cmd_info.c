@@ -1,5 +1,5 @@
 /* `leptrino info`: identity, rated values and filter of a sensor, as the
- * session read them at start-up. */
+ * session read them at start-up, and the port's latency settings. */
 #include "cli.h"
 
 static void help(void)
@@ -7,8 +7,10 @@ static void help(void)
     fputs("Usage: leptrino info PORT|--sim [options]\n"
           "\n"
           "Show the sensor's model, serial number, firmware, output rate (when the\n"
-          "sensor reports it), protocol variant, rated values (N, N m) and filter\n"
-          "code with its label. A sensor that refuses the filter query (or does not\n"
+          "sensor reports it), protocol variant, rated values (N, N m), filter code\n"
+          "with its label, and the latency settings applied to the port (low-latency\n"
+          "flag; FTDI latency timer on FTDI adapters). A sensor that refuses the filter query (or "
+          "does not\n"
           "answer it) shows \"filter: not supported by this sensor\"; the rest stands.\n"
           "Text from the sensor is printed with any control or non-ASCII byte\n"
           "escaped as \\xNN.\n"
@@ -34,6 +36,7 @@ int cli_cmd_info(int argc, char **argv)
     cli_port_opts po;
     lep_session_options so;
     static lep_session_metadata m;
+    lep_serial_info si;
     int code;
 
     cli_args_init(&a, argc, argv, "info");
@@ -76,6 +79,13 @@ int cli_cmd_info(int argc, char **argv)
         printf("%-14s%d (%s)\n", "filter:", m.sensor_filter, m.sensor_filter_label);
     else
         printf("%-14s%s\n", "filter:", "not supported by this sensor");
+    if (lep_session_serial_info(po.sensor[0].session, &si) == LEP_OK) {
+        printf("%-14slow-latency flag %s", "latency:", si.low_latency ? "set" : "not set");
+        if (si.ftdi_latency_ms >= 0)
+            printf(", FTDI latency timer %d ms%s", si.ftdi_latency_ms,
+                   si.ftdi_lowered ? " (lowered)" : "");
+        printf("\n");
+    }
     cli_sensors_close(&po);
     return CLI_OK;
 }

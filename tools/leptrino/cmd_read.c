@@ -32,7 +32,6 @@ int cli_cmd_read(int argc, char **argv)
     cli_port_opts po;
     lep_session_options so;
     lep_output_options oo;
-    lep_session_metadata m;
     lep_session *s;
     lep_output *w = NULL;
     uint64_t count = 1, i;
@@ -78,7 +77,6 @@ int cli_cmd_read(int argc, char **argv)
     if (code != CLI_OK)
         return code;
     s = po.sensor[0].session;
-    lep_session_get_metadata(s, &m);
     rc = lep_session_metadata_json(s, meta, sizeof meta, &meta_len);
     oo.t0_mono = lep_monotonic_seconds();
     err[0] = '\0';
@@ -93,24 +91,24 @@ int cli_cmd_read(int argc, char **argv)
         return CLI_FAIL;
     }
     for (i = 0; i < count && code == CLI_OK; ++i) {
-        lep_sample smp;
+        /* the session's units and processing: tare, rotation, shift */
+        int16_t raw[LEP_AXES];
         double t, si[LEP_AXES];
+        uint8_t status, flags;
         lep_session_batch b;
-        rc = lep_client_sample(lep_session_client(s), &smp);
-        t = lep_monotonic_seconds();
+        memset(&b, 0, sizeof b);
+        b.cap = 1;
+        b.t_mono = &t;
+        b.raw = raw;
+        b.si = si;
+        b.status = &status;
+        b.flags = &flags;
+        rc = lep_session_read_one(s, &b);
         if (rc != LEP_OK) {
             lep_output_flush(w);
             code = cli_session_fail(s, "read", lep_session_port(s), "sample", rc);
             break;
         }
-        lep_sample_to_si(&smp, &m.rated, si);
-        memset(&b, 0, sizeof b);
-        b.cap = 1;
-        b.n = 1;
-        b.t_mono = &t;
-        b.raw = smp.raw;
-        b.si = si;
-        b.status = &smp.status;
         if (lep_output_write(w, idx, &b, 0, NULL, 0) != LEP_OK)
             break;
     }

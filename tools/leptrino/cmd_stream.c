@@ -356,13 +356,11 @@ static void emit(stream_state *st, sensor_run *r, const lep_session_batch *b)
             nev++;
         more = nev == EVENTS;
         for (k = 0; k < nev; ++k) {
-            if (ev[k].type == LEP_EV_DISCONNECTED) {
-                if (!st->o.so.reconnect)
-                    r->failed = ev[k].error;
-                else
-                    note(st, r, "%s at t=%.3f s; reopening the port (Ctrl-C to stop)",
-                         ev[k].error == LEP_E_TIMEOUT ? "no data" : "disconnected",
-                         ev[k].gap_from - st->t0);
+            /* without reconnect, the next read says the stream is over */
+            if (ev[k].type == LEP_EV_DISCONNECTED && st->o.so.reconnect) {
+                note(st, r, "%s at t=%.3f s; reopening the port (Ctrl-C to stop)",
+                     ev[k].error == LEP_E_TIMEOUT ? "no data" : "disconnected",
+                     ev[k].gap_from - st->t0);
             } else if (ev[k].type == LEP_EV_RECONNECTED) {
                 note(st, r, "back at t=%.3f s after %.1f s; streaming resumed",
                      ev[k].t_mono - st->t0, ev[k].gap_to - ev[k].gap_from);
@@ -496,6 +494,11 @@ static void summary(stream_state *st)
                 : tared                    ? ", tared"
                                            : ", tare incomplete",
                 st->stopped ? "; stopped by signal" : "");
+        if (h.events_dropped > 0)
+            fprintf(stderr,
+                    "leptrino: stream: %s: %llu events dropped (the session's event queue was "
+                    "full): the output lacks them\n",
+                    r->sensor->name, (unsigned long long)h.events_dropped);
         if (h.shortfall)
             fprintf(stderr,
                     "leptrino: stream: %s: RATE SHORTFALL: %.1f Hz is %.1f %% below the "

@@ -130,7 +130,7 @@ int cli_cmd_watch(int argc, char **argv)
     const char *port;
     int code, rc, cols, rows;
     double t0, next_frame = 0.0;
-    bool quit = false, keys, lost = false;
+    bool quit = false, keys;
 
     code = parse(argc, argv, &o);
     if (code != CLI_OK)
@@ -188,14 +188,10 @@ int cli_cmd_watch(int argc, char **argv)
                 v.have_sample = true;
             }
         } while (rc == LEP_OK && b.n == b.cap);
-        while (lep_session_next_event(s, &ev)) {
+        while (lep_session_next_event(s, &ev))
             note_event(&v, &ev, t0);
-            if (ev.type == LEP_EV_DISCONNECTED && !o.reconnect) {
-                rc = ev.error; /* the stream is lost for good: say so and end */
-                lost = true;
-            }
-        }
-        if (rc != LEP_OK && (rc != LEP_E_TIMEOUT || lost)) {
+        /* LEP_E_TIMEOUT: nothing yet; LEP_E_LOST, LEP_E_DISCONNECTED: the end */
+        if (rc != LEP_OK && rc != LEP_E_TIMEOUT) {
             code = rc == LEP_E_END ? CLI_OK : cli_exit_code(rc);
             break;
         }

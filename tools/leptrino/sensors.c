@@ -250,6 +250,7 @@ int cli_exit_code(int err)
     case LEP_E_TIMEOUT:
     case LEP_E_NO_SYNC:
     case LEP_E_STALLED:
+    case LEP_E_LOST:
         return CLI_TIMEOUT;
     case LEP_E_DISCONNECTED:
         return CLI_DISCONNECTED;
@@ -278,6 +279,9 @@ int cli_session_fail(lep_session *s, const char *cmd, const char *port, const ch
     } else if (err == LEP_E_DISCONNECTED) {
         fprintf(stderr, "leptrino: %s: %s: %s: disconnected (the port went away)\n", cmd, port,
                 what);
+    } else if (err == LEP_E_LOST) {
+        fprintf(stderr, "leptrino: %s: %s: %s: stream lost (no data within the data timeout)\n",
+                cmd, port, what);
     } else {
         fprintf(stderr, "leptrino: %s: %s: %s: %s\n", cmd, port, what, lep_strerror(err));
     }

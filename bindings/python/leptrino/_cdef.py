@@ -319,6 +319,7 @@ typedef struct lep_session_health {
     uint64_t overloads;
     uint64_t disconnects;
     uint64_t reconnects;
+    uint64_t events_dropped;
     double max_gap_s;
     lep_client_stats client;
 } lep_session_health;
@@ -352,6 +353,8 @@ void lep_session_close(lep_session *s);
 int lep_session_start(lep_session *s);
 int lep_session_stop(lep_session *s);
 int lep_session_read(lep_session *s, lep_session_batch *b, int timeout_ms);
+int lep_session_read_one(lep_session *s, lep_session_batch *b);
+int lep_session_serial_info(const lep_session *s, lep_serial_info *out);
 bool lep_session_next_event(lep_session *s, lep_session_event *ev);
 int lep_session_tare(lep_session *s, unsigned n, double duration_s);
 int lep_session_untare(lep_session *s);

@@ -30,6 +30,7 @@ LEP_E_STATE = -19
 LEP_E_NO_SYNC = -20
 LEP_E_UNSUPPORTED = -21
 LEP_E_END = -22
+LEP_E_LOST = -24
 
 # error.h: enum lep_result
 LEP_RESULT_OK = 0x00

@@ -305,6 +305,7 @@ class lep_session_health(Structure):
         ("overloads", c_uint64),
         ("disconnects", c_uint64),
         ("reconnects", c_uint64),
+        ("events_dropped", c_uint64),
         ("max_gap_s", c_double),
         ("client", lep_client_stats),
     ]
@@ -472,6 +473,8 @@ FUNCTIONS: Dict[str, Tuple[Any, List[Any]]] = {
     "lep_session_start": (c_int, [_P(lep_session)]),
     "lep_session_stop": (c_int, [_P(lep_session)]),
     "lep_session_read": (c_int, [_P(lep_session), _P(lep_session_batch), c_int]),
+    "lep_session_read_one": (c_int, [_P(lep_session), _P(lep_session_batch)]),
+    "lep_session_serial_info": (c_int, [_P(lep_session), _P(lep_serial_info)]),
     "lep_session_next_event": (c_bool, [_P(lep_session), _P(lep_session_event)]),
     "lep_session_tare": (c_int, [_P(lep_session), c_uint, c_double]),
     "lep_session_untare": (c_int, [_P(lep_session)]),

@@ -98,6 +98,7 @@ class BusyError(PortError):
 
 _BY_CODE: Dict[int, Type[LeptrinoError]] = {
     K.LEP_E_TIMEOUT: TimeoutError,
+    K.LEP_E_LOST: TimeoutError,  # the stream lost: no data for the data timeout
     K.LEP_E_DISCONNECTED: DisconnectedError,
     K.LEP_E_NAK: NakError,
     K.LEP_E_TOO_LONG: ProtocolError,

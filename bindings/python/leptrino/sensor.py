@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import json
 import math
-import time
 import warnings
 from typing import Any, Dict, Iterator, List, Mapping, Optional, Sequence, Tuple, Union
 
@@ -31,7 +30,6 @@ from .values import (
     Sample,
     SessionEvent,
     copy_fields,
-    handshake_sample,
 )
 
 #: Samples per lep_session_read in the sample iterator.
@@ -174,16 +172,12 @@ class Sensor:
             self._check(lib.lep_client_set_retries(client, retries))
             meta = self._metadata_struct()
             self._info = product_info_from(be, meta.info)
-            self._rated_c = be.new("lep_rated")
-            for i in range(K.LEP_AXES):
-                self._rated_c.axis[i] = meta.rated.axis[i]
             self._rated = Rated(*(float(v) for v in meta.rated.axis))
             self._nominal_hz = float(meta.nominal_hz) or 1200.0
         except BaseException:
             self.close()
             raise
-        self._sample_c = be.new("lep_sample")
-        self._si = be.doubles(K.LEP_AXES)
+        self._one = _Arrays(be, 1)  # read()'s batch
         self._ev = be.new("lep_session_event")
         self._offsets = be.doubles(K.LEP_AXES)
         #: events read by tare(wait=True) in a stream of its own (not a recording's)
@@ -191,8 +185,6 @@ class Sensor:
         self._start_mono = 0.0
         self._delivered = 0
         self._decimate = int(decimate)
-        self._reconnect = bool(reconnect)
-        self._data_timeout_s = max(1, _ms(data_timeout, "data_timeout")) / 1000
 
     # -- life cycle ----------------------------------------------------------
     def __enter__(self) -> "Sensor":
@@ -270,26 +262,6 @@ class Sensor:
             raise ValueError("shift is (x, y, z) in metres")
         return [float(x) for x in a]
 
-    def _stream_lost(self, lost_seen: bool, silent_s: float) -> bool:
-        """After a read that timed out: has the session given the stream up?
-        It says so with a disconnected event since the last data (after
-        data_timeout of silence; with reconnect it keeps trying instead). The
-        silence bound is a fallback, should no event come."""
-        if self._reconnect:
-            return False
-        return lost_seen or silent_s >= self._data_timeout_s + self._timeout_ms / 1000
-
-    @staticmethod
-    def _lost_state(lost_seen: bool, new: List[SessionEvent], got_data: bool) -> bool:
-        """Whether a disconnect is pending: set by a disconnected event, cleared
-        by data or a reconnected event."""
-        for e in new:
-            if e.type == "disconnected":
-                lost_seen = True
-            elif e.type == "reconnected":
-                lost_seen = False
-        return lost_seen and not got_data
-
     def _drain_events(self, base: int = 0) -> List[SessionEvent]:
         """The queued events, .sample counted from the stream's sample base."""
         be, ev, s = self._be, self._ev, self._s
@@ -352,7 +324,8 @@ class Sensor:
             shortfall=bool(h.shortfall), received=int(h.received), delivered=int(h.delivered),
             lost=int(h.lost), gaps=int(h.gaps), errors=int(h.errors),
             overloads=int(h.overloads), disconnects=int(h.disconnects),
-            reconnects=int(h.reconnects), max_gap_s=float(h.max_gap_s),
+            reconnects=int(h.reconnects), events_dropped=int(h.events_dropped),
+            max_gap_s=float(h.max_gap_s),
             client=copy_fields(ClientStats, h.client),
         )
 
@@ -504,17 +477,15 @@ class Sensor:
 
     # -- data ----------------------------------------------------------------
     def read(self) -> Sample:
-        """One sample in handshake mode (command 0x30), outside the stream:
-        raw counts and SI values as the sensor gave them (no tare, filter or
-        frame: those apply to the stream). StateError while streaming."""
-        lib = self._be.lib
-        rc = lib.lep_client_sample(self._client(), self._sample_c)
-        t = float(lib.lep_monotonic_seconds())
-        self._check(rc, K.LEP_CMD_SAMPLE)
-        lib.lep_sample_to_si(self._sample_c, self._rated_c, self._si)
-        return handshake_sample(t, time.time(), [self._si[i] for i in range(K.LEP_AXES)],
-                                list(self._sample_c.raw), self._sample_c.status,
-                                self._sample_c.reserved)
+        """One sample in handshake mode (command 0x30), outside the stream,
+        through the session (lep_session_read_one): zeroed and SI values with
+        the tare and the frame in force (the low-pass and decimation are the
+        stream's). StateError while streaming."""
+        a = self._one
+        a.c.n = 0
+        a.c.cap = 1
+        self._check(self._be.lib.lep_session_read_one(self._live(), a.c), K.LEP_CMD_SAMPLE)
+        return a.samples(1)[0]
 
     def start(self) -> None:
         """Start the stream (stream(), record() and tare() do it themselves)."""
@@ -575,8 +546,6 @@ class Sensor:
             # --duration` (the session's duration_s) does: a tare's samples
             # before it are not part of the recording's time
             end = math.inf
-            last_data = now
-            lost_seen = False
             final_reads = 0
             while True:
                 n = arrays.n
@@ -610,13 +579,10 @@ class Sensor:
                 new = self._drain_events(base)
                 events += new
                 now = float(lib.lep_monotonic_seconds())
-                if arrays.n > n:
-                    last_data = now
-                lost_seen = self._lost_state(lost_seen, new, arrays.n > n)
                 if rc == K.LEP_E_END:
                     break
-                if rc == K.LEP_E_TIMEOUT and not self._stream_lost(lost_seen, now - last_data):
-                    continue  # nothing in this slice of the wait
+                if rc == K.LEP_E_TIMEOUT:
+                    continue  # nothing in this slice of the wait (a lost stream: LEP_E_LOST)
                 if rc < 0:
                     exc = error_for(be, rc, f"{self.port}: recording")
                     exc.recording = arrays.result(events, self)  # type: ignore[attr-defined]
@@ -687,6 +653,14 @@ class _Arrays:
         c.n = keep
         c.cap = cap
 
+    def samples(self, n: int) -> List[Sample]:
+        """The first n rows as Samples."""
+        return list(map(Sample, self.t_mono[:n].tolist(), self.t_utc[:n].tolist(),
+                        list(map(tuple, self.si[:n].tolist())),
+                        list(map(tuple, self.raw[:n].tolist())),
+                        list(map(tuple, self.zeroed[:n].tolist())), self.status[:n].tolist(),
+                        self.flags[:n].tolist(), self.seq[:n].tolist()))
+
     def reserve(self, cap: int) -> None:
         if cap > self.cap:
             self._alloc(max(cap, 2 * self.cap), self.n)
@@ -727,8 +701,6 @@ class Stream:
         self._arrays = _Arrays(sensor._be, _ITER_BATCH)
         self._pending: Iterator[Sample] = iter(())
         self._base = 0
-        self._last_data: Optional[float] = None
-        self._lost_seen = False
         self.events: List[SessionEvent] = []
 
     def __enter__(self) -> "Stream":
@@ -736,7 +708,13 @@ class Stream:
         return self
 
     def __exit__(self, *exc: Any) -> None:
-        self.close()
+        if exc[0] is None:
+            self.close()
+            return
+        try:
+            self.close()
+        except LeptrinoError:
+            pass  # the error that ended the iteration (a lost stream) is the one to see
 
     def _begin(self) -> None:
         if self._open:
@@ -798,37 +776,22 @@ class Stream:
                 left = self._end - float(lib.lep_monotonic_seconds())
                 wait = max(1, min(wait, int(math.ceil(left * 1000))))
             rc = lib.lep_session_read(s._live(), a.c, wait)
-            now = float(lib.lep_monotonic_seconds())
             if a.n == 0 and left <= 0:
                 self.close()  # past the end and nothing more arrived before it
                 raise StopIteration
             s._delivered += a.n
             new = s._drain_events(self._base)
             self.events += new
-            n = a.n
-            if n:
-                self._last_data = now
-                self._lost_seen = False
+            if a.n:
                 break
             if rc == K.LEP_E_END:
                 self.close()
                 raise StopIteration
-            if self._last_data is None:
-                self._last_data = now
-            self._lost_seen = s._lost_state(self._lost_seen, new, False)
-            if rc == K.LEP_E_TIMEOUT and not s._stream_lost(self._lost_seen,
-                                                            now - self._last_data):
-                continue  # nothing in this wait (or the seconds ran out, checked above)
+            if rc == K.LEP_E_TIMEOUT:
+                continue  # nothing in this wait (a lost stream is LEP_E_LOST)
             if rc < 0:
                 s._check(rc, None, f"{s.port}: waiting for stream data")
-        t = a.t_mono[:n].tolist()
-        tu = a.t_utc[:n].tolist()
-        si = list(map(tuple, a.si[:n].tolist()))
-        raw = list(map(tuple, a.raw[:n].tolist()))
-        zeroed = list(map(tuple, a.zeroed[:n].tolist()))
-        samples = list(map(Sample, t, tu, si, raw, zeroed, a.status[:n].tolist(),
-                           a.flags[:n].tolist(), a.seq[:n].tolist()))
-        self._pending = iter(samples)
+        self._pending = iter(a.samples(a.n))
         return next(self._pending)
 
     def __del__(self) -> None:

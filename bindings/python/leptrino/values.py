@@ -127,13 +127,6 @@ class Sample:
                 + ")")
 
 
-def handshake_sample(t: float, t_utc: float, si: Any, raw: Any, status: int, seq: int) -> Sample:
-    """A sample answered to the handshake command (not from the stream)."""
-    r = tuple(int(v) for v in raw)
-    return Sample(float(t), float(t_utc), tuple(float(v) for v in si),  # type: ignore[arg-type]
-                  r, tuple(float(v) for v in r), int(status), 0, int(seq))  # type: ignore[arg-type]
-
-
 EVENT_NAMES = {
     K.LEP_EV_GAP: "gap",
     K.LEP_EV_DISCONNECTED: "disconnected",
@@ -305,6 +298,7 @@ class Health:
     overloads: int  # overload episodes begun
     disconnects: int
     reconnects: int
+    events_dropped: int  # events pushed out of the session's full queue, never read
     max_gap_s: float
     client: "ClientStats"  # the current connection's counters
 

@@ -4,6 +4,7 @@ virtual sensor through a real pty, for both backends."""
 from __future__ import annotations
 
 import builtins
+import math
 import threading
 import time
 import warnings
@@ -69,6 +70,20 @@ def test_read_handshake_sample(backend: str) -> None:
             assert x.ok and not (x.overload or x.sensor_fault or x.calibration_error)
             assert abs(x.t - time.monotonic()) < 5  # the same monotonic clock
             assert s.stats.messages >= 3
+            assert x.zeroed == tuple(float(v) for v in x.raw)  # no tare yet
+
+
+def test_read_applies_the_tare_and_the_frame(backend: str) -> None:
+    with leptrino.Simulator(constant=True, amplitude=0.5, backend=backend) as port:
+        with leptrino.Sensor(port, backend=backend) as s:
+            s.tare_offsets = (100, -50, 25, 10, -10, 5)
+            s.set_frame(rotation=(0.0, 0.0, math.pi / 2))  # x' = -y, y' = x
+            x = s.read()
+            zeroed = [r - o for r, o in zip(x.raw, [100, -50, 25, 10, -10, 5])]
+            assert x.zeroed == pytest.approx(zeroed)
+            v = [z * r / 10000 for z, r in zip(zeroed, s.rated)]
+            assert x.si == pytest.approx([-v[1], v[0], v[2], -v[4], v[3], v[5]], abs=1e-9)
+            assert s.health.delivered == 0  # not a stream sample
 
 
 def test_stream_context_manager(backend: str) -> None:

@@ -339,3 +339,28 @@ def test_data_timeout_ends_the_stream(backend: str) -> None:
         assert 100 < len(partial) and partial.t[-1] - partial.t[0] < 1.0
         lost = [e for e in partial.events if e.type == "disconnected"]
         assert lost and lost[0].error == K.LEP_E_TIMEOUT
+        # the session says the stream is lost (LEP_E_LOST), not "nothing yet"
+        assert info.value.error == K.LEP_E_LOST
+
+
+def test_a_lost_stream_ends_the_iterator_with_the_sessions_code(backend: str) -> None:
+    import time
+
+    with leptrino.Sensor(sim={"stall": 2500, "stall_after": 0.2}, data_timeout=0.5,
+                         timeout=0.1, backend=backend) as s:
+        t0 = time.monotonic()
+        n = 0
+        with pytest.raises(leptrino.TimeoutError) as info:
+            with s.stream() as st:
+                for _ in st:
+                    n += 1
+        assert info.value.error == K.LEP_E_LOST
+        assert n > 100 and time.monotonic() - t0 < 6.0
+        assert any(e.type == "disconnected" for e in st.events)
+
+
+def test_health_counts_dropped_events(backend: str) -> None:
+    with leptrino.Sensor(sim={}, backend=backend) as s:
+        for _ in range(1030):
+            s.untare()  # one tare event each, never read: the queue keeps 1024
+        assert s.health.events_dropped == 6

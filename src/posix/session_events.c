@@ -1,0 +1,53 @@
+/* Host session, the event queue: events wait here until
+ * lep_session_next_event takes them; a full queue drops its oldest and counts
+ * it (lep_session_health.events_dropped). */
+#include <string.h>
+
+#include "session_priv.h"
+
+void lep_priv_event_init(lep_session_event *ev, int type, uint64_t sample, double t_mono)
+{
+    memset(ev, 0, sizeof *ev);
+    ev->type = type;
+    ev->sample = sample;
+    ev->t_mono = t_mono;
+    ev->t_utc = t_mono + lep_priv_utc_offset();
+}
+
+void lep_priv_events_start(session_events *q)
+{
+    q->dropped = 0; /* a health counter: since start; the queue itself goes on */
+}
+
+void lep_priv_events_push(session_events *q, const lep_session_event *ev)
+{
+    if (q->len == SESSION_EVENTS) { /* full: the oldest goes */
+        q->head = (q->head + 1u) % SESSION_EVENTS;
+        q->len--;
+        q->dropped++;
+    }
+    q->ev[(q->head + q->len) % SESSION_EVENTS] = *ev;
+    q->len++;
+    q->pushed++;
+}
+
+bool lep_priv_events_pop(session_events *q, lep_session_event *ev)
+{
+    if (q->len == 0)
+        return false;
+    *ev = q->ev[q->head];
+    q->head = (q->head + 1u) % SESSION_EVENTS;
+    q->len--;
+    return true;
+}
+
+bool lep_session_next_event(lep_session *s, lep_session_event *ev)
+{
+    bool got;
+    if (s == NULL || ev == NULL)
+        return false;
+    pthread_mutex_lock(&s->mu);
+    got = lep_priv_events_pop(&s->events, ev);
+    pthread_mutex_unlock(&s->mu);
+    return got;
+}

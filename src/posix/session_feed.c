@@ -1,0 +1,85 @@
+/* Host session, feeding: bytes read from the port stepped through the client
+ * into samples, each stamped with its arrival (monotonic and UTC), checked
+ * for gaps, counted, processed and kept as a row for the next read. */
+#include <math.h>
+#include <string.h>
+
+#include "leptrino/error.h"
+#include "session_priv.h"
+
+/* Step bytes through the client; the samples they complete into got[]. */
+static size_t step_samples(lep_session *s, const uint8_t *data, size_t len,
+                           lep_sample got[SESSION_PENDING])
+{
+    size_t n = 0, off = 0;
+    while (off < len) {
+        size_t used = 0;
+        int rc = lep_client_step(&s->client, data + off, len - off, &used);
+        off += used;
+        if (rc == LEP_STEP_SAMPLE && n < SESSION_PENDING &&
+            lep_client_get_sample(&s->client, &got[n]) == LEP_OK)
+            ++n;
+        if (used == 0)
+            break;
+    }
+    return n;
+}
+
+void lep_priv_session_feed(lep_session *s, const uint8_t *data, size_t len, double t_read)
+{
+    lep_sample got[SESSION_PENDING];
+    lep_client_stats st;
+    session_timing *tm = &s->tm;
+    size_t n = step_samples(s, data, len, got), i, rows_before;
+    double lower, first_t = 0.0, before_t;
+
+    lep_client_get_stats(&s->client, &st);
+    if (n > 0 && lep_priv_utc_may_have_moved(tm->utc_off, t_read)) {
+        double fresh = lep_priv_utc_offset();
+        if (fabs(fresh - tm->utc_off) > SESSION_UTC_STEP_S)
+            tm->utc_off = fresh; /* the wall clock was set (NTP step, by hand) */
+    }
+
+    pthread_mutex_lock(&s->mu);
+    lep_priv_health_client(&s->hs, &st);
+    lower = tm->last_read_t > tm->last_sample_t ? tm->last_read_t : tm->last_sample_t;
+    before_t = tm->last_sample_t;
+    rows_before = s->rows.len;
+    for (i = 0; i < n; i++) {
+        double t = lep_priv_timing_stamp(s, i, n, t_read, lower);
+        uint8_t flags = lep_priv_timing_sample(s, &got[i], t);
+        session_row *row = lep_priv_rows_slot(&s->rows);
+        if (i == 0)
+            first_t = t;
+        lep_priv_health_sample(&s->hs, t);
+        if (row != NULL && lep_priv_session_process(s, &got[i], t, t + tm->utc_off, flags, row))
+            lep_priv_rows_push(&s->rows);
+        tm->last_sample_t = t;
+        lower = t;
+    }
+    if (n > 0 && s->sim == NULL)
+        lep_priv_timing_read(s, n, t_read, before_t, first_t, rows_before);
+    if (n > 0)
+        tm->last_data_read_t = t_read;
+    tm->last_read_t = t_read;
+    pthread_mutex_unlock(&s->mu);
+}
+
+void lep_priv_session_stream_reset(lep_session *s, double now)
+{
+    uint8_t left[LEP_CLIENT_RX_SIZE];
+    lep_client_rx *rx = s->client.rx; /* the serial port's, attached by lep_serial_client_init */
+    size_t n = 0;
+    s->tm.last_read_t = now;
+    s->tm.last_data_read_t = now;
+    if (s->tm.last_sample_t > now)
+        s->tm.last_sample_t = now;
+    /* Bytes the client read past the start command's answer are stream data. */
+    if (rx != NULL && rx->pos < rx->len) {
+        n = (size_t)(rx->len - rx->pos);
+        memcpy(left, rx->buf + rx->pos, n);
+        rx->pos = rx->len;
+    }
+    if (n > 0)
+        lep_priv_session_feed(s, left, n, now);
+}

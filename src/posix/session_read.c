@@ -1,0 +1,169 @@
+/* Host session, reading: lep_session_read (wait for samples within the
+ * timeout and the latency budget, read the port, hand the bytes to the feed,
+ * reconnect inside the call) and lep_session_read_one (one handshake sample
+ * through the session's units and processing). */
+#include <math.h>
+#include <string.h>
+
+#include "leptrino/error.h"
+#include "posix_clock.h"
+#include "session_priv.h"
+
+/* Not an outcome: go round the read loop again. */
+#define READ_AGAIN 1
+
+/* One call of lep_session_read. */
+typedef struct read_call {
+    lep_session_batch *b;
+    double budget;    /* latency budget, s */
+    double deadline;  /* of the call's timeout, monotonic s (INFINITY: none) */
+    double first;     /* arrival of the first sample appended (< 0: none yet) */
+    bool budget_read; /* a read after sleeping out the budget was made */
+    bool got;         /* samples appended or events queued */
+    size_t n0;
+    uint64_t ev0;
+} read_call;
+
+static uint64_t events_pushed(lep_session *s)
+{
+    uint64_t n;
+    pthread_mutex_lock(&s->mu);
+    n = s->events.pushed;
+    pthread_mutex_unlock(&s->mu);
+    return n;
+}
+
+/* Deliver what is pending, and say whether the call is over: its outcome,
+ * or READ_AGAIN. */
+static int delivered(lep_session *s, read_call *c, double *now)
+{
+    lep_session_batch *b = c->b;
+    for (;;) {
+        lep_priv_rows_deliver(&s->rows, b, &c->first);
+        if (!(s->proc.ended && s->rows.len == s->rows.held))
+            break;
+        s->rows.held = 0; /* nothing comes after the end to judge it by */
+        if (s->rows.len == 0)
+            return LEP_E_END;
+    }
+    if (b->n == b->cap)
+        return LEP_OK;
+    c->got = b->n > c->n0 || events_pushed(s) != c->ev0;
+    if (s->rc.failed != 0)
+        return c->got ? LEP_OK : s->rc.failed;
+    *now = lep_monotonic_seconds();
+    if (c->got && !s->backlog &&
+        (c->budget <= 0.0 || b->n == c->n0 || c->budget_read || *now >= c->first + c->budget))
+        return LEP_OK;
+    return READ_AGAIN;
+}
+
+/* How long the next port read may wait, ms; with a budget, sleep it out first. */
+static int port_wait(lep_session *s, read_call *c, double now, double data_deadline)
+{
+    double wake;
+    if (s->backlog)
+        return 0; /* the last read filled the buffer: more is waiting, take it now */
+    if (c->budget <= 0.0)
+        return lep_priv_ms_until(c->deadline < data_deadline ? c->deadline : data_deadline, now);
+    /* Save wake-ups: sleep until the budget is spent, then take everything
+     * in one read that does not wait. */
+    wake = c->got ? c->first + c->budget : s->tm.last_read_t + c->budget;
+    if (s->rows.held > 0 && wake > s->tm.last_read_t + SESSION_CONFIRM_S)
+        wake = s->tm.last_read_t + SESSION_CONFIRM_S; /* judge a suspected hole soon */
+    if (wake > c->deadline)
+        wake = c->deadline;
+    if (wake > data_deadline)
+        wake = data_deadline;
+    lep_priv_sleep_until_ns((int64_t)(wake * 1e9));
+    c->budget_read = true;
+    return 0;
+}
+
+/* One read of the port, fed on; the call's outcome or READ_AGAIN. */
+static int read_port(lep_session *s, read_call *c, double now)
+{
+    double data_deadline = s->tm.last_data_read_t + (double)s->opt.data_timeout_ms / 1000.0;
+    int wait = port_wait(s, c, now, data_deadline);
+    int rc = s->client.io.read(s->client.io.user, s->rbuf, sizeof s->rbuf, wait);
+    now = lep_monotonic_seconds();
+    /* More may be waiting: a read returns at most what the tty layer holds
+     * (4 KiB on Linux), so with a budget, read until one comes back empty;
+     * without, only after a read that filled the buffer. */
+    s->backlog = rc == (int)sizeof s->rbuf || (c->budget > 0.0 && rc > 0);
+    if (rc > 0) {
+        lep_priv_session_feed(s, s->rbuf, (size_t)rc, now);
+        return READ_AGAIN;
+    }
+    if (rc == 0) {
+        s->tm.last_read_t = now;
+        if (now >= data_deadline)
+            lep_priv_reconnect_lost(s, LEP_E_TIMEOUT, now);
+        else if (now >= c->deadline)
+            return c->got ? LEP_OK : LEP_E_TIMEOUT;
+        return READ_AGAIN;
+    }
+    if (rc == LEP_E_DISCONNECTED || rc == LEP_E_IO) {
+        lep_priv_reconnect_lost(s, LEP_E_DISCONNECTED, now);
+        return READ_AGAIN;
+    }
+    return c->got ? LEP_OK : rc;
+}
+
+int lep_session_read(lep_session *s, lep_session_batch *b, int timeout_ms)
+{
+    read_call c;
+    double kernel_s;
+
+    if (s == NULL || b == NULL || b->n > b->cap)
+        return LEP_E_ARG;
+    if (!s->streaming)
+        return LEP_E_STATE;
+    memset(&c, 0, sizeof c);
+    c.b = b;
+    c.first = -1.0;
+    c.n0 = b->n;
+    c.ev0 = events_pushed(s);
+    /* Never sleep longer than the kernel can buffer for us. */
+    c.budget = (double)s->opt.latency_ms / 1000.0;
+    kernel_s = SESSION_KERNEL_BYTES / (s->nominal_hz * SESSION_MIN_FRAME);
+    if (c.budget > kernel_s)
+        c.budget = kernel_s;
+    c.deadline = timeout_ms < 0 ? INFINITY : lep_monotonic_seconds() + (double)timeout_ms / 1000.0;
+    for (;;) {
+        double now = 0.0;
+        int rc = delivered(s, &c, &now);
+        if (rc == READ_AGAIN && s->conn == CONN_DOWN)
+            rc = lep_priv_reconnect_wait(s, now, c.deadline) ? READ_AGAIN
+                 : c.got                                     ? LEP_OK
+                                                             : LEP_E_TIMEOUT;
+        else if (rc == READ_AGAIN)
+            rc = read_port(s, &c, now);
+        if (rc != READ_AGAIN)
+            return rc;
+    }
+}
+
+int lep_session_read_one(lep_session *s, lep_session_batch *b)
+{
+    lep_sample smp;
+    session_row row;
+    double t;
+    int rc;
+
+    if (s == NULL || b == NULL || b->n >= b->cap)
+        return LEP_E_ARG;
+    if (s->streaming)
+        return LEP_E_STATE;
+    if (s->conn != CONN_UP)
+        return LEP_E_DISCONNECTED;
+    rc = lep_client_sample(&s->client, &smp);
+    t = lep_monotonic_seconds();
+    if (rc != LEP_OK)
+        return rc;
+    pthread_mutex_lock(&s->mu);
+    lep_priv_proc_one(s, &smp, t, t + lep_priv_utc_offset(), &row);
+    pthread_mutex_unlock(&s->mu);
+    lep_priv_rows_append(b, &row);
+    return LEP_OK;
+}

@@ -1,0 +1,27 @@
+/* The help text every command ends with: the sensor options and the exit
+ * codes (the codes themselves: cli_exit_code in sensors.c). */
+#include "cli.h"
+
+void cli_print_exit_codes(FILE *f)
+{
+    fputs("Exit codes:\n"
+          "  0  success (also: stream stopped by Ctrl-C or SIGTERM)\n"
+          "  1  other failure (I/O error, output file, protocol error)\n"
+          "  2  bad command line\n"
+          "  3  timeout: the sensor did not answer, or data stopped arriving\n"
+          "  4  disconnected: the port went away\n"
+          "  5  sensor error: the sensor refused a command (result code, or NAKs)\n"
+          "  6  port not found, or not a serial port\n"
+          "  7  port busy: in use by another program\n"
+          "  8  permission denied on the port\n",
+          f);
+}
+
+void cli_print_help_end(FILE *f, int sensors)
+{
+    if (sensors > 0) {
+        cli_port_help(f, sensors > 1);
+        fputc('\n', f);
+    }
+    cli_print_exit_codes(f);
+}
