@@ -187,6 +187,8 @@ typedef struct lep_sim_options {
     int reopen_after_ms;
     bool start_streaming;
     char link[512];
+    double payload[4];
+    double gravity[3];
 } lep_sim_options;
 
 typedef struct lep_sim_option_info {
@@ -402,4 +404,25 @@ int lep_output_write(lep_output *w, int sensor, const lep_session_batch *b, size
 int lep_output_flush(lep_output *w);
 int lep_output_errno(const lep_output *w);
 int lep_output_close(lep_output *w);
+
+/* payload.h */
+typedef struct lep_payload {
+    double mass_kg;
+    double com_m[3];
+} lep_payload;
+
+typedef struct lep_payload_fit {
+    lep_payload payload;
+    double force_bias_N[3];
+    double torque_bias_Nm[3];
+    double residual[6];
+    double spread;
+    size_t poses;
+} lep_payload_fit;
+
+int lep_payload_wrench(const lep_payload *p, const double gravity[3], double wrench[6]);
+int lep_payload_identify(const double *gravity, const double *wrench, size_t n,
+                         lep_payload_fit *out, char *err, size_t errlen);
+int lep_payload_pose_read(const char *path, double mean[6], uint64_t *samples, char *err,
+                          size_t errlen);
 """

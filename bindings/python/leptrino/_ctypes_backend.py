@@ -184,6 +184,8 @@ class lep_sim_options(Structure):
         ("reopen_after_ms", c_int),
         ("start_streaming", c_bool),
         ("link", c_char * 512),
+        ("payload", c_double * 4),
+        ("gravity", c_double * 3),
     ]
 
 
@@ -356,6 +358,21 @@ class lep_output(Structure):
     """Opaque (output.h)."""
 
 
+class lep_payload(Structure):
+    _fields_ = [("mass_kg", c_double), ("com_m", c_double * 3)]
+
+
+class lep_payload_fit(Structure):
+    _fields_ = [
+        ("payload", lep_payload),
+        ("force_bias_N", c_double * 3),
+        ("torque_bias_Nm", c_double * 3),
+        ("residual", c_double * 6),
+        ("spread", c_double),
+        ("poses", c_size_t),
+    ]
+
+
 #: C struct name -> ctypes class (for allocation and the declaration check).
 STRUCTS: Dict[str, Any] = {
     cls.__name__: cls
@@ -386,6 +403,8 @@ STRUCTS: Dict[str, Any] = {
         lep_session_metadata,
         lep_output_options,
         lep_output,
+        lep_payload,
+        lep_payload_fit,
     )
 }
 
@@ -521,6 +540,16 @@ FUNCTIONS: Dict[str, Tuple[Any, List[Any]]] = {
     "lep_output_flush": (c_int, [_P(lep_output)]),
     "lep_output_errno": (c_int, [_P(lep_output)]),
     "lep_output_close": (c_int, [_P(lep_output)]),
+    # payload.h
+    "lep_payload_wrench": (c_int, [_P(lep_payload), _P(c_double), _P(c_double)]),
+    "lep_payload_identify": (
+        c_int,
+        [_P(c_double), _P(c_double), c_size_t, _P(lep_payload_fit), _P(c_char), c_size_t],
+    ),
+    "lep_payload_pose_read": (
+        c_int,
+        [c_char_p, _P(c_double), _P(c_uint64), _P(c_char), c_size_t],
+    ),
 }
 
 _SCALARS: Dict[str, Any] = {
@@ -529,6 +558,7 @@ _SCALARS: Dict[str, Any] = {
     "uint16_t": c_uint16,
     "size_t": c_size_t,
     "double": c_double,
+    "uint64_t": c_uint64,
 }
 
 
