@@ -203,5 +203,6 @@ int cli_cmd_read(int argc, char **argv);
 int cli_cmd_stream(int argc, char **argv);
 int cli_cmd_filter(int argc, char **argv);
 int cli_cmd_watch(int argc, char **argv);
+int cli_cmd_payload(int argc, char **argv);
 
 #endif
