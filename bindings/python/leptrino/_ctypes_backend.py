@@ -239,6 +239,21 @@ class lep_record_batch(Structure):
     ]
 
 
+class lep_payload(Structure):
+    _fields_ = [("mass_kg", c_double), ("com_m", c_double * 3)]
+
+
+class lep_payload_fit(Structure):
+    _fields_ = [
+        ("payload", lep_payload),
+        ("force_bias_N", c_double * 3),
+        ("torque_bias_Nm", c_double * 3),
+        ("residual", c_double * 6),
+        ("spread", c_double),
+        ("poses", c_size_t),
+    ]
+
+
 class lep_session(Structure):
     """Opaque (session.h)."""
 
@@ -265,6 +280,9 @@ class lep_session_options(Structure):
         ("shift_m", c_double * 3),
         ("duration_s", c_double),
         ("count", c_uint64),
+        ("payload", lep_payload),
+        ("gravity", c_double * 3),
+        ("limit", c_double * 6),
     ]
 
 
@@ -296,6 +314,7 @@ class lep_session_event(Structure):
         ("axes", c_uint8),
         ("status", c_uint8),
         ("tare", c_double * 6),
+        ("wrench", c_double * 6),
     ]
 
 
@@ -341,6 +360,9 @@ class lep_session_metadata(Structure):
         ("port", c_char * 256),
         ("sim", c_bool),
         ("library_version", c_char * 16),
+        ("payload", lep_payload),
+        ("gravity", c_double * 3),
+        ("limit", c_double * 6),
     ]
 
 
@@ -356,21 +378,6 @@ class lep_output_options(Structure):
 
 class lep_output(Structure):
     """Opaque (output.h)."""
-
-
-class lep_payload(Structure):
-    _fields_ = [("mass_kg", c_double), ("com_m", c_double * 3)]
-
-
-class lep_payload_fit(Structure):
-    _fields_ = [
-        ("payload", lep_payload),
-        ("force_bias_N", c_double * 3),
-        ("torque_bias_Nm", c_double * 3),
-        ("residual", c_double * 6),
-        ("spread", c_double),
-        ("poses", c_size_t),
-    ]
 
 
 #: C struct name -> ctypes class (for allocation and the declaration check).
@@ -506,6 +513,9 @@ FUNCTIONS: Dict[str, Tuple[Any, List[Any]]] = {
     "lep_session_get_tare": (c_bool, [_P(lep_session), _P(c_double)]),
     "lep_session_taring": (c_bool, [_P(lep_session)]),
     "lep_session_set_lowpass": (c_int, [_P(lep_session), c_double]),
+    "lep_session_set_payload": (c_int, [_P(lep_session), _P(lep_payload)]),
+    "lep_session_set_gravity": (c_int, [_P(lep_session), _P(c_double)]),
+    "lep_session_set_limits": (c_int, [_P(lep_session), _P(c_double)]),
     "lep_session_set_latency": (c_int, [_P(lep_session), c_int]),
     "lep_session_latency": (c_int, [_P(lep_session)]),
     "lep_session_set_rotation": (c_int, [_P(lep_session), _P(c_double), _P(c_double)]),
