@@ -270,7 +270,8 @@ class Recording:
         """Read a recording written by save(path) to .npz."""
         with np.load(str(path), allow_pickle=False) as z:
             meta = str(z["metadata"])
-            events = [SessionEvent(**{**e, "tare": tuple(e["tare"])})
+            events = [SessionEvent(**{**e, "tare": tuple(e["tare"]),
+                                      "wrench": tuple(e.get("wrench", (0.0,) * 6))})
                       for e in json.loads(str(z["events"]))]
             return cls(t=z["t"], si=z["si"], raw=z["raw"], status=z["status"], seq=z["seq"],
                        t_utc=z["t_utc"], zeroed=z["zeroed"], flags=z["flags"], events=events,

@@ -113,3 +113,57 @@ def test_virtual_sensor_carrying_a_payload(backend: str, tmp_path: Path) -> None
     fit = leptrino.identify_payload(poses, np.array(means), backend=backend)
     assert abs(fit.mass - truth.mass) < 0.01 * truth.mass
     assert np.max(np.abs(np.array(fit.com) - np.array(truth.com))) < 0.002
+
+
+def test_sensor_compensates_and_limits(backend: str) -> None:
+    """Sensor.set_payload / set_gravity / set_limits: the C session's
+    compensation (raw counts keep the tool) and limit events in Python."""
+    g = (0.0, 0.0, -G0)
+    tool = leptrino.Payload(mass=1.5, com=(0.0, 0.02, 0.05))
+    sim = dict(amplitude=0.0, noise=0.0, payload=tool, gravity=g,
+               overload_every=0.3, overload_duration=0.05)
+    with leptrino.Sensor(sim=sim, backend=backend) as s:
+        rec = s.record(count=200)
+        assert rec.si[:, 2].mean() == pytest.approx(-1.5 * G0, abs=0.03)
+        s.set_payload(tool)
+        s.set_gravity(g)
+        s.set_limits(fx=100, fy=100)
+        rec = s.record(count=1200)
+        calm = (rec.flags & 2) == 0  # not in an overload episode
+        assert np.abs(rec.si[calm, :3]).max() < 0.03 and np.abs(rec.si[calm, 3:]).max() < 0.001
+        assert rec.raw[calm, 2].mean() == pytest.approx(-1.5 * G0 / 500 * 10000, abs=1)
+        meta = rec.metadata
+        assert meta["payload"]["mass_kg"] == 1.5 and meta["gravity"] == [0, 0, -G0]
+        assert meta["limit"] == [100, 100, 0, 0, 0, 0]
+        kinds = [e.type for e in rec.events]
+        assert "limit_exceeded" in kinds and "limit_cleared" in kinds
+        ev = next(e for e in rec.events if e.type == "limit_exceeded")
+        assert ev.axes in (1, 2) and max(abs(v) for v in ev.wrench[:2]) > 100
+        assert rec.flags[ev.sample] & 16
+        # refusals
+        with pytest.raises(ValueError):
+            s.set_payload((-1.0, 0, 0, 0))
+        with pytest.raises(ValueError):
+            s.set_gravity((0, math.nan, 0))
+        with pytest.raises(ValueError):
+            s.set_limits(fq=1)
+        with pytest.raises(ValueError):
+            s.set_limits(fz=-1)
+        s.set_payload(None)
+        s.set_limits(None)
+        assert s.metadata["payload"] is None and s.metadata["limit"] == [0] * 6
+
+
+def test_tare_with_payload_keeps_the_tool(backend: str) -> None:
+    g1, g2 = np.array([0.0, 0.0, -G0]), np.array([G0, 0.0, 0.0])
+    tool = leptrino.Payload(mass=0.7, com=(0.01, 0.0, 0.04))
+    sim = dict(amplitude=0.005, constant=True, payload=tool, gravity=tuple(g1))
+    with leptrino.Sensor(sim=sim, backend=backend) as s:
+        s.set_payload(tool)
+        s.set_gravity(g1)
+        s.tare(100)
+        assert s.tare_offsets == pytest.approx((50,) * 6, abs=0.5)  # the bias alone
+        s.set_gravity(g2)  # the robot turned
+        rec = s.record(count=100)
+        want = np.array(tool.wrench(g1, backend=backend)) - np.array(tool.wrench(g2, backend=backend))
+        assert rec.si[-1] == pytest.approx(want, abs=1e-9)
