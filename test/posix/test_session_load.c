@@ -254,7 +254,7 @@ static void test_limits_with_overload_episodes(void)
             TEST_ASSERT_TRUE(at == 0 || (x.flags[at - 1] & LEP_SF_LIMIT) == 0u);
             for (axis = 0; axis < 6; axis++) {
                 TEST_ASSERT_EQUAL_DOUBLE(x.si[at * 6 + (size_t)axis], ev[i].wrench[axis]);
-                TEST_ASSERT_EQUAL_INT((ev[i].axes >> axis) & 1u,
+                TEST_ASSERT_EQUAL_INT(((unsigned)ev[i].axes >> axis) & 1u,
                                       fabs(ev[i].wrench[axis]) > lim[axis]);
             }
             /* the session's episode is the virtual sensor's overload */

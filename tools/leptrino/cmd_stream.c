@@ -443,7 +443,7 @@ static void stop_at_limit(stream_state *st, sensor_run *r, lep_session_batch *b,
     fprintf(stderr, "leptrino: stream: %s: limit exceeded at t=%.6f s:", r->sensor->name,
             ev[k].t_mono - st->t0);
     for (a = 0; a < LEP_AXES; a++)
-        if ((ev[k].axes >> a) & 1u)
+        if (((unsigned)ev[k].axes >> a) & 1u)
             fprintf(stderr, " %s %.6g %s beyond %g", names[a], ev[k].wrench[a], units[a],
                     m.limit[a]);
     fprintf(stderr, "; stopped (--stop-on-limit)\n");
