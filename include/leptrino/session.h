@@ -242,8 +242,8 @@ LEP_API int lep_session_read(lep_session *s, lep_session_batch *b, int timeout_m
 
 /* One sample in handshake mode (command 0x30), outside the stream, appended
  * to b as lep_session_read appends a stream sample: raw counts, zeroed with
- * the tare offsets in force, SI values through the rated values, rotation and
- * moment-point shift in force, the status bits, LEP_SF_OVERLOAD when the
+ * the tare offsets in force, SI values through the rated values, payload
+ * compensation, rotation and moment-point shift in force, the status bits, LEP_SF_OVERLOAD when the
  * sensor reports overload or an axis is at saturation, t_mono and t_utc when
  * the answer arrived. The host low-pass, decimation and tare averaging are
  * the stream's and do not apply (a lone sample has no history); no event is
