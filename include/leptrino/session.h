@@ -6,15 +6,17 @@
  * and the sensor's filter. While streaming it delivers samples in batches of
  * plain C arrays (struct of arrays, so bindings hand them to numpy without
  * per-sample work), each with a monotonic arrival time, a UTC time, raw
- * counts, tare-zeroed counts, SI values (tare, host low-pass, decimation,
- * rotation and moment-point shift applied, in that order), the sensor's
- * status bits and the session's flags. Events (gaps, disconnects,
- * reconnects, tare changes, overload begin/end) are queued beside the data.
+ * counts, tare-zeroed counts, SI values (tare, host low-pass, payload
+ * compensation, decimation, rotation and moment-point shift applied, in that
+ * order; then checked against limits), the sensor's status bits and the
+ * session's flags. Events (gaps, disconnects, reconnects, tare changes,
+ * overload begin/end, limit exceeded/cleared) are queued beside the data.
  *
  * Threads: one thread drives a session (open, start, read, stop, close).
  * lep_session_tare, _untare, _set_tare, _get_tare, _set_lowpass,
- * _set_rotation, _get_health and _get_metadata may also be called from other
- * threads at any time (a mutex inside the session); they never block on I/O.
+ * _set_rotation, _set_payload, _set_gravity, _set_limits, _get_health and
+ * _get_metadata may also be called from other threads at any time (a mutex
+ * inside the session); they never block on I/O.
  * Sessions are independent: several in one process just work.
  *
  * Errors are LEP_E_* codes (leptrino/error.h); functions taking err/errlen
@@ -29,6 +31,7 @@
 #include "client.h"
 #include "export.h"
 #include "message.h"
+#include "payload.h"
 #include "serial.h"
 #include "sim.h"
 
@@ -75,6 +78,13 @@ typedef struct lep_session_options {
     double duration_s; /* lep_session_read gives LEP_E_END after this long from the
                                 first delivered sample's arrival, 0 = none */
     uint64_t count;    /* ... or after this many samples delivered, 0 = none */
+    /* ---- payload and limits (added later; all can be changed while streaming) ---- */
+    lep_payload payload;    /* the tool on the sensor (leptrino/payload.h): its gravity wrench
+                               at `gravity` is removed from the SI values; mass 0 (default):
+                               none */
+    double gravity[3];      /* gravity in the sensor frame, m/s^2, default (0, 0, -9.80665) */
+    double limit[LEP_AXES]; /* per axis, N and N m: an SI value (compensated, in the output
+                               frame) beyond +/- limit is a limit episode; 0 (default): none */
 } lep_session_options;
 
 /* Per-sample flags (lep_session_batch.flags). */
@@ -82,6 +92,7 @@ typedef struct lep_session_options {
 #define LEP_SF_OVERLOAD 0x02u /* overload status bit, or an axis at saturation */
 #define LEP_SF_TARING 0x04u   /* a tare is averaging this sample (zeroed uses the old offset) */
 #define LEP_SF_SETTLING 0x08u /* the host low-pass has not settled since start or a gap */
+#define LEP_SF_LIMIT 0x10u    /* an SI value is beyond its limit (lep_session_set_limits) */
 
 /* Destination arrays, caller-owned. Every pointer may be NULL to skip that
  * column. lep_session_read appends from n up to cap. */
@@ -104,7 +115,9 @@ enum lep_session_event_type {
     LEP_EV_RECONNECTED = 3,  /* the stream runs again after a disconnect */
     LEP_EV_TARE = 4,         /* the tare offsets changed (tare done, untare, set) */
     LEP_EV_OVERLOAD_BEGIN = 5,
-    LEP_EV_OVERLOAD_END = 6
+    LEP_EV_OVERLOAD_END = 6,
+    LEP_EV_LIMIT_EXCEEDED = 7, /* an SI value went beyond its limit (axes: which) */
+    LEP_EV_LIMIT_CLEARED = 8   /* every SI value is back within 95 % of its limit */
 };
 
 typedef struct lep_session_event {
@@ -121,7 +134,8 @@ typedef struct lep_session_event {
                               LEP_E_DISCONNECTED or LEP_E_TIMEOUT; 0 otherwise */
     uint8_t axes;    /* OVERLOAD_*: bit i = axis i saturated; status bits in status */
     uint8_t status;
-    double tare[LEP_AXES]; /* TARE: the offsets now in force (counts; zeros when untared) */
+    double tare[LEP_AXES];   /* TARE: the offsets now in force (counts; zeros when untared) */
+    double wrench[LEP_AXES]; /* LIMIT_*: the sample's SI values (N, N m) */
 } lep_session_event;
 
 /* Health, since lep_session_start. */
@@ -166,6 +180,9 @@ typedef struct lep_session_metadata {
     char port[256];
     bool sim;
     char library_version[16]; /* lep_version() */
+    lep_payload payload;      /* mass 0: none */
+    double gravity[3];
+    double limit[LEP_AXES]; /* 0: none */
 } lep_session_metadata;
 
 /* Defaults as documented on each field. o must not be NULL. */
@@ -225,8 +242,8 @@ LEP_API int lep_session_read(lep_session *s, lep_session_batch *b, int timeout_m
 
 /* One sample in handshake mode (command 0x30), outside the stream, appended
  * to b as lep_session_read appends a stream sample: raw counts, zeroed with
- * the tare offsets in force, SI values through the rated values, rotation and
- * moment-point shift in force, the status bits, LEP_SF_OVERLOAD when the
+ * the tare offsets in force, SI values through the rated values, payload
+ * compensation, rotation and moment-point shift in force, the status bits, LEP_SF_OVERLOAD when the
  * sensor reports overload or an axis is at saturation, t_mono and t_utc when
  * the answer arrived. The host low-pass, decimation and tare averaging are
  * the stream's and do not apply (a lone sample has no history); no event is
@@ -264,6 +281,26 @@ LEP_API bool lep_session_taring(lep_session *s);
 LEP_API int lep_session_set_lowpass(lep_session *s, double cutoff_hz);
 LEP_API int lep_session_set_rotation(lep_session *s, const double rotation[9],
                                      const double shift_m[3]);
+
+/* Payload compensation (docs/session.md: the model). The SI values of the
+ * samples received after the call have the payload's gravity wrench at the
+ * current gravity removed (in the sensor frame, before rotation); raw and
+ * zeroed counts stay as measured. p NULL (or mass 0): none. A tare that
+ * finishes while a payload is set removes the bias only: the offset is the
+ * mean minus the payload's expected wrench (in counts) at the gravity then
+ * in force, so the tool's weight is not zeroed away at one pose. Gravity is
+ * in the sensor frame, m/s^2; set it as often as the robot moves. LEP_E_ARG
+ * for NULL s, a negative mass or non-finite values (nothing changed). */
+LEP_API int lep_session_set_payload(lep_session *s, const lep_payload *p);
+LEP_API int lep_session_set_gravity(lep_session *s, const double gravity[3]);
+
+/* Limits on the SI values (compensated, in the output frame), per axis in N
+ * and N m: an absolute value beyond limit[i] flags the sample LEP_SF_LIMIT;
+ * the first such sample queues LEP_EV_LIMIT_EXCEEDED (axes: bit i = axis i
+ * beyond; wrench: the sample), and LEP_EV_LIMIT_CLEARED follows at the first
+ * sample with every axis back within 95 % of its limit. limit NULL, or 0 for
+ * an axis: no limit. LEP_E_ARG for NULL s, negative or non-finite limits. */
+LEP_API int lep_session_set_limits(lep_session *s, const double limit[LEP_AXES]);
 
 /* Change the latency budget (0..10000 ms, as latency_ms at open); it applies
  * from the next lep_session_read. Call it from the thread that reads (not

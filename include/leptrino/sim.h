@@ -78,6 +78,12 @@ typedef struct lep_sim_options {
     char link[LEP_SIM_PATH_SIZE]; /* [link] also make a symlink at this path to the port;
                                      "" (default): none. Replaces only a symlink to a
                                      pseudo-terminal that no running virtual sensor owns */
+    /* added with payload compensation (leptrino/payload.h: the model): */
+    double payload[4]; /* [payload] a tool on the sensor: mass kg (>= 0), centre of mass
+                          x, y, z m in the sensor frame; default 0,0,0,0 (none) */
+    double gravity[3]; /* [gravity] gravity in the sensor frame, m/s^2, default
+                          0,0,-9.80665 (z up): the sensor reads the payload's gravity
+                          wrench at it on top of the waveform */
 } lep_sim_options;
 
 /* ---- The option table ----
@@ -92,7 +98,9 @@ enum lep_sim_option_type {
     LEP_SIM_OPT_UINT,     /* non-negative integer in [min, max] (decimal) */
     LEP_SIM_OPT_DOUBLE,   /* finite number in [min, max] (or (min, max] with min_exclusive) */
     LEP_SIM_OPT_STRING,   /* text of min..max bytes (a path, a serial, a version) */
-    LEP_SIM_OPT_CHOICE    /* one of a fixed set of names (model: lep_sim_models()) */
+    LEP_SIM_OPT_CHOICE,   /* one of a fixed set of names (model: lep_sim_models()) */
+    LEP_SIM_OPT_NUMBERS   /* comma-separated finite numbers, as many as arg names
+                             ("M,CX,CY,CZ"), each in [min, max] */
 };
 
 typedef struct lep_sim_option_info {

@@ -441,6 +441,12 @@ static void write_event(lep_output *w, const out_sensor *s, const lep_session_ev
     case LEP_EV_OVERLOAD_END:
         word = csv ? "overload end" : "overload_end";
         break;
+    case LEP_EV_LIMIT_EXCEEDED:
+        word = csv ? "limit exceeded" : "limit_exceeded";
+        break;
+    case LEP_EV_LIMIT_CLEARED:
+        word = csv ? "limit cleared" : "limit_cleared";
+        break;
     default:
         return;
     }
@@ -488,7 +494,18 @@ static void write_event(lep_output *w, const out_sensor *s, const lep_session_ev
             put(w, ",\"at\":%.6f,\"axes\":%u,\"status\":%u}\n", at, (unsigned)ev->axes,
                 (unsigned)ev->status);
         break;
-    default: /* LEP_EV_OVERLOAD_END */
+    case LEP_EV_LIMIT_EXCEEDED:
+        put(w, csv ? " at=%.6f axes=%u" : ",\"at\":%.6f,\"axes\":%u,\"wrench\":[", at,
+            (unsigned)ev->axes);
+        for (k = 0; k < LEP_AXES; k++) {
+            if (csv)
+                put(w, " %s=%.6f", SI_NAMES[k], ev->wrench[k]);
+            else
+                put(w, "%s%.6f", k > 0 ? "," : "", ev->wrench[k]);
+        }
+        put(w, csv ? "\n" : "]}\n");
+        break;
+    default: /* LEP_EV_OVERLOAD_END, LEP_EV_LIMIT_CLEARED */
         put(w, csv ? " at=%.6f\n" : ",\"at\":%.6f}\n", at);
         break;
     }

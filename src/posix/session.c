@@ -33,6 +33,7 @@ void lep_session_options_init(lep_session_options *o)
     o->reconnect_give_up_ms = -1;
     o->decimate = 1;
     o->rotation[0] = o->rotation[4] = o->rotation[8] = 1.0;
+    o->gravity[2] = -LEP_STANDARD_GRAVITY;
 }
 
 static bool finite_nonneg(double v)
@@ -91,7 +92,7 @@ static int check_options(const lep_session_options *o, char *err, size_t errlen)
                          o->duration_s);
         return LEP_E_ARG;
     }
-    return LEP_OK;
+    return lep_priv_load_check(o, err, errlen);
 }
 
 /* Saturation magnitude: v1.13 firmware (and earlier) clips at 32000, later
@@ -195,6 +196,7 @@ int lep_session_open(const lep_session_options *o, lep_session **out, char *err,
     memcpy(s->proc.rot, o->rotation, sizeof s->proc.rot);
     memcpy(s->proc.shift, o->shift_m, sizeof s->proc.shift);
     s->proc.decimate = o->decimate;
+    lep_priv_load_init(&s->load, o);
     rc = lep_session_set_rotation(s, o->rotation, o->shift_m);
     if (rc != LEP_OK) {
         lep_priv_set_err(err, errlen, "session: rotation is not a rotation matrix (R R^T != I)");

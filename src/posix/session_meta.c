@@ -63,6 +63,9 @@ void lep_session_get_metadata(lep_session *s, lep_session_metadata *out)
     memcpy(out->tare, s->proc.tare, sizeof out->tare);
     out->start_utc = s->start_utc;
     out->start_mono = s->start_mono;
+    out->payload = s->load.payload;
+    memcpy(out->gravity, s->load.gravity, sizeof out->gravity);
+    memcpy(out->limit, s->load.limit, sizeof out->limit);
     pthread_mutex_unlock(&s->mu);
 }
 
@@ -212,6 +215,19 @@ int lep_session_metadata_json(lep_session *s, char *buf, size_t cap, size_t *len
     jarr(&j, m.shift_m, 3);
     jput(&j, ",\"tared\":%s,\"tare_counts\":", m.tared ? "true" : "false");
     jarr(&j, m.tare, LEP_AXES);
+    if (m.payload.mass_kg > 0.0) {
+        jput(&j, ",\"payload\":{\"mass_kg\":");
+        jnum(&j, m.payload.mass_kg);
+        jput(&j, ",\"com_m\":");
+        jarr(&j, m.payload.com_m, 3);
+        jput(&j, "}");
+    } else {
+        jput(&j, ",\"payload\":null");
+    }
+    jput(&j, ",\"gravity\":");
+    jarr(&j, m.gravity, 3);
+    jput(&j, ",\"limit\":");
+    jarr(&j, m.limit, LEP_AXES);
     iso8601(m.start_utc, iso, sizeof iso);
     jput(&j, ",\"start_utc\":");
     jnum(&j, m.start_utc);

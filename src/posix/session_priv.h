@@ -18,6 +18,8 @@
  *                       batch (session_rows)
  *   session_proc.c      overload, tare, low-pass, decimation, rotation, end of
  *                       run (session_proc)
+ *   session_load.c      payload compensation and limits on the SI values
+ *                       (session_load)
  *   session_health.c    health counters (session_health_state; session_proc.c
  *                       counts h.delivered and h.overloads itself)
  *   session_events.c    the event queue (session_events)
@@ -125,6 +127,16 @@ typedef struct session_proc {
     double first_delivered_t;
 } session_proc;
 
+/* session_load.c: [mu] the payload's gravity wrench removed from the SI
+ * values, and the limits on what is left. */
+typedef struct session_load {
+    lep_payload payload;     /* mass 0: none */
+    double gravity[3];       /* sensor frame, m/s^2 */
+    double wrench[LEP_AXES]; /* the payload's gravity wrench at gravity (N, N m, sensor frame) */
+    double limit[LEP_AXES];  /* N, N m on the output SI values; 0: none */
+    bool beyond;             /* in a limit episode */
+} session_load;
+
 /* session_rows.c: processed rows waiting for a read (driving thread). */
 typedef struct session_rows {
     session_row pending[SESSION_PENDING];
@@ -197,6 +209,7 @@ struct lep_session {
 
     /* ---- [mu] ---- */
     session_proc proc;
+    session_load load;
     session_health_state hs;
     session_events events;
     double start_utc; /* metadata */
@@ -278,6 +291,22 @@ void lep_priv_proc_start(lep_session *s);
 /* The stream stopped: a tare in progress ends without a result. [mu] held. */
 void lep_priv_proc_stop(session_proc *p);
 void lep_priv_lowpass_design(session_lowpass *lp, double cutoff_hz, double fs);
+
+/* ---- session_load.c ([mu] held for the lep_priv_ ones) ---- */
+/* Check the payload, gravity and limits of options o (one line in err). */
+int lep_priv_load_check(const lep_session_options *o, char *err, size_t errlen);
+/* From checked options. */
+void lep_priv_load_init(session_load *l, const lep_session_options *o);
+/* A new stream: no limit episode. */
+void lep_priv_load_start(session_load *l);
+/* Remove the payload's gravity wrench from si (N, N m, sensor frame). */
+void lep_priv_load_compensate(const session_load *l, double si[LEP_AXES]);
+/* The payload's gravity wrench in counts through rated (for a tare's offset). */
+void lep_priv_load_counts(const session_load *l, const lep_rated *rated, double counts[LEP_AXES]);
+/* Check a delivered row's SI values (output frame) against the limits: the
+ * LEP_SF_LIMIT flag or 0, and the episode's events (before delivered sample
+ * number `sample`, at t). */
+uint8_t lep_priv_load_limits(lep_session *s, const double si[LEP_AXES], double t, uint64_t sample);
 void lep_priv_lowpass_restart(session_lowpass *lp);
 
 /* ---- session_health.c ([mu] held for all) ---- */

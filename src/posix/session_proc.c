@@ -1,7 +1,7 @@
 /* Host session, the processing of each sample: overload episodes, tare
  * (averaged in raw counts), the host low-pass (2nd-order Butterworth),
- * decimation, rotation and moment-point shift, and the end of a run
- * (duration or count). */
+ * payload compensation and limits (session_load.c), decimation, rotation and
+ * moment-point shift, and the end of a run (duration or count). */
 #define _POSIX_C_SOURCE 200809L
 
 #include <math.h>
@@ -175,6 +175,7 @@ void lep_priv_proc_start(lep_session *s)
     if (s->opt.tare_samples > 0)
         begin_tare(s, s->opt.tare_samples, 0.0, true);
     lep_priv_lowpass_restart(&p->lp);
+    lep_priv_load_start(&s->load);
     p->dec_phase = 0;
     p->carry_flags = 0;
     p->overloaded = false;
@@ -196,12 +197,16 @@ static void tare_event(lep_session *s, double t, uint64_t sample)
     lep_priv_events_push(&s->events, &ev);
 }
 
-/* The new offset applies from delivered sample number `sample` on. */
+/* The new offset applies from delivered sample number `sample` on. With a
+ * payload set, the offset is the bias alone: the mean less the payload's
+ * expected wrench at the gravity in force. */
 static void tare_finish(lep_session *s, double t, uint64_t sample)
 {
+    double payload[LEP_AXES];
     int k;
+    lep_priv_load_counts(&s->load, &s->rated, payload);
     for (k = 0; k < LEP_AXES; k++)
-        s->proc.tare[k] = s->proc.tare_sum[k] / (double)s->proc.tare_n;
+        s->proc.tare[k] = s->proc.tare_sum[k] / (double)s->proc.tare_n - payload[k];
     s->proc.tared = true;
     s->proc.taring = false;
     s->proc.tare_hold = false;
@@ -299,7 +304,8 @@ static void overload(lep_session *s, const lep_sample *smp, double t, uint8_t *f
 }
 
 /* zeroed, si (tare after the filter: exact, as the filter's gain at 0 Hz is
- * 1), rotated and shifted; the sample's own fields. */
+ * 1; the payload's gravity wrench removed), rotated and shifted; the
+ * sample's own fields. */
 static void fill_row(const lep_session *s, const lep_sample *smp, const double y[LEP_AXES],
                      const double off[LEP_AXES], session_row *row)
 {
@@ -309,6 +315,7 @@ static void fill_row(const lep_session *s, const lep_sample *smp, const double y
         row->zeroed[k] = (double)smp->raw[k] - off[k];
         row->si[k] = (y[k] - off[k]) * (double)s->rated.axis[k] / (double)LEP_RAW_FULL_SCALE;
     }
+    lep_priv_load_compensate(&s->load, row->si);
     rotate(&s->proc, row->si);
     row->status = smp->status;
     row->seq = smp->reserved;
@@ -385,7 +392,7 @@ bool lep_priv_session_process(lep_session *s, const lep_sample *smp, double t, d
     row->t_mono = t;
     row->t_utc = t_utc;
     fill_row(s, smp, y, off, row);
-    row->flags = flags;
+    row->flags = flags | lep_priv_load_limits(s, row->si, t, s->hs.h.delivered);
     if (s->hs.h.delivered == 0)
         s->proc.first_delivered_t = t;
     s->hs.h.delivered++;

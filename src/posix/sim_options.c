@@ -12,7 +12,7 @@
 #include "leptrino/sim.h"
 
 /* How a row's value is stored in lep_sim_options. */
-enum store { S_BOOL, S_INT, S_U8, S_U64, S_DOUBLE, S_CHARS };
+enum store { S_BOOL, S_INT, S_U8, S_U64, S_DOUBLE, S_CHARS, S_DOUBLES };
 
 /* Extra checks of a text value beyond its length. */
 enum text_rule { T_ANY, T_DIGITS, T_PRINTABLE, T_MODEL };
@@ -73,6 +73,11 @@ static const row rows[] = {
     NUM("overload-duration", LEP_SIM_OPT_DOUBLE, "S",
         "length of an overload episode in s (< overload-every)", "0.1", 0, MAX_SECONDS, true,
         overload_duration_s, S_DOUBLE),
+    NUM("payload", LEP_SIM_OPT_NUMBERS, "M,CX,CY,CZ",
+        "a tool on the sensor: mass kg, centre of mass m (sensor frame)", "0,0,0,0", -1000, 1000,
+        false, payload, S_DOUBLES),
+    NUM("gravity", LEP_SIM_OPT_NUMBERS, "GX,GY,GZ", "gravity in the sensor frame, m/s^2",
+        "0,0,-9.80665", -100, 100, false, gravity, S_DOUBLES),
     NUM("nak", LEP_SIM_OPT_DOUBLE, "P", "fault: probability of NAKing a valid command", "0", 0, 1,
         false, p_nak, S_DOUBLE),
     NUM("corrupt", LEP_SIM_OPT_DOUBLE, "P", "fault: probability of flipping a bit of a message",
@@ -175,6 +180,9 @@ static void range_text(const row *r, char *buf, size_t cap)
         snprintf(buf, cap, "a number > %.15g and <= %.15g", in->min, in->max);
     else if (in->type == LEP_SIM_OPT_DOUBLE)
         snprintf(buf, cap, "a number from %.15g to %.15g", in->min, in->max);
+    else if (r->store == S_DOUBLES)
+        snprintf(buf, cap, "%zu comma-separated numbers (%s), each from %.15g to %.15g",
+                 r->size / sizeof(double), in->arg, in->min, in->max);
     else if (in->type == LEP_SIM_OPT_UINT && r->store == S_U64)
         snprintf(buf, cap, "an integer from 0 to 18446744073709551615");
     else
@@ -240,7 +248,7 @@ static int check_text(const row *r, const char *t, char *err, size_t errlen)
 /* Check one row's member in o. */
 static int check_row(const lep_sim_options *o, const row *r, char *err, size_t errlen)
 {
-    char range[96];
+    char range[160];
     double v;
     switch (r->store) {
     case S_BOOL:
@@ -248,6 +256,19 @@ static int check_row(const lep_sim_options *o, const row *r, char *err, size_t e
         return LEP_OK;
     case S_CHARS:
         return check_text(r, (const char *)cmember(o, r), err, errlen);
+    case S_DOUBLES: {
+        const double *d = (const double *)cmember(o, r);
+        size_t i;
+        for (i = 0; i < r->size / sizeof(double); i++) {
+            if (!in_range(&r->info, d[i])) {
+                range_text(r, range, sizeof range);
+                lep_priv_set_err(err, errlen, "%s: value %zu is %g: expected %s", r->info.name,
+                                 i + 1, d[i], range);
+                return LEP_E_ARG;
+            }
+        }
+        return LEP_OK;
+    }
     default:
         break;
     }
@@ -277,6 +298,10 @@ int lep_sim_options_check(const lep_sim_options *o, char *err, size_t errlen)
         lep_priv_set_err(err, errlen,
                          "overload-duration %g: expected less than overload-every (%g)",
                          o->overload_duration_s, o->overload_every_s);
+        return LEP_E_ARG;
+    }
+    if (o->payload[0] < 0.0) {
+        lep_priv_set_err(err, errlen, "payload mass %g: expected >= 0 kg", o->payload[0]);
         return LEP_E_ARG;
     }
     if (o->reopen_after_ms >= 0 && o->link[0] == '\0') {
@@ -330,6 +355,20 @@ static int parse_value(lep_sim_options *tmp, const row *r, const char *v)
     }
     if (v[0] == '\0' || blank_start(v))
         return -1;
+    if (r->store == S_DOUBLES) {
+        double *d = (double *)p;
+        size_t i, n = r->size / sizeof(double);
+        const char *q = v;
+        for (i = 0; i < n; i++) {
+            errno = 0;
+            d[i] = strtod(q, &end);
+            if (end == q || blank_start(q) || errno == ERANGE || !in_range(&r->info, d[i]) ||
+                (i + 1 < n ? *end != ',' : *end != '\0'))
+                return -1; /* also NaN and inf */
+            q = end + 1;
+        }
+        return 0;
+    }
     errno = 0;
     if (r->store == S_DOUBLE) {
         double d = strtod(v, &end);
@@ -382,7 +421,7 @@ int lep_sim_option_set(lep_sim_options *o, const char *name, const char *value, 
     }
     tmp = *o;
     if (parse_value(&tmp, r, value) != 0) {
-        char range[96];
+        char range[160];
         const lep_sim_option_info *in = &r->info;
         if (r->store == S_BOOL) {
             lep_priv_set_err(err, errlen, "%s '%s': a flag takes no value, or 1, 0, true, false",
@@ -406,6 +445,16 @@ int lep_sim_option_set(lep_sim_options *o, const char *name, const char *value, 
     return LEP_OK;
 }
 
+/* The shortest of %.15g/%.17g that reads back as the same number. */
+static int shortest(char *buf, size_t buflen, double d)
+{
+    char tmp[40];
+    snprintf(tmp, sizeof tmp, "%.15g", d);
+    if (strtod(tmp, NULL) != d)
+        snprintf(tmp, sizeof tmp, "%.17g", d);
+    return snprintf(buf, buflen, "%s", tmp);
+}
+
 int lep_sim_option_get(const lep_sim_options *o, const char *name, char *buf, size_t buflen)
 {
     const row *r = find_row(name);
@@ -427,14 +476,21 @@ int lep_sim_option_get(const lep_sim_options *o, const char *name, char *buf, si
     case S_U64:
         n = snprintf(buf, buflen, "%llu", (unsigned long long)*(const uint64_t *)p);
         break;
-    case S_DOUBLE: {
-        /* the shortest of %.15g/%.17g that reads back as the same number */
-        double d = *(const double *)p;
-        char tmp[40];
-        snprintf(tmp, sizeof tmp, "%.15g", d);
-        if (strtod(tmp, NULL) != d)
-            snprintf(tmp, sizeof tmp, "%.17g", d);
-        n = snprintf(buf, buflen, "%s", tmp);
+    case S_DOUBLE:
+        n = shortest(buf, buflen, *(const double *)p);
+        break;
+    case S_DOUBLES: {
+        const double *d = (const double *)p;
+        size_t i, at = 0;
+        n = 0;
+        for (i = 0; i < r->size / sizeof(double) && n >= 0 && at < buflen; i++) {
+            if (i > 0)
+                buf[at++] = ',';
+            n = at < buflen ? shortest(buf + at, buflen - at, d[i]) : -1;
+            at += n >= 0 ? (size_t)n : 0u;
+        }
+        if (n >= 0)
+            n = (int)at;
         break;
     }
     default:

@@ -8,7 +8,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "errmsg.h"
 #include "leptrino/error.h"
+#include "leptrino/payload.h"
 #include "sim_signal.h"
 
 #define TWO_PI 6.283185307179586
@@ -43,6 +45,19 @@ int lep_priv_signal_init(lep_sim_signal *g, const lep_sim_options *o, const lep_
     g->seed = o->seed;
     g->overload_every_s = o->overload_every_s;
     g->overload_duration_s = o->overload_duration_s;
+    {
+        /* what the tool weighs at this orientation, through the rated values */
+        lep_payload p;
+        double w[LEP_AXES];
+        p.mass_kg = o->payload[0];
+        memcpy(p.com_m, &o->payload[1], sizeof p.com_m);
+        if (lep_payload_wrench(&p, o->gravity, w) != LEP_OK) {
+            lep_priv_set_err(err, errlen, "payload or gravity: not finite, or a negative mass");
+            return LEP_E_ARG; /* lep_sim_options_check refuses it first */
+        }
+        for (i = 0; i < LEP_AXES; i++)
+            g->payload_counts[i] = w[i] / (double)rated->axis[i] * LEP_RAW_FULL_SCALE;
+    }
     st = o->seed;
     for (i = 0; i < LEP_AXES; i++) {
         g->freq[i] = base_hz[i] * (0.9 + 0.2 * lep_priv_uniform(&st));
@@ -128,7 +143,7 @@ int lep_priv_signal_counts(const lep_sim_signal *g, uint64_t n, double counts[LE
                 v = g->amplitude * lep_priv_sine(TWO_PI * g->freq[i] * t + g->phase[i]) +
                     g->noise * (2.0 * lep_priv_uniform(&st) - 1.0);
             }
-            counts[i] = v * LEP_RAW_FULL_SCALE;
+            counts[i] = v * LEP_RAW_FULL_SCALE + g->payload_counts[i];
         }
     }
     if (g->overload_every_s > 0 && g->overload_duration_s > 0 && t >= g->overload_every_s) {

@@ -9,7 +9,7 @@ import pytest
 
 from conftest import run
 
-COMMANDS = ["list", "info", "read", "stream", "filter", "watch"]
+COMMANDS = ["list", "info", "read", "stream", "filter", "watch", "check", "payload"]
 
 
 def test_version() -> None:
@@ -24,8 +24,9 @@ def test_top_level_help_documents_commands_and_exit_codes() -> None:
     for cmd in COMMANDS:
         assert f"  {cmd} " in r.stdout
     assert "Exit codes:" in r.stdout
-    for code in range(9):
+    for code in range(10):
         assert re.search(rf"^  {code}  \S", r.stdout, re.M), code
+    assert re.search(r"^  10\.\.15  check", r.stdout, re.M)
 
 
 @pytest.mark.parametrize("cmd", COMMANDS)

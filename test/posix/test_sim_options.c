@@ -43,7 +43,7 @@ static void set_bad(const char *name, const char *value, const char *needle)
 static void test_table_is_complete_and_consistent(void)
 {
     size_t i, n = lep_sim_option_count();
-    TEST_ASSERT_EQUAL_size_t(23, n); /* one row per field of lep_sim_options */
+    TEST_ASSERT_EQUAL_size_t(25, n); /* one row per field of lep_sim_options */
     TEST_ASSERT_NULL(lep_sim_option_at(n));
     for (i = 0; i < n; i++) {
         const lep_sim_option_info *in = lep_sim_option_at(i);
@@ -80,6 +80,43 @@ static void test_defaults(void)
     TEST_ASSERT_EQUAL_STRING("", o.link);
     TEST_ASSERT_EQUAL_STRING("", o.replay_csv);
     TEST_ASSERT_FALSE(o.constant);
+}
+
+/* payload and gravity: comma-separated numbers, each range-checked, read back
+ * as set; a negative mass is refused by the one check. */
+static void test_payload_and_gravity(void)
+{
+    char buf[128];
+    TEST_ASSERT_EQUAL_INT(LEP_SIM_OPT_NUMBERS, lep_sim_option_find("payload")->type);
+    TEST_ASSERT_EQUAL_DOUBLE(0.0, o.payload[0]);
+    TEST_ASSERT_EQUAL_DOUBLE(-9.80665, o.gravity[2]);
+    set_ok("payload", "1.5,0.01,-0.02,0.1");
+    TEST_ASSERT_EQUAL_DOUBLE(1.5, o.payload[0]);
+    TEST_ASSERT_EQUAL_DOUBLE(-0.02, o.payload[2]);
+    TEST_ASSERT_EQUAL_DOUBLE(0.1, o.payload[3]);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_sim_option_get(&o, "payload", buf, sizeof buf));
+    TEST_ASSERT_EQUAL_STRING("1.5,0.01,-0.02,0.1", buf);
+    TEST_ASSERT_EQUAL_INT(LEP_E_BUFFER, lep_sim_option_get(&o, "payload", buf, 8));
+    TEST_ASSERT_EQUAL_STRING("", buf);
+    set_ok("gravity", "9.80665,0,0");
+    TEST_ASSERT_EQUAL_DOUBLE(9.80665, o.gravity[0]);
+    TEST_ASSERT_EQUAL_DOUBLE(0.0, o.gravity[2]);
+    set_bad("payload", "1,2,3", "4 comma-separated numbers (M,CX,CY,CZ)");
+    set_bad("payload", "1,2,3,4,5", "4 comma-separated");
+    set_bad("payload", "1,nan,0,0", "each from -1000 to 1000");
+    set_bad("payload", "1,0,0,inf", "comma-separated");
+    set_bad("payload", "1,,0,0", "comma-separated");
+    set_bad("payload", "1, 0,0,0", "comma-separated");
+    set_bad("gravity", "0,0", "3 comma-separated numbers (GX,GY,GZ)");
+    set_bad("gravity", "0,0,-200", "from -100 to 100");
+    set_bad("gravity", NULL, "needs a value");
+    set_ok("payload", "-1,0,0,0"); /* in range; the mass is checked with the whole */
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_sim_options_check(&o, err, sizeof err));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err, "payload mass -1: expected >= 0"), err);
+    o.gravity[1] = NAN;
+    set_ok("payload", "0,0,0,0");
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_sim_options_check(&o, err, sizeof err));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err, "gravity: value 2 is nan"), err);
 }
 
 static void test_find_accepts_python_names(void)
@@ -251,6 +288,7 @@ int main(void)
     UNITY_BEGIN();
     RUN_TEST(test_table_is_complete_and_consistent);
     RUN_TEST(test_defaults);
+    RUN_TEST(test_payload_and_gravity);
     RUN_TEST(test_find_accepts_python_names);
     RUN_TEST(test_set_every_type);
     RUN_TEST(test_set_rejects);

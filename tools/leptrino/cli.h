@@ -34,7 +34,15 @@ enum cli_exit {
     CLI_SENSOR = 5,       /* the sensor refused a command (result code or NAKs) */
     CLI_NOT_FOUND = 6,    /* no such port, or not a serial port */
     CLI_BUSY = 7,         /* the port is in use by another program */
-    CLI_PERMISSION = 8    /* no permission to open the port */
+    CLI_PERMISSION = 8,   /* no permission to open the port */
+    CLI_LIMIT = 9,        /* stream --stop-on-limit: a limit was exceeded */
+    /* leptrino check: the first criterion that failed, in this order */
+    CLI_CHECK_STATUS = 10,   /* a status bit: ROM calibration data error or sensor error */
+    CLI_CHECK_ERRORS = 11,   /* more frame errors than --max-errors */
+    CLI_CHECK_LOSS = 12,     /* more samples lost than --max-loss */
+    CLI_CHECK_RATE = 13,     /* measured rate below --min-rate % of nominal */
+    CLI_CHECK_OVERLOAD = 14, /* an overload */
+    CLI_CHECK_NOISE = 15     /* an axis noisier than --max-noise */
 };
 
 /* Sensors one `leptrino stream` may record at once. */
@@ -203,5 +211,7 @@ int cli_cmd_read(int argc, char **argv);
 int cli_cmd_stream(int argc, char **argv);
 int cli_cmd_filter(int argc, char **argv);
 int cli_cmd_watch(int argc, char **argv);
+int cli_cmd_payload(int argc, char **argv);
+int cli_cmd_check(int argc, char **argv);
 
 #endif

@@ -9,6 +9,7 @@
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -30,6 +31,7 @@ typedef struct stream_opts {
     const char *split;      /* pattern: one file per sensor */
     lep_output_options out; /* format, columns, time, overwrite */
     bool columns_given, units_given;
+    bool stop_on_limit;
 } stream_opts;
 
 typedef struct sensor_run {
@@ -38,8 +40,10 @@ typedef struct sensor_run {
     lep_output *w; /* its writer (shared when all go to one file) */
     int index;     /* its sensor index in w */
     bool own_writer;
-    bool done;  /* reached duration/count */
-    int failed; /* LEP_E_* that ended it, 0 while fine */
+    bool done;       /* reached duration/count */
+    int failed;      /* LEP_E_* that ended it, 0 while fine */
+    uint64_t limits; /* limit episodes begun */
+    bool limit_stop; /* a limit was exceeded with --stop-on-limit */
 } sensor_run;
 
 static void help(void)
@@ -66,7 +70,8 @@ static void help(void)
           "                           status  the sensor's status bits (1 calibration\n"
           "                                   data error, 2 sensor fault, 4 overload)\n"
           "                           flags   the session's flags (1 gap before, 2\n"
-          "                                   overload, 4 taring, 8 low-pass settling)\n"
+          "                                   overload, 4 taring, 8 low-pass settling,\n"
+          "                                   16 beyond a --limit)\n"
           "                           seq     the virtual sensor's sequence number\n"
           "                           sensor  the sensor's name (added by itself when\n"
           "                                   several sensors share one file)\n"
@@ -97,9 +102,26 @@ static void help(void)
           "      --reconnect          when a port goes away, reopen it (100 ms .. 1 s\n"
           "                           apart) and resume; the gap is marked\n"
           "      --data-timeout S     no data for S seconds is an error (default 2)\n"
+          "\n",
+          stdout);
+    fputs("Payload and limits:\n"
+          "      --payload M,CX,CY,CZ a tool on the sensor: mass kg, centre of mass m\n"
+          "                           (sensor frame; from `leptrino payload`): its\n"
+          "                           gravity wrench is removed from the SI values (raw\n"
+          "                           and zeroed counts stay as measured); a tare then\n"
+          "                           removes the bias only\n"
+          "      --gravity GX,GY,GZ   gravity in the sensor frame, m/s^2 (default\n"
+          "                           0,0,-9.80665: the z axis up)\n"
+          "      --limit AXIS=V,...   limits on the SI values (after compensation, in the\n"
+          "                           output frame), N and N m, e.g. fz=50,mz=2: samples\n"
+          "                           beyond are flagged 16, '# limit exceeded' and\n"
+          "                           '# limit cleared' lines mark each episode\n"
+          "      --stop-on-limit      stop at the first sample beyond a limit (it is\n"
+          "                           written), exit code 9\n"
           "  -h, --help               show this help\n"
-          "\n"
-          "Tare during the run: press t (tare) or u (untare) when standard input is a\n"
+          "\n",
+          stdout);
+    fputs("Tare during the run: press t (tare) or u (untare) when standard input is a\n"
           "terminal; send SIGUSR1 (tare) or SIGUSR2 (untare) otherwise. A tare applies\n"
           "to every sensor and never stalls the stream.\n"
           "\n",
@@ -144,6 +166,31 @@ static bool parse_columns(const char *v, unsigned *out)
             return false;
     }
     return *out != 0;
+}
+
+/* "fz=50,mz=2" into limit[6] (N, N m); false when malformed. */
+static bool parse_limits(const char *v, double limit[LEP_AXES])
+{
+    static const char *const names[LEP_AXES] = { "fx", "fy", "fz", "mx", "my", "mz" };
+    const char *p = v;
+    for (;;) {
+        char *end;
+        int k, axis = -1;
+        for (k = 0; k < LEP_AXES; k++)
+            if (strncmp(p, names[k], 2) == 0 && p[2] == '=')
+                axis = k;
+        if (axis < 0)
+            return false;
+        errno = 0;
+        limit[axis] = strtod(p + 3, &end);
+        if (end == p + 3 || errno == ERANGE || !isfinite(limit[axis]) || !(limit[axis] > 0.0))
+            return false;
+        if (*end == '\0')
+            return true;
+        if (*end != ',')
+            return false;
+        p = end + 1;
+    }
 }
 
 static int parse(int argc, char **argv, stream_opts *o)
@@ -233,12 +280,42 @@ static int parse(int argc, char **argv, stream_opts *o)
             o->so.data_timeout_ms = (int)(cli_args_double(&a, 0.0, 3600.0, true) * 1000.0);
             if (o->so.data_timeout_ms < 1 && !a.failed)
                 o->so.data_timeout_ms = 1;
+        } else if (cli_args_is(&a, NULL, "--payload")) {
+            double p[4];
+            if (cli_args_doubles(&a, p, 4)) {
+                if (p[0] < 0.0)
+                    cli_args_error(&a, "option --payload: the mass %g kg is negative", p[0]);
+                o->so.payload.mass_kg = p[0];
+                memcpy(o->so.payload.com_m, p + 1, sizeof o->so.payload.com_m);
+            }
+        } else if (cli_args_is(&a, NULL, "--gravity")) {
+            (void)cli_args_doubles(&a, o->so.gravity, 3);
+        } else if (cli_args_is(&a, NULL, "--limit")) {
+            v = cli_args_value(&a);
+            if (v != NULL && !parse_limits(v, o->so.limit))
+                cli_args_error(&a,
+                               "option --limit: '%s' is not AXIS=VALUE,... with AXIS one of "
+                               "fx, fy, fz, mx, my, mz and VALUE > 0 (N, N m)",
+                               v);
+        } else if (cli_args_is(&a, NULL, "--stop-on-limit")) {
+            cli_args_flag(&a);
+            o->stop_on_limit = true;
         } else if (!cli_port_option(&o->po, &a)) {
             cli_args_unknown(&a);
         }
     }
     if (a.failed || !cli_port_check(&o->po, &a))
         return CLI_USAGE;
+    if (o->stop_on_limit) {
+        int k;
+        bool any = false;
+        for (k = 0; k < LEP_AXES; k++)
+            any = any || o->so.limit[k] > 0.0;
+        if (!any) {
+            cli_args_error(&a, "--stop-on-limit needs --limit");
+            return CLI_USAGE;
+        }
+    }
     if (o->columns_given && o->units_given) {
         cli_args_error(&a, "give --columns or --units, not both");
         return CLI_USAGE;
@@ -342,20 +419,63 @@ static void note(stream_state *st, const sensor_run *r, const char *fmt, ...)
     fputc('\n', stderr);
 }
 
+/* With --stop-on-limit, the first limit exceeded among ev[0..*nev) ends the
+ * run: the rows of b after its sample (numbered from first) and the events
+ * after it are dropped, and it is reported. */
+static void stop_at_limit(stream_state *st, sensor_run *r, lep_session_batch *b, uint64_t first,
+                          lep_session_event *ev, size_t *nev)
+{
+    static const char *const names[LEP_AXES] = { "fx", "fy", "fz", "mx", "my", "mz" };
+    static const char *const units[LEP_AXES] = { "N", "N", "N", "N m", "N m", "N m" };
+    lep_session_metadata m;
+    size_t k;
+    int a;
+    for (k = 0; k < *nev && ev[k].type != LEP_EV_LIMIT_EXCEEDED; ++k) {
+    }
+    if (k == *nev)
+        return;
+    r->limit_stop = true;
+    *nev = k + 1;
+    if (ev[k].sample >= first && ev[k].sample - first < b->n)
+        b->n = (size_t)(ev[k].sample - first) + 1u;
+    lep_session_get_metadata(r->s, &m);
+    cli_status_clear(&st->st);
+    fprintf(stderr, "leptrino: stream: %s: limit exceeded at t=%.6f s:", r->sensor->name,
+            ev[k].t_mono - st->t0);
+    for (a = 0; a < LEP_AXES; a++)
+        if (((unsigned)ev[k].axes >> a) & 1u)
+            fprintf(stderr, " %s %.6g %s beyond %g", names[a], ev[k].wrench[a], units[a],
+                    m.limit[a]);
+    fprintf(stderr, "; stopped (--stop-on-limit)\n");
+}
+
 /* Write what one read gave: rows, and the events where they belong. */
-static void emit(stream_state *st, sensor_run *r, const lep_session_batch *b)
+static void emit(stream_state *st, sensor_run *r, const lep_session_batch *batch)
 {
     lep_session_event ev[EVENTS];
+    lep_session_batch cut = *batch, *b = &cut;
     size_t nev = 0, k;
     int rc;
     size_t from = 0;
     bool more = true;
+    uint64_t first = 0;
+    if (st->o.stop_on_limit) {
+        lep_session_health h;
+        lep_session_get_health(r->s, &h);
+        first = h.delivered - b->n; /* the session's number of the batch's first row */
+    }
     while (more) {
         nev = 0;
         while (nev < EVENTS && lep_session_next_event(r->s, &ev[nev]))
             nev++;
         more = nev == EVENTS;
+        if (st->o.stop_on_limit) {
+            stop_at_limit(st, r, b, first, ev, &nev);
+            more = more && !r->limit_stop;
+        }
         for (k = 0; k < nev; ++k) {
+            if (ev[k].type == LEP_EV_LIMIT_EXCEEDED)
+                r->limits++;
             /* without reconnect, the next read says the stream is over */
             if (ev[k].type == LEP_EV_DISCONNECTED && st->o.so.reconnect) {
                 note(st, r, "%s at t=%.3f s; reopening the port (Ctrl-C to stop)",
@@ -442,6 +562,8 @@ static int loop(stream_state *st)
             sensor_run *r = &st->run[i];
             if (r->failed != 0)
                 return cli_session_fail(r->s, "stream", r->sensor->name, "stream", r->failed);
+            if (r->limit_stop)
+                return CLI_LIMIT;
             fds[i] = r->done ? -1 : lep_session_fd(r->s);
             active += r->done ? 0u : 1u;
         }
@@ -499,6 +621,9 @@ static void summary(stream_state *st)
                     "leptrino: stream: %s: %llu events dropped (the session's event queue was "
                     "full): the output lacks them\n",
                     r->sensor->name, (unsigned long long)h.events_dropped);
+        if (r->limits > 0)
+            fprintf(stderr, "leptrino: stream: %s: %llu limit episode%s\n", r->sensor->name,
+                    (unsigned long long)r->limits, r->limits == 1 ? "" : "s");
         if (h.shortfall)
             fprintf(stderr,
                     "leptrino: stream: %s: RATE SHORTFALL: %.1f Hz is %.1f %% below the "

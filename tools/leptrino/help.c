@@ -13,7 +13,10 @@ void cli_print_exit_codes(FILE *f)
           "  5  sensor error: the sensor refused a command (result code, or NAKs)\n"
           "  6  port not found, or not a serial port\n"
           "  7  port busy: in use by another program\n"
-          "  8  permission denied on the port\n",
+          "  8  permission denied on the port\n"
+          "  9  stream --stop-on-limit: a limit was exceeded\n"
+          "  10..15  check: the first criterion that failed: 10 status bits, 11 frame\n"
+          "          errors, 12 samples lost, 13 rate, 14 overload, 15 noise\n",
           f);
 }
 

@@ -17,6 +17,9 @@ static const cli_command COMMANDS[] = {
     { "stream", cli_cmd_stream, "record one or more sensors to CSV or JSON lines" },
     { "watch", cli_cmd_watch, "live view in the terminal: bars, rate, errors; keys t, u, q" },
     { "filter", cli_cmd_filter, "show or set the digital filter" },
+    { "check", cli_cmd_check,
+      "commissioning: judge a sensor's health, an exit code per criterion" },
+    { "payload", cli_cmd_payload, "identify a tool's mass and centre of mass from recorded poses" },
 };
 
 #define N_COMMANDS (sizeof COMMANDS / sizeof COMMANDS[0])

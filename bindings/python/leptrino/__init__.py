@@ -45,6 +45,7 @@ from .errors import (
     StateError,
     TimeoutError,
 )
+from .payload import Payload, identify_payload, read_pose
 from .sensor import PowerCycleWarning, Sensor, Stream, list_ports
 from .simulator import SimOption, Simulator
 from .values import (
@@ -72,6 +73,7 @@ __all__ = [
     "NakError",
     "NoSyncError",
     "NotATerminalError",
+    "Payload",
     "PortError",
     "PortInfo",
     "PortNotFoundError",
@@ -96,8 +98,10 @@ __all__ = [
     "encode_command",
     "encode_frame",
     "get_backend",
+    "identify_payload",
     "library_version",
     "list_ports",
+    "read_pose",
     "sample_to_si",
     "saturation_mask",
 ]

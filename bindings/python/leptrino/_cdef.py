@@ -183,6 +183,8 @@ typedef struct lep_sim_options {
     int reopen_after_ms;
     bool start_streaming;
     char link[512];
+    double payload[4];
+    double gravity[3];
 } lep_sim_options;
 
 typedef struct lep_sim_option_info {
@@ -252,6 +254,27 @@ typedef struct lep_record_batch {
 int lep_record_fill(lep_client *c, const lep_rated *rated, lep_record_batch *b, double until_s,
                     int timeout_ms);
 
+/* payload.h */
+typedef struct lep_payload {
+    double mass_kg;
+    double com_m[3];
+} lep_payload;
+
+typedef struct lep_payload_fit {
+    lep_payload payload;
+    double force_bias_N[3];
+    double torque_bias_Nm[3];
+    double residual[6];
+    double spread;
+    size_t poses;
+} lep_payload_fit;
+
+int lep_payload_wrench(const lep_payload *p, const double gravity[3], double wrench[6]);
+int lep_payload_identify(const double *gravity, const double *wrench, size_t n,
+                         lep_payload_fit *out, char *err, size_t errlen);
+int lep_payload_pose_read(const char *path, double mean[6], uint64_t *samples, char *err,
+                          size_t errlen);
+
 /* session.h */
 typedef struct lep_session lep_session;
 
@@ -276,6 +299,9 @@ typedef struct lep_session_options {
     double shift_m[3];
     double duration_s;
     uint64_t count;
+    lep_payload payload;
+    double gravity[3];
+    double limit[6];
 } lep_session_options;
 
 typedef struct lep_session_batch {
@@ -303,6 +329,7 @@ typedef struct lep_session_event {
     uint8_t axes;
     uint8_t status;
     double tare[6];
+    double wrench[6];
 } lep_session_event;
 
 typedef struct lep_session_health {
@@ -344,6 +371,9 @@ typedef struct lep_session_metadata {
     char port[256];
     bool sim;
     char library_version[16];
+    lep_payload payload;
+    double gravity[3];
+    double limit[6];
 } lep_session_metadata;
 
 void lep_session_options_init(lep_session_options *o);
@@ -362,6 +392,9 @@ int lep_session_set_tare(lep_session *s, const double *offset);
 bool lep_session_get_tare(lep_session *s, double *offset);
 bool lep_session_taring(lep_session *s);
 int lep_session_set_lowpass(lep_session *s, double cutoff_hz);
+int lep_session_set_payload(lep_session *s, const lep_payload *p);
+int lep_session_set_gravity(lep_session *s, const double gravity[3]);
+int lep_session_set_limits(lep_session *s, const double limit[6]);
 int lep_session_set_latency(lep_session *s, int latency_ms);
 int lep_session_latency(const lep_session *s);
 int lep_session_set_rotation(lep_session *s, const double *rotation, const double *shift_m);

@@ -177,6 +177,8 @@ class lep_sim_options(Structure):
         ("reopen_after_ms", c_int),
         ("start_streaming", c_bool),
         ("link", c_char * 512),
+        ("payload", c_double * 4),
+        ("gravity", c_double * 3),
     ]
 
 
@@ -230,6 +232,21 @@ class lep_record_batch(Structure):
     ]
 
 
+class lep_payload(Structure):
+    _fields_ = [("mass_kg", c_double), ("com_m", c_double * 3)]
+
+
+class lep_payload_fit(Structure):
+    _fields_ = [
+        ("payload", lep_payload),
+        ("force_bias_N", c_double * 3),
+        ("torque_bias_Nm", c_double * 3),
+        ("residual", c_double * 6),
+        ("spread", c_double),
+        ("poses", c_size_t),
+    ]
+
+
 class lep_session(Structure):
     """Opaque (session.h)."""
 
@@ -256,6 +273,9 @@ class lep_session_options(Structure):
         ("shift_m", c_double * 3),
         ("duration_s", c_double),
         ("count", c_uint64),
+        ("payload", lep_payload),
+        ("gravity", c_double * 3),
+        ("limit", c_double * 6),
     ]
 
 
@@ -287,6 +307,7 @@ class lep_session_event(Structure):
         ("axes", c_uint8),
         ("status", c_uint8),
         ("tare", c_double * 6),
+        ("wrench", c_double * 6),
     ]
 
 
@@ -332,6 +353,9 @@ class lep_session_metadata(Structure):
         ("port", c_char * 256),
         ("sim", c_bool),
         ("library_version", c_char * 16),
+        ("payload", lep_payload),
+        ("gravity", c_double * 3),
+        ("limit", c_double * 6),
     ]
 
 
@@ -379,6 +403,8 @@ STRUCTS: Dict[str, Any] = {
         lep_session_metadata,
         lep_output_options,
         lep_output,
+        lep_payload,
+        lep_payload_fit,
     )
 }
 
@@ -482,6 +508,9 @@ FUNCTIONS: Dict[str, Tuple[Any, List[Any]]] = {
     "lep_session_get_tare": (c_bool, [_P(lep_session), _P(c_double)]),
     "lep_session_taring": (c_bool, [_P(lep_session)]),
     "lep_session_set_lowpass": (c_int, [_P(lep_session), c_double]),
+    "lep_session_set_payload": (c_int, [_P(lep_session), _P(lep_payload)]),
+    "lep_session_set_gravity": (c_int, [_P(lep_session), _P(c_double)]),
+    "lep_session_set_limits": (c_int, [_P(lep_session), _P(c_double)]),
     "lep_session_set_latency": (c_int, [_P(lep_session), c_int]),
     "lep_session_latency": (c_int, [_P(lep_session)]),
     "lep_session_set_rotation": (c_int, [_P(lep_session), _P(c_double), _P(c_double)]),
@@ -516,6 +545,16 @@ FUNCTIONS: Dict[str, Tuple[Any, List[Any]]] = {
     "lep_output_flush": (c_int, [_P(lep_output)]),
     "lep_output_errno": (c_int, [_P(lep_output)]),
     "lep_output_close": (c_int, [_P(lep_output)]),
+    # payload.h
+    "lep_payload_wrench": (c_int, [_P(lep_payload), _P(c_double), _P(c_double)]),
+    "lep_payload_identify": (
+        c_int,
+        [_P(c_double), _P(c_double), c_size_t, _P(lep_payload_fit), _P(c_char), c_size_t],
+    ),
+    "lep_payload_pose_read": (
+        c_int,
+        [c_char_p, _P(c_double), _P(c_uint64), _P(c_char), c_size_t],
+    ),
 }
 
 _SCALARS: Dict[str, Any] = {
@@ -524,6 +563,7 @@ _SCALARS: Dict[str, Any] = {
     "uint16_t": c_uint16,
     "size_t": c_size_t,
     "double": c_double,
+    "uint64_t": c_uint64,
 }
 
 

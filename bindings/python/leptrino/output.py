@@ -84,6 +84,7 @@ def write_recording(rec: Recording, path: str, *, format: str = "csv",
             c.axes, c.status = e.axes, e.status
             for j in range(K.LEP_AXES):
                 c.tare[j] = e.tare[j]
+                c.wrench[j] = e.wrench[j]
         rc = lib.lep_output_write(w, 0, b, 0, evs, nev)
         if rc < 0:
             raise error_for(be, rc, f"{path}: writing")

@@ -276,6 +276,8 @@ class Sensor:
                 gap_from=float(ev.gap_from), gap_to=float(ev.gap_to), lost=int(ev.lost),
                 error=int(ev.error), axes=int(ev.axes), status=int(ev.status),
                 tare=tuple(float(ev.tare[i]) for i in range(K.LEP_AXES)),  # type: ignore[arg-type]
+                wrench=tuple(float(ev.wrench[i])  # type: ignore[arg-type]
+                             for i in range(K.LEP_AXES)),
             ))
         return out
 
@@ -474,6 +476,66 @@ class Sensor:
         for i, v in enumerate(self._vec3(shift if shift is not None else (0.0, 0.0, 0.0))):
             sh[i] = v
         self._check(be.lib.lep_session_set_rotation(self._live(), r, sh))
+
+    # -- payload and limits (leptrino/payload.h; docs/session.md) ------------
+    def set_payload(self, payload: Optional[Any]) -> None:
+        """Remove a tool's gravity wrench from the SI values (raw and zeroed
+        counts stay as measured): a leptrino.Payload (its mass and centre of
+        mass), (mass kg, cx, cy, cz m, sensor frame), or None for none. A tare
+        taken while a payload is set removes the bias only. ValueError for a
+        negative mass or non-finite values. Takes effect from the next sample."""
+        be = self._be
+        c = be.new("lep_payload")
+        if payload is not None:
+            v = [float(x) for x in payload]
+            if len(v) != 4:
+                raise ValueError(f"payload: expected (mass, cx, cy, cz), got {len(v)} numbers")
+            c.mass_kg = v[0]
+            for i in range(3):
+                c.com_m[i] = v[1 + i]
+        if be.lib.lep_session_set_payload(self._live(), c) < 0:
+            raise ValueError(f"payload {payload!r}: a mass >= 0 and finite numbers expected")
+
+    def set_gravity(self, gravity: Sequence[float]) -> None:
+        """Gravity in the sensor frame, m/s² ((0, 0, -9.80665) when the z axis
+        points up); call it as often as the robot moves. ValueError when not
+        three finite numbers."""
+        be = self._be
+        a = np.asarray(gravity, dtype=np.float64)
+        if a.shape != (3,):
+            raise ValueError(f"gravity is (gx, gy, gz) in m/s², got shape {a.shape}")
+        g = be.doubles(3)
+        for i in range(3):
+            g[i] = float(a[i])
+        if be.lib.lep_session_set_gravity(self._live(), g) < 0:
+            raise ValueError(f"gravity {gravity!r}: three finite numbers expected")
+
+    def set_limits(self, limits: Optional[Any] = None, **axes: float) -> None:
+        """Limits on the SI values (compensated, output frame), N and N·m:
+        set_limits(fz=50, mz=2), a dict of the same, six numbers (fx..mz, 0 =
+        none), or None to remove them. Beyond a limit a sample is flagged
+        (LEP_SF_LIMIT) and limit_exceeded / limit_cleared events come with the
+        data. ValueError for a negative or non-finite limit or an unknown axis."""
+        names = ("fx", "fy", "fz", "mx", "my", "mz")
+        v = [0.0] * K.LEP_AXES
+        given: Dict[str, float] = dict(axes)
+        if isinstance(limits, Mapping):
+            given.update(limits)
+        elif limits is not None:
+            seq = [float(x) for x in limits]
+            if len(seq) != K.LEP_AXES:
+                raise ValueError(f"limits: expected 6 numbers (fx..mz), got {len(seq)}")
+            v = seq
+        for name, value in given.items():
+            if name not in names:
+                raise ValueError(f"limits: unknown axis {name!r} (one of {', '.join(names)})")
+            v[names.index(name)] = float(value)
+        be = self._be
+        c = be.doubles(K.LEP_AXES)
+        for i in range(K.LEP_AXES):
+            c[i] = v[i]
+        if be.lib.lep_session_set_limits(self._live(), c) < 0:
+            raise ValueError(f"limits {v}: each must be 0 (none) or > 0, finite")
 
     # -- data ----------------------------------------------------------------
     def read(self) -> Sample:

@@ -17,6 +17,7 @@ _TYPES = {
     K.LEP_SIM_OPT_DOUBLE: "float",
     K.LEP_SIM_OPT_STRING: "str",
     K.LEP_SIM_OPT_CHOICE: "choice",
+    K.LEP_SIM_OPT_NUMBERS: "numbers",
 }
 
 
@@ -26,7 +27,7 @@ class SimOption:
 
     name: str  # as a Python keyword: "output_rate_field"
     flag: str  # as on a command line, without the prefix: "output-rate-field"
-    type: str  # "flag", "int", "uint", "float", "str" or "choice"
+    type: str  # "flag", "int", "uint", "float", "str", "choice" or "numbers"
     arg: Optional[str]  # the argument's name for help ("HZ"); None for flags
     help: str
     default: Optional[str]  # the default as text; None when off or empty
@@ -37,7 +38,7 @@ class SimOption:
     def describe(self) -> str:
         """help, range and default in one line, as leptrino-sim prints them."""
         text = self.help
-        if self.type in ("int", "uint", "float"):
+        if self.type in ("int", "uint", "float", "numbers"):
             lo = "(" if self.min_exclusive else "["
             text += f" {lo}{self.min:g}, {self.max:g}]"
         if self.default is not None:
@@ -75,6 +76,9 @@ def _text(value: Any, is_flag: bool) -> str:
         return "1" if value else "0"
     if isinstance(value, float):
         return repr(value)
+    if not isinstance(value, (str, bytes)) and hasattr(value, "__iter__"):
+        # payload=(m, cx, cy, cz), gravity=(gx, gy, gz): "M,CX,CY,CZ"
+        return ",".join(repr(float(v)) for v in value)
     return str(value)
 
 

@@ -134,6 +134,8 @@ EVENT_NAMES = {
     K.LEP_EV_TARE: "tare",
     K.LEP_EV_OVERLOAD_BEGIN: "overload_begin",
     K.LEP_EV_OVERLOAD_END: "overload_end",
+    K.LEP_EV_LIMIT_EXCEEDED: "limit_exceeded",
+    K.LEP_EV_LIMIT_CLEARED: "limit_cleared",
 }
 
 
@@ -141,7 +143,8 @@ EVENT_NAMES = {
 class SessionEvent:
     """Something the session noticed beside the data (lep_session_event)."""
 
-    type: str  # gap, disconnected, reconnected, tare, overload_begin, overload_end
+    type: str  # gap, disconnected, reconnected, tare, overload_begin, overload_end,
+    #            limit_exceeded, limit_cleared
     sample: int  # index of the sample it applies to (samples delivered before it)
     t: float  # monotonic s
     t_utc: float
@@ -149,9 +152,10 @@ class SessionEvent:
     gap_to: float  # ... and of the first after
     lost: int  # gap: samples estimated lost
     error: int  # disconnected: LEP_E_DISCONNECTED or LEP_E_TIMEOUT
-    axes: int  # overload: bit i = axis i saturated
+    axes: int  # overload: bit i = axis i saturated; limit_exceeded: bit i = axis i beyond
     status: int
     tare: Six  # tare: the offsets now in force, counts
+    wrench: Six = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)  # limit_*: the sample's SI values (N, N·m)
 
     def as_dict(self) -> Dict[str, Any]:
         return {f.name: getattr(self, f.name) for f in fields(self)}
@@ -266,7 +270,8 @@ class Recording:
         """Read a recording written by save(path) to .npz."""
         with np.load(str(path), allow_pickle=False) as z:
             meta = str(z["metadata"])
-            events = [SessionEvent(**{**e, "tare": tuple(e["tare"])})
+            events = [SessionEvent(**{**e, "tare": tuple(e["tare"]),
+                                      "wrench": tuple(e.get("wrench", (0.0,) * 6))})
                       for e in json.loads(str(z["events"]))]
             return cls(t=z["t"], si=z["si"], raw=z["raw"], status=z["status"], seq=z["seq"],
                        t_utc=z["t_utc"], zeroed=z["zeroed"], flags=z["flags"], events=events,

@@ -318,7 +318,7 @@ def test_session_and_output_are_fully_declared(headers: cheaders.Headers) -> Non
     from conftest import ROOT
 
     assert ROOT is not None
-    for header in ("session.h", "output.h"):
+    for header in ("session.h", "output.h", "payload.h"):
         text = (ROOT / "include" / "leptrino" / header).read_text(encoding="utf-8")
         funcs = set(re.findall(r"\bLEP_API\b[^;(]*?\b(lep_\w+)\s*\(", text))
         structs = set(re.findall(r"\btypedef\s+struct\s+\w+\s*\{.*?\}\s*(\w+)\s*;", text, re.S))

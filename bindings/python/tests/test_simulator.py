@@ -21,7 +21,7 @@ def test_options_are_the_c_table(backend: str) -> None:
             "reopen_after", "link"} <= set(names)
     for o in table:
         assert o.flag.replace("-", "_") == o.name and o.help
-        assert o.type in ("flag", "int", "uint", "float", "str", "choice")
+        assert o.type in ("flag", "int", "uint", "float", "str", "choice", "numbers")
         # every default is accepted as given, by name with underscores or dashes
         if o.default is not None and o.type != "str":
             with leptrino.Simulator(backend=backend, **{o.name: o.default}) as port:

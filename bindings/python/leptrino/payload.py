@@ -1,0 +1,138 @@
+"""A tool on the sensor: leptrino.Payload and leptrino.identify_payload.
+
+The model and the identification are the library's (leptrino/payload.h):
+with g the gravity vector in the sensor frame (m/s², (0, 0, -9.80665) when the
+sensor's z axis points up), the sensor reads F = m·g + F_b and
+M = c × (m·g) + M_b. Nothing is computed here; this module converts arrays.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Iterator, Optional, Sequence, Tuple
+
+import numpy as np
+
+from . import _constants as K
+from ._backend import get_backend
+
+Vec3 = Tuple[float, float, float]
+Vec6 = Tuple[float, float, float, float, float, float]
+
+
+@dataclass(frozen=True)
+class Payload:
+    """A payload: mass (kg) and centre of mass (m, sensor frame); from an
+    identification also the sensor's biases (N, N·m), the residual (per axis,
+    RMS over the poses of measured - model, N and N·m), the spread of the
+    poses' gravity vectors (payload.h) and the number of poses.
+
+    Iterating gives (mass, cx, cy, cz): Simulator(payload=p) takes it, and
+    str(p.argument) is the --payload / --sim-payload argument."""
+
+    mass: float
+    com: Vec3
+    force_bias: Vec3 = (0.0, 0.0, 0.0)
+    torque_bias: Vec3 = (0.0, 0.0, 0.0)
+    residual: Vec6 = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    spread: float = 0.0
+    poses: int = 0
+
+    def __iter__(self) -> Iterator[float]:
+        yield float(self.mass)
+        yield from (float(c) for c in self.com)
+
+    @property
+    def argument(self) -> str:
+        """"M,CX,CY,CZ", as `leptrino stream --payload` and `--sim-payload` take it."""
+        return ",".join(repr(v) for v in self)
+
+    def wrench(self, gravity: Sequence[float], backend: Optional[str] = None) -> Vec6:
+        """The gravity wrench (fx, fy, fz, mx, my, mz) of this payload at
+        gravity (sensor frame), N and N·m: lep_payload_wrench. ValueError for
+        a negative mass or non-finite values."""
+        be = get_backend(backend)
+        p = _c_payload(be, self)
+        g = be.doubles(3)
+        gv = _vector(gravity, 3, "gravity")
+        for i in range(3):
+            g[i] = float(gv[i])
+        w = be.doubles(6)
+        rc = be.lib.lep_payload_wrench(p, g, w)
+        if rc < 0:
+            raise ValueError(f"payload {self.argument} at gravity {tuple(gv)}: "
+                             "not finite, or a negative mass")
+        return tuple(float(w[i]) for i in range(6))  # type: ignore[return-value]
+
+
+def _vector(v: Any, n: int, what: str) -> Any:
+    a = np.asarray(v, dtype=np.float64)
+    if a.shape != (n,):
+        raise ValueError(f"{what}: expected {n} numbers, got shape {a.shape}")
+    return a
+
+
+def _c_payload(be: Any, p: Payload) -> Any:
+    c = be.new("lep_payload")
+    c.mass_kg = float(p.mass)
+    com = _vector(p.com, 3, "com")
+    for i in range(3):
+        c.com_m[i] = float(com[i])
+    return c
+
+
+def identify_payload(gravity: Any, wrenches: Any, backend: Optional[str] = None) -> Payload:
+    """Identify a payload and the sensor's biases from N >= 3 static poses.
+
+    gravity: N×3 (m/s², sensor frame, one row per pose); wrenches: N×6, the
+    mean wrench measured at each pose (fx, fy, fz in N, mx, my, mz in N·m, not
+    tared). Linear least squares in C (lep_payload_identify; Kubus, Kröger and
+    Wahl, 2008). Raises ValueError with the library's message for arrays of
+    the wrong shape, NaN or infinite values, or poses that do not determine
+    the payload (fewer than 3, gravity in too few distinct directions, a mass
+    found not positive): a degenerate set is refused, never answered."""
+    be = get_backend(backend)
+    g = np.ascontiguousarray(gravity, dtype=np.float64)
+    w = np.ascontiguousarray(wrenches, dtype=np.float64)
+    if g.ndim != 2 or g.shape[1] != 3:
+        raise ValueError(f"gravity: expected an N×3 array, got shape {g.shape}")
+    if w.ndim != 2 or w.shape[1] != 6:
+        raise ValueError(f"wrenches: expected an N×6 array, got shape {w.shape}")
+    if g.shape[0] != w.shape[0]:
+        raise ValueError(f"gravity has {g.shape[0]} poses, wrenches {w.shape[0]}")
+    fit = be.new("lep_payload_fit")
+    err = be.new_text(256)
+    rc = be.lib.lep_payload_identify(be.array_ptr(g, "double"), be.array_ptr(w, "double"),
+                                     g.shape[0], fit, err, 256)
+    if rc < 0:
+        what = "bad input" if rc == K.LEP_E_ARG else "degenerate poses"
+        raise ValueError(be.text(err) or what)
+    return Payload(
+        mass=float(fit.payload.mass_kg),
+        com=tuple(float(fit.payload.com_m[i]) for i in range(3)),  # type: ignore[arg-type]
+        force_bias=tuple(float(fit.force_bias_N[i]) for i in range(3)),  # type: ignore[arg-type]
+        torque_bias=tuple(float(fit.torque_bias_Nm[i]) for i in range(3)),  # type: ignore
+        residual=tuple(float(fit.residual[i]) for i in range(6)),  # type: ignore[arg-type]
+        spread=float(fit.spread),
+        poses=int(fit.poses),
+    )
+
+
+def read_pose(path: str, backend: Optional[str] = None) -> Tuple[Vec6, int]:
+    """The mean wrench of a pose recorded with `leptrino stream` (CSV), in the
+    sensor frame and untared, and how many samples it averages
+    (lep_payload_pose_read). ValueError / FileNotFoundError / OSError with the
+    library's message naming the file."""
+    be = get_backend(backend)
+    mean = be.doubles(6)
+    n = be.new_scalar("uint64_t")
+    err = be.new_text(512)
+    rc = be.lib.lep_payload_pose_read(str(path).encode(), mean, n, err, 512)
+    if rc < 0:
+        msg = be.text(err) or str(path)
+        if rc == K.LEP_E_NOT_FOUND:
+            raise FileNotFoundError(msg)
+        if rc == K.LEP_E_IO:
+            raise OSError(msg)
+        raise ValueError(msg)
+    return tuple(float(mean[i]) for i in range(6)), int(be.value(n))  # type: ignore[return-value]

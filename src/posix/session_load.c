@@ -1,0 +1,156 @@
+/* Host session, the load on the sensor: the payload's gravity wrench removed
+ * from the SI values (leptrino/payload.h, the one implementation of the
+ * model), and per-axis limits on what is left, with their episodes. Called by
+ * session_proc.c; calls session_events.c. */
+#define _POSIX_C_SOURCE 200809L
+
+#include <math.h>
+#include <string.h>
+
+#include "errmsg.h"
+#include "leptrino/error.h"
+#include "session_priv.h"
+
+/* A limit episode ends when every axis is back within this share of its limit. */
+#define LIMIT_CLEAR 0.95
+
+static const char *const axis_name[LEP_AXES] = { "fx", "fy", "fz", "mx", "my", "mz" };
+
+static bool limits_ok(const double limit[LEP_AXES], int *bad)
+{
+    int k;
+    for (k = 0; k < LEP_AXES; k++) {
+        if (!isfinite(limit[k]) || limit[k] < 0.0) {
+            *bad = k;
+            return false;
+        }
+    }
+    return true;
+}
+
+int lep_priv_load_check(const lep_session_options *o, char *err, size_t errlen)
+{
+    double w[LEP_AXES];
+    int bad = 0;
+    if (lep_payload_wrench(&o->payload, o->gravity, w) != LEP_OK) {
+        lep_priv_set_err(err, errlen,
+                         "session: payload (mass %g kg, com %g %g %g m) or gravity (%g %g %g): "
+                         "a mass >= 0 and finite numbers expected",
+                         o->payload.mass_kg, o->payload.com_m[0], o->payload.com_m[1],
+                         o->payload.com_m[2], o->gravity[0], o->gravity[1], o->gravity[2]);
+        return LEP_E_ARG;
+    }
+    if (!limits_ok(o->limit, &bad)) {
+        lep_priv_set_err(err, errlen, "session: limit %s %g: must be 0 (none) or > 0",
+                         axis_name[bad], o->limit[bad]);
+        return LEP_E_ARG;
+    }
+    return LEP_OK;
+}
+
+void lep_priv_load_init(session_load *l, const lep_session_options *o)
+{
+    memset(l, 0, sizeof *l);
+    l->payload = o->payload;
+    memcpy(l->gravity, o->gravity, sizeof l->gravity);
+    memcpy(l->limit, o->limit, sizeof l->limit);
+    (void)lep_payload_wrench(&l->payload, l->gravity, l->wrench); /* checked at open */
+}
+
+void lep_priv_load_start(session_load *l)
+{
+    l->beyond = false;
+}
+
+void lep_priv_load_compensate(const session_load *l, double si[LEP_AXES])
+{
+    int k;
+    for (k = 0; k < LEP_AXES; k++)
+        si[k] -= l->wrench[k];
+}
+
+void lep_priv_load_counts(const session_load *l, const lep_rated *rated, double counts[LEP_AXES])
+{
+    int k;
+    for (k = 0; k < LEP_AXES; k++)
+        counts[k] = l->wrench[k] * (double)LEP_RAW_FULL_SCALE / (double)rated->axis[k];
+}
+
+uint8_t lep_priv_load_limits(lep_session *s, const double si[LEP_AXES], double t, uint64_t sample)
+{
+    session_load *l = &s->load;
+    uint8_t axes = 0, near = 0;
+    int k;
+    for (k = 0; k < LEP_AXES; k++) {
+        double a = fabs(si[k]);
+        if (l->limit[k] <= 0.0)
+            continue;
+        if (a > l->limit[k])
+            axes |= (uint8_t)(1u << k);
+        if (a > LIMIT_CLEAR * l->limit[k])
+            near |= (uint8_t)(1u << k);
+    }
+    if (axes != 0u ? !l->beyond : (l->beyond && near == 0u)) {
+        lep_session_event ev;
+        l->beyond = axes != 0u;
+        lep_priv_event_init(&ev, l->beyond ? LEP_EV_LIMIT_EXCEEDED : LEP_EV_LIMIT_CLEARED, sample,
+                            t);
+        ev.axes = axes;
+        memcpy(ev.wrench, si, sizeof ev.wrench);
+        lep_priv_events_push(&s->events, &ev);
+    }
+    return axes != 0u ? LEP_SF_LIMIT : 0u;
+}
+
+/* ---- the any-thread setters ---- */
+
+int lep_session_set_payload(lep_session *s, const lep_payload *p)
+{
+    static const lep_payload none = { 0.0, { 0.0, 0.0, 0.0 } };
+    double w[LEP_AXES];
+    if (s == NULL)
+        return LEP_E_ARG;
+    if (p == NULL)
+        p = &none;
+    pthread_mutex_lock(&s->mu);
+    if (lep_payload_wrench(p, s->load.gravity, w) != LEP_OK) {
+        pthread_mutex_unlock(&s->mu);
+        return LEP_E_ARG;
+    }
+    s->load.payload = *p;
+    memcpy(s->load.wrench, w, sizeof w);
+    pthread_mutex_unlock(&s->mu);
+    return LEP_OK;
+}
+
+int lep_session_set_gravity(lep_session *s, const double gravity[3])
+{
+    double w[LEP_AXES];
+    if (s == NULL || gravity == NULL)
+        return LEP_E_ARG;
+    pthread_mutex_lock(&s->mu);
+    if (lep_payload_wrench(&s->load.payload, gravity, w) != LEP_OK) {
+        pthread_mutex_unlock(&s->mu);
+        return LEP_E_ARG;
+    }
+    memcpy(s->load.gravity, gravity, sizeof s->load.gravity);
+    memcpy(s->load.wrench, w, sizeof w);
+    pthread_mutex_unlock(&s->mu);
+    return LEP_OK;
+}
+
+int lep_session_set_limits(lep_session *s, const double limit[LEP_AXES])
+{
+    static const double none[LEP_AXES] = { 0 };
+    int bad;
+    if (s == NULL)
+        return LEP_E_ARG;
+    if (limit == NULL)
+        limit = none;
+    if (!limits_ok(limit, &bad))
+        return LEP_E_ARG;
+    pthread_mutex_lock(&s->mu);
+    memcpy(s->load.limit, limit, sizeof s->load.limit);
+    pthread_mutex_unlock(&s->mu);
+    return LEP_OK;
+}
