@@ -11,11 +11,20 @@
  * status bits and the session's flags. Events (gaps, disconnects,
  * reconnects, tare changes, overload begin/end) are queued beside the data.
  *
- * Threads: one thread drives a session (open, start, read, stop, close).
- * lep_session_tare, _untare, _set_tare, _get_tare, _set_lowpass,
- * _set_rotation, _get_health and _get_metadata may also be called from other
- * threads at any time (a mutex inside the session); they never block on I/O.
- * Sessions are independent: several in one process just work.
+ * Threads: the driving calls (lep_session_start, _read, _stop,
+ * _set_latency) are for one thread at a time. One made while another thread
+ * is inside a driving call is refused: it returns LEP_E_STATE at once and
+ * changes nothing (no wait, no shared data). lep_session_tare, _untare,
+ * _set_tare, _get_tare, _taring, _set_lowpass, _set_rotation, _get_health,
+ * _get_metadata, _metadata_json and _next_event may be called from any thread
+ * at any time before close (a mutex inside the session); they never block on
+ * I/O. lep_session_close may be called from another thread while a driving
+ * call runs: that call returns LEP_E_STATE within about 50 ms (plus the
+ * latency budget; start and stop finish their transaction first) and close
+ * waits for it to return before freeing. After close has begun no call may
+ * be made (the handle is freed: the caller orders that, as Python's Sensor
+ * does). The client and the sim (lep_session_client, _sim) belong to the
+ * driving thread. Sessions are independent: several in one process just work.
  *
  * Errors are LEP_E_* codes (leptrino/error.h); functions taking err/errlen
  * also write a one-line message there (naming the port) when err is not NULL. */
@@ -181,11 +190,13 @@ LEP_API int lep_session_open(const lep_session_options *o, lep_session **out, ch
                              size_t errlen);
 
 /* Stop the stream if running (best effort), close the port, stop the virtual
- * sensor, free. NULL is fine. */
+ * sensor, free. NULL is fine. Safe while another thread is inside a driving
+ * call (it returns LEP_E_STATE first; see Threads above); call it once. */
 LEP_API void lep_session_close(lep_session *s);
 
 /* Start streaming (resends and recovery as in the client); clears the
- * health counters and sets start_utc. LEP_E_STATE when already streaming. */
+ * health counters and sets start_utc. LEP_E_STATE when already streaming
+ * (or another thread is inside a driving call). */
 LEP_API int lep_session_start(lep_session *s);
 
 /* Stop streaming. Samples already received and not yet read are lost. */
@@ -199,8 +210,9 @@ LEP_API int lep_session_stop(lep_session *s);
  * reconnect, after data_timeout_ms of silence the stream counts as lost:
  * LEP_E_TIMEOUT then and on later calls); LEP_E_END once duration_s or count
  * is reached (the samples up to the limit are appended first);
- * LEP_E_DISCONNECTED without reconnect; LEP_E_STATE when not streaming;
- * LEP_E_ARG. Samples are never lost across calls: a full b leaves the rest
+ * LEP_E_DISCONNECTED without reconnect; LEP_E_STATE when not streaming,
+ * when another thread is inside a driving call, or when lep_session_close
+ * began in another thread; LEP_E_ARG. Samples are never lost across calls: a full b leaves the rest
  * queued for the next call. With reconnect the session reconnects inside this
  * call and reports it as events. */
 LEP_API int lep_session_read(lep_session *s, lep_session_batch *b, int timeout_ms);

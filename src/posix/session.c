@@ -191,6 +191,12 @@ int lep_session_open(const lep_session_options *o, lep_session **out, char *err,
         lep_priv_set_err(err, errlen, "session: cannot create a mutex");
         return LEP_E_IO;
     }
+    if (lep_priv_guard_init(&s->guard) != LEP_OK) {
+        pthread_mutex_destroy(&s->mu);
+        free(s);
+        lep_priv_set_err(err, errlen, "session: cannot create a mutex");
+        return LEP_E_IO;
+    }
     s->opt = *o;
     s->conn = CONN_DOWN;
     s->sensor_filter = -1;
@@ -248,24 +254,28 @@ int lep_session_open(const lep_session_options *o, lep_session **out, char *err,
     return LEP_OK;
 }
 
+static int session_stop(lep_session *s);
+
 void lep_session_close(lep_session *s)
 {
     if (s == NULL)
         return;
+    /* a driving call in another thread returns (LEP_E_STATE) before this goes on */
+    if (!lep_priv_guard_close(&s->guard))
+        return; /* another thread is closing it */
     if (s->streaming)
-        (void)lep_session_stop(s);
+        (void)session_stop(s);
     lep_priv_session_disconnect(s);
     lep_sim_stop(s->sim);
+    lep_priv_guard_destroy(&s->guard);
     pthread_mutex_destroy(&s->mu);
     free(s);
 }
 
-int lep_session_start(lep_session *s)
+static int session_start(lep_session *s)
 {
     int rc;
     double now;
-    if (s == NULL)
-        return LEP_E_ARG;
     if (s->streaming)
         return LEP_E_STATE;
     if (s->conn != CONN_UP)
@@ -305,11 +315,29 @@ int lep_session_start(lep_session *s)
     return LEP_OK;
 }
 
+int lep_session_start(lep_session *s)
+{
+    int rc;
+    if (s == NULL)
+        return LEP_E_ARG;
+    rc = lep_priv_guard_enter(&s->guard);
+    if (rc != LEP_OK)
+        return rc;
+    rc = session_start(s);
+    lep_priv_guard_leave(&s->guard);
+    return rc;
+}
+
 int lep_session_set_latency(lep_session *s, int latency_ms)
 {
+    int rc;
     if (s == NULL || latency_ms < 0 || latency_ms > 10000)
         return LEP_E_ARG;
+    rc = lep_priv_guard_enter(&s->guard);
+    if (rc != LEP_OK)
+        return rc;
     s->opt.latency_ms = latency_ms;
+    lep_priv_guard_leave(&s->guard);
     return LEP_OK;
 }
 
@@ -318,11 +346,9 @@ int lep_session_latency(const lep_session *s)
     return s != NULL ? s->opt.latency_ms : 0;
 }
 
-int lep_session_stop(lep_session *s)
+static int session_stop(lep_session *s)
 {
     int rc = LEP_OK;
-    if (s == NULL)
-        return LEP_E_ARG;
     if (!s->streaming)
         return LEP_E_STATE;
     s->streaming = false;
@@ -338,6 +364,19 @@ int lep_session_stop(lep_session *s)
     s->tare_hold = false;
     pthread_mutex_unlock(&s->mu);
     return rc == LEP_E_DISCONNECTED ? LEP_OK : rc;
+}
+
+int lep_session_stop(lep_session *s)
+{
+    int rc;
+    if (s == NULL)
+        return LEP_E_ARG;
+    rc = lep_priv_guard_enter(&s->guard);
+    if (rc != LEP_OK)
+        return rc;
+    rc = session_stop(s);
+    lep_priv_guard_leave(&s->guard);
+    return rc;
 }
 
 lep_client *lep_session_client(lep_session *s)

@@ -59,6 +59,15 @@ typedef struct session_lowpass {
 
 enum session_conn { CONN_UP = 0, CONN_DOWN = 1 };
 
+/* The public entry points' thread guard (session_guard.c). */
+typedef struct session_guard {
+    pthread_mutex_t mu;
+    pthread_cond_t left; /* a call left */
+    unsigned inside;     /* threads inside a driving call (0 or 1) */
+    bool driving;        /* a driving call (start, read, stop, set_latency) runs */
+    bool closing;        /* lep_session_close has begun */
+} session_guard;
+
 struct lep_session {
     lep_session_options opt; /* copied; strings point into the buffers below */
     char port_buf[256];
@@ -148,6 +157,8 @@ struct lep_session {
     lep_session_event ev[SESSION_EVENTS];
     size_t ev_head, ev_len;
     uint64_t ev_pushed; /* events queued since open (to tell a read it has news) */
+
+    session_guard guard; /* the driving calls' thread guard, and close's */
 };
 
 /* session.c */
@@ -157,7 +168,19 @@ void lep_priv_session_disconnect(lep_session *s);
  * processing (they are stepped at once). */
 void lep_priv_session_stream_reset(lep_session *s, double now);
 
+/* session_guard.c: enter refuses (LEP_E_STATE) while another thread drives
+ * or a close has begun; close marks the session closing and waits until no
+ * thread is inside (true the first time). */
+int lep_priv_guard_init(session_guard *g);
+void lep_priv_guard_destroy(session_guard *g);
+int lep_priv_guard_enter(session_guard *g);
+void lep_priv_guard_leave(session_guard *g);
+bool lep_priv_guard_closing(session_guard *g);
+bool lep_priv_guard_close(session_guard *g);
+
 /* session_stream.c */
+/* lep_session_read's work, for one thread (session_guard.c calls it). */
+int lep_priv_session_read(lep_session *s, lep_session_batch *b, int timeout_ms);
 void lep_priv_session_push_event(lep_session *s, const lep_session_event *ev); /* [mu] held */
 void lep_priv_session_event_init(lep_session_event *ev, int type, uint64_t sample, double t_mono);
 double lep_priv_utc_offset(void);

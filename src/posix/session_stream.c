@@ -464,7 +464,7 @@ static void deliver(lep_session *s, lep_session_batch *b, double *first)
         s->pend_head = 0;
 }
 
-int lep_session_read(lep_session *s, lep_session_batch *b, int timeout_ms)
+int lep_priv_session_read(lep_session *s, lep_session_batch *b, int timeout_ms)
 {
     double budget = s != NULL ? (double)s->opt.latency_ms / 1000.0 : 0.0;
     double deadline, first = -1.0;

@@ -464,6 +464,10 @@ static int loop(stream_state *st)
             batch_init(st, &b);
             rc = lep_session_read(r->s, &b, st->n > 1 || st->keys ? 0 : WAIT_MS);
             emit(st, r, &b);
+            /* a quiet source: what was written reaches the file now (the
+             * writer itself flushes a file every 100 ms while rows come) */
+            if (b.n == 0 && st->write_error == 0 && lep_output_flush(r->w) != LEP_OK)
+                st->write_error = lep_output_errno(r->w) != 0 ? lep_output_errno(r->w) : EIO;
             if (rc == LEP_E_END)
                 r->done = true;
             else if (rc != LEP_OK && rc != LEP_E_TIMEOUT && r->failed == 0)

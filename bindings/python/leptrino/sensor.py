@@ -3,23 +3,32 @@
 Everything a session does (start-up recovery, tare, host low-pass,
 decimation, rotation, gap detection, reconnect, health, metadata) runs in C
 (leptrino/session.h); this module moves its batches into numpy arrays and
-turns its structs into Python values. Not thread-safe: one thread drives a
-Sensor (tare, untare, the tare offsets, the low-pass, the rotation, health
-and metadata may also be used from other threads, as the session allows).
+turns its structs into Python values.
+
+Threads: one thread at a time drives a Sensor (record, stream, read, start,
+stop, filter, stats, tare with wait); another thread's driving call raises
+StateError at once (nothing waits, nothing is shared). tare (without wait),
+untare, the tare offsets, the low-pass, the frame, health and metadata may be
+used from any thread. close() from any thread is safe: a call in progress in
+another thread raises StateError at its next read and close() waits for it
+(leptrino/_guard.py).
 """
 
 from __future__ import annotations
 
+import functools
 import json
 import math
 import time
 import warnings
-from typing import Any, Dict, Iterator, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import (Any, Callable, Dict, Iterator, List, Mapping, Optional, Sequence, Tuple,
+                    TypeVar, Union, cast)
 
 import numpy as np
 
 from . import _constants as K
 from ._backend import get_backend
+from ._guard import Guard
 from .errors import LeptrinoError, error_for
 from .values import (
     EVENT_NAMES,
@@ -45,6 +54,27 @@ _RECORD_LATENCY_MS = 100
 #: Reads after the end of record(seconds=...) that collect what the budget
 #: held back (each takes one batch of what the kernel buffered).
 _RECORD_FINAL_READS = 64
+
+
+_F = TypeVar("_F", bound=Callable[..., Any])
+
+
+def _driving(fn: _F) -> _F:
+    """A call only the driving thread makes (StateError from another thread)."""
+    @functools.wraps(fn)
+    def wrap(self: "Sensor", *a: Any, **k: Any) -> Any:
+        with self._guard.drive(self.port):
+            return fn(self, *a, **k)
+    return cast(_F, wrap)
+
+
+def _any_thread(fn: _F) -> _F:
+    """A call any thread may make (close() waits for it)."""
+    @functools.wraps(fn)
+    def wrap(self: "Sensor", *a: Any, **k: Any) -> Any:
+        with self._guard.call(self.port):
+            return fn(self, *a, **k)
+    return cast(_F, wrap)
 
 
 class PowerCycleWarning(UserWarning):
@@ -116,9 +146,11 @@ class Sensor:
         nominal_hz: float = 0.0,
         backend: Optional[str] = None,
     ) -> None:
+        self._guard = Guard()
+        self.port: str = str(port or "virtual sensor")
+        self._s: Any = None
         self._be = be = get_backend(backend)
         lib = be.lib
-        self._s: Any = None
         if not timeout > 0:
             raise ValueError("timeout must be > 0 seconds")
         if not 0 <= retries <= 255:
@@ -168,7 +200,7 @@ class Sensor:
                 raise ValueError(msg or "bad session options")
             raise error_for(be, rc, msg or str(port or "virtual sensor"), complete=bool(msg))
         self._s = be.handle(out)
-        self.port: str = be.text(lib.lep_session_port(self._s))
+        self.port = be.text(lib.lep_session_port(self._s))
         try:
             client = lib.lep_session_client(self._s)
             self._check(lib.lep_client_set_retries(client, retries))
@@ -221,13 +253,22 @@ class Sensor:
 
     def close(self) -> None:
         """Stop a running stream (best effort), release the port, stop the
-        session's virtual sensor. Idempotent."""
-        if self._s is not None:
-            s, self._s = self._s, None
-            self._be.lib.lep_session_close(s)
+        session's virtual sensor. Idempotent. Safe from any thread: a call in
+        progress in another thread raises StateError and is waited for."""
+        if getattr(self, "_s", None) is None:
+            return
+
+        def free() -> None:
+            if self._s is not None:
+                s, self._s = self._s, None
+                self._be.lib.lep_session_close(s)
+
+        self._guard.close(free)
 
     # -- helpers -------------------------------------------------------------
     def _live(self) -> Any:
+        if self._guard.closing and self._s is not None:
+            raise self._guard.closed_error(self.port)
         if self._s is None:
             raise LeptrinoError(f"{self.port}: the sensor is closed", K.LEP_E_STATE)
         return self._s
@@ -248,6 +289,7 @@ class Sensor:
             raise error_for(self._be, rc, what or self.port, result=result, command=command)
         return rc
 
+    @_any_thread
     def _metadata_struct(self) -> Any:
         m = self._be.new("lep_session_metadata")
         self._be.lib.lep_session_get_metadata(self._live(), m)
@@ -325,6 +367,7 @@ class Sensor:
         The library's own JSON object (lep_session_metadata_json), as a dict."""
         return dict(json.loads(self.metadata_json()))
 
+    @_any_thread
     def metadata_json(self) -> str:
         """The metadata as the library writes it (one JSON object)."""
         be = self._be
@@ -340,6 +383,7 @@ class Sensor:
             return str(be.bytes_at(buf, int(be.value(n))).decode("utf-8"))
 
     @property
+    @_any_thread
     def health(self) -> Health:
         """Measured against nominal rate, samples lost, gaps, errors, overloads,
         reconnects, since the stream started."""
@@ -357,6 +401,7 @@ class Sensor:
         )
 
     @property
+    @_driving
     def stats(self) -> ClientStats:
         """The current connection's client counters (messages, BCC errors, NAKs, ...)."""
         st = self._be.new("lep_client_stats")
@@ -364,10 +409,12 @@ class Sensor:
         return copy_fields(ClientStats, st)  # type: ignore[no-any-return]
 
     @property
+    @_any_thread
     def streaming(self) -> bool:
         return bool(self._be.lib.lep_session_streaming(self._live()))
 
     @property
+    @_driving
     def filter(self) -> int:
         """The sensor's digital filter code in effect (0 off, 1..3; see filter_label)."""
         code = self._be.new_scalar("uint8_t")
@@ -376,6 +423,7 @@ class Sensor:
         return int(self._be.value(code))
 
     @filter.setter
+    @_driving
     def filter(self, code: int) -> None:
         if not 0 <= int(code) <= K.LEP_FILTER_MAX:
             raise ValueError(f"filter code must be 0..{K.LEP_FILTER_MAX}, not {code}")
@@ -388,6 +436,7 @@ class Sensor:
             stacklevel=2,
         )
 
+    @_driving
     def filter_label(self, code: Optional[int] = None) -> str:
         """The spec's label of a filter code ("off", "10 Hz", ...); models differ."""
         if code is None:
@@ -395,6 +444,7 @@ class Sensor:
         return str(self._be.text(self._be.lib.lep_filter_label(int(code) & 0xFF)))
 
     # -- processing ----------------------------------------------------------
+    @_any_thread
     def tare(self, n: int = 100, seconds: Optional[float] = None,
              wait: Optional[bool] = None) -> Optional[Tuple[float, ...]]:
         """Zero on the mean raw counts of the next n samples (or of seconds).
@@ -416,35 +466,43 @@ class Sensor:
             wait = not streaming
         if not wait:
             return None
+        self._guard.hold(self.port)  # reads the stream: the driving thread's part
         started = False
-        if not streaming:
-            self.start()
-            started = True
         try:
+            if not streaming:
+                self.start()
+                started = True
             arrays = _Arrays(self._be, _ITER_BATCH)
             while lib.lep_session_taring(s):
                 arrays.c.n = 0
                 rc = lib.lep_session_read(s, arrays.c, self._timeout_ms)
+                self._guard.check(self.port)
                 self._delivered += arrays.n
                 if rc < 0 and rc != K.LEP_E_END:
                     self._check(rc, None, f"{self.port}: tare")
                 self.events += self._drain_events()
         finally:
-            if started and self._s is not None:
-                lib.lep_session_stop(self._s)
+            try:
+                if started and self._s is not None:
+                    lib.lep_session_stop(self._s)
+            finally:
+                self._guard.release()
         return self.tare_offsets
 
+    @_any_thread
     def untare(self) -> None:
         """Remove the tare (offsets zero); cancels a tare in progress."""
         self._check(self._be.lib.lep_session_untare(self._live()))
 
     @property
+    @_any_thread
     def tare_offsets(self) -> Tuple[float, ...]:
         """The tare offsets in raw counts (zeros when not tared); settable."""
         self._be.lib.lep_session_get_tare(self._live(), self._offsets)
         return tuple(float(self._offsets[i]) for i in range(K.LEP_AXES))
 
     @tare_offsets.setter
+    @_any_thread
     def tare_offsets(self, counts: Sequence[float]) -> None:
         a = np.asarray(counts, dtype=np.float64)
         if a.shape != (K.LEP_AXES,):
@@ -455,20 +513,24 @@ class Sensor:
         self._check(self._be.lib.lep_session_set_tare(self._live(), buf))
 
     @property
+    @_any_thread
     def tared(self) -> bool:
         return bool(self._be.lib.lep_session_get_tare(self._live(), self._offsets))
 
     @property
+    @_any_thread
     def taring(self) -> bool:
         """True while a tare is averaging."""
         return bool(self._be.lib.lep_session_taring(self._live()))
 
     @property
+    @_any_thread
     def lowpass(self) -> float:
         """Host low-pass cut-off in Hz (0 off); settable at any time."""
         return float(self._metadata_struct().lowpass_hz)
 
     @lowpass.setter
+    @_any_thread
     def lowpass(self, cutoff_hz: float) -> None:
         rc = self._be.lib.lep_session_set_lowpass(self._live(), float(cutoff_hz))
         if rc == K.LEP_E_VALUE:
@@ -477,17 +539,20 @@ class Sensor:
         self._check(rc)
 
     @property
+    @_any_thread
     def rotation(self) -> np.ndarray:
         """The output frame's rotation matrix (3x3)."""
         m = self._metadata_struct()
         return np.array([float(m.rotation[i]) for i in range(9)]).reshape(3, 3)
 
     @property
+    @_any_thread
     def shift(self) -> Tuple[float, float, float]:
         """The moment reference point (x, y, z), metres, in the output frame."""
         m = self._metadata_struct()
         return (float(m.shift_m[0]), float(m.shift_m[1]), float(m.shift_m[2]))
 
+    @_any_thread
     def set_frame(self, rotation: Optional[Sequence[Any]] = None,
                   shift: Optional[Sequence[float]] = None) -> None:
         """Output in another frame: rotation as (roll, pitch, yaw) radians or a
@@ -503,6 +568,7 @@ class Sensor:
         self._check(be.lib.lep_session_set_rotation(self._live(), r, sh))
 
     # -- data ----------------------------------------------------------------
+    @_driving
     def read(self) -> Sample:
         """One sample in handshake mode (command 0x30), outside the stream:
         raw counts and SI values as the sensor gave them (no tare, filter or
@@ -516,12 +582,14 @@ class Sensor:
                                 list(self._sample_c.raw), self._sample_c.status,
                                 self._sample_c.reserved)
 
+    @_driving
     def start(self) -> None:
         """Start the stream (stream(), record() and tare() do it themselves)."""
         self._check(self._be.lib.lep_session_start(self._live()), K.LEP_CMD_START)
         self._delivered = 0  # samples read since the start: the events' .sample base
         self._start_mono = float(self._metadata_struct().start_mono)
 
+    @_driving
     def stop(self) -> None:
         """Stop the stream; samples received and not yet read are dropped."""
         self._check(self._be.lib.lep_session_stop(self._live()), K.LEP_CMD_STOP)
@@ -536,6 +604,7 @@ class Sensor:
         """
         return Stream(self, count, seconds)
 
+    @_driving
     def record(self, seconds: Optional[float] = None, count: Optional[int] = None) -> Recording:
         """Record seconds of the stream, or count samples, into numpy arrays.
 
@@ -604,6 +673,7 @@ class Sensor:
                 arrays.reserve(n + room)
                 arrays.c.cap = n + room
                 rc = lib.lep_session_read(s, arrays.c, max(1, int(wait_s * 1000)))
+                self._guard.check(self.port)
                 if seconds is not None and n == 0 and arrays.n > 0:
                     end = float(arrays.t_mono[0]) + seconds
                 self._delivered += arrays.n - n
@@ -743,9 +813,14 @@ class Stream:
             return
         s = self._sensor
         lib = s._be.lib
-        if not lib.lep_session_streaming(s._live()):
-            s.start()
-            self._started = True
+        s._guard.hold(s.port)  # the iterator's thread drives the sensor until close()
+        try:
+            if not lib.lep_session_streaming(s._live()):
+                s.start()
+                self._started = True
+        except BaseException:
+            s._guard.release()
+            raise
         self._open = True
         self._base = s._delivered
 
@@ -754,9 +829,12 @@ class Stream:
         if self._open:
             self._open = False
             s = self._sensor
-            if self._started and not s.closed and s.streaming:
-                self._started = False
-                s.stop()
+            try:
+                if self._started and not s.closed and not s._guard.closing and s.streaming:
+                    self._started = False
+                    s.stop()
+            finally:
+                s._guard.release()
 
     def __iter__(self) -> Iterator[Sample]:
         self._begin()
@@ -783,6 +861,10 @@ class Stream:
         return sample
 
     def _fill(self) -> Sample:
+        with self._sensor._guard.drive(self._sensor.port):
+            return self._fill_held()
+
+    def _fill_held(self) -> Sample:
         s = self._sensor
         lib = s._be.lib
         a = self._arrays
@@ -798,6 +880,7 @@ class Stream:
                 left = self._end - float(lib.lep_monotonic_seconds())
                 wait = max(1, min(wait, int(math.ceil(left * 1000))))
             rc = lib.lep_session_read(s._live(), a.c, wait)
+            s._guard.check(s.port)
             now = float(lib.lep_monotonic_seconds())
             if a.n == 0 and left <= 0:
                 self.close()  # past the end and nothing more arrived before it
