@@ -27,6 +27,7 @@ from typing import (Any, Callable, Dict, Iterator, List, Mapping, Optional, Sequ
 import numpy as np
 
 from . import _constants as K
+from . import _args as A
 from ._backend import get_backend
 from ._guard import Guard
 from .errors import LeptrinoError, error_for
@@ -93,9 +94,7 @@ def product_info_from(be: Any, c: Any) -> ProductInfo:
 
 
 def _ms(seconds: float, what: str) -> int:
-    if not seconds >= 0 or math.isinf(seconds):
-        raise ValueError(f"{what} must be a finite number of seconds >= 0, not {seconds!r}")
-    return int(math.ceil(seconds * 1000))
+    return int(math.ceil(A.number("Sensor", what, seconds, 0.0, 3600.0) * 1000))
 
 
 class Sensor:
@@ -120,8 +119,9 @@ class Sensor:
       each sample as soon as it is read (a control loop).
     tare: tare over the first N samples after the stream starts.
     lowpass: host low-pass cut-off in Hz (0 off); decimate: keep every Nth.
-    rotation: (roll, pitch, yaw) in radians or a 3x3 matrix; shift: the moment
-      reference point (x, y, z) in metres, in the output frame.
+    rotation: (roll, pitch, yaw) in degrees (as `leptrino --rotate` and
+      `leptrino-bridge --rotate`; degrees=False: radians) or a 3x3 matrix;
+      shift: the moment reference point (x, y, z) in metres, in the output frame.
     reconnect: reopen the port after a disconnect (with backoff) and go on.
     data_timeout: no data for this long while streaming is a disconnect.
     """
@@ -145,20 +145,25 @@ class Sensor:
         gap_periods: float = 3.0,
         nominal_hz: float = 0.0,
         backend: Optional[str] = None,
+        degrees: bool = True,
     ) -> None:
         self._guard = Guard()
         self.port: str = str(port or "virtual sensor")
         self._s: Any = None
         self._be = be = get_backend(backend)
         lib = be.lib
-        if not timeout > 0:
-            raise ValueError("timeout must be > 0 seconds")
-        if not 0 <= retries <= 255:
-            raise ValueError("retries must be 0..255")
-        if int(decimate) < 1:
-            raise ValueError("decimate must be >= 1")
-        if int(tare) < 0:
-            raise ValueError("tare must be >= 0 samples")
+        # every argument checked before the library sees any (leptrino/_args.py)
+        A.number("Sensor", "timeout", timeout, 0.0, 3600.0, lo_exclusive=True)
+        retries = A.whole("Sensor", "retries", retries, 0, 255)
+        decimate = A.whole("Sensor", "decimate", decimate, 1, 100000)
+        tare = A.whole("Sensor", "tare", tare, 0, 1000000)
+        lowpass = A.number("Sensor", "lowpass", lowpass, 0.0, 1e5)
+        gap_periods = A.number("Sensor", "gap_periods", gap_periods, 1.0, 1e6)
+        nominal_hz = A.number("Sensor", "nominal_hz", nominal_hz, 0.0, 1e5)
+        reconnect = A.flag("Sensor", "reconnect", reconnect)
+        degrees = A.flag("Sensor", "degrees", degrees)
+        rot = None if rotation is None else self._matrix(rotation, degrees, "Sensor")
+        sh = None if shift is None else self._vec3(shift, "Sensor")
         self._timeout_ms = max(1, _ms(timeout, "timeout"))
         o = be.new("lep_session_options")
         lib.lep_session_options_init(o)
@@ -185,11 +190,11 @@ class Sensor:
         o.data_timeout_ms = max(1, _ms(data_timeout, "data_timeout"))
         o.gap_periods = float(gap_periods)
         o.nominal_hz = float(nominal_hz)
-        if rotation is not None:
-            for i, v in enumerate(self._matrix(rotation)):
+        if rot is not None:
+            for i, v in enumerate(rot):
                 o.rotation[i] = v
-        if shift is not None:
-            for i, v in enumerate(self._vec3(shift)):
+        if sh is not None:
+            for i, v in enumerate(sh):
                 o.shift_m[i] = v
         out = be.new_handle("lep_session")
         err = be.new_text(512)
@@ -295,22 +300,24 @@ class Sensor:
         self._be.lib.lep_session_get_metadata(self._live(), m)
         return m
 
-    def _matrix(self, rotation: Any) -> List[float]:
-        r = np.asarray(rotation, dtype=np.float64)
-        if r.shape == (3,):
+    def _matrix(self, rotation: Any, degrees: bool, where: str) -> List[float]:
+        what = "(roll, pitch, yaw) or a 3x3 rotation matrix"
+        shape = np.shape(rotation) if not isinstance(rotation, (str, bytes)) else ()
+        if shape == (3,):
+            r = A.numbers_of(where, "rotation", rotation, (3,), what)
+            if degrees:
+                r = [math.radians(x) for x in r]
             out = self._be.doubles(9)
-            self._be.lib.lep_rotation_from_rpy(float(r[0]), float(r[1]), float(r[2]), out)
+            self._be.lib.lep_rotation_from_rpy(r[0], r[1], r[2], out)
             return [float(out[i]) for i in range(9)]
-        if r.shape == (3, 3):
-            return [float(v) for v in r.reshape(9)]
-        raise ValueError("rotation is (roll, pitch, yaw) in radians or a 3x3 matrix")
+        m = A.numbers_of(where, "rotation", rotation, (3, 3), what)
+        if not A.is_rotation(m):  # the CLI's words (session.c)
+            raise ValueError(f"{where}: rotation is not a rotation matrix (R R^T != I)")
+        return m
 
     @staticmethod
-    def _vec3(v: Sequence[float]) -> List[float]:
-        a = np.asarray(v, dtype=np.float64)
-        if a.shape != (3,):
-            raise ValueError("shift is (x, y, z) in metres")
-        return [float(x) for x in a]
+    def _vec3(v: Sequence[float], where: str) -> List[float]:
+        return A.numbers_of(where, "shift", v, (3,), "(x, y, z) in metres")
 
     def _stream_lost(self, lost_seen: bool, silent_s: float) -> bool:
         """After a read that timed out: has the session given the stream up?
@@ -425,8 +432,7 @@ class Sensor:
     @filter.setter
     @_driving
     def filter(self, code: int) -> None:
-        if not 0 <= int(code) <= K.LEP_FILTER_MAX:
-            raise ValueError(f"filter code must be 0..{K.LEP_FILTER_MAX}, not {code}")
+        code = A.whole("filter", "code", code, 0, K.LEP_FILTER_MAX)
         self._check(self._be.lib.lep_client_filter_set(self._client(), int(code)),
                     K.LEP_CMD_FILTER_SET)
         warnings.warn(
@@ -441,23 +447,27 @@ class Sensor:
         """The spec's label of a filter code ("off", "10 Hz", ...); models differ."""
         if code is None:
             code = self.filter
+        code = A.whole("filter_label", "code", code, 0, 255)
         return str(self._be.text(self._be.lib.lep_filter_label(int(code) & 0xFF)))
 
     # -- processing ----------------------------------------------------------
     @_any_thread
     def tare(self, n: int = 100, seconds: Optional[float] = None,
              wait: Optional[bool] = None) -> Optional[Tuple[float, ...]]:
-        """Zero on the mean raw counts of the next n samples (or of seconds).
+        """Zero on the mean raw counts of the next n samples (1 .. 1000000, as
+        `leptrino --tare N`), or of seconds (> 0) when given.
 
         While streaming the tare runs beside the stream (nothing stalls; the
         samples it averages carry the taring flag) and this returns None at
         once. Otherwise (or with wait=True) it starts the stream, waits for the
         tare to finish, stops the stream again and returns the offsets in
-        counts. n=0 with no seconds removes the tare (as untare())."""
+        counts. untare() removes a tare (n=0 is a ValueError, not an untare)."""
+        if seconds is None:
+            n = A.whole("tare", "n", n, 1, 1000000)
+        else:
+            seconds = A.number("tare", "seconds", seconds, 0.0, 3600.0, lo_exclusive=True)
+        wait = A.optional_flag("tare", "wait", wait)
         s = self._live()
-        if seconds is None and int(n) <= 0:
-            self.untare()
-            return self.tare_offsets
         lib = self._be.lib
         self._check(lib.lep_session_tare(s, 0 if seconds is not None else int(n),
                                          float(seconds or 0.0)), None, f"{self.port}: tare")
@@ -504,12 +514,10 @@ class Sensor:
     @tare_offsets.setter
     @_any_thread
     def tare_offsets(self, counts: Sequence[float]) -> None:
-        a = np.asarray(counts, dtype=np.float64)
-        if a.shape != (K.LEP_AXES,):
-            raise ValueError("tare offsets are six numbers (counts)")
+        a = A.numbers_of("tare_offsets", "counts", counts, (K.LEP_AXES,), "six numbers (counts)")
         buf = self._be.doubles(K.LEP_AXES)
         for i in range(K.LEP_AXES):
-            buf[i] = float(a[i])
+            buf[i] = a[i]
         self._check(self._be.lib.lep_session_set_tare(self._live(), buf))
 
     @property
@@ -532,6 +540,7 @@ class Sensor:
     @lowpass.setter
     @_any_thread
     def lowpass(self, cutoff_hz: float) -> None:
+        A.number("lowpass", "cutoff_hz", cutoff_hz, 0.0, 0.45 * self._nominal_hz)
         rc = self._be.lib.lep_session_set_lowpass(self._live(), float(cutoff_hz))
         if rc == K.LEP_E_VALUE:
             raise ValueError(f"low-pass cut-off {cutoff_hz!r} Hz: must be >= 0 and at most "
@@ -554,17 +563,21 @@ class Sensor:
 
     @_any_thread
     def set_frame(self, rotation: Optional[Sequence[Any]] = None,
-                  shift: Optional[Sequence[float]] = None) -> None:
-        """Output in another frame: rotation as (roll, pitch, yaw) radians or a
-        3x3 matrix (None: identity), shift the moment reference point (metres,
-        None: origin). Takes effect from the next sample."""
+                  shift: Optional[Sequence[float]] = None, *, degrees: bool = True) -> None:
+        """Output in another frame: rotation as (roll, pitch, yaw) in degrees
+        (as `leptrino --rotate`; degrees=False: radians) or a 3x3 matrix (None:
+        identity), shift the moment reference point (metres, None: origin).
+        Takes effect from the next sample."""
         be = self._be
+        degrees = A.flag("set_frame", "degrees", degrees)
+        m = self._matrix(rotation if rotation is not None else np.eye(3), degrees, "set_frame")
+        v = self._vec3(shift if shift is not None else (0.0, 0.0, 0.0), "set_frame")
         r = be.doubles(9)
-        for i, v in enumerate(self._matrix(rotation if rotation is not None else np.eye(3))):
-            r[i] = v
+        for i, x in enumerate(m):
+            r[i] = x
         sh = be.doubles(3)
-        for i, v in enumerate(self._vec3(shift if shift is not None else (0.0, 0.0, 0.0))):
-            sh[i] = v
+        for i, x in enumerate(v):
+            sh[i] = x
         self._check(be.lib.lep_session_set_rotation(self._live(), r, sh))
 
     # -- data ----------------------------------------------------------------
@@ -602,6 +615,10 @@ class Sensor:
             with sensor.stream() as samples:
                 for s in samples: ...
         """
+        if count is not None:
+            count = A.whole("stream", "count", count, 0, 2**63 - 1)
+        if seconds is not None:
+            seconds = A.number("stream", "seconds", seconds, 0.0, 1e9, lo_exclusive=True)
         return Stream(self, count, seconds)
 
     @_driving
@@ -615,11 +632,11 @@ class Sensor:
         (KeyboardInterrupt, an exception from a signal handler) the exception's
         .recording holds what was recorded until then."""
         if (seconds is None) == (count is None):
-            raise ValueError("give exactly one of seconds= or count=")
-        if seconds is not None and not (seconds > 0 and math.isfinite(seconds)):
-            raise ValueError("seconds must be > 0")
-        if count is not None and int(count) <= 0:
-            raise ValueError("count must be > 0")
+            raise ValueError("record: give exactly one of seconds= or count=")
+        if seconds is not None:
+            seconds = A.number("record", "seconds", seconds, 0.0, 1e6, lo_exclusive=True)
+        if count is not None:
+            count = A.whole("record", "count", count, 1, 10**9)
         be, lib = self._be, self._be.lib
         s = self._live()
         rate = self._nominal_hz / self._decimate

@@ -104,7 +104,8 @@ def test_lowpass_and_decimate(backend: str) -> None:
 
 def test_rotation_and_shift(backend: str) -> None:
     with leptrino.Sensor(sim={"constant": True, "amplitude": 0.3},
-                         rotation=(0.0, 0.0, math.pi / 2), backend=backend) as s:
+                         rotation=(0.0, 0.0, math.pi / 2), degrees=False,
+                         backend=backend) as s:
         r = s.rotation
         assert np.allclose(r, [[0, -1, 0], [1, 0, 0], [0, 0, 1]], atol=1e-12)
         rec = s.record(count=20)

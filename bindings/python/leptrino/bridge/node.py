@@ -164,7 +164,7 @@ class SensorNode:
         self.diagnostics: Optional[Topic] = None
         self.sensor = Sensor(
             spec.port, opts.timeout_s, sim=spec.sim, tare=opts.tare_at_start,
-            lowpass=opts.lowpass_hz, rotation=opts.rotation, reconnect=True,
+            lowpass=opts.lowpass_hz, rotation=opts.rotation, degrees=False, reconnect=True,
             latency=opts.latency_s, data_timeout=opts.data_timeout_s)
         self._to_si = RawToSI(self.sensor.rated)  # wrench_raw
         try:
