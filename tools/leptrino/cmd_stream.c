@@ -38,8 +38,9 @@ typedef struct sensor_run {
     lep_output *w; /* its writer (shared when all go to one file) */
     int index;     /* its sensor index in w */
     bool own_writer;
-    bool done;  /* reached duration/count */
-    int failed; /* LEP_E_* that ended it, 0 while fine */
+    bool done;            /* reached duration/count */
+    int failed;           /* LEP_E_* that ended it, 0 while fine */
+    unsigned tare_events; /* tares done, offsets set and un-tares during the run */
 } sensor_run;
 
 static void help(void)
@@ -363,6 +364,8 @@ static void emit(stream_state *st, sensor_run *r, const lep_session_batch *b)
                     note(st, r, "%s at t=%.3f s; reopening the port (Ctrl-C to stop)",
                          ev[k].error == LEP_E_TIMEOUT ? "no data" : "disconnected",
                          ev[k].gap_from - st->t0);
+            } else if (ev[k].type == LEP_EV_TARE) {
+                r->tare_events++;
             } else if (ev[k].type == LEP_EV_RECONNECTED) {
                 note(st, r, "back at t=%.3f s after %.1f s; streaming resumed",
                      ev[k].t_mono - st->t0, ev[k].gap_to - ev[k].gap_from);
@@ -442,6 +445,14 @@ static int loop(stream_state *st)
         tare_requests(st);
         for (i = 0; i < st->n; ++i) {
             sensor_run *r = &st->run[i];
+            if (r->failed == LEP_E_TIMEOUT) {
+                /* a lost stream: say which option decides it, never wait in silence */
+                note(st, r,
+                     "no data for %g s (--data-timeout %g): the stream is lost (--reconnect "
+                     "reopens the port and waits for the sensor instead)",
+                     st->o.so.data_timeout_ms / 1000.0, st->o.so.data_timeout_ms / 1000.0);
+                return cli_exit_code(LEP_E_TIMEOUT);
+            }
             if (r->failed != 0)
                 return cli_session_fail(r->s, "stream", r->sensor->name, "stream", r->failed);
             fds[i] = r->done ? -1 : lep_session_fd(r->s);
@@ -487,18 +498,26 @@ static void summary(stream_state *st)
         lep_session_health h;
         bool tared;
         double off[LEP_AXES];
+        const char *tare_words = "";
         lep_session_get_health(r->s, &h);
         tared = lep_session_get_tare(r->s, off);
+        /* What the tare is at the end: averaging still, in force, or removed
+         * (by u / SIGUSR2) after one; nothing when no tare was asked for. */
+        if (lep_session_taring(r->s))
+            tare_words = ", tare incomplete (still averaging at the end)";
+        else if (tared)
+            tare_words = ", tared";
+        else if (r->tare_events > 0)
+            tare_words = ", untared";
+        else if (st->o.so.tare_samples > 0)
+            tare_words = ", tare incomplete";
         fprintf(stderr,
                 "leptrino: stream: %s: %llu samples in %.3f s, %.1f Hz measured (nominal %.0f "
                 "Hz), %llu errors, %llu overloads, %llu gaps (%llu samples lost, longest "
                 "%.3f s)%s%s\n",
                 r->sensor->name, (unsigned long long)h.delivered, h.elapsed_s, h.measured_hz,
                 h.nominal_hz, (unsigned long long)h.errors, (unsigned long long)h.overloads,
-                (unsigned long long)h.gaps, (unsigned long long)h.lost, h.max_gap_s,
-                st->o.so.tare_samples == 0 ? ""
-                : tared                    ? ", tared"
-                                           : ", tare incomplete",
+                (unsigned long long)h.gaps, (unsigned long long)h.lost, h.max_gap_s, tare_words,
                 st->stopped ? "; stopped by signal" : "");
         if (h.shortfall)
             fprintf(stderr,
@@ -568,6 +587,14 @@ static int open_outputs(stream_state *st)
             !S_ISDIR(sb.st_mode))
             oo.overwrite = true;
         rc = lep_output_open(target, &oo, &r->w, err, sizeof err);
+        if (rc == LEP_E_ARG && target != NULL && !oo.overwrite && stat(target, &sb) == 0) {
+            r->w = NULL; /* the library's words name no flag: this tool's does */
+            fprintf(stderr,
+                    "leptrino: stream: %s: already exists; not overwritten (choose another "
+                    "name, or --overwrite)\n",
+                    target);
+            return CLI_FAIL;
+        }
         if (rc != LEP_OK) {
             r->w = NULL;
             fprintf(stderr, "leptrino: stream: %s\n", err[0] != '\0' ? err : lep_strerror(rc));
@@ -641,8 +668,22 @@ int cli_cmd_stream(int argc, char **argv)
     }
     for (i = 0; i < st.n; ++i) {
         if (lep_session_streaming(st.run[i].s)) {
+            /* A sensor that went quiet may not answer the stop either: the
+             * wait is said first, with the option that bounds it. */
+            int per_try = st.o.po.timeout_ms;
+            double most = 2.0 * (LEP_CLIENT_DEFAULT_RETRIES + 1u) * per_try / 1000.0;
+            if (st.run[i].failed == LEP_E_TIMEOUT)
+                note(&st, &st.run[i],
+                     "stopping the sensor's stream: up to %.1f s without an answer "
+                     "(-t/--timeout %d ms a try)",
+                     most, per_try);
             rc = lep_session_stop(st.run[i].s);
-            if (rc != LEP_OK && rc != LEP_E_DISCONNECTED)
+            if (rc == LEP_E_TIMEOUT)
+                note(&st, &st.run[i],
+                     "could not stop the sensor's stream: no answer within -t/--timeout %d ms "
+                     "a try (the next leptrino run stops it at start-up)",
+                     per_try);
+            else if (rc != LEP_OK && rc != LEP_E_DISCONNECTED)
                 note(&st, &st.run[i], "could not stop the sensor's stream: %s", lep_strerror(rc));
         }
     }

@@ -278,6 +278,16 @@ int cli_session_fail(lep_session *s, const char *cmd, const char *port, const ch
     } else if (err == LEP_E_DISCONNECTED) {
         fprintf(stderr, "leptrino: %s: %s: %s: disconnected (the port went away)\n", cmd, port,
                 what);
+    } else if (err == LEP_E_TIMEOUT && strcmp(what, "stream") == 0) {
+        fprintf(stderr,
+                "leptrino: %s: %s: no data within --data-timeout: the stream is lost "
+                "(--reconnect waits for the sensor to come back)\n",
+                cmd, port);
+    } else if (err == LEP_E_TIMEOUT) {
+        fprintf(stderr,
+                "leptrino: %s: %s: %s: the sensor did not answer (-t/--timeout MS is the wait for "
+                "each try)\n",
+                cmd, port, what);
     } else {
         fprintf(stderr, "leptrino: %s: %s: %s: %s\n", cmd, port, what, lep_strerror(err));
     }

@@ -63,7 +63,8 @@ def write_recording(rec: Recording, path: str, *, format: str = "csv",
     if rc < 0:
         msg = be.text(err)
         if rc == K.LEP_E_ARG and "exist" in msg:
-            raise FileExistsError(msg)
+            raise FileExistsError(f"{path}: already exists; not overwritten (choose another "
+                                  "name, or overwrite=True)")
         raise error_for(be, rc, msg or path, complete=bool(msg))
     w = be.handle(out)
     try:

@@ -319,6 +319,14 @@ class Sensor:
     def _vec3(v: Sequence[float], where: str) -> List[float]:
         return A.numbers_of(where, "shift", v, (3,), "(x, y, z) in metres")
 
+    def _lost_words(self, what: str, rc: int) -> str:
+        """The message of a read that failed; a lost stream names the option."""
+        if rc == K.LEP_E_TIMEOUT:
+            return (f"{self.port}: {what}: no data for {self._data_timeout_s:g} s "
+                    "(data_timeout=): the stream is lost (reconnect=True waits for the sensor "
+                    "to come back)")
+        return f"{self.port}: {what}"
+
     def _stream_lost(self, lost_seen: bool, silent_s: float) -> bool:
         """After a read that timed out: has the session given the stream up?
         It says so with a disconnected event since the last data (after
@@ -705,7 +713,8 @@ class Sensor:
                 if rc == K.LEP_E_TIMEOUT and not self._stream_lost(lost_seen, now - last_data):
                     continue  # nothing in this slice of the wait
                 if rc < 0:
-                    exc = error_for(be, rc, f"{self.port}: recording")
+                    exc = error_for(be, rc, self._lost_words("recording", rc),
+                                    complete=rc == K.LEP_E_TIMEOUT)
                     exc.recording = arrays.result(events, self)  # type: ignore[attr-defined]
                     raise exc
         except BaseException as exc:
@@ -920,6 +929,8 @@ class Stream:
                                                             now - self._last_data):
                 continue  # nothing in this wait (or the seconds ran out, checked above)
             if rc < 0:
+                if rc == K.LEP_E_TIMEOUT:
+                    raise error_for(s._be, rc, s._lost_words("stream", rc), complete=True)
                 s._check(rc, None, f"{s.port}: waiting for stream data")
         t = a.t_mono[:n].tolist()
         tu = a.t_utc[:n].tolist()

@@ -258,7 +258,8 @@ class Recording:
                          else "csv" if p.endswith(".csv") else None)
         if fmt == "npz":
             if os.path.exists(p) and not overwrite:
-                raise FileExistsError(f"{p}: already exists (pass overwrite=True to replace it)")
+                raise FileExistsError(f"{p}: already exists; not overwritten (choose another "
+                                      "name, or overwrite=True)")
             save_npz(self, p)
             return
         if fmt not in ("csv", "jsonl"):

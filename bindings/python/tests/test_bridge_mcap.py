@@ -90,9 +90,9 @@ def test_refuses_to_overwrite(tmp_path: Path) -> None:
     out = tmp_path / "keep.mcap"
     out.write_bytes(b"someone's file")
     p = bridge("--sim", "a", "--mcap", str(out), "--duration", "0.5")
-    assert p.returncode == 2 and "already exists" in p.stderr and "--force" in p.stderr
+    assert p.returncode == 2 and "already exists" in p.stderr and "--overwrite" in p.stderr
     assert out.read_bytes() == b"someone's file"
-    p = bridge("--sim", "a", "--mcap", str(out), "--duration", "0.5", "--force")
+    p = bridge("--sim", "a", "--mcap", str(out), "--duration", "0.5", "--overwrite")
     assert p.returncode == 0, p.stderr
     msgs, _ = read_mcap(out)
     assert len(msgs["/a/wrench"]) > 100

@@ -121,7 +121,9 @@ def build_parser() -> argparse.ArgumentParser:
     z.add_argument("--namespace", default="/", metavar="NS", help="ROS namespace (default /)")
     o = p.add_argument_group("output and run")
     o.add_argument("--mcap", metavar="FILE", help="record the same messages to a ROS 2 MCAP file")
-    o.add_argument("--force", action="store_true", help="replace an existing --mcap file")
+    o.add_argument("--overwrite", action="store_true",
+                   help="replace an existing --mcap file (the name `leptrino stream` uses)")
+    o.add_argument("--force", dest="overwrite", action="store_true", help=argparse.SUPPRESS)
     o.add_argument("--duration", type=_positive, default=None, metavar="S",
                    help="stop after S seconds (default: run until Ctrl-C or SIGTERM)")
     o.add_argument("-v", "--verbose", action="store_true")
@@ -170,7 +172,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     from .bridge import Bridge
 
     try:
-        bridge = Bridge(specs, opts, zopts, a.mcap, a.force)
+        bridge = Bridge(specs, opts, zopts, a.mcap, a.overwrite)
     except (LeptrinoError, OSError, ValueError, TypeError) as e:
         print(f"{PROG}: {e}", file=sys.stderr)
         return 2

@@ -19,7 +19,7 @@ _SEPARATOR = "=" * 80
 
 
 class FileExistsRefused(FileExistsError):
-    """The output path already holds a file and --force was not given."""
+    """The output path already holds a file and --overwrite was not given."""
 
 
 def ros2msg_schema(ros_type: str) -> bytes:
@@ -36,7 +36,7 @@ def ros2msg_schema(ros_type: str) -> bytes:
 class McapRecorder:
     """Writes messages to one MCAP file; thread-safe (one lock around the writer).
 
-    Refuses (FileExistsRefused) to replace an existing file unless force.
+    Refuses (FileExistsRefused) to replace an existing file unless force (--overwrite).
     close() writes the summary and footer; a file not closed (the process
     killed) is truncated but its complete chunks stay readable with recovery.
     """
@@ -51,7 +51,8 @@ class McapRecorder:
             self._f: Optional[IO[bytes]] = open(path, "wb" if force else "xb")
         except FileExistsError:
             raise FileExistsRefused(
-                f"{path}: already exists (give --force to replace it)") from None
+                f"{path}: already exists; not overwritten (choose another name, or "
+                "--overwrite)") from None
         self._w = Writer(self._f, compression=CompressionType.ZSTD, chunk_size=256 * 1024)
         self._w.start(profile="ros2", library="leptrino-bridge")
         self._lock = threading.Lock()
