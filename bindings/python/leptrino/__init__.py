@@ -45,6 +45,7 @@ from .errors import (
     StateError,
     TimeoutError,
 )
+from .recording_file import RecordingFile, read_recording
 from .sensor import PowerCycleWarning, Sensor, Stream, list_ports
 from .simulator import SimOption, Simulator
 from .values import (
@@ -60,6 +61,8 @@ from .values import (
 )
 
 __all__ = [
+    "read_recording",
+    "RecordingFile",
     "BACKENDS",
     "BusyError",
     "ClientStats",
