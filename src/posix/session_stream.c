@@ -148,6 +148,8 @@ static void health_sample(lep_session *s, double t)
         h->recent_hz = (double)(h->received - s->window_n) / (t - s->window_t);
         s->window_t = t;
         s->window_n = h->received;
+    } else if (s->window_n == 1u) {
+        h->recent_hz = h->measured_hz; /* the first second: the run so far, not 0 */
     }
     h->shortfall = h->elapsed_s >= 1.0 && h->measured_hz < 0.98 * h->nominal_hz;
 }

@@ -18,6 +18,28 @@ from .typehash import MESSAGES, type_description
 _SEPARATOR = "=" * 80
 
 
+#: rmw's RMW_DURATION_INFINITE (rmw/time.h), as rosbag2 writes it
+_INFINITE = "\n    sec: 9223372036\n    nsec: 854775807"
+
+
+def offered_qos_profiles(depth: int = 10, reliable: bool = True) -> str:
+    """The channel metadata rosbag2 writes and reads on playback: a YAML list
+    of the publishers' QoS profiles, in the form of rosbag2's metadata
+    version 9 (policies by name: rosbag2_storage qos.cpp). The bridge offers
+    one profile per topic: keep last `depth`, reliable, volatile, infinite
+    deadline, lifespan and lease, automatic liveliness (rmw_zenoh's default,
+    the same as its graph key expression says)."""
+    return ("- history: keep_last\n"
+            f"  depth: {int(depth)}\n"
+            f"  reliability: {'reliable' if reliable else 'best_effort'}\n"
+            "  durability: volatile\n"
+            f"  deadline:{_INFINITE}\n"
+            f"  lifespan:{_INFINITE}\n"
+            "  liveliness: automatic\n"
+            f"  liveliness_lease_duration:{_INFINITE}\n"
+            "  avoid_ros_namespace_conventions: false")
+
+
 class FileExistsRefused(FileExistsError):
     """The output path already holds a file and --overwrite was not given."""
 
@@ -61,8 +83,9 @@ class McapRecorder:
         self._seq: Dict[int, int] = {}
         self.messages = 0
 
-    def channel(self, topic: str, ros_type: str) -> int:
-        """The channel id of a topic (registered on first use)."""
+    def channel(self, topic: str, ros_type: str, qos_depth: int = 10) -> int:
+        """The channel id of a topic (registered on first use), with the QoS
+        the bridge offers it with in the channel's offered_qos_profiles."""
         with self._lock:
             if topic in self._channels:
                 return self._channels[topic]
@@ -70,7 +93,8 @@ class McapRecorder:
             if sid is None:
                 sid = self._w.register_schema(ros_type, "ros2msg", ros2msg_schema(ros_type))
                 self._schemas[ros_type] = sid
-            cid = self._w.register_channel(topic, "cdr", sid, {"offered_qos_profiles": ""})
+            cid = self._w.register_channel(
+                topic, "cdr", sid, {"offered_qos_profiles": offered_qos_profiles(qos_depth)})
             self._channels[topic] = cid
             self._seq[cid] = 0
             return cid
