@@ -167,8 +167,8 @@ typedef struct lep_session_metadata {
     double shift_m[3];
     bool tared;
     double tare[LEP_AXES]; /* counts */
-    double start_utc;      /* UTC s of lep_session_start (0 before) */
-    double start_mono;     /* monotonic s of lep_session_start (0 before) */
+    double start_utc;      /* UTC s of the last lep_session_start (of open before one) */
+    double start_mono;     /* monotonic s of the same instant */
     char port[256];
     bool sim;
     char library_version[16]; /* lep_version() */
@@ -185,7 +185,8 @@ LEP_API void lep_rotation_from_rpy(double roll, double pitch, double yaw, double
  * product info, rated values, filter code (a refusal or no answer is not an
  * error: sensor_filter = -1). Blocks up to a few answer timeouts. On success
  * *out owns everything; on failure nothing is left open. LEP_E_ARG for bad
- * options (message in err), the serial/sim/client error otherwise. */
+ * options (message in err), the serial/sim/client error otherwise. On
+ * success err holds "" or the virtual sensor's warning (lep_sim_start). */
 LEP_API int lep_session_open(const lep_session_options *o, lep_session **out, char *err,
                              size_t errlen);
 

@@ -171,6 +171,7 @@ int lep_session_open(const lep_session_options *o, lep_session **out, char *err,
 {
     lep_session *s;
     int rc;
+    char warning[256] = ""; /* the virtual sensor's, given back on success */
 
     if (out != NULL)
         *out = NULL;
@@ -217,6 +218,8 @@ int lep_session_open(const lep_session_options *o, lep_session **out, char *err,
             lep_session_close(s);
             return rc;
         }
+        if (err != NULL && errlen > 0)
+            snprintf(warning, sizeof warning, "%s", err);
         snprintf(s->port_buf, sizeof s->port_buf, "%s", lep_sim_port(s->sim));
     } else {
         snprintf(s->port_buf, sizeof s->port_buf, "%s", o->port);
@@ -233,6 +236,11 @@ int lep_session_open(const lep_session_options *o, lep_session **out, char *err,
         lep_session_close(s);
         return rc;
     }
+    /* Until a stream starts, the metadata's start is the open (a handshake
+     * read, `leptrino read`, says when it was taken). */
+    s->start_mono = lep_monotonic_seconds();
+    s->utc_off = lep_priv_utc_offset();
+    s->start_utc = s->start_mono + s->utc_off;
     memcpy(s->rot, o->rotation, sizeof s->rot);
     memcpy(s->shift, o->shift_m, sizeof s->shift);
     s->decimate = o->decimate;
@@ -250,6 +258,8 @@ int lep_session_open(const lep_session_options *o, lep_session **out, char *err,
         lep_session_close(s);
         return LEP_E_ARG;
     }
+    if (warning[0] != '\0')
+        lep_priv_set_err(err, errlen, "%s", warning);
     *out = s;
     return LEP_OK;
 }

@@ -63,3 +63,33 @@ def test_summary_says_what_the_tare_is() -> None:
     # no tare at all: nothing said
     s = _summary([], [])
     assert "tare" not in s, s
+
+
+def test_replay_of_a_file_cut_by_a_crash(tmp_path: Path) -> None:
+    """Replayed up to its last whole row, with a warning (it was refused whole)."""
+    f = tmp_path / "raw.csv"
+    out = run(["stream", "--sim", "--count", "100", "--columns", "raw", "-o", str(f)])
+    assert out.returncode == 0, out.stderr
+    text = f.read_text()
+    f.write_text(text[:-4])  # the last row cut in its middle, no end of line
+    got = tmp_path / "again.csv"
+    out = run(["stream", "--sim", "--sim-replay", str(f), "--count", "99", "--columns", "raw",
+               "-o", str(got)])
+    assert out.returncode == 0, out.stderr
+    assert "warning" in out.stderr and "the last line is cut" in out.stderr, out.stderr
+    assert "99 whole rows" in out.stderr
+    rows = [ln for ln in text.splitlines() if ln[:1].isdigit()][:99]
+    again = [ln for ln in got.read_text().splitlines() if ln[:1].isdigit()]
+    assert [r.split(",")[1:7] for r in rows] == [r.split(",")[1:7] for r in again]
+
+
+def test_read_metadata_says_when() -> None:
+    """`leptrino read` (no stream) stamps its metadata with the open time,
+    not 0 (the start of a stream replaces it)."""
+    import json
+    import time as _t
+
+    out = run(["read", "--sim", "-n", "2"])
+    assert out.returncode == 0, out.stderr
+    meta = json.loads(out.stdout.splitlines()[0].split(": ", 1)[1])
+    assert abs(meta["start_utc"] - _t.time()) < 60 and meta["start_utc_iso"].endswith("Z")

@@ -206,6 +206,8 @@ class Sensor:
             raise error_for(be, rc, msg or str(port or "virtual sensor"), complete=bool(msg))
         self._s = be.handle(out)
         self.port = be.text(lib.lep_session_port(self._s))
+        if be.text(err):  # opened, with the virtual sensor's warning (a replay file cut short)
+            warnings.warn(be.text(err), RuntimeWarning, stacklevel=2)
         try:
             client = lib.lep_session_client(self._s)
             self._check(lib.lep_client_set_retries(client, retries))

@@ -104,3 +104,20 @@ def test_not_a_recording(tmp_path: Path) -> None:
         warnings.simplefilter("error")
         p.write_text("# leptrino-metadata: {}\nt_s,fx_N\n")
         assert len(leptrino.read_recording(p)) == 0
+
+
+def test_replay_of_a_cut_file_warns(tmp_path: Path, backend: str) -> None:
+    """The virtual sensor replays a recording cut by a crash up to its last
+    whole row, with a warning (Simulator and Sensor(sim=...))."""
+    with leptrino.Sensor(sim=True, backend=backend) as s:
+        rec = s.record(count=40)
+    rec.save(tmp_path / "raw.csv", columns=["raw"])
+    text = (tmp_path / "raw.csv").read_text()
+    (tmp_path / "cut.csv").write_text(text[:-3])
+    with pytest.warns(RuntimeWarning, match="39 whole rows"):
+        sim = leptrino.Simulator(replay=str(tmp_path / "cut.csv"), backend=backend)
+    sim.stop()
+    with pytest.warns(RuntimeWarning, match="the last line is cut"):
+        with leptrino.Sensor(sim={"replay": str(tmp_path / "cut.csv")}, backend=backend) as s:
+            again = s.record(count=39)
+    assert np.array_equal(again.raw, rec.raw[:39])
