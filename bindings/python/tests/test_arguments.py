@@ -105,3 +105,23 @@ def test_bridge_rotate_is_degrees_to_the_sensor() -> None:
     from leptrino.bridge import cli
 
     assert cli._parse_rpy("0,0,90") == pytest.approx([0, 0, math.pi / 2])
+
+
+def test_recordings_and_simulator(sensor: Any, sim: Any, tmp_path: Any) -> None:
+    rec = sensor.record(count=5)
+    cases = [
+        (ValueError, "unknown column", lambda: rec.save(tmp_path / "a.csv", columns=["volts"])),
+        (TypeError, "not a list of names", lambda: rec.save(tmp_path / "a.csv", columns="si")),
+        (ValueError, "format", lambda: rec.save(tmp_path / "a.csv", format="xml")),
+        (ValueError, "time", lambda: rec.save(tmp_path / "a.csv", time="tai")),
+        (TypeError, "overwrite", lambda: rec.save(tmp_path / "a.csv", overwrite="yes")),
+        (ValueError, ".csv, .jsonl or .npz", lambda: rec.save(tmp_path / "a.txt")),
+        (ValueError, "out of range", lambda: sim.stall(-1)),
+        (TypeError, "not a number", lambda: sim.stall("1")),
+    ]
+    for exc, words, fn in cases:
+        _raises(exc, words, fn)
+    assert not (tmp_path / "a.csv").exists()
+    (tmp_path / "x.csv").write_text("hello\n")
+    _raises(ValueError, "not a leptrino recording",
+            lambda: leptrino.read_recording(tmp_path / "x.csv"))
