@@ -249,7 +249,7 @@ def test_sim_option_ranges_come_from_the_simulator() -> None:
     # leptrino-sim accepts an amplitude up to 4 x rated: so does --sim-amplitude.
     r = run(["stream", "--sim", "--sim-amplitude", "3.5", "--count", "5"])
     assert r.returncode == 0, r.stderr
-    help_text = run(["stream", "--help"]).stdout
+    help_text = run(["help", "sim"]).stdout
     for name in ("--sim-amplitude", "--sim-output-rate-field", "--sim-replay", "--sim-link"):
         assert name in help_text
 

@@ -360,9 +360,13 @@ static void emit(stream_state *st, sensor_run *r, const lep_session_batch *b)
             if (ev[k].type == LEP_EV_DISCONNECTED) {
                 if (!st->o.so.reconnect)
                     r->failed = ev[k].error;
+                else if (ev[k].error == LEP_E_TIMEOUT)
+                    note(st, r,
+                         "no data for %g s (--data-timeout) at t=%.3f s; reopening the port "
+                         "(--reconnect; Ctrl-C to stop)",
+                         st->o.so.data_timeout_ms / 1000.0, ev[k].gap_from - st->t0);
                 else
-                    note(st, r, "%s at t=%.3f s; reopening the port (Ctrl-C to stop)",
-                         ev[k].error == LEP_E_TIMEOUT ? "no data" : "disconnected",
+                    note(st, r, "disconnected at t=%.3f s; reopening the port (Ctrl-C to stop)",
                          ev[k].gap_from - st->t0);
             } else if (ev[k].type == LEP_EV_TARE) {
                 r->tare_events++;
