@@ -550,7 +550,11 @@ class Sensor:
     @lowpass.setter
     @_any_thread
     def lowpass(self, cutoff_hz: float) -> None:
-        A.number("lowpass", "cutoff_hz", cutoff_hz, 0.0, 0.45 * self._nominal_hz)
+        top = 0.45 * self._nominal_hz
+        if A.number("lowpass", "cutoff_hz", cutoff_hz, 0.0, math.inf) > top:
+            raise ValueError(f"lowpass: cutoff_hz: {cutoff_hz!r} is out of range (from 0 .. "
+                             f"{top:g}: a low-pass cut-off is at most 0.45 x the "
+                             f"{self._nominal_hz:g} Hz output rate)")
         rc = self._be.lib.lep_session_set_lowpass(self._live(), float(cutoff_hz))
         if rc == K.LEP_E_VALUE:
             raise ValueError(f"low-pass cut-off {cutoff_hz!r} Hz: must be >= 0 and at most "

@@ -165,7 +165,7 @@ def test_tare(backend: str) -> None:
             assert [e.tare for e in s.events if e.type == "tare"] == [offset]
             # the handshake sample is the sensor's own (tare applies to the stream)
             assert s.read().raw == tuple(int(v) for v in before.raw[0])
-            s.tare(0)
+            s.untare()  # (tare(0) is a ValueError: it used to un-tare without a word)
             assert s.tare_offsets == (0.0,) * 6 and not s.tared
             s.tare_offsets = (1000, 0, 0, 0, 0, 0)
             rec = s.record(count=20)

@@ -260,7 +260,8 @@ def _normalised(path: Path) -> list:
 @pytest.mark.parametrize("cli_args,kwargs", [
     (["--tare", "50"], {"tare": 50}),
     (["--lowpass", "50", "--decimate", "2", "--rotate", "0,0,90"],
-     {"lowpass": 50.0, "decimate": 2, "rotation": (0.0, 0.0, math.pi / 2)}),
+     # one unit: --rotate and rotation= are both degrees
+     {"lowpass": 50.0, "decimate": 2, "rotation": (0.0, 0.0, 90.0)}),
 ])
 def test_same_rows_as_the_c_tool(backend: str, tmp_path: Path, cli_args: list,
                                  kwargs: dict) -> None:
