@@ -5,8 +5,6 @@ by a crash is left out with a warning."""
 
 from __future__ import annotations
 
-import os
-import shutil
 import subprocess
 import warnings
 from pathlib import Path
@@ -21,10 +19,9 @@ ALL = ["raw", "zeroed", "si", "status", "flags", "seq"]
 
 
 def _cli() -> str:
-    exe = os.environ.get("LEPTRINO_CLI") or shutil.which("leptrino")
-    if not exe:
-        pytest.skip("the leptrino program is not built (LEPTRINO_CLI)")
-    return str(exe)
+    from leptrino import _tools
+
+    return str(_tools.program_path("leptrino"))  # the bundled program, or LEPTRINO_CLI
 
 
 @pytest.mark.parametrize("fmt", ["csv", "jsonl"])
