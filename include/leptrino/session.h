@@ -200,7 +200,10 @@ LEP_API void lep_session_close(lep_session *s);
  * (or another thread is inside a driving call). */
 LEP_API int lep_session_start(lep_session *s);
 
-/* Stop streaming. Samples already received and not yet read are lost. */
+/* Stop streaming. Samples already received and not yet read are lost. The
+ * stop command is sent again once when it gets no answer, except after the
+ * stream was lost to silence (data_timeout_ms): then one transaction,
+ * (retries + 1) x timeout_ms at most. */
 LEP_API int lep_session_stop(lep_session *s);
 
 /* Append samples to b (from b->n up to b->cap). Waits up to timeout_ms

@@ -366,8 +366,10 @@ static int session_stop(lep_session *s)
     s->held = 0;
     if (s->conn == CONN_UP && lep_client_streaming(&s->client)) {
         rc = lep_client_stop(&s->client);
-        if (rc != LEP_OK && rc != LEP_E_DISCONNECTED)
-            rc = lep_client_stop(&s->client); /* one more try, e.g. after a lost answer */
+        /* one more try, e.g. after a lost answer; not after a silence that
+         * already lost the stream (it would only double the wait) */
+        if (rc != LEP_OK && rc != LEP_E_DISCONNECTED && s->failed != LEP_E_TIMEOUT)
+            rc = lep_client_stop(&s->client);
     }
     pthread_mutex_lock(&s->mu);
     s->taring = false;

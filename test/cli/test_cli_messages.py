@@ -24,7 +24,7 @@ def test_lost_stream_names_the_options() -> None:
     assert lost and "--data-timeout 0.5" in lost[0] and "--reconnect" in lost[0], out.stderr
     # the wait for the stop is said before it happens, with the option that bounds it
     i = next(k for k, ln in enumerate(lines) if "stopping the sensor's stream" in ln)
-    assert "-t/--timeout 100 ms" in lines[i]
+    assert "-t/--timeout 100 ms" in lines[i] and "up to 0.4 s" in lines[i]  # one transaction
     j = next(k for k, ln in enumerate(lines) if "could not stop" in ln)
     assert j > i and "-t/--timeout" in lines[j]
     assert took < 10.0  # the 20 s stall was not waited out

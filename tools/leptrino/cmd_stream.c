@@ -675,7 +675,8 @@ int cli_cmd_stream(int argc, char **argv)
             /* A sensor that went quiet may not answer the stop either: the
              * wait is said first, with the option that bounds it. */
             int per_try = st.o.po.timeout_ms;
-            double most = 2.0 * (LEP_CLIENT_DEFAULT_RETRIES + 1u) * per_try / 1000.0;
+            /* one stop transaction after a silence (session.h, lep_session_stop) */
+            double most = (LEP_CLIENT_DEFAULT_RETRIES + 1.0) * per_try / 1000.0;
             if (st.run[i].failed == LEP_E_TIMEOUT)
                 note(&st, &st.run[i],
                      "stopping the sensor's stream: up to %.1f s without an answer "

@@ -238,7 +238,7 @@ int cli_cmd_watch(int argc, char **argv)
             fprintf(stderr,
                     "leptrino: watch: %s: stopping the sensor's stream: up to %.1f s without an "
                     "answer (-t/--timeout %d ms a try)\n",
-                    port, 2.0 * (LEP_CLIENT_DEFAULT_RETRIES + 1u) * o.po.timeout_ms / 1000.0,
+                    port, (LEP_CLIENT_DEFAULT_RETRIES + 1.0) * o.po.timeout_ms / 1000.0,
                     o.po.timeout_ms);
             (void)lep_session_stop(s);
         }
