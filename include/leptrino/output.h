@@ -98,14 +98,18 @@ LEP_API int lep_output_add_sensor(lep_output *w, const char *name, const char *m
  * sensor's row k (rows are numbered per sensor from 0 as they are written),
  * events beyond the last row after it. Writes the header first if not yet
  * done. The batch needs t_mono, and t_utc for LEP_TIME_UTC, and the arrays of
- * the chosen columns (LEP_E_ARG otherwise). Buffered: bytes reach the fd
- * when the buffer fills, at lep_output_flush and at close (and after every
- * call when the fd is a terminal). LEP_E_IO when a write failed
+ * the chosen columns (LEP_E_ARG otherwise). When the bytes reach the fd: the
+ * header (metadata lines) before any row; into a pipe, a terminal or any fd
+ * that is not a regular file, at the end of every call; into a regular file,
+ * at the end of the call that finds the oldest unwritten row 100 ms old or
+ * more (and when the buffer fills, at lep_output_flush and at close): a
+ * writer that calls lep_output_flush when its source goes quiet loses at
+ * most the last 100 ms to a crash. LEP_E_IO when a write failed
  * (lep_output_errno says why; later calls fail the same way). */
 LEP_API int lep_output_write(lep_output *w, int sensor, const lep_session_batch *b, size_t from,
                              const lep_session_event *ev, size_t nev);
 
-/* Write buffered bytes now. */
+/* Write buffered bytes now (nothing to do, no system call, when none are). */
 LEP_API int lep_output_flush(lep_output *w);
 
 /* errno of the first failed write (EPIPE when a pipe's reader went away), 0 if none. */

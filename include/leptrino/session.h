@@ -12,12 +12,21 @@
  * session's flags. Events (gaps, disconnects, reconnects, tare changes,
  * overload begin/end, limit exceeded/cleared) are queued beside the data.
  *
- * Threads: one thread drives a session (open, start, read, stop, close).
- * lep_session_tare, _untare, _set_tare, _get_tare, _set_lowpass,
- * _set_rotation, _set_payload, _set_gravity, _set_limits, _get_health and
- * _get_metadata may also be called from other threads at any time (a mutex
- * inside the session); they never block on I/O.
- * Sessions are independent: several in one process just work.
+ * Threads: the driving calls (lep_session_start, _read, _read_one, _stop,
+ * _set_latency) are for one thread at a time. One made while another thread
+ * is inside a driving call is refused: it returns LEP_E_STATE at once and
+ * changes nothing (no wait, no shared data). lep_session_tare, _untare,
+ * _set_tare, _get_tare, _taring, _set_lowpass, _set_rotation, _set_payload,
+ * _set_gravity, _set_limits, _get_health, _get_metadata, _metadata_json and
+ * _next_event may be called from any thread at any time before close (a
+ * mutex inside the session); they never block on I/O. lep_session_close may
+ * be called from another thread while a driving call runs: that call returns
+ * LEP_E_STATE within about 50 ms (plus the latency budget; start and stop
+ * finish their transaction first) and close waits for it to return before
+ * freeing. After close has begun no call may be made (the handle is freed:
+ * the caller orders that, as Python's Sensor does). The client and the sim
+ * (lep_session_client, _sim) belong to the driving thread. Sessions are
+ * independent: several in one process just work.
  *
  * Errors are LEP_E_* codes (leptrino/error.h); functions taking err/errlen
  * also write a one-line message there (naming the port) when err is not NULL. */
@@ -143,7 +152,7 @@ typedef struct lep_session_health {
     double elapsed_s;   /* from the first sample to the last */
     double nominal_hz;  /* 1200, or the sensor's output-rate field */
     double measured_hz; /* (samples received - 1) / elapsed (decimation not applied) */
-    double recent_hz;   /* over the last second or so */
+    double recent_hz;   /* over the last second or so (the run so far in its first second) */
     bool shortfall;     /* measured_hz below 98 % of nominal over at least 1 s */
     uint64_t received;  /* samples received (tare samples included) */
     uint64_t delivered; /* samples delivered (after decimation) */
@@ -175,8 +184,8 @@ typedef struct lep_session_metadata {
     double shift_m[3];
     bool tared;
     double tare[LEP_AXES]; /* counts */
-    double start_utc;      /* UTC s of lep_session_start (0 before) */
-    double start_mono;     /* monotonic s of lep_session_start (0 before) */
+    double start_utc;      /* UTC s of the last lep_session_start (of open before one) */
+    double start_mono;     /* monotonic s of the same instant */
     char port[256];
     bool sim;
     char library_version[16]; /* lep_version() */
@@ -196,19 +205,25 @@ LEP_API void lep_rotation_from_rpy(double roll, double pitch, double yaw, double
  * product info, rated values, filter code (a refusal or no answer is not an
  * error: sensor_filter = -1). Blocks up to a few answer timeouts. On success
  * *out owns everything; on failure nothing is left open. LEP_E_ARG for bad
- * options (message in err), the serial/sim/client error otherwise. */
+ * options (message in err), the serial/sim/client error otherwise. On
+ * success err holds "" or the virtual sensor's warning (lep_sim_start). */
 LEP_API int lep_session_open(const lep_session_options *o, lep_session **out, char *err,
                              size_t errlen);
 
 /* Stop the stream if running (best effort), close the port, stop the virtual
- * sensor, free. NULL is fine. */
+ * sensor, free. NULL is fine. Safe while another thread is inside a driving
+ * call (it returns LEP_E_STATE first; see Threads above); call it once. */
 LEP_API void lep_session_close(lep_session *s);
 
 /* Start streaming (resends and recovery as in the client); clears the
- * health counters and sets start_utc. LEP_E_STATE when already streaming. */
+ * health counters and sets start_utc. LEP_E_STATE when already streaming
+ * (or another thread is inside a driving call). */
 LEP_API int lep_session_start(lep_session *s);
 
-/* Stop streaming. Samples already received and not yet read are lost. */
+/* Stop streaming. Samples already received and not yet read are lost. The
+ * stop command is sent again once when it gets no answer, except after the
+ * stream was lost to silence (data_timeout_ms): then one transaction,
+ * (retries + 1) x timeout_ms at most. */
 LEP_API int lep_session_stop(lep_session *s);
 
 /* Append samples to b (from b->n up to b->cap). Waits up to timeout_ms
@@ -224,10 +239,11 @@ LEP_API int lep_session_stop(lep_session *s);
  * duration_s or count is reached (the samples up to the limit are appended
  * first); LEP_E_DISCONNECTED when the port went away without reconnect, or
  * reconnect_give_up_ms passed (then and on later calls); LEP_E_STATE when not
- * streaming; LEP_E_ARG. Samples are never lost across calls: a full b leaves
- * the rest queued for the next call. With reconnect the session reconnects
- * inside this call and reports it as events (a data timeout is then never
- * LEP_E_LOST). */
+ * streaming, when another thread is inside a driving call, or when
+ * lep_session_close began in another thread; LEP_E_ARG. Samples are never
+ * lost across calls: a full b leaves the rest queued for the next call. With
+ * reconnect the session reconnects inside this call and reports it as events
+ * (a data timeout is then never LEP_E_LOST). */
 LEP_API int lep_session_read(lep_session *s, lep_session_batch *b, int timeout_ms);
 /* With reconnect, a port that comes back with another sensor (model or
  * serial number differ) is not streamed from: LEP_E_UNEXPECTED, then and on
@@ -249,7 +265,8 @@ LEP_API int lep_session_read(lep_session *s, lep_session_batch *b, int timeout_m
  * the stream's and do not apply (a lone sample has no history); no event is
  * queued and the health counters do not change. Blocks for one transaction
  * (timeout_ms per attempt, with the client's resends). LEP_OK; LEP_E_STATE
- * while streaming; LEP_E_DISCONNECTED while disconnected; LEP_E_ARG for NULL
+ * while streaming or while another thread is inside a driving call;
+ * LEP_E_DISCONNECTED while disconnected; LEP_E_ARG for NULL
  * or a full b (b->n >= b->cap); the client's error otherwise (b unchanged). */
 LEP_API int lep_session_read_one(lep_session *s, lep_session_batch *b);
 

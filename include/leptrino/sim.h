@@ -187,7 +187,9 @@ LEP_API int lep_sim_model_rated(const char *model, lep_rated *out);
 /* Check the options (lep_sim_options_check), create the pty and start
  * serving on a thread; o is copied (NULL: the defaults). On failure returns
  * a LEP_E_* code (LEP_E_ARG for a bad option) and writes a one-line message
- * into err when not NULL. */
+ * into err when not NULL. On success err holds "" or one warning line to
+ * show the user (a replay file whose last line is cut: the whole rows before
+ * it are replayed); set err[0] = '\0' before the call to tell them apart. */
 LEP_API int lep_sim_start(const lep_sim_options *o, lep_sim **out, char *err, size_t errlen);
 
 /* The sample s sends as sample k of a stream (k = 0 for the first after a

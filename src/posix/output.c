@@ -11,14 +11,19 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "errmsg.h"
 #include "fd_write.h"
 #include "leptrino/error.h"
 #include "leptrino/output.h"
+#include "leptrino/serial.h"
 
 #define OUT_BUF 65536u
+/* Longest time a row written to a regular file waits in the buffer (docs/session.md:
+ * what a crash can lose). */
+#define OUT_FILE_FLUSH_S 0.1
 #define OUT_ROW_MAX 1024u /* longest row or event line, with margin */
 #define OUT_SENSORS 16
 #define OUT_NAME 64u
@@ -35,7 +40,8 @@ typedef struct out_sensor {
 struct lep_output {
     int fd;
     bool own_fd;
-    bool tty;
+    bool regular;       /* a regular file: flushed every OUT_FILE_FLUSH_S; else every write */
+    double unflushed_t; /* when the oldest byte still in buf was put there (0: none) */
     bool header_done;
     int err_no;
     lep_output_options o;
@@ -72,6 +78,7 @@ static int flush_buf(lep_output *w)
         return LEP_E_IO;
     }
     w->len = 0;
+    w->unflushed_t = 0.0;
     return LEP_OK;
 }
 
@@ -142,7 +149,10 @@ static int new_writer(int fd, bool own, const lep_output_options *o, lep_output 
     }
     w->fd = fd;
     w->own_fd = own;
-    w->tty = isatty(fd) == 1;
+    {
+        struct stat sb;
+        w->regular = fstat(fd, &sb) == 0 && S_ISREG(sb.st_mode);
+    }
     w->o = *o;
     *out = w;
     return LEP_OK;
@@ -531,8 +541,12 @@ int lep_output_write(lep_output *w, int sensor, const lep_session_batch *b, size
         return LEP_E_ARG;
     if (w->err_no != 0)
         return LEP_E_IO;
-    if (!w->header_done)
+    if (!w->header_done) {
         write_header(w);
+        (void)flush_buf(w); /* the metadata is on disk before the first row */
+    }
+    if (w->len == 0)
+        w->unflushed_t = lep_monotonic_seconds();
     s = &w->sensors[sensor];
     if (b != NULL) {
         for (i = from; i < b->n; i++) {
@@ -544,7 +558,9 @@ int lep_output_write(lep_output *w, int sensor, const lep_session_batch *b, size
     }
     while (e < nev)
         write_event(w, s, &ev[e++]);
-    if (w->tty)
+    /* A pipe or a terminal gets each batch at once (a reader acts on it); a
+     * file at least every OUT_FILE_FLUSH_S (what a crash can lose). */
+    if (w->len > 0 && (!w->regular || lep_monotonic_seconds() - w->unflushed_t >= OUT_FILE_FLUSH_S))
         (void)flush_buf(w);
     return w->err_no != 0 ? LEP_E_IO : LEP_OK;
 }
@@ -553,6 +569,8 @@ int lep_output_flush(lep_output *w)
 {
     if (w == NULL)
         return LEP_E_ARG;
+    if (w->len == 0)
+        return w->err_no != 0 ? LEP_E_IO : LEP_OK;
     return flush_buf(w);
 }
 

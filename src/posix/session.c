@@ -137,6 +137,7 @@ int lep_session_open(const lep_session_options *o, lep_session **out, char *err,
 {
     lep_session *s;
     int rc;
+    char warning[256] = ""; /* the virtual sensor's, given back on success */
 
     if (out != NULL)
         *out = NULL;
@@ -153,6 +154,12 @@ int lep_session_open(const lep_session_options *o, lep_session **out, char *err,
         return LEP_E_IO;
     }
     if (pthread_mutex_init(&s->mu, NULL) != 0) {
+        free(s);
+        lep_priv_set_err(err, errlen, "session: cannot create a mutex");
+        return LEP_E_IO;
+    }
+    if (lep_priv_guard_init(&s->guard) != LEP_OK) {
+        pthread_mutex_destroy(&s->mu);
         free(s);
         lep_priv_set_err(err, errlen, "session: cannot create a mutex");
         return LEP_E_IO;
@@ -177,6 +184,8 @@ int lep_session_open(const lep_session_options *o, lep_session **out, char *err,
             lep_session_close(s);
             return rc;
         }
+        if (err != NULL && errlen > 0)
+            snprintf(warning, sizeof warning, "%s", err);
         snprintf(s->port_buf, sizeof s->port_buf, "%s", lep_sim_port(s->sim));
     } else {
         snprintf(s->port_buf, sizeof s->port_buf, "%s", o->port);
@@ -193,6 +202,10 @@ int lep_session_open(const lep_session_options *o, lep_session **out, char *err,
         lep_session_close(s);
         return rc;
     }
+    /* Until a stream starts, the metadata's start is the open (a handshake
+     * read, `leptrino read`, says when it was taken). */
+    s->start_mono = lep_monotonic_seconds();
+    s->start_utc = s->start_mono + lep_priv_utc_offset();
     memcpy(s->proc.rot, o->rotation, sizeof s->proc.rot);
     memcpy(s->proc.shift, o->shift_m, sizeof s->proc.shift);
     s->proc.decimate = o->decimate;
@@ -211,29 +224,35 @@ int lep_session_open(const lep_session_options *o, lep_session **out, char *err,
         lep_session_close(s);
         return LEP_E_ARG;
     }
+    if (warning[0] != '\0')
+        lep_priv_set_err(err, errlen, "%s", warning);
     *out = s;
     return LEP_OK;
 }
+
+static int session_stop(lep_session *s);
 
 void lep_session_close(lep_session *s)
 {
     if (s == NULL)
         return;
+    /* a driving call in another thread returns (LEP_E_STATE) before this goes on */
+    if (!lep_priv_guard_close(&s->guard))
+        return; /* another thread is closing it */
     if (s->streaming)
-        (void)lep_session_stop(s);
+        (void)session_stop(s);
     lep_priv_session_disconnect(s);
     lep_sim_stop(s->sim);
+    lep_priv_guard_destroy(&s->guard);
     pthread_mutex_destroy(&s->mu);
     free(s);
 }
 
-int lep_session_start(lep_session *s)
+static int session_start(lep_session *s)
 {
     lep_client_stats base;
     int rc;
     double now;
-    if (s == NULL)
-        return LEP_E_ARG;
     if (s->streaming)
         return LEP_E_STATE;
     if (s->conn != CONN_UP)
@@ -259,11 +278,29 @@ int lep_session_start(lep_session *s)
     return LEP_OK;
 }
 
+int lep_session_start(lep_session *s)
+{
+    int rc;
+    if (s == NULL)
+        return LEP_E_ARG;
+    rc = lep_priv_guard_enter(&s->guard);
+    if (rc != LEP_OK)
+        return rc;
+    rc = session_start(s);
+    lep_priv_guard_leave(&s->guard);
+    return rc;
+}
+
 int lep_session_set_latency(lep_session *s, int latency_ms)
 {
+    int rc;
     if (s == NULL || latency_ms < 0 || latency_ms > 10000)
         return LEP_E_ARG;
+    rc = lep_priv_guard_enter(&s->guard);
+    if (rc != LEP_OK)
+        return rc;
     s->opt.latency_ms = latency_ms;
+    lep_priv_guard_leave(&s->guard);
     return LEP_OK;
 }
 
@@ -272,24 +309,37 @@ int lep_session_latency(const lep_session *s)
     return s != NULL ? s->opt.latency_ms : 0;
 }
 
-int lep_session_stop(lep_session *s)
+static int session_stop(lep_session *s)
 {
     int rc = LEP_OK;
-    if (s == NULL)
-        return LEP_E_ARG;
     if (!s->streaming)
         return LEP_E_STATE;
     s->streaming = false;
     lep_priv_rows_clear(&s->rows);
     if (s->conn == CONN_UP && lep_client_streaming(&s->client)) {
         rc = lep_client_stop(&s->client);
-        if (rc != LEP_OK && rc != LEP_E_DISCONNECTED)
-            rc = lep_client_stop(&s->client); /* one more try, e.g. after a lost answer */
+        /* one more try, e.g. after a lost answer; not after a silence that
+         * already lost the stream (it would only double the wait) */
+        if (rc != LEP_OK && rc != LEP_E_DISCONNECTED && s->rc.failed != LEP_E_LOST)
+            rc = lep_client_stop(&s->client);
     }
     pthread_mutex_lock(&s->mu);
     lep_priv_proc_stop(&s->proc);
     pthread_mutex_unlock(&s->mu);
     return rc == LEP_E_DISCONNECTED ? LEP_OK : rc;
+}
+
+int lep_session_stop(lep_session *s)
+{
+    int rc;
+    if (s == NULL)
+        return LEP_E_ARG;
+    rc = lep_priv_guard_enter(&s->guard);
+    if (rc != LEP_OK)
+        return rc;
+    rc = session_stop(s);
+    lep_priv_guard_leave(&s->guard);
+    return rc;
 }
 
 lep_client *lep_session_client(lep_session *s)

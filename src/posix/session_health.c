@@ -43,6 +43,8 @@ void lep_priv_health_sample(session_health_state *hs, double t)
         h->recent_hz = (double)(h->received - hs->window_n) / (t - hs->window_t);
         hs->window_t = t;
         hs->window_n = h->received;
+    } else if (hs->window_n == 1u) {
+        h->recent_hz = h->measured_hz; /* the first second: the run so far, not 0 */
     }
     h->shortfall = h->elapsed_s >= 1.0 && h->measured_hz < 0.98 * h->nominal_hz;
 }

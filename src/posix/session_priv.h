@@ -4,7 +4,10 @@
  * (test/checks/depgraph.py fails the build on a cycle):
  *
  *   session.c           options, open, close, start, stop, accessors (lep_session)
- *   session_read.c      lep_session_read, lep_session_read_one: waiting,
+ *   session_guard.c     the thread guard of the driving calls and close
+ *                       (session_guard)
+ *   session_read.c      lep_session_read, lep_session_read_one (inside the
+ *                       guard, in passes that see a close): waiting,
  *                       the latency budget, reading the port (rbuf, backlog)
  *   session_reconnect.c loss of the stream and reconnection (session_reconnect)
  *   session_port.c      connecting and disconnecting the port: open, start-up
@@ -104,6 +107,15 @@ typedef struct session_lowpass {
     uint32_t settle_n; /* samples of one settling period */
     double delay_s;    /* group delay at 0 Hz */
 } session_lowpass;
+
+/* session_guard.c: the public entry points' thread guard. */
+typedef struct session_guard {
+    pthread_mutex_t mu;
+    pthread_cond_t left; /* a call left */
+    unsigned inside;     /* threads inside a driving call (0 or 1) */
+    bool driving;        /* a driving call (start, read, read_one, stop, set_latency) runs */
+    bool closing;        /* lep_session_close has begun */
+} session_guard;
 
 /* session_proc.c: [mu] the processing of each sample. */
 typedef struct session_proc {
@@ -214,6 +226,8 @@ struct lep_session {
     session_events events;
     double start_utc; /* metadata */
     double start_mono;
+
+    session_guard guard; /* the driving calls' thread guard, and close's (session_guard.c) */
 };
 
 /* ---- session_reconnect.c ---- */
@@ -233,6 +247,17 @@ int lep_priv_session_connect(lep_session *s, char *err, size_t errlen);
 void lep_priv_session_disconnect(lep_session *s);
 /* The sensor that answered a reconnect is the one the session opened. */
 bool lep_priv_session_same_sensor(lep_session *s);
+
+/* ---- session_guard.c ---- */
+/* enter refuses (LEP_E_STATE) while another thread drives or a close has
+ * begun; close marks the session closing and waits until no thread is inside
+ * (true the first time). */
+int lep_priv_guard_init(session_guard *g);
+void lep_priv_guard_destroy(session_guard *g);
+int lep_priv_guard_enter(session_guard *g);
+void lep_priv_guard_leave(session_guard *g);
+bool lep_priv_guard_closing(session_guard *g);
+bool lep_priv_guard_close(session_guard *g);
 
 /* ---- session_feed.c ---- */
 /* Step bytes through the client and process the samples they complete,

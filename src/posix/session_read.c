@@ -110,7 +110,8 @@ static int read_port(lep_session *s, read_call *c, double now)
     return c->got ? LEP_OK : rc;
 }
 
-int lep_session_read(lep_session *s, lep_session_batch *b, int timeout_ms)
+/* One pass of a read, for the thread inside the guard. */
+static int read_pass(lep_session *s, lep_session_batch *b, int timeout_ms)
 {
     read_call c;
     double kernel_s;
@@ -144,7 +145,7 @@ int lep_session_read(lep_session *s, lep_session_batch *b, int timeout_ms)
     }
 }
 
-int lep_session_read_one(lep_session *s, lep_session_batch *b)
+static int read_one(lep_session *s, lep_session_batch *b)
 {
     lep_sample smp;
     session_row row;
@@ -166,4 +167,51 @@ int lep_session_read_one(lep_session *s, lep_session_batch *b)
     pthread_mutex_unlock(&s->mu);
     lep_priv_rows_append(b, &row);
     return LEP_OK;
+}
+
+/* Longest wait of one pass of the stream reader: how soon a close from
+ * another thread is seen (a latency budget lengthens it, see below). */
+#define GUARD_SLICE_MS 50
+
+int lep_session_read(lep_session *s, lep_session_batch *b, int timeout_ms)
+{
+    double deadline;
+    int rc, slice_ms;
+    if (s == NULL || b == NULL || b->n > b->cap)
+        return LEP_E_ARG;
+    rc = lep_priv_guard_enter(&s->guard);
+    if (rc != LEP_OK)
+        return rc;
+    /* A pass must be able to sleep out the latency budget, or the budget
+     * would end at every pass. */
+    slice_ms = s->opt.latency_ms + GUARD_SLICE_MS;
+    deadline = timeout_ms < 0 ? INFINITY : lep_monotonic_seconds() + (double)timeout_ms / 1000.0;
+    for (;;) {
+        double left_ms = (deadline - lep_monotonic_seconds()) * 1000.0;
+        int wait = left_ms > (double)slice_ms ? slice_ms : left_ms > 0.0 ? (int)ceil(left_ms) : 0;
+        rc = read_pass(s, b, wait);
+        /* nothing in this pass, the stream not given up: wait on unless the
+         * caller's time is out or the session is being closed */
+        if (rc != LEP_E_TIMEOUT || s->rc.failed != 0 || left_ms <= (double)slice_ms)
+            break;
+        if (lep_priv_guard_closing(&s->guard)) {
+            rc = LEP_E_STATE;
+            break;
+        }
+    }
+    lep_priv_guard_leave(&s->guard);
+    return rc;
+}
+
+int lep_session_read_one(lep_session *s, lep_session_batch *b)
+{
+    int rc;
+    if (s == NULL || b == NULL || b->n >= b->cap)
+        return LEP_E_ARG;
+    rc = lep_priv_guard_enter(&s->guard);
+    if (rc != LEP_OK)
+        return rc;
+    rc = read_one(s, b);
+    lep_priv_guard_leave(&s->guard);
+    return rc;
 }

@@ -269,7 +269,7 @@ static int append(lep_sim_signal *g, size_t *cap, const lep_sample *row, int16_t
 int lep_priv_replay_load(lep_sim_signal *g, const char *file, char *err, size_t errlen)
 {
     char *field[MAX_FIELDS];
-    size_t cap = 0, lineno = 0;
+    size_t cap = 0, lineno = 0, cut = 0;
     layout l;
     int rc = LEP_OK;
     FILE *f = fopen(file, "r");
@@ -287,6 +287,13 @@ int lep_priv_replay_load(lep_sim_signal *g, const char *file, char *err, size_t 
             break;
         lineno++;
         len = strlen(buf);
+        if (len > 0 && buf[len - 1] != '\n' && len < sizeof buf - 1 && feof(f)) {
+            /* The last line has no end: a recording cut by a crash or a
+             * kill (its writer ends every line). Its values may be cut too:
+             * replay up to the row before, and say so (below). */
+            cut = lineno;
+            break;
+        }
         if (len == sizeof buf - 1 && buf[len - 1] != '\n') {
             lep_priv_set_err(err, errlen, "%s:%zu: line longer than %d bytes", file, lineno,
                              MAX_LINE);
@@ -356,5 +363,10 @@ int lep_priv_replay_load(lep_sim_signal *g, const char *file, char *err, size_t 
         lep_priv_set_err(err, errlen, "%s: no samples in replay file", file);
         rc = LEP_E_VALUE;
     }
+    if (rc == LEP_OK && cut > 0) /* a warning: err on success (sim.h, lep_sim_start) */
+        lep_priv_set_err(err, errlen,
+                         "%s:%zu: the last line is cut (no end of line: a crash or a kill while "
+                         "recording?): replaying the %zu whole rows before it",
+                         file, cut, g->replay_rows);
     return rc;
 }

@@ -249,7 +249,7 @@ def test_sim_option_ranges_come_from_the_simulator() -> None:
     # leptrino-sim accepts an amplitude up to 4 x rated: so does --sim-amplitude.
     r = run(["stream", "--sim", "--sim-amplitude", "3.5", "--count", "5"])
     assert r.returncode == 0, r.stderr
-    help_text = run(["stream", "--help"]).stdout
+    help_text = run(["help", "sim"]).stdout
     for name in ("--sim-amplitude", "--sim-output-rate-field", "--sim-replay", "--sim-link"):
         assert name in help_text
 
@@ -278,7 +278,8 @@ def test_data_timeout_ends_with_exit_3_and_keeps_the_rows(tmp_path: Path) -> Non
     r = run(["stream", "--sim", "--sim-stall", "4000", "--sim-stall-after", "0.5",
              "--data-timeout", "1", "-o", str(out)], timeout=60)
     assert r.returncode == 3, r.stderr
-    assert "stream lost (no data within the data timeout)" in r.stderr  # LEP_E_LOST
+    # LEP_E_LOST, in words that name the option deciding it
+    assert "no data for 1 s (--data-timeout 1): the stream is lost" in r.stderr
     csv = Csv(out.read_text())
     assert len(csv.rows) > 300
     assert [e["reason"] for e in csv.events("disconnected")] == ["no-data"], csv.comments

@@ -42,8 +42,20 @@ def test_help_of_every_command(cmd: str) -> None:
 def test_stream_help_documents_units_and_gap() -> None:
     out = run(["stream", "--help"]).stdout
     for word in ("fx_N", "mx_Nm", "fx_counts", "fx_zeroed_counts", "t_utc_s", "# gap",
-                 "leptrino-metadata", "SIGUSR1", "SIGUSR2", "--split", "--sim-hangup-after"):
+                 "leptrino-metadata", "SIGUSR1", "SIGUSR2", "--split", "leptrino help sim",
+                 "--data-timeout"):
         assert word in out, word
+
+
+@pytest.mark.parametrize("cmd", COMMANDS)
+def test_help_shows_the_command_not_the_virtual_sensor(cmd: str) -> None:
+    """One line points to the virtual sensor's options; `help sim` lists them."""
+    out = run([cmd, "--help"]).stdout
+    assert "--sim-model" not in out and "--sim-stall" not in out
+    sim = run(["help", "sim"])
+    assert sim.returncode == 0 and sim.stderr == ""
+    for word in ("--sim-model", "--sim-hangup-after", "--sim-replay", "--sim-rate"):
+        assert word in sim.stdout, word
 
 
 BAD = [
@@ -52,6 +64,9 @@ BAD = [
     ["--bogus"],
     ["--version", "extra"],
     ["--help", "extra"],
+    ["stream", "--help", "extra"],
+    ["read", "-h", "--sim"],
+    ["help", "sim", "extra"],
     ["help", "bogus"],
     ["list", "extra"],
     ["list", "--bogus"],

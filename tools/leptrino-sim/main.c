@@ -234,11 +234,14 @@ int main(int argc, char **argv)
     pthread_sigmask(SIG_BLOCK, &set, NULL);
     signal(SIGPIPE, SIG_IGN);
 
+    err[0] = '\0';
     rc = lep_sim_start(&c.o, &sim, err, sizeof err);
     if (rc != LEP_OK) {
         fprintf(stderr, "leptrino-sim: %s\n", err[0] ? err : lep_strerror(rc));
         return rc == LEP_E_ARG ? EXIT_USAGE : 1;
     }
+    if (err[0] != '\0') /* started, with a warning (a replay file cut short) */
+        fprintf(stderr, "leptrino-sim: warning: %s\n", err);
     if (c.trace_writes != NULL &&
         lep_sim_trace_writes(sim, c.trace_writes, err, sizeof err) != LEP_OK) {
         fprintf(stderr, "leptrino-sim: --trace-writes: %s\n", err);

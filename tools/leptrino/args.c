@@ -182,5 +182,7 @@ bool cli_args_help(cli_args *a)
     if (!cli_args_is(a, "-h", "--help"))
         return false;
     cli_args_flag(a);
+    if (!a->failed && a->next < a->argc) /* docs/cli.md: anything after --help is exit 2 */
+        cli_args_error(a, "unexpected argument '%s' after %s", a->argv[a->next], a->name);
     return !a->failed;
 }

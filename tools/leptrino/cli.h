@@ -125,6 +125,8 @@ void cli_port_help(FILE *f, bool several);
 int cli_sensors_open(cli_port_opts *po, const lep_session_options *o, const char *cmd);
 void cli_sensors_close(cli_port_opts *po);
 /* Print "leptrino: CMD: PORT: WHAT: <error>"; returns the exit code for err. */
+/* `leptrino help sim`: every --sim-NAME option (from the simulator's table). */
+void cli_sim_help(FILE *f);
 int cli_session_fail(lep_session *s, const char *cmd, const char *port, const char *what, int err);
 /* Exit code for a LEP_E_* code. */
 int cli_exit_code(int err);

@@ -40,10 +40,11 @@ typedef struct sensor_run {
     lep_output *w; /* its writer (shared when all go to one file) */
     int index;     /* its sensor index in w */
     bool own_writer;
-    bool done;       /* reached duration/count */
-    int failed;      /* LEP_E_* that ended it, 0 while fine */
-    uint64_t limits; /* limit episodes begun */
-    bool limit_stop; /* a limit was exceeded with --stop-on-limit */
+    bool done;            /* reached duration/count */
+    int failed;           /* LEP_E_* that ended it, 0 while fine */
+    uint64_t limits;      /* limit episodes begun */
+    bool limit_stop;      /* a limit was exceeded with --stop-on-limit */
+    unsigned tare_events; /* tares done, offsets set and un-tares during the run */
 } sensor_run;
 
 static void help(void)
@@ -478,9 +479,16 @@ static void emit(stream_state *st, sensor_run *r, const lep_session_batch *batch
                 r->limits++;
             /* without reconnect, the next read says the stream is over */
             if (ev[k].type == LEP_EV_DISCONNECTED && st->o.so.reconnect) {
-                note(st, r, "%s at t=%.3f s; reopening the port (Ctrl-C to stop)",
-                     ev[k].error == LEP_E_TIMEOUT ? "no data" : "disconnected",
-                     ev[k].gap_from - st->t0);
+                if (ev[k].error == LEP_E_TIMEOUT)
+                    note(st, r,
+                         "no data for %g s (--data-timeout) at t=%.3f s; reopening the port "
+                         "(--reconnect; Ctrl-C to stop)",
+                         st->o.so.data_timeout_ms / 1000.0, ev[k].gap_from - st->t0);
+                else
+                    note(st, r, "disconnected at t=%.3f s; reopening the port (Ctrl-C to stop)",
+                         ev[k].gap_from - st->t0);
+            } else if (ev[k].type == LEP_EV_TARE) {
+                r->tare_events++;
             } else if (ev[k].type == LEP_EV_RECONNECTED) {
                 note(st, r, "back at t=%.3f s after %.1f s; streaming resumed",
                      ev[k].t_mono - st->t0, ev[k].gap_to - ev[k].gap_from);
@@ -560,6 +568,14 @@ static int loop(stream_state *st)
         tare_requests(st);
         for (i = 0; i < st->n; ++i) {
             sensor_run *r = &st->run[i];
+            if (r->failed == LEP_E_LOST) {
+                /* a lost stream: say which option decides it, never wait in silence */
+                note(st, r,
+                     "no data for %g s (--data-timeout %g): the stream is lost (--reconnect "
+                     "reopens the port and waits for the sensor instead)",
+                     st->o.so.data_timeout_ms / 1000.0, st->o.so.data_timeout_ms / 1000.0);
+                return cli_exit_code(LEP_E_LOST);
+            }
             if (r->failed != 0)
                 return cli_session_fail(r->s, "stream", r->sensor->name, "stream", r->failed);
             if (r->limit_stop)
@@ -584,6 +600,10 @@ static int loop(stream_state *st)
             batch_init(st, &b);
             rc = lep_session_read(r->s, &b, st->n > 1 || st->keys ? 0 : WAIT_MS);
             emit(st, r, &b);
+            /* a quiet source: what was written reaches the file now (the
+             * writer itself flushes a file every 100 ms while rows come) */
+            if (b.n == 0 && st->write_error == 0 && lep_output_flush(r->w) != LEP_OK)
+                st->write_error = lep_output_errno(r->w) != 0 ? lep_output_errno(r->w) : EIO;
             if (rc == LEP_E_END)
                 r->done = true;
             else if (rc != LEP_OK && rc != LEP_E_TIMEOUT && r->failed == 0)
@@ -603,18 +623,26 @@ static void summary(stream_state *st)
         lep_session_health h;
         bool tared;
         double off[LEP_AXES];
+        const char *tare_words = "";
         lep_session_get_health(r->s, &h);
         tared = lep_session_get_tare(r->s, off);
+        /* What the tare is at the end: averaging still, in force, or removed
+         * (by u / SIGUSR2) after one; nothing when no tare was asked for. */
+        if (lep_session_taring(r->s))
+            tare_words = ", tare incomplete (still averaging at the end)";
+        else if (tared)
+            tare_words = ", tared";
+        else if (r->tare_events > 0)
+            tare_words = ", untared";
+        else if (st->o.so.tare_samples > 0)
+            tare_words = ", tare incomplete";
         fprintf(stderr,
                 "leptrino: stream: %s: %llu samples in %.3f s, %.1f Hz measured (nominal %.0f "
                 "Hz), %llu errors, %llu overloads, %llu gaps (%llu samples lost, longest "
                 "%.3f s)%s%s\n",
                 r->sensor->name, (unsigned long long)h.delivered, h.elapsed_s, h.measured_hz,
                 h.nominal_hz, (unsigned long long)h.errors, (unsigned long long)h.overloads,
-                (unsigned long long)h.gaps, (unsigned long long)h.lost, h.max_gap_s,
-                st->o.so.tare_samples == 0 ? ""
-                : tared                    ? ", tared"
-                                           : ", tare incomplete",
+                (unsigned long long)h.gaps, (unsigned long long)h.lost, h.max_gap_s, tare_words,
                 st->stopped ? "; stopped by signal" : "");
         if (h.events_dropped > 0)
             fprintf(stderr,
@@ -692,6 +720,14 @@ static int open_outputs(stream_state *st)
             !S_ISDIR(sb.st_mode))
             oo.overwrite = true;
         rc = lep_output_open(target, &oo, &r->w, err, sizeof err);
+        if (rc == LEP_E_ARG && target != NULL && !oo.overwrite && stat(target, &sb) == 0) {
+            r->w = NULL; /* the library's words name no flag: this tool's does */
+            fprintf(stderr,
+                    "leptrino: stream: %s: already exists; not overwritten (choose another "
+                    "name, or --overwrite)\n",
+                    target);
+            return CLI_FAIL;
+        }
         if (rc != LEP_OK) {
             r->w = NULL;
             fprintf(stderr, "leptrino: stream: %s\n", err[0] != '\0' ? err : lep_strerror(rc));
@@ -765,8 +801,23 @@ int cli_cmd_stream(int argc, char **argv)
     }
     for (i = 0; i < st.n; ++i) {
         if (lep_session_streaming(st.run[i].s)) {
+            /* A sensor that went quiet may not answer the stop either: the
+             * wait is said first, with the option that bounds it. */
+            int per_try = st.o.po.timeout_ms;
+            /* one stop transaction after a silence (session.h, lep_session_stop) */
+            double most = (LEP_CLIENT_DEFAULT_RETRIES + 1.0) * per_try / 1000.0;
+            if (st.run[i].failed == LEP_E_LOST)
+                note(&st, &st.run[i],
+                     "stopping the sensor's stream: up to %.1f s without an answer "
+                     "(-t/--timeout %d ms a try)",
+                     most, per_try);
             rc = lep_session_stop(st.run[i].s);
-            if (rc != LEP_OK && rc != LEP_E_DISCONNECTED)
+            if (rc == LEP_E_TIMEOUT)
+                note(&st, &st.run[i],
+                     "could not stop the sensor's stream: no answer within -t/--timeout %d ms "
+                     "a try (the next leptrino run stops it at start-up)",
+                     per_try);
+            else if (rc != LEP_OK && rc != LEP_E_DISCONNECTED)
                 note(&st, &st.run[i], "could not stop the sensor's stream: %s", lep_strerror(rc));
         }
     }

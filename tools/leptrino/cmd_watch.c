@@ -229,6 +229,15 @@ int cli_cmd_watch(int argc, char **argv)
     lep_session_get_health(s, &v.health);
     if (code != CLI_OK) {
         cli_session_fail(s, "watch", port, "stream", rc);
+        if (rc == LEP_E_TIMEOUT && lep_session_streaming(s)) {
+            /* a quiet sensor may not answer the stop: say the wait first */
+            fprintf(stderr,
+                    "leptrino: watch: %s: stopping the sensor's stream: up to %.1f s without an "
+                    "answer (-t/--timeout %d ms a try)\n",
+                    port, (LEP_CLIENT_DEFAULT_RETRIES + 1.0) * o.po.timeout_ms / 1000.0,
+                    o.po.timeout_ms);
+            (void)lep_session_stop(s);
+        }
     } else {
         lep_session_stop(s);
         fprintf(stderr,

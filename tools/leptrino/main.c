@@ -28,7 +28,7 @@ static void usage(FILE *f)
 {
     size_t i;
     fputs("Usage: leptrino COMMAND [options]\n"
-          "  or:  leptrino --version | --help | help COMMAND\n"
+          "  or:  leptrino --version | --help | help COMMAND | help sim\n"
           "\n"
           "Talk to Leptrino 6-axis force/torque sensors over a serial port, or to a\n"
           "built-in virtual sensor (--sim) when there is no hardware.\n"
@@ -44,7 +44,8 @@ static void usage(FILE *f)
           "  leptrino stream /dev/ttyACM0 --tare 100 -o forces.csv\n"
           "  leptrino watch --sim\n"
           "\n"
-          "'leptrino COMMAND --help' shows the options of a command.\n"
+          "'leptrino COMMAND --help' shows the options of a command, 'leptrino help sim'\n"
+          "those of the virtual sensor (--sim-NAME VALUE).\n"
           "\n",
           f);
     cli_print_exit_codes(f);
@@ -90,6 +91,10 @@ int main(int argc, char **argv)
         if (argc > 3) {
             fprintf(stderr, "leptrino: help: unexpected argument '%s'\n", argv[3]);
             return CLI_USAGE;
+        }
+        if (strcmp(argv[2], "sim") == 0) {
+            cli_sim_help(stdout);
+            return CLI_OK;
         }
         cmd = find_command(argv[2]);
         if (cmd == NULL) {

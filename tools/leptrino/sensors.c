@@ -202,7 +202,6 @@ static void help_line(FILE *f, const char *left, const char *text)
 
 void cli_port_help(FILE *f, bool several)
 {
-    size_t i, n = lep_sim_option_count();
     if (several)
         fputs("Sensors (one or more; each PORT and each --sim adds one):\n"
               "  PORT                     serial device, e.g. /dev/ttyACM0 or\n"
@@ -216,9 +215,19 @@ void cli_port_help(FILE *f, bool several)
               "  --sim                    a built-in virtual sensor instead of a port\n",
               f);
     fputs("  -t, --timeout MS         answer timeout per command in ms (default 500)\n"
+          "  --sim-NAME VALUE         an option of the virtual sensor (model, rate, noise,\n"
+          "                           replay, faults, ...): 'leptrino help sim' lists them\n",
+          f);
+}
+
+void cli_sim_help(FILE *f)
+{
+    size_t i, n = lep_sim_option_count();
+    fputs("Usage: leptrino COMMAND --sim [--sim-NAME VALUE ...] [options]\n"
           "\n"
           "Virtual sensor options (with --sim; after a --sim they apply to that virtual\n"
-          "sensor, before the first --sim to all of them):\n",
+          "sensor, before the first --sim to all of them). The same options as\n"
+          "leptrino-sim's, with a sim- prefix:\n",
           f);
     for (i = 0; i < n; ++i) {
         const lep_sim_option_info *o = lep_sim_option_at(i);
@@ -280,7 +289,14 @@ int cli_session_fail(lep_session *s, const char *cmd, const char *port, const ch
         fprintf(stderr, "leptrino: %s: %s: %s: disconnected (the port went away)\n", cmd, port,
                 what);
     } else if (err == LEP_E_LOST) {
-        fprintf(stderr, "leptrino: %s: %s: %s: stream lost (no data within the data timeout)\n",
+        fprintf(stderr,
+                "leptrino: %s: %s: %s: stream lost: no data within --data-timeout "
+                "(--reconnect waits for the sensor to come back)\n",
+                cmd, port, what);
+    } else if (err == LEP_E_TIMEOUT) {
+        fprintf(stderr,
+                "leptrino: %s: %s: %s: the sensor did not answer (-t/--timeout MS is the wait for "
+                "each try)\n",
                 cmd, port, what);
     } else {
         fprintf(stderr, "leptrino: %s: %s: %s: %s\n", cmd, port, what, lep_strerror(err));
@@ -314,6 +330,8 @@ int cli_sensors_open(cli_port_opts *po, const lep_session_options *o, const char
             cli_sensors_close(po);
             return code == CLI_OK ? CLI_FAIL : code;
         }
+        if (err[0] != '\0') /* opened, with a warning (a replay file cut short) */
+            fprintf(stderr, "leptrino: %s: warning: %s\n", cmd, err);
     }
     return CLI_OK;
 }

@@ -46,6 +46,7 @@ from .errors import (
     TimeoutError,
 )
 from .payload import Payload, identify_payload, read_pose
+from .recording_file import RecordingFile, read_recording
 from .sensor import PowerCycleWarning, Sensor, Stream, list_ports
 from .simulator import SimOption, Simulator
 from .values import (
@@ -61,6 +62,8 @@ from .values import (
 )
 
 __all__ = [
+    "read_recording",
+    "RecordingFile",
     "BACKENDS",
     "BusyError",
     "ClientStats",

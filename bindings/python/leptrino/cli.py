@@ -78,7 +78,9 @@ def cmd_plot(argv: Sequence[str], out: TextIO) -> int:
         raise _Usage("--seconds must be > 0")
     if args.tare < 0:
         raise _Usage("--tare must be >= 0")
-    from .plot import plot_recording  # ImportError with the hint before any recording
+    from .plot import plot_recording, pyplot
+
+    pyplot(args.output)  # ImportError with the hint before any recording
 
     with ExitStack() as stack:
         try:

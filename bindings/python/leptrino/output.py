@@ -7,6 +7,7 @@ from typing import Any, List, Optional, Sequence
 
 import numpy as np
 
+from . import _args as A
 from . import _constants as K
 from ._backend import get_backend
 from .errors import error_for
@@ -27,6 +28,9 @@ _EVENT_CODES = {name: code for code, name in EVENT_NAMES.items()}
 
 
 def column_bits(columns: Sequence[str]) -> int:
+    if isinstance(columns, (str, bytes)):
+        raise TypeError(f"columns: {columns!r} is not a list of names "
+                        f"({', '.join(COLUMNS)}); give [{columns!r}]")
     bits = 0
     for c in columns:
         if c not in COLUMNS:
@@ -44,6 +48,7 @@ def write_recording(rec: Recording, path: str, *, format: str = "csv",
     """Write rec to path (CSV or JSON lines) with lep_output: the metadata
     line, the header, the rows, the events where they belong. FileExistsError
     for an existing file unless overwrite; the library's error otherwise."""
+    overwrite = A.flag("save", "overwrite", overwrite)
     if format not in FORMATS:
         raise ValueError(f"format must be one of {', '.join(FORMATS)}, not {format!r}")
     if time not in TIMES:
@@ -63,7 +68,8 @@ def write_recording(rec: Recording, path: str, *, format: str = "csv",
     if rc < 0:
         msg = be.text(err)
         if rc == K.LEP_E_ARG and "exist" in msg:
-            raise FileExistsError(msg)
+            raise FileExistsError(f"{path}: already exists; not overwritten (choose another "
+                                  "name, or overwrite=True)")
         raise error_for(be, rc, msg or path, complete=bool(msg))
     w = be.handle(out)
     try:

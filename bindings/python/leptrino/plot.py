@@ -7,10 +7,9 @@ from typing import Any, Optional
 from .values import Recording
 
 
-def plot_recording(rec: Recording, path: Optional[str] = None, *, title: str = "") -> Any:
-    """Two panels (Fx Fy Fz in N, Mx My Mz in N·m) against seconds since the
-    first sample. Saves a PNG to path when given; returns the Figure.
-    ImportError with an install hint when matplotlib is missing."""
+def pyplot(path: Optional[str] = None) -> Any:
+    """matplotlib.pyplot (the Agg backend when drawing to a file), or
+    ImportError with an install hint: call it before recording anything."""
     try:
         import matplotlib
 
@@ -21,6 +20,14 @@ def plot_recording(rec: Recording, path: Optional[str] = None, *, title: str = "
         raise ImportError(
             "plotting needs matplotlib: pip install matplotlib"
         ) from exc
+    return plt
+
+
+def plot_recording(rec: Recording, path: Optional[str] = None, *, title: str = "") -> Any:
+    """Two panels (Fx Fy Fz in N, Mx My Mz in N·m) against seconds since the
+    first sample. Saves a PNG to path when given; returns the Figure.
+    ImportError with an install hint when matplotlib is missing."""
+    plt = pyplot(path)
     t = rec.elapsed
     fig, (ax_f, ax_m) = plt.subplots(2, 1, sharex=True, figsize=(10, 6), constrained_layout=True)
     for i, name in enumerate(("Fx", "Fy", "Fz")):

@@ -3,22 +3,32 @@
 Everything a session does (start-up recovery, tare, host low-pass,
 decimation, rotation, gap detection, reconnect, health, metadata) runs in C
 (leptrino/session.h); this module moves its batches into numpy arrays and
-turns its structs into Python values. Not thread-safe: one thread drives a
-Sensor (tare, untare, the tare offsets, the low-pass, the rotation, health
-and metadata may also be used from other threads, as the session allows).
+turns its structs into Python values.
+
+Threads: one thread at a time drives a Sensor (record, stream, read, start,
+stop, filter, stats, tare with wait); another thread's driving call raises
+StateError at once (nothing waits, nothing is shared). tare (without wait),
+untare, the tare offsets, the low-pass, the frame, health and metadata may be
+used from any thread. close() from any thread is safe: a call in progress in
+another thread raises StateError at its next read and close() waits for it
+(leptrino/_guard.py).
 """
 
 from __future__ import annotations
 
+import functools
 import json
 import math
 import warnings
-from typing import Any, Dict, Iterator, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import (Any, Callable, Dict, Iterator, List, Mapping, Optional, Sequence, Tuple,
+                    TypeVar, Union, cast)
 
 import numpy as np
 
 from . import _constants as K
+from . import _args as A
 from ._backend import get_backend
+from ._guard import Guard
 from .errors import LeptrinoError, error_for
 from .values import (
     EVENT_NAMES,
@@ -45,6 +55,27 @@ _RECORD_LATENCY_MS = 100
 _RECORD_FINAL_READS = 64
 
 
+_F = TypeVar("_F", bound=Callable[..., Any])
+
+
+def _driving(fn: _F) -> _F:
+    """A call only the driving thread makes (StateError from another thread)."""
+    @functools.wraps(fn)
+    def wrap(self: "Sensor", *a: Any, **k: Any) -> Any:
+        with self._guard.drive(self.port):
+            return fn(self, *a, **k)
+    return cast(_F, wrap)
+
+
+def _any_thread(fn: _F) -> _F:
+    """A call any thread may make (close() waits for it)."""
+    @functools.wraps(fn)
+    def wrap(self: "Sensor", *a: Any, **k: Any) -> Any:
+        with self._guard.call(self.port):
+            return fn(self, *a, **k)
+    return cast(_F, wrap)
+
+
 class PowerCycleWarning(UserWarning):
     """A setting was stored by the sensor but takes effect only after a power cycle."""
 
@@ -61,9 +92,7 @@ def product_info_from(be: Any, c: Any) -> ProductInfo:
 
 
 def _ms(seconds: float, what: str) -> int:
-    if not seconds >= 0 or math.isinf(seconds):
-        raise ValueError(f"{what} must be a finite number of seconds >= 0, not {seconds!r}")
-    return int(math.ceil(seconds * 1000))
+    return int(math.ceil(A.number("Sensor", what, seconds, 0.0, 3600.0) * 1000))
 
 
 class Sensor:
@@ -88,8 +117,9 @@ class Sensor:
       each sample as soon as it is read (a control loop).
     tare: tare over the first N samples after the stream starts.
     lowpass: host low-pass cut-off in Hz (0 off); decimate: keep every Nth.
-    rotation: (roll, pitch, yaw) in radians or a 3x3 matrix; shift: the moment
-      reference point (x, y, z) in metres, in the output frame.
+    rotation: (roll, pitch, yaw) in degrees (as `leptrino --rotate` and
+      `leptrino-bridge --rotate`; degrees=False: radians) or a 3x3 matrix;
+      shift: the moment reference point (x, y, z) in metres, in the output frame.
     reconnect: reopen the port after a disconnect (with backoff) and go on.
     data_timeout: no data for this long while streaming is a disconnect.
     """
@@ -113,18 +143,25 @@ class Sensor:
         gap_periods: float = 3.0,
         nominal_hz: float = 0.0,
         backend: Optional[str] = None,
+        degrees: bool = True,
     ) -> None:
+        self._guard = Guard()
+        self.port: str = str(port or "virtual sensor")
+        self._s: Any = None
         self._be = be = get_backend(backend)
         lib = be.lib
-        self._s: Any = None
-        if not timeout > 0:
-            raise ValueError("timeout must be > 0 seconds")
-        if not 0 <= retries <= 255:
-            raise ValueError("retries must be 0..255")
-        if int(decimate) < 1:
-            raise ValueError("decimate must be >= 1")
-        if int(tare) < 0:
-            raise ValueError("tare must be >= 0 samples")
+        # every argument checked before the library sees any (leptrino/_args.py)
+        A.number("Sensor", "timeout", timeout, 0.0, 3600.0, lo_exclusive=True)
+        retries = A.whole("Sensor", "retries", retries, 0, 255)
+        decimate = A.whole("Sensor", "decimate", decimate, 1, 100000)
+        tare = A.whole("Sensor", "tare", tare, 0, 1000000)
+        lowpass = A.number("Sensor", "lowpass", lowpass, 0.0, 1e5)
+        gap_periods = A.number("Sensor", "gap_periods", gap_periods, 1.0, 1e6)
+        nominal_hz = A.number("Sensor", "nominal_hz", nominal_hz, 0.0, 1e5)
+        reconnect = A.flag("Sensor", "reconnect", reconnect)
+        degrees = A.flag("Sensor", "degrees", degrees)
+        rot = None if rotation is None else self._matrix(rotation, degrees, "Sensor")
+        sh = None if shift is None else self._vec3(shift, "Sensor")
         self._timeout_ms = max(1, _ms(timeout, "timeout"))
         o = be.new("lep_session_options")
         lib.lep_session_options_init(o)
@@ -149,13 +186,14 @@ class Sensor:
         o.decimate = int(decimate)
         o.reconnect = bool(reconnect)
         o.data_timeout_ms = max(1, _ms(data_timeout, "data_timeout"))
+        self._data_timeout_s = o.data_timeout_ms / 1000  # named by a lost stream's message
         o.gap_periods = float(gap_periods)
         o.nominal_hz = float(nominal_hz)
-        if rotation is not None:
-            for i, v in enumerate(self._matrix(rotation)):
+        if rot is not None:
+            for i, v in enumerate(rot):
                 o.rotation[i] = v
-        if shift is not None:
-            for i, v in enumerate(self._vec3(shift)):
+        if sh is not None:
+            for i, v in enumerate(sh):
                 o.shift_m[i] = v
         out = be.new_handle("lep_session")
         err = be.new_text(512)
@@ -166,7 +204,9 @@ class Sensor:
                 raise ValueError(msg or "bad session options")
             raise error_for(be, rc, msg or str(port or "virtual sensor"), complete=bool(msg))
         self._s = be.handle(out)
-        self.port: str = be.text(lib.lep_session_port(self._s))
+        self.port = be.text(lib.lep_session_port(self._s))
+        if be.text(err):  # opened, with the virtual sensor's warning (a replay file cut short)
+            warnings.warn(be.text(err), RuntimeWarning, stacklevel=2)
         try:
             client = lib.lep_session_client(self._s)
             self._check(lib.lep_client_set_retries(client, retries))
@@ -213,13 +253,22 @@ class Sensor:
 
     def close(self) -> None:
         """Stop a running stream (best effort), release the port, stop the
-        session's virtual sensor. Idempotent."""
-        if self._s is not None:
-            s, self._s = self._s, None
-            self._be.lib.lep_session_close(s)
+        session's virtual sensor. Idempotent. Safe from any thread: a call in
+        progress in another thread raises StateError and is waited for."""
+        if getattr(self, "_s", None) is None:
+            return
+
+        def free() -> None:
+            if self._s is not None:
+                s, self._s = self._s, None
+                self._be.lib.lep_session_close(s)
+
+        self._guard.close(free)
 
     # -- helpers -------------------------------------------------------------
     def _live(self) -> Any:
+        if self._guard.closing and self._s is not None:
+            raise self._guard.closed_error(self.port)
         if self._s is None:
             raise LeptrinoError(f"{self.port}: the sensor is closed", K.LEP_E_STATE)
         return self._s
@@ -240,27 +289,38 @@ class Sensor:
             raise error_for(self._be, rc, what or self.port, result=result, command=command)
         return rc
 
+    @_any_thread
     def _metadata_struct(self) -> Any:
         m = self._be.new("lep_session_metadata")
         self._be.lib.lep_session_get_metadata(self._live(), m)
         return m
 
-    def _matrix(self, rotation: Any) -> List[float]:
-        r = np.asarray(rotation, dtype=np.float64)
-        if r.shape == (3,):
+    def _matrix(self, rotation: Any, degrees: bool, where: str) -> List[float]:
+        what = "(roll, pitch, yaw) or a 3x3 rotation matrix"
+        shape = np.shape(rotation) if not isinstance(rotation, (str, bytes)) else ()
+        if shape == (3,):
+            r = A.numbers_of(where, "rotation", rotation, (3,), what)
+            if degrees:
+                r = [math.radians(x) for x in r]
             out = self._be.doubles(9)
-            self._be.lib.lep_rotation_from_rpy(float(r[0]), float(r[1]), float(r[2]), out)
+            self._be.lib.lep_rotation_from_rpy(r[0], r[1], r[2], out)
             return [float(out[i]) for i in range(9)]
-        if r.shape == (3, 3):
-            return [float(v) for v in r.reshape(9)]
-        raise ValueError("rotation is (roll, pitch, yaw) in radians or a 3x3 matrix")
+        m = A.numbers_of(where, "rotation", rotation, (3, 3), what)
+        if not A.is_rotation(m):  # the CLI's words (session.c)
+            raise ValueError(f"{where}: rotation is not a rotation matrix (R R^T != I)")
+        return m
 
     @staticmethod
-    def _vec3(v: Sequence[float]) -> List[float]:
-        a = np.asarray(v, dtype=np.float64)
-        if a.shape != (3,):
-            raise ValueError("shift is (x, y, z) in metres")
-        return [float(x) for x in a]
+    def _vec3(v: Sequence[float], where: str) -> List[float]:
+        return A.numbers_of(where, "shift", v, (3,), "(x, y, z) in metres")
+
+    def _lost_words(self, what: str, rc: int) -> str:
+        """The message of a read that failed; a lost stream names the option."""
+        if rc == K.LEP_E_LOST:
+            return (f"{self.port}: {what}: no data for {self._data_timeout_s:g} s "
+                    "(data_timeout=): the stream is lost (reconnect=True waits for the sensor "
+                    "to come back)")
+        return f"{self.port}: {what}"
 
     def _drain_events(self, base: int = 0) -> List[SessionEvent]:
         """The queued events, .sample counted from the stream's sample base."""
@@ -299,6 +359,7 @@ class Sensor:
         The library's own JSON object (lep_session_metadata_json), as a dict."""
         return dict(json.loads(self.metadata_json()))
 
+    @_any_thread
     def metadata_json(self) -> str:
         """The metadata as the library writes it (one JSON object)."""
         be = self._be
@@ -314,6 +375,7 @@ class Sensor:
             return str(be.bytes_at(buf, int(be.value(n))).decode("utf-8"))
 
     @property
+    @_any_thread
     def health(self) -> Health:
         """Measured against nominal rate, samples lost, gaps, errors, overloads,
         reconnects, since the stream started."""
@@ -332,6 +394,7 @@ class Sensor:
         )
 
     @property
+    @_driving
     def stats(self) -> ClientStats:
         """The current connection's client counters (messages, BCC errors, NAKs, ...)."""
         st = self._be.new("lep_client_stats")
@@ -339,10 +402,12 @@ class Sensor:
         return copy_fields(ClientStats, st)  # type: ignore[no-any-return]
 
     @property
+    @_any_thread
     def streaming(self) -> bool:
         return bool(self._be.lib.lep_session_streaming(self._live()))
 
     @property
+    @_driving
     def filter(self) -> int:
         """The sensor's digital filter code in effect (0 off, 1..3; see filter_label)."""
         code = self._be.new_scalar("uint8_t")
@@ -351,9 +416,9 @@ class Sensor:
         return int(self._be.value(code))
 
     @filter.setter
+    @_driving
     def filter(self, code: int) -> None:
-        if not 0 <= int(code) <= K.LEP_FILTER_MAX:
-            raise ValueError(f"filter code must be 0..{K.LEP_FILTER_MAX}, not {code}")
+        code = A.whole("filter", "code", code, 0, K.LEP_FILTER_MAX)
         self._check(self._be.lib.lep_client_filter_set(self._client(), int(code)),
                     K.LEP_CMD_FILTER_SET)
         warnings.warn(
@@ -363,26 +428,32 @@ class Sensor:
             stacklevel=2,
         )
 
+    @_driving
     def filter_label(self, code: Optional[int] = None) -> str:
         """The spec's label of a filter code ("off", "10 Hz", ...); models differ."""
         if code is None:
             code = self.filter
+        code = A.whole("filter_label", "code", code, 0, 255)
         return str(self._be.text(self._be.lib.lep_filter_label(int(code) & 0xFF)))
 
     # -- processing ----------------------------------------------------------
+    @_any_thread
     def tare(self, n: int = 100, seconds: Optional[float] = None,
              wait: Optional[bool] = None) -> Optional[Tuple[float, ...]]:
-        """Zero on the mean raw counts of the next n samples (or of seconds).
+        """Zero on the mean raw counts of the next n samples (1 .. 1000000, as
+        `leptrino --tare N`), or of seconds (> 0) when given.
 
         While streaming the tare runs beside the stream (nothing stalls; the
         samples it averages carry the taring flag) and this returns None at
         once. Otherwise (or with wait=True) it starts the stream, waits for the
         tare to finish, stops the stream again and returns the offsets in
-        counts. n=0 with no seconds removes the tare (as untare())."""
+        counts. untare() removes a tare (n=0 is a ValueError, not an untare)."""
+        if seconds is None:
+            n = A.whole("tare", "n", n, 1, 1000000)
+        else:
+            seconds = A.number("tare", "seconds", seconds, 0.0, 3600.0, lo_exclusive=True)
+        wait = A.optional_flag("tare", "wait", wait)
         s = self._live()
-        if seconds is None and int(n) <= 0:
-            self.untare()
-            return self.tare_offsets
         lib = self._be.lib
         self._check(lib.lep_session_tare(s, 0 if seconds is not None else int(n),
                                          float(seconds or 0.0)), None, f"{self.port}: tare")
@@ -391,60 +462,75 @@ class Sensor:
             wait = not streaming
         if not wait:
             return None
+        self._guard.hold(self.port)  # reads the stream: the driving thread's part
         started = False
-        if not streaming:
-            self.start()
-            started = True
         try:
+            if not streaming:
+                self.start()
+                started = True
             arrays = _Arrays(self._be, _ITER_BATCH)
             while lib.lep_session_taring(s):
                 arrays.c.n = 0
                 rc = lib.lep_session_read(s, arrays.c, self._timeout_ms)
+                self._guard.check(self.port)
                 self._delivered += arrays.n
                 if rc < 0 and rc != K.LEP_E_END:
                     self._check(rc, None, f"{self.port}: tare")
                 self.events += self._drain_events()
         finally:
-            if started and self._s is not None:
-                lib.lep_session_stop(self._s)
+            try:
+                if started and self._s is not None:
+                    lib.lep_session_stop(self._s)
+            finally:
+                self._guard.release()
         return self.tare_offsets
 
+    @_any_thread
     def untare(self) -> None:
         """Remove the tare (offsets zero); cancels a tare in progress."""
         self._check(self._be.lib.lep_session_untare(self._live()))
 
     @property
+    @_any_thread
     def tare_offsets(self) -> Tuple[float, ...]:
         """The tare offsets in raw counts (zeros when not tared); settable."""
         self._be.lib.lep_session_get_tare(self._live(), self._offsets)
         return tuple(float(self._offsets[i]) for i in range(K.LEP_AXES))
 
     @tare_offsets.setter
+    @_any_thread
     def tare_offsets(self, counts: Sequence[float]) -> None:
-        a = np.asarray(counts, dtype=np.float64)
-        if a.shape != (K.LEP_AXES,):
-            raise ValueError("tare offsets are six numbers (counts)")
+        a = A.numbers_of("tare_offsets", "counts", counts, (K.LEP_AXES,), "six numbers (counts)")
         buf = self._be.doubles(K.LEP_AXES)
         for i in range(K.LEP_AXES):
-            buf[i] = float(a[i])
+            buf[i] = a[i]
         self._check(self._be.lib.lep_session_set_tare(self._live(), buf))
 
     @property
+    @_any_thread
     def tared(self) -> bool:
         return bool(self._be.lib.lep_session_get_tare(self._live(), self._offsets))
 
     @property
+    @_any_thread
     def taring(self) -> bool:
         """True while a tare is averaging."""
         return bool(self._be.lib.lep_session_taring(self._live()))
 
     @property
+    @_any_thread
     def lowpass(self) -> float:
         """Host low-pass cut-off in Hz (0 off); settable at any time."""
         return float(self._metadata_struct().lowpass_hz)
 
     @lowpass.setter
+    @_any_thread
     def lowpass(self, cutoff_hz: float) -> None:
+        top = 0.45 * self._nominal_hz
+        if A.number("lowpass", "cutoff_hz", cutoff_hz, 0.0, math.inf) > top:
+            raise ValueError(f"lowpass: cutoff_hz: {cutoff_hz!r} is out of range (from 0 .. "
+                             f"{top:g}: a low-pass cut-off is at most 0.45 x the "
+                             f"{self._nominal_hz:g} Hz output rate)")
         rc = self._be.lib.lep_session_set_lowpass(self._live(), float(cutoff_hz))
         if rc == K.LEP_E_VALUE:
             raise ValueError(f"low-pass cut-off {cutoff_hz!r} Hz: must be >= 0 and at most "
@@ -452,29 +538,36 @@ class Sensor:
         self._check(rc)
 
     @property
+    @_any_thread
     def rotation(self) -> np.ndarray:
         """The output frame's rotation matrix (3x3)."""
         m = self._metadata_struct()
         return np.array([float(m.rotation[i]) for i in range(9)]).reshape(3, 3)
 
     @property
+    @_any_thread
     def shift(self) -> Tuple[float, float, float]:
         """The moment reference point (x, y, z), metres, in the output frame."""
         m = self._metadata_struct()
         return (float(m.shift_m[0]), float(m.shift_m[1]), float(m.shift_m[2]))
 
+    @_any_thread
     def set_frame(self, rotation: Optional[Sequence[Any]] = None,
-                  shift: Optional[Sequence[float]] = None) -> None:
-        """Output in another frame: rotation as (roll, pitch, yaw) radians or a
-        3x3 matrix (None: identity), shift the moment reference point (metres,
-        None: origin). Takes effect from the next sample."""
+                  shift: Optional[Sequence[float]] = None, *, degrees: bool = True) -> None:
+        """Output in another frame: rotation as (roll, pitch, yaw) in degrees
+        (as `leptrino --rotate`; degrees=False: radians) or a 3x3 matrix (None:
+        identity), shift the moment reference point (metres, None: origin).
+        Takes effect from the next sample."""
         be = self._be
+        degrees = A.flag("set_frame", "degrees", degrees)
+        m = self._matrix(rotation if rotation is not None else np.eye(3), degrees, "set_frame")
+        v = self._vec3(shift if shift is not None else (0.0, 0.0, 0.0), "set_frame")
         r = be.doubles(9)
-        for i, v in enumerate(self._matrix(rotation if rotation is not None else np.eye(3))):
-            r[i] = v
+        for i, x in enumerate(m):
+            r[i] = x
         sh = be.doubles(3)
-        for i, v in enumerate(self._vec3(shift if shift is not None else (0.0, 0.0, 0.0))):
-            sh[i] = v
+        for i, x in enumerate(v):
+            sh[i] = x
         self._check(be.lib.lep_session_set_rotation(self._live(), r, sh))
 
     # -- payload and limits (leptrino/payload.h; docs/session.md) ------------
@@ -538,6 +631,7 @@ class Sensor:
             raise ValueError(f"limits {v}: each must be 0 (none) or > 0, finite")
 
     # -- data ----------------------------------------------------------------
+    @_driving
     def read(self) -> Sample:
         """One sample in handshake mode (command 0x30), outside the stream,
         through the session (lep_session_read_one): zeroed and SI values with
@@ -549,12 +643,14 @@ class Sensor:
         self._check(self._be.lib.lep_session_read_one(self._live(), a.c), K.LEP_CMD_SAMPLE)
         return a.samples(1)[0]
 
+    @_driving
     def start(self) -> None:
         """Start the stream (stream(), record() and tare() do it themselves)."""
         self._check(self._be.lib.lep_session_start(self._live()), K.LEP_CMD_START)
         self._delivered = 0  # samples read since the start: the events' .sample base
         self._start_mono = float(self._metadata_struct().start_mono)
 
+    @_driving
     def stop(self) -> None:
         """Stop the stream; samples received and not yet read are dropped."""
         self._check(self._be.lib.lep_session_stop(self._live()), K.LEP_CMD_STOP)
@@ -567,8 +663,13 @@ class Sensor:
             with sensor.stream() as samples:
                 for s in samples: ...
         """
+        if count is not None:
+            count = A.whole("stream", "count", count, 0, 2**63 - 1)
+        if seconds is not None:
+            seconds = A.number("stream", "seconds", seconds, 0.0, 1e9, lo_exclusive=True)
         return Stream(self, count, seconds)
 
+    @_driving
     def record(self, seconds: Optional[float] = None, count: Optional[int] = None) -> Recording:
         """Record seconds of the stream, or count samples, into numpy arrays.
 
@@ -579,11 +680,11 @@ class Sensor:
         (KeyboardInterrupt, an exception from a signal handler) the exception's
         .recording holds what was recorded until then."""
         if (seconds is None) == (count is None):
-            raise ValueError("give exactly one of seconds= or count=")
-        if seconds is not None and not (seconds > 0 and math.isfinite(seconds)):
-            raise ValueError("seconds must be > 0")
-        if count is not None and int(count) <= 0:
-            raise ValueError("count must be > 0")
+            raise ValueError("record: give exactly one of seconds= or count=")
+        if seconds is not None:
+            seconds = A.number("record", "seconds", seconds, 0.0, 1e6, lo_exclusive=True)
+        if count is not None:
+            count = A.whole("record", "count", count, 1, 10**9)
         be, lib = self._be, self._be.lib
         s = self._live()
         rate = self._nominal_hz / self._decimate
@@ -635,6 +736,7 @@ class Sensor:
                 arrays.reserve(n + room)
                 arrays.c.cap = n + room
                 rc = lib.lep_session_read(s, arrays.c, max(1, int(wait_s * 1000)))
+                self._guard.check(self.port)
                 if seconds is not None and n == 0 and arrays.n > 0:
                     end = float(arrays.t_mono[0]) + seconds
                 self._delivered += arrays.n - n
@@ -646,7 +748,8 @@ class Sensor:
                 if rc == K.LEP_E_TIMEOUT:
                     continue  # nothing in this slice of the wait (a lost stream: LEP_E_LOST)
                 if rc < 0:
-                    exc = error_for(be, rc, f"{self.port}: recording")
+                    exc = error_for(be, rc, self._lost_words("recording", rc),
+                                    complete=rc == K.LEP_E_LOST)
                     exc.recording = arrays.result(events, self)  # type: ignore[attr-defined]
                     raise exc
         except BaseException as exc:
@@ -783,9 +886,14 @@ class Stream:
             return
         s = self._sensor
         lib = s._be.lib
-        if not lib.lep_session_streaming(s._live()):
-            s.start()
-            self._started = True
+        s._guard.hold(s.port)  # the iterator's thread drives the sensor until close()
+        try:
+            if not lib.lep_session_streaming(s._live()):
+                s.start()
+                self._started = True
+        except BaseException:
+            s._guard.release()
+            raise
         self._open = True
         self._base = s._delivered
 
@@ -794,9 +902,12 @@ class Stream:
         if self._open:
             self._open = False
             s = self._sensor
-            if self._started and not s.closed and s.streaming:
-                self._started = False
-                s.stop()
+            try:
+                if self._started and not s.closed and not s._guard.closing and s.streaming:
+                    self._started = False
+                    s.stop()
+            finally:
+                s._guard.release()
 
     def __iter__(self) -> Iterator[Sample]:
         self._begin()
@@ -823,6 +934,10 @@ class Stream:
         return sample
 
     def _fill(self) -> Sample:
+        with self._sensor._guard.drive(self._sensor.port):
+            return self._fill_held()
+
+    def _fill_held(self) -> Sample:
         s = self._sensor
         lib = s._be.lib
         a = self._arrays
@@ -838,6 +953,7 @@ class Stream:
                 left = self._end - float(lib.lep_monotonic_seconds())
                 wait = max(1, min(wait, int(math.ceil(left * 1000))))
             rc = lib.lep_session_read(s._live(), a.c, wait)
+            s._guard.check(s.port)
             if a.n == 0 and left <= 0:
                 self.close()  # past the end and nothing more arrived before it
                 raise StopIteration
@@ -852,6 +968,8 @@ class Stream:
             if rc == K.LEP_E_TIMEOUT:
                 continue  # nothing in this wait (a lost stream is LEP_E_LOST)
             if rc < 0:
+                if rc == K.LEP_E_LOST:
+                    raise error_for(s._be, rc, s._lost_words("stream", rc), complete=True)
                 s._check(rc, None, f"{s.port}: waiting for stream data")
         self._pending = iter(a.samples(a.n))
         return next(self._pending)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 from typing import Any, Dict, List, Optional
 
@@ -136,6 +137,8 @@ class Simulator:
             raise error_for(be, rc, msg or "starting the virtual sensor", complete=bool(msg))
         self._sim = be.handle(out)
         self.port: str = be.text(be.lib.lep_sim_port(self._sim))
+        if be.text(err):  # started, with a warning (a replay file cut short)
+            warnings.warn(be.text(err), RuntimeWarning, stacklevel=2)
 
     @staticmethod
     def option_table(backend: Optional[str] = None) -> List[SimOption]:
@@ -178,7 +181,10 @@ class Simulator:
 
     def stall(self, seconds: float) -> None:
         """Send nothing and answer nothing for this long, from now."""
-        self._be.lib.lep_sim_stall(self._live(), int(seconds * 1000))
+        from . import _args as A
+
+        ms = A.number("stall", "seconds", seconds, 0.0, 86400.0) * 1000
+        self._be.lib.lep_sim_stall(self._live(), int(ms))
 
     @property
     def stats(self) -> SimStats:

@@ -255,7 +255,8 @@ class Recording:
                          else "csv" if p.endswith(".csv") else None)
         if fmt == "npz":
             if os.path.exists(p) and not overwrite:
-                raise FileExistsError(f"{p}: already exists (pass overwrite=True to replace it)")
+                raise FileExistsError(f"{p}: already exists; not overwritten (choose another "
+                                      "name, or overwrite=True)")
             save_npz(self, p)
             return
         if fmt not in ("csv", "jsonl"):
@@ -267,7 +268,14 @@ class Recording:
 
     @classmethod
     def load(cls, path: Any) -> "Recording":
-        """Read a recording written by save(path) to .npz."""
+        """Read a recording back: the .npz of save(), or the CSV / JSON lines
+        of save() and `leptrino stream -o` (leptrino.read_recording reads
+        them; columns the file lacks are zeros, or NaN for SI values)."""
+        with open(str(path), "rb") as f:
+            if not f.read(2) == b"PK":
+                from .recording_file import recording_from_file
+
+                return recording_from_file(str(path))  # type: ignore[no-any-return]
         with np.load(str(path), allow_pickle=False) as z:
             meta = str(z["metadata"])
             events = [SessionEvent(**{**e, "tare": tuple(e["tare"]),

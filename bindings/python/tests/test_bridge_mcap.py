@@ -85,14 +85,35 @@ def test_mcap_without_network(tmp_path: Path) -> None:
     assert types["/a/wrench"] == "geometry_msgs/msg/WrenchStamped"
     assert counts == Counter({k: len(v) for k, v in msgs.items()})
 
+    # the first diagnostics already say the rate (issue 19: it said 0.00 after 1,200 samples)
+    first = msgs["/a/diagnostics"][0][1]
+    kv = {v.key: v.value for v in first.status[0].values}
+    assert float(kv["recent_rate_hz"]) > 1000, kv
+
+    # each channel says the QoS it was offered with, as rosbag2 writes it (and reads it on
+    # playback); read back with rosbags' own parser of that field
+    from mcap.reader import make_reader
+    from rosbags.rosbag2.reader import parse_qos
+
+    with out.open("rb") as f:
+        summary = make_reader(f).get_summary()
+    assert summary is not None
+    for ch in summary.channels.values():
+        qos = parse_qos(ch.metadata["offered_qos_profiles"])
+        assert len(qos) == 1, ch.topic
+        q = qos[0]
+        assert (q.history.name, q.depth, q.reliability.name, q.durability.name,
+                q.liveliness.name) == ("KEEP_LAST", 10, "RELIABLE", "VOLATILE", "AUTOMATIC")
+
 
 def test_refuses_to_overwrite(tmp_path: Path) -> None:
     out = tmp_path / "keep.mcap"
     out.write_bytes(b"someone's file")
     p = bridge("--sim", "a", "--mcap", str(out), "--duration", "0.5")
-    assert p.returncode == 2 and "already exists" in p.stderr and "--force" in p.stderr
+    # exit 1 and the flag's name, as `leptrino stream -o` says it
+    assert p.returncode == 1 and "already exists" in p.stderr and "--overwrite" in p.stderr
     assert out.read_bytes() == b"someone's file"
-    p = bridge("--sim", "a", "--mcap", str(out), "--duration", "0.5", "--force")
+    p = bridge("--sim", "a", "--mcap", str(out), "--duration", "0.5", "--overwrite")
     assert p.returncode == 0, p.stderr
     msgs, _ = read_mcap(out)
     assert len(msgs["/a/wrench"]) > 100
@@ -119,25 +140,26 @@ def test_sigint_and_sigterm_close_the_file(tmp_path: Path) -> None:
         assert len(msgs["/a/wrench"]) > 100 and len(msgs["/b/wrench"]) > 100
 
 
-@pytest.mark.parametrize("args, message", [
-    ([], "no sensors"),
-    (["--sensor", "nameonly"], "NAME=PORT"),
-    (["--sim", "bad-name"], "sensor name"),
-    (["--sim", "a", "--sim", "a", "--mcap", "x.mcap"], "differ"),
-    (["--sim", "a,nosuchoption=1", "--no-zenoh", "--mcap", "x.mcap"], "nosuchoption"),
-    (["--sim", "a,rate=-5", "--no-zenoh", "--mcap", "x.mcap"], "rate"),
-    (["--sim", "a", "--no-zenoh"], "--mcap"),
-    (["--sim", "a", "--no-zenoh", "--connect", "tcp/127.0.0.1:1"], "--no-zenoh"),
-    (["--sim", "a", "--mode", "client", "--listen", "tcp/127.0.0.1:0"], "client"),
-    (["--sim", "a", "--frame-id", "zz=f", "--mcap", "x.mcap"], "--frame-id"),
-    (["--sim", "a", "--namespace", "a b", "--mcap", "x.mcap"], "namespace"),
-    (["--sim", "a", "--duration", "0", "--mcap", "x.mcap"], "> 0"),
-    (["--sensor", "a=/nonexistent/tty", "--mcap", "x.mcap"], "/nonexistent/tty"),
-    (["--sim", "a", "--mcap", "/nonexistent/dir/x.mcap"], "nonexistent"),
+@pytest.mark.parametrize("args, message, code", [
+    ([], "no sensors", 2),
+    (["--sensor", "nameonly"], "NAME=PORT", 2),
+    (["--sim", "bad-name"], "sensor name", 2),
+    (["--sim", "a", "--sim", "a", "--mcap", "x.mcap"], "differ", 2),
+    (["--sim", "a,nosuchoption=1", "--no-zenoh", "--mcap", "x.mcap"], "nosuchoption", 2),
+    (["--sim", "a,rate=-5", "--no-zenoh", "--mcap", "x.mcap"], "rate", 2),
+    (["--sim", "a", "--no-zenoh"], "--mcap", 2),
+    (["--sim", "a", "--no-zenoh", "--connect", "tcp/127.0.0.1:1"], "--no-zenoh", 2),
+    (["--sim", "a", "--mode", "client", "--listen", "tcp/127.0.0.1:0"], "client", 2),
+    (["--sim", "a", "--frame-id", "zz=f", "--mcap", "x.mcap"], "--frame-id", 2),
+    (["--sim", "a", "--namespace", "a b", "--mcap", "x.mcap"], "namespace", 2),
+    (["--sim", "a", "--duration", "0", "--mcap", "x.mcap"], "> 0", 2),
+    # the `leptrino` tool's exit codes: a missing port 6, an output that cannot be created 1
+    (["--sensor", "a=/nonexistent/tty", "--mcap", "x.mcap"], "/nonexistent/tty", 6),
+    (["--sim", "a", "--mcap", "/nonexistent/dir/x.mcap"], "nonexistent", 1),
 ])
-def test_bad_arguments(tmp_path: Path, args: List[str], message: str) -> None:
+def test_bad_arguments(tmp_path: Path, args: List[str], message: str, code: int) -> None:
     p = subprocess.run([sys.executable, "-m", "leptrino.bridge", *args], cwd=tmp_path,
                        capture_output=True, text=True, env=subprocess_env(), timeout=60)
-    assert p.returncode == 2, (p.stdout, p.stderr)
+    assert p.returncode == code, (p.stdout, p.stderr)
     assert message in p.stderr
     assert not (tmp_path / "x.mcap").exists()

@@ -322,3 +322,27 @@ def test_bad_arguments_are_refused(router: str) -> None:
     with pytest.raises(leptrino.PortError):
         Bridge([SensorSpec("a", port="/nonexistent/port")], None,
                ZenohOptions(connect=[router]))
+
+
+def _run_bridge(*args: str) -> Any:
+    import subprocess
+    import sys
+
+    from conftest import subprocess_env
+
+    return subprocess.run([sys.executable, "-m", "leptrino.bridge", *args], capture_output=True,
+                          text=True, env=subprocess_env(), timeout=60)
+
+
+def test_no_router_is_said(router: str) -> None:
+    """Nobody to receive: said at the start and at the end (exit 0: the run
+    itself went well); with a router there, nothing of the kind is said."""
+    nobody = f"tcp/127.0.0.1:{free_port()}"
+    p = _run_bridge("--sim", "a", "--connect", nobody, "--duration", "1")
+    assert p.returncode == 0, p.stderr
+    assert "zenoh session" in p.stderr
+    assert "no Zenoh router or peer reachable" in p.stderr and nobody in p.stderr, p.stderr
+    assert "nothing published was received" in p.stderr
+    p = _run_bridge("--sim", "a", "--connect", router, "--duration", "1")
+    assert p.returncode == 0, p.stderr
+    assert "reachable" not in p.stderr and "nothing published" not in p.stderr, p.stderr

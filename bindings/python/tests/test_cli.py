@@ -6,6 +6,7 @@ from __future__ import annotations
 import os
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import pytest
@@ -100,7 +101,9 @@ def test_plot_without_matplotlib_names_the_package(backend: str, tmp_path: Path)
     (blocker / "__init__.py").write_text("raise ImportError('blocked for the test')\n")
     env = subprocess_env(LEPTRINO_BACKEND=backend)
     env["PYTHONPATH"] = str(tmp_path) + os.pathsep + env["PYTHONPATH"]
-    r = subprocess.run([sys.executable, "-m", "leptrino", "plot", "--sim", "-o",
-                        str(tmp_path / "x.png")], capture_output=True, text=True, env=env,
+    t0 = time.monotonic()
+    r = subprocess.run([sys.executable, "-m", "leptrino", "plot", "--sim", "--seconds", "30",
+                        "-o", str(tmp_path / "x.png")], capture_output=True, text=True, env=env,
                        timeout=60)
     assert r.returncode == 1 and "pip install matplotlib" in r.stderr
+    assert time.monotonic() - t0 < 25  # said before the 30 s recording, not after it

@@ -36,3 +36,7 @@ def test_readme_example_runs(backend: str, tmp_path: Path) -> None:
     # Host-side timing on a shared machine: the rate is checked within 2 %, never exactly.
     assert m and 1176 <= int(m.group(1)) <= 1224 and 1176 <= int(m.group(2)) <= 1224, out
     assert out.count("t=") == 3
+    # the tare zeroes the constant load of the example's virtual sensor
+    m = re.search(r"mean force after the tare \[N\]: \[([^\]]*)\]", out)
+    assert m and all(abs(float(v)) < 0.5 for v in m.group(1).split()), out
+    assert re.search(r"\d+ rows read back, tared: True", out), out

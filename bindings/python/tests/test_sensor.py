@@ -77,7 +77,7 @@ def test_read_applies_the_tare_and_the_frame(backend: str) -> None:
     with leptrino.Simulator(constant=True, amplitude=0.5, backend=backend) as port:
         with leptrino.Sensor(port, backend=backend) as s:
             s.tare_offsets = (100, -50, 25, 10, -10, 5)
-            s.set_frame(rotation=(0.0, 0.0, math.pi / 2))  # x' = -y, y' = x
+            s.set_frame(rotation=(0.0, 0.0, 90.0))  # degrees: x' = -y, y' = x
             x = s.read()
             zeroed = [r - o for r, o in zip(x.raw, [100, -50, 25, 10, -10, 5])]
             assert x.zeroed == pytest.approx(zeroed)
@@ -180,7 +180,7 @@ def test_tare(backend: str) -> None:
             assert [e.tare for e in s.events if e.type == "tare"] == [offset]
             # the handshake sample is the sensor's own (tare applies to the stream)
             assert s.read().raw == tuple(int(v) for v in before.raw[0])
-            s.tare(0)
+            s.untare()  # (tare(0) is a ValueError: it used to un-tare without a word)
             assert s.tare_offsets == (0.0,) * 6 and not s.tared
             s.tare_offsets = (1000, 0, 0, 0, 0, 0)
             rec = s.record(count=20)

@@ -104,7 +104,8 @@ def test_lowpass_and_decimate(backend: str) -> None:
 
 def test_rotation_and_shift(backend: str) -> None:
     with leptrino.Sensor(sim={"constant": True, "amplitude": 0.3},
-                         rotation=(0.0, 0.0, math.pi / 2), backend=backend) as s:
+                         rotation=(0.0, 0.0, math.pi / 2), degrees=False,
+                         backend=backend) as s:
         r = s.rotation
         assert np.allclose(r, [[0, -1, 0], [1, 0, 0], [0, 0, 1]], atol=1e-12)
         rec = s.record(count=20)
@@ -259,7 +260,8 @@ def _normalised(path: Path) -> list:
 @pytest.mark.parametrize("cli_args,kwargs", [
     (["--tare", "50"], {"tare": 50}),
     (["--lowpass", "50", "--decimate", "2", "--rotate", "0,0,90"],
-     {"lowpass": 50.0, "decimate": 2, "rotation": (0.0, 0.0, math.pi / 2)}),
+     # one unit: --rotate and rotation= are both degrees
+     {"lowpass": 50.0, "decimate": 2, "rotation": (0.0, 0.0, 90.0)}),
 ])
 def test_same_rows_as_the_c_tool(backend: str, tmp_path: Path, cli_args: list,
                                  kwargs: dict) -> None:

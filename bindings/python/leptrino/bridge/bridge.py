@@ -80,7 +80,8 @@ class Bridge:
         self._stop = threading.Event()
         self._diag: Optional[threading.Thread] = None
         if mcap_path is not None and not force and os.path.lexists(mcap_path):
-            raise FileExistsRefused(f"{mcap_path}: already exists (give --force to replace it)")
+            raise FileExistsRefused(f"{mcap_path}: already exists; not overwritten (choose another "
+                                    "name, or --overwrite)")
         ids = itertools.count(100)
         try:
             # the sensors first: a sensor that cannot be opened leaves no file
@@ -101,6 +102,14 @@ class Bridge:
 
     def __exit__(self, *exc: Any) -> None:
         self.close()
+
+    def reachable(self) -> List[str]:
+        """The Zenoh routers and peers this session is connected to now (ids);
+        empty: nobody can receive what the bridge publishes."""
+        if self.session is None:
+            return []
+        info = self.session.info
+        return [str(z) for z in list(info.routers_zid()) + list(info.peers_zid())]
 
     @property
     def zid(self) -> str:

@@ -50,6 +50,20 @@ def _parse_sim(text: str) -> SensorSpec:
         raise argparse.ArgumentTypeError(str(e)) from None
 
 
+def exit_code(e: BaseException) -> int:
+    """The `leptrino` tool's exit code for what went wrong (docs/cli.md): a
+    missing port is 6 in both, an existing output file 1, a bad value 2."""
+    from .. import errors as E
+
+    for kind, code in ((E.TimeoutError, 3), (E.DisconnectedError, 4), (E.SensorError, 5),
+                       (E.NakError, 5), (E.PortNotFoundError, 6), (E.NotATerminalError, 6),
+                       (E.BusyError, 7), (E.PortPermissionError, 8), (E.LeptrinoError, 1),
+                       (ValueError, 2), (TypeError, 2), (OSError, 1)):
+        if isinstance(e, kind):
+            return code
+    return 1
+
+
 def _parse_rpy(text: str) -> List[float]:
     try:
         v = [float(x) for x in text.split(",")]
@@ -121,7 +135,9 @@ def build_parser() -> argparse.ArgumentParser:
     z.add_argument("--namespace", default="/", metavar="NS", help="ROS namespace (default /)")
     o = p.add_argument_group("output and run")
     o.add_argument("--mcap", metavar="FILE", help="record the same messages to a ROS 2 MCAP file")
-    o.add_argument("--force", action="store_true", help="replace an existing --mcap file")
+    o.add_argument("--overwrite", action="store_true",
+                   help="replace an existing --mcap file (the name `leptrino stream` uses)")
+    o.add_argument("--force", dest="overwrite", action="store_true", help=argparse.SUPPRESS)
     o.add_argument("--duration", type=_positive, default=None, metavar="S",
                    help="stop after S seconds (default: run until Ctrl-C or SIGTERM)")
     o.add_argument("-v", "--verbose", action="store_true")
@@ -170,10 +186,10 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     from .bridge import Bridge
 
     try:
-        bridge = Bridge(specs, opts, zopts, a.mcap, a.force)
+        bridge = Bridge(specs, opts, zopts, a.mcap, a.overwrite)
     except (LeptrinoError, OSError, ValueError, TypeError) as e:
         print(f"{PROG}: {e}", file=sys.stderr)
-        return 2
+        return exit_code(e)
     except Exception as e:  # zenoh.ZError: a bad endpoint, a port in use
         print(f"{PROG}: zenoh: {e}", file=sys.stderr)
         return 2
@@ -184,10 +200,23 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     old = {sig: signal.signal(sig, on_signal) for sig in (signal.SIGINT, signal.SIGTERM)}
     try:
         bridge.start()
+        reached = False
         if bridge.session is not None:
             print(f"{PROG}: zenoh session {bridge.zid}, domain {domain}, namespace "
                   f"{namespace}: " + ", ".join(s.name for s in specs), file=sys.stderr)
+            reached = bool(bridge.reachable())
+            if not reached:
+                where = ", ".join(zopts.connect) if zopts and zopts.connect else (
+                    "tcp/127.0.0.1:7447" if zopts and not zopts.scout else "scouting")
+                print(f"{PROG}: warning: no Zenoh router or peer reachable ({where}): nobody "
+                      "can receive the topics until one is (start `ros2 run rmw_zenoh_cpp "
+                      "rmw_zenohd`, or give --connect / --listen / --scout)", file=sys.stderr)
         bridge.wait(a.duration)
+        if bridge.session is not None and not reached and bridge.reachable():
+            reached = True
+        if bridge.session is not None and not reached:
+            print(f"{PROG}: warning: no Zenoh router or peer was reached during the run: "
+                  "nothing published was received", file=sys.stderr)
     finally:
         bridge.close()
         for sig, h in old.items():

@@ -18,8 +18,30 @@ from .typehash import MESSAGES, type_description
 _SEPARATOR = "=" * 80
 
 
+#: rmw's RMW_DURATION_INFINITE (rmw/time.h), as rosbag2 writes it
+_INFINITE = "\n    sec: 9223372036\n    nsec: 854775807"
+
+
+def offered_qos_profiles(depth: int = 10, reliable: bool = True) -> str:
+    """The channel metadata rosbag2 writes and reads on playback: a YAML list
+    of the publishers' QoS profiles, in the form of rosbag2's metadata
+    version 9 (policies by name: rosbag2_storage qos.cpp). The bridge offers
+    one profile per topic: keep last `depth`, reliable, volatile, infinite
+    deadline, lifespan and lease, automatic liveliness (rmw_zenoh's default,
+    the same as its graph key expression says)."""
+    return ("- history: keep_last\n"
+            f"  depth: {int(depth)}\n"
+            f"  reliability: {'reliable' if reliable else 'best_effort'}\n"
+            "  durability: volatile\n"
+            f"  deadline:{_INFINITE}\n"
+            f"  lifespan:{_INFINITE}\n"
+            "  liveliness: automatic\n"
+            f"  liveliness_lease_duration:{_INFINITE}\n"
+            "  avoid_ros_namespace_conventions: false")
+
+
 class FileExistsRefused(FileExistsError):
-    """The output path already holds a file and --force was not given."""
+    """The output path already holds a file and --overwrite was not given."""
 
 
 def ros2msg_schema(ros_type: str) -> bytes:
@@ -36,7 +58,7 @@ def ros2msg_schema(ros_type: str) -> bytes:
 class McapRecorder:
     """Writes messages to one MCAP file; thread-safe (one lock around the writer).
 
-    Refuses (FileExistsRefused) to replace an existing file unless force.
+    Refuses (FileExistsRefused) to replace an existing file unless force (--overwrite).
     close() writes the summary and footer; a file not closed (the process
     killed) is truncated but its complete chunks stay readable with recovery.
     """
@@ -51,7 +73,8 @@ class McapRecorder:
             self._f: Optional[IO[bytes]] = open(path, "wb" if force else "xb")
         except FileExistsError:
             raise FileExistsRefused(
-                f"{path}: already exists (give --force to replace it)") from None
+                f"{path}: already exists; not overwritten (choose another name, or "
+                "--overwrite)") from None
         self._w = Writer(self._f, compression=CompressionType.ZSTD, chunk_size=256 * 1024)
         self._w.start(profile="ros2", library="leptrino-bridge")
         self._lock = threading.Lock()
@@ -60,8 +83,9 @@ class McapRecorder:
         self._seq: Dict[int, int] = {}
         self.messages = 0
 
-    def channel(self, topic: str, ros_type: str) -> int:
-        """The channel id of a topic (registered on first use)."""
+    def channel(self, topic: str, ros_type: str, qos_depth: int = 10) -> int:
+        """The channel id of a topic (registered on first use), with the QoS
+        the bridge offers it with in the channel's offered_qos_profiles."""
         with self._lock:
             if topic in self._channels:
                 return self._channels[topic]
@@ -69,7 +93,8 @@ class McapRecorder:
             if sid is None:
                 sid = self._w.register_schema(ros_type, "ros2msg", ros2msg_schema(ros_type))
                 self._schemas[ros_type] = sid
-            cid = self._w.register_channel(topic, "cdr", sid, {"offered_qos_profiles": ""})
+            cid = self._w.register_channel(
+                topic, "cdr", sid, {"offered_qos_profiles": offered_qos_profiles(qos_depth)})
             self._channels[topic] = cid
             self._seq[cid] = 0
             return cid

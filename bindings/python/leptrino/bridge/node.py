@@ -97,14 +97,16 @@ class Topic:
 
     __slots__ = ("entity", "gid", "pub", "cid", "mcap", "seq", "name")
 
-    def __init__(self, entity: rz.Entity, session: Any, mcap: Optional[McapRecorder]) -> None:
+    def __init__(self, entity: rz.Entity, session: Any, mcap: Optional[McapRecorder],
+                 qos_depth: int = 10) -> None:
         self.entity = entity
         self.name = entity.name
         self.gid = entity.gid()
         self.seq = 0
         self.pub: Any = None
         self.mcap = mcap
-        self.cid = mcap.channel(entity.name, entity.ros_type) if mcap is not None else -1
+        self.cid = (mcap.channel(entity.name, entity.ros_type, qos_depth) if mcap is not None
+                    else -1)
         if session is not None:
             import zenoh
 
@@ -164,7 +166,7 @@ class SensorNode:
         self.diagnostics: Optional[Topic] = None
         self.sensor = Sensor(
             spec.port, opts.timeout_s, sim=spec.sim, tare=opts.tare_at_start,
-            lowpass=opts.lowpass_hz, rotation=opts.rotation, reconnect=True,
+            lowpass=opts.lowpass_hz, rotation=opts.rotation, degrees=False, reconnect=True,
             latency=opts.latency_s, data_timeout=opts.data_timeout_s)
         self._to_si = RawToSI(self.sensor.rated)  # wrench_raw
         try:
@@ -190,10 +192,11 @@ class SensorNode:
                              qos if ros_type else "")
 
         self.node_entity = entity(rz.NODE)
-        self.wrench = Topic(entity(rz.PUBLISHER, "wrench", WRENCH), session, mcap)
-        self.wrench_raw = Topic(entity(rz.PUBLISHER, "wrench_raw", WRENCH), session, mcap)
+        d = opts.qos_depth
+        self.wrench = Topic(entity(rz.PUBLISHER, "wrench", WRENCH), session, mcap, d)
+        self.wrench_raw = Topic(entity(rz.PUBLISHER, "wrench_raw", WRENCH), session, mcap, d)
         self.diagnostics = Topic(entity(rz.PUBLISHER, "diagnostics", DIAGNOSTICS),
-                                 session, mcap)
+                                 session, mcap, d)
         self.services = {
             "tare": entity(rz.SERVICE, "tare", TRIGGER),
             "untare": entity(rz.SERVICE, "untare", TRIGGER),
