@@ -113,21 +113,25 @@ class Parsed:
     decls: List[c_ast.Node] = field(default_factory=list)
 
 
+#: The include directory being read (parse() sets it).
+_include = [INCLUDE]
+
+
 def _header_file(f: str) -> Optional[str]:
-    """"client.h" for a path of include/leptrino/client.h, else None."""
+    """"client.h" for a path of <include>/leptrino/client.h, else None."""
     p = Path(f)
-    return p.name if p.parent.name == "leptrino" and p.parent.parent == INCLUDE else None
+    return p.name if p.parent.name == "leptrino" and p.parent.parent == _include[0] else None
 
 
 def _header_of(coord: object) -> Optional[str]:
     return _header_file(str(getattr(coord, "file", "") or ""))
 
 
-def _cpp(source: str, fake: Path, extra: Sequence[str] = ()) -> str:
+def _cpp(source: str, fake: Path, include: Path, extra: Sequence[str] = ()) -> str:
     cc = os.environ.get("CC", "cc")
     # _WIN32 + LEPTRINO_BUILDING makes LEP_API __declspec(dllexport), which
     # becomes `extern`: the mark of an exported prototype after preprocessing.
-    cmd = [cc, "-E", "-undef", "-std=c99", "-nostdinc", "-I", str(fake), "-I", str(INCLUDE),
+    cmd = [cc, "-E", "-undef", "-std=c99", "-nostdinc", "-I", str(fake), "-I", str(include),
            "-D_WIN32", "-DLEPTRINO_BUILDING", "-D__declspec(x)=extern",
            "-DLEP_CONFIG_NO_STEP_MACRO", *extra, "-"]
     try:
@@ -215,6 +219,8 @@ def _base_names(node: c_ast.Node) -> Optional[List[str]]:
 
 
 def parse(include: Path = INCLUDE) -> Parsed:
+    include = include.resolve()
+    _include[0] = include
     headers = sorted(p.name for p in (include / "leptrino").glob("*.h"))
     if not headers:
         raise GenError(f"no headers in {include / 'leptrino'}")
@@ -227,7 +233,7 @@ def parse(include: Path = INCLUDE) -> Parsed:
         #    marker of its header.
         macros: List[Tuple[str, str]] = []
         current: Optional[str] = None
-        for line in _cpp(tu, fake, ["-dD"]).splitlines():
+        for line in _cpp(tu, fake, include, ["-dD"]).splitlines():
             mark = re.match(r'#\s*\d+\s+"([^"]*)"', line)
             if mark:
                 current = _header_file(mark.group(1))
@@ -242,7 +248,7 @@ def parse(include: Path = INCLUDE) -> Parsed:
                 macros.append((name, current))
         # 2. the declarations, plus one probe per macro for its value
         probes = "".join(f"static void *lep_probe_{name} = ({name});\n" for name, _ in macros)
-        text = _cpp(tu + probes, fake)
+        text = _cpp(tu + probes, fake, include)
     ast = c_parser.CParser().parse(text, "<headers>")
     out = Parsed(headers, ast)
     ev = Evaluator()
@@ -607,7 +613,7 @@ class CtypesWriter:
 
 def _comment_at(hdr: str, line: int) -> str:
     """The /* ... */ comment that starts on line of hdr after code, joined."""
-    lines = (INCLUDE / "leptrino" / hdr).read_text(encoding="utf-8").splitlines()
+    lines = (_include[0] / "leptrino" / hdr).read_text(encoding="utf-8").splitlines()
     text = lines[line - 1]
     i = text.find("/*")
     if i < 0 or not text[:i].strip():
@@ -622,7 +628,7 @@ def _comment_at(hdr: str, line: int) -> str:
 
 def _comment_before(hdr: str, line: int) -> str:
     """The comment block just above line (a typedef's description)."""
-    lines = (INCLUDE / "leptrino" / hdr).read_text(encoding="utf-8").splitlines()
+    lines = (_include[0] / "leptrino" / hdr).read_text(encoding="utf-8").splitlines()
     k = line - 2
     if k < 0 or not lines[k].rstrip().endswith("*/"):
         return ""

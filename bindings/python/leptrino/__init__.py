@@ -33,6 +33,7 @@ from .codec import (
 from .errors import (
     BusyError,
     DisconnectedError,
+    Error,
     LeptrinoError,
     NakError,
     NoSyncError,
@@ -50,6 +51,7 @@ from .sensor import PowerCycleWarning, Sensor, Stream, list_ports
 from .simulator import SimOption, Simulator
 from .values import (
     ClientStats,
+    FrameStats,
     Health,
     PortInfo,
     ProductInfo,
@@ -67,7 +69,9 @@ __all__ = [
     "Health",
     "Decoder",
     "DisconnectedError",
+    "Error",
     "Event",
+    "FrameStats",
     "Message",
     "LeptrinoError",
     "NakError",
