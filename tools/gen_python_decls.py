@@ -232,20 +232,25 @@ def parse(include: Path = INCLUDE) -> Parsed:
         # 1. the macros: -dD keeps each #define where it is, after the line
         #    marker of its header.
         macros: List[Tuple[str, str]] = []
+        line_of: Dict[str, int] = {}  # constant -> its line in its header (for the order)
         current: Optional[str] = None
+        lineno = 0
         for line in _cpp(tu, fake, include, ["-dD"]).splitlines():
-            mark = re.match(r'#\s*\d+\s+"([^"]*)"', line)
+            mark = re.match(r'#\s*(\d+)\s+"([^"]*)"', line)
             if mark:
-                current = _header_file(mark.group(1))
+                current = _header_file(mark.group(2))
+                lineno = int(mark.group(1))
                 continue
+            lineno += 1
             d = re.match(r"#define\s+(LEP_\w+)(\(|\s|$)", line)
             if not d or current is None or current in SWITCH_HEADERS:
                 continue
             name = d.group(1)
             if d.group(2) == "(" or name.endswith("_"):
                 continue  # function-like, or private
-            if name not in (m[0] for m in macros):
+            if name not in line_of:
                 macros.append((name, current))
+                line_of[name] = lineno - 1
         # 2. the declarations, plus one probe per macro for its value
         probes = "".join(f"static void *lep_probe_{name} = ({name});\n" for name, _ in macros)
         text = _cpp(tu + probes, fake, include)
@@ -273,6 +278,7 @@ def parse(include: Path = INCLUDE) -> Parsed:
                 ev.env[e.name] = value
                 items.append((e.name, value))
                 out.constants.append((e.name, value, hdr))
+                line_of[e.name] = e.coord.line
                 nxt = value + 1
             if en.name:
                 out.enums[en.name] = items
@@ -282,7 +288,7 @@ def parse(include: Path = INCLUDE) -> Parsed:
             raise GenError(f"{name} is both a macro and an enumerator")
         out.constants.append((name, pending[name][1], hdr))
     order = {h: i for i, h in enumerate(headers)}
-    out.constants.sort(key=lambda c: order[c[2]])  # stable: header order, then source order
+    out.constants.sort(key=lambda c: (order[c[2]], line_of[c[0]]))  # as in the headers
     return out
 
 
