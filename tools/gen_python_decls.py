@@ -37,6 +37,7 @@ from __future__ import annotations
 
 import argparse
 import copy
+import operator
 import os
 import re
 import subprocess
@@ -44,7 +45,7 @@ import sys
 import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Dict, List, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 from pycparser import c_ast, c_generator, c_parser
 
@@ -146,6 +147,20 @@ def _cpp(source: str, fake: Path, include: Path, extra: Sequence[str] = ()) -> s
 _INT = re.compile(r"(0[xX][0-9a-fA-F]+|0[0-7]*|[1-9][0-9]*)([uUlL]*)$")
 
 
+_UNARY: Dict[str, Callable[[Any], Union[int, float]]] = {
+    "-": operator.neg, "+": operator.pos, "~": operator.invert, "!": lambda a: int(not a)}
+_BINARY: Dict[str, Callable[[Any, Any], Union[int, float]]] = {
+    "+": operator.add, "-": operator.sub, "*": operator.mul,
+    "==": lambda a, b: int(a == b), "!=": lambda a, b: int(a != b),
+    "<": lambda a, b: int(a < b), ">": lambda a, b: int(a > b),
+    "<=": lambda a, b: int(a <= b), ">=": lambda a, b: int(a >= b),
+    "&&": lambda a, b: int(bool(a) and bool(b)), "||": lambda a, b: int(bool(a) or bool(b))}
+#: operators of integers only
+_INT_BINARY: Dict[str, Callable[[int, int], int]] = {
+    "%": lambda a, b: a - _c_int_div(a, b) * b, "<<": operator.lshift, ">>": operator.rshift,
+    "|": operator.or_, "&": operator.and_, "^": operator.xor}
+
+
 def _c_int_div(a: int, b: int) -> int:
     q = abs(a) // abs(b)
     return q if (a >= 0) == (b >= 0) else -q
@@ -177,28 +192,21 @@ class Evaluator:
             return self.env[node.name]
         if isinstance(node, c_ast.UnaryOp):
             x = self(node.expr)
-            ops = {"-": lambda a: -a, "+": lambda a: +a, "~": lambda a: ~a,
-                   "!": lambda a: int(not a)}
-            if node.op in ops and not isinstance(x, str):
-                return ops[node.op](x)  # type: ignore[no-untyped-call,operator]
-            raise GenError(f"{node.coord}: cannot evaluate unary {node.op}")
+            if isinstance(x, str) or node.op not in _UNARY or (node.op == "~" and
+                                                              not isinstance(x, int)):
+                raise GenError(f"{node.coord}: cannot evaluate unary {node.op}")
+            return _UNARY[node.op](x)
         if isinstance(node, c_ast.BinaryOp):
             a, b = self(node.left), self(node.right)
             if isinstance(a, str) or isinstance(b, str):
                 raise GenError(f"{node.coord}: {node.op} on a string")
             if node.op == "/":
                 return _c_int_div(a, b) if isinstance(a, int) and isinstance(b, int) else a / b
-            binops = {"+": lambda: a + b, "-": lambda: a - b, "*": lambda: a * b,
-                      "%": lambda: a % b, "<<": lambda: a << b, ">>": lambda: a >> b,
-                      "|": lambda: a | b, "&": lambda: a & b, "^": lambda: a ^ b,
-                      "==": lambda: int(a == b), "!=": lambda: int(a != b),
-                      "<": lambda: int(a < b), ">": lambda: int(a > b),
-                      "<=": lambda: int(a <= b), ">=": lambda: int(a >= b),
-                      "&&": lambda: int(bool(a) and bool(b)),
-                      "||": lambda: int(bool(a) or bool(b))}
-            if node.op not in binops:
-                raise GenError(f"{node.coord}: cannot evaluate {node.op}")
-            return binops[node.op]()  # type: ignore[no-untyped-call,operator]
+            if node.op in _INT_BINARY and isinstance(a, int) and isinstance(b, int):
+                return _INT_BINARY[node.op](a, b)
+            if node.op in _BINARY:
+                return _BINARY[node.op](a, b)
+            raise GenError(f"{node.coord}: cannot evaluate {node.op}")
         if isinstance(node, c_ast.TernaryOp):
             return self(node.iftrue) if self(node.cond) else self(node.iffalse)
         if isinstance(node, c_ast.Cast):
@@ -261,12 +269,13 @@ def parse(include: Path = INCLUDE) -> Parsed:
     pending: Dict[str, Tuple[str, Union[int, float, str]]] = {}
     for node in ast.ext:
         if isinstance(node, c_ast.Decl) and node.name in probe_of:
-            name, hdr = probe_of[node.name]
-            pending[name] = (hdr, ev(node.init))
+            name, mhdr = probe_of[node.name]
+            pending[name] = (mhdr, ev(node.init))
             continue
-        hdr = _header_of(node.coord)
-        if hdr is None:
+        found = _header_of(node.coord)
+        if found is None:
             continue
+        hdr = found
         out.decls.append(node)
         for en in _enums_in(node):
             items: List[Tuple[str, int]] = []
@@ -638,7 +647,7 @@ def _comment_before(hdr: str, line: int) -> str:
     k = line - 2
     if k < 0 or not lines[k].rstrip().endswith("*/"):
         return ""
-    block = []
+    block: List[str] = []
     while k >= 0:
         block.insert(0, lines[k])
         if lines[k].lstrip().startswith("/*"):

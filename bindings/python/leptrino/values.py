@@ -11,10 +11,10 @@ import numpy as np
 
 from . import _constants as K
 # The counter structs' dataclasses are generated from the headers (_stats.py).
-from ._stats import ClientStats as ClientStats
-from ._stats import FrameStats as FrameStats
-from ._stats import Health as Health
-from ._stats import SimStats as SimStats
+from ._stats import ClientStats as ClientStats  # noqa: F401 - re-exported
+from ._stats import FrameStats as FrameStats  # noqa: F401 - re-exported
+from ._stats import Health as Health  # noqa: F401 - re-exported
+from ._stats import SimStats as SimStats  # noqa: F401 - re-exported
 
 Vec3 = Tuple[float, float, float]
 Raw6 = Tuple[int, int, int, int, int, int]
