@@ -191,7 +191,8 @@ def main() -> None:
         check_sdist(sdists[0], version)
         check_wheel(wheels[0])
         r = run([args.tools_python, "-m", "auditwheel", "show", str(wheels[0])])
-        m = re.search(r'consistent with the\s+following platform tag:\s+"([^"]+)"', r.stdout)
+        m = re.search(r'consistent\s+with\s+the\s+following\s+platform\s+tag:\s+"([^"]+)"',
+                      r.stdout)  # auditwheel wraps its text at any of these spaces
         if not m or not m.group(1).startswith("manylinux"):
             raise SystemExit(f"dist_check: auditwheel show:\n{r.stdout}{r.stderr}")
         print(f"auditwheel show: consistent with {m.group(1)}")
