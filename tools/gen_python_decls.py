@@ -112,6 +112,8 @@ class Parsed:
     enums: Dict[str, List[Tuple[str, int]]] = field(default_factory=dict)
     #: the declarations of the headers, in order (typedefs, enums, prototypes)
     decls: List[c_ast.Node] = field(default_factory=list)
+    #: constant -> the comment after it in its header ("" when none)
+    notes: Dict[str, str] = field(default_factory=dict)
 
 
 #: The include directory being read (parse() sets it).
@@ -298,6 +300,7 @@ def parse(include: Path = INCLUDE) -> Parsed:
         out.constants.append((name, pending[name][1], hdr))
     order = {h: i for i, h in enumerate(headers)}
     out.constants.sort(key=lambda c: (order[c[2]], line_of[c[0]]))  # as in the headers
+    out.notes = {n: _comment_at(hdr, line_of[n]) for n, _, hdr in out.constants}
     return out
 
 
@@ -391,7 +394,8 @@ def gen_constants(p: Parsed) -> str:
         if hdr != last:
             lines += ["", f"# {hdr}"]
             last = hdr
-        lines.append(f"{name} = {value!r}")
+        lines.append(_wrap(f"{name} = {value!r}" + (f"  # {p.notes[name]}" if p.notes[name]
+                                                     else ""), indent=""))
     errors = p.enums.get("lep_error")
     if not errors:
         raise GenError("no enum lep_error in the headers")
@@ -400,7 +404,8 @@ def gen_constants(p: Parsed) -> str:
               ""]
     for name, value in errors:
         short = name[len("LEP_E_"):] if name.startswith("LEP_E_") else name[len("LEP_"):]
-        lines.append(f"    {short} = {value}")
+        lines.append(_wrap(f"    {short} = {value}" + (f"  # {p.notes[name]}" if p.notes[name]
+                                                          else "")))
     return "\n".join(lines) + "\n"
 
 
@@ -699,7 +704,9 @@ def gen_stats(m: Model) -> str:
     return "\n".join(_wrap(line) for line in text.splitlines()) + "\n"
 
 
-def _wrap(line: str, width: int = 100) -> str:
+def _wrap(line: str, width: int = 100, indent: str = "    ") -> str:
+    """A line with a trailing comment, the comment continued on lines of
+    `indent#` when it passes width."""
     if len(line) <= width or "  # " not in line:
         return line
     code, note = line.split("  # ", 1)
@@ -707,7 +714,7 @@ def _wrap(line: str, width: int = 100) -> str:
     for wd in words:
         if len(cur) + 1 + len(wd) > width and not cur.endswith("#"):
             lines.append(cur)
-            cur = " " * 4 + "#"
+            cur = indent + "#"
         cur += " " + wd
     lines.append(cur)
     return "\n".join(lines)

@@ -12,9 +12,9 @@ import enum
 
 
 # client.h
-LEP_STEP_NONE = 0
+LEP_STEP_NONE = 0  # input consumed, nothing to report
 LEP_STEP_RESPONSE = 1
-LEP_STEP_SAMPLE = 2
+LEP_STEP_SAMPLE = 2  # a stream sample arrived: lep_client_get_sample()
 LEP_CLIENT_DEFAULT_TIMEOUT_MS = 100
 LEP_CLIENT_DEFAULT_RETRIES = 3
 LEP_CLIENT_DEFAULT_QUIET_MS = 50
@@ -22,42 +22,42 @@ LEP_CLIENT_DRAIN_TIMEOUTS = 20
 LEP_CLIENT_RX_SIZE = 128
 
 # device.h
-LEP_DEVICE_NONE = 0
-LEP_DEVICE_COMMAND = 1
-LEP_DEVICE_NAK = 2
-LEP_DEVICE_REJECTED = 3
+LEP_DEVICE_NONE = 0  # input consumed, nothing to answer
+LEP_DEVICE_COMMAND = 1  # a command was processed; out holds its answer
+LEP_DEVICE_NAK = 2  # a command with a bad BCC; out holds DLE NAK
+LEP_DEVICE_REJECTED = 3  # a frame that cannot be answered (bad escape, too long, no code)
 
 # error.h
 LEP_OK = 0
-LEP_E_ARG = -1
-LEP_E_BUFFER = -2
-LEP_E_TOO_LONG = -3
-LEP_E_BCC = -4
-LEP_E_ESCAPE = -5
-LEP_E_LENGTH = -6
-LEP_E_RESERVED = -7
-LEP_E_UNEXPECTED = -8
-LEP_E_VALUE = -9
-LEP_E_SENSOR = -10
-LEP_E_NAK = -11
-LEP_E_TIMEOUT = -12
-LEP_E_IO = -13
-LEP_E_DISCONNECTED = -14
-LEP_E_BUSY = -15
-LEP_E_NOT_FOUND = -16
-LEP_E_PERMISSION = -17
-LEP_E_NOT_TTY = -18
-LEP_E_STATE = -19
-LEP_E_NO_SYNC = -20
-LEP_E_UNSUPPORTED = -21
-LEP_E_END = -22
-LEP_E_STALLED = -23
-LEP_E_LOST = -24
+LEP_E_ARG = -1  # invalid argument (NULL pointer, out-of-range value)
+LEP_E_BUFFER = -2  # caller buffer too small
+LEP_E_TOO_LONG = -3  # message longer than 128 bytes
+LEP_E_BCC = -4  # frame check byte mismatch
+LEP_E_ESCAPE = -5  # illegal byte after DLE inside a frame
+LEP_E_LENGTH = -6  # Length field or message size wrong for its type
+LEP_E_RESERVED = -7  # reserved byte does not hold its fixed value
+LEP_E_UNEXPECTED = -8  # unknown code, or a message of the wrong type
+LEP_E_VALUE = -9  # field value invalid (non-finite rating, bad filter code)
+LEP_E_SENSOR = -10  # sensor answered with a non-zero result code
+LEP_E_NAK = -11  # sensor kept answering DLE NAK past the retry limit
+LEP_E_TIMEOUT = -12  # no answer within the timeout
+LEP_E_IO = -13  # read or write failed
+LEP_E_DISCONNECTED = -14  # the port went away (hang-up, device unplugged)
+LEP_E_BUSY = -15  # port already in use by another program
+LEP_E_NOT_FOUND = -16  # no such port
+LEP_E_PERMISSION = -17  # no permission to open the port
+LEP_E_NOT_TTY = -18  # path is not a terminal device
+LEP_E_STATE = -19  # call not valid in the client's current state
+LEP_E_NO_SYNC = -20  # the line never went quiet during recovery
+LEP_E_UNSUPPORTED = -21  # not supported on this platform or port
+LEP_E_END = -22  # a session reached its duration or count (not a failure)
+LEP_E_STALLED = -23  # streaming, but no sample within the watchdog time
+LEP_E_LOST = -24  # a session's stream is lost (no data for its data timeout)
 LEP_RESULT_OK = 0
-LEP_RESULT_LENGTH = 1
-LEP_RESULT_UNDEFINED = 2
-LEP_RESULT_VALUE = 3
-LEP_RESULT_STATE = 4
+LEP_RESULT_LENGTH = 1  # length error
+LEP_RESULT_UNDEFINED = 2  # undefined command
+LEP_RESULT_VALUE = 3  # invalid setting value
+LEP_RESULT_STATE = 4  # state error
 
 # frame.h
 LEP_DLE = 16
@@ -66,10 +66,11 @@ LEP_ETX = 3
 LEP_NAK = 21
 LEP_MAX_MESSAGE = 128
 LEP_MAX_FRAME = 261
-LEP_FRAME_NONE = 0
-LEP_FRAME_MESSAGE = 1
-LEP_FRAME_NAK = 2
-LEP_FRAME_ERROR = 3
+LEP_FRAME_NONE = 0  # all input consumed, no event
+LEP_FRAME_MESSAGE = 1  # a complete message with a correct BCC
+LEP_FRAME_NAK = 2  # DLE NAK (inside a frame it also drops the partial frame, counted as an escape
+# error, so a NAK is never lost)
+LEP_FRAME_ERROR = 3  # a frame was rejected: see error
 
 # message.h
 LEP_CMD_PRODUCT_INFO = 42
@@ -93,9 +94,9 @@ LEP_LEN_PRODUCT_INFO_RATE = 38
 LEP_LEN_RATED = 28
 LEP_LEN_FILTER = 8
 LEP_LEN_SAMPLE = 20
-LEP_STATUS_CALIBRATION = 1
+LEP_STATUS_CALIBRATION = 1  # calibration data in ROM corrupt
 LEP_STATUS_SENSOR_FAULT = 2
-LEP_STATUS_OVERLOAD = 4
+LEP_STATUS_OVERLOAD = 4  # load beyond rating detected
 LEP_RAW_FULL_SCALE = 10000
 LEP_SATURATION_V113 = 32000
 LEP_SATURATION_LATER = 15000
@@ -106,19 +107,19 @@ LEP_FIRMWARE_LEN = 4
 LEP_RATE_LEN = 6
 
 # output.h
-LEP_COL_RAW = 1
-LEP_COL_ZEROED = 2
-LEP_COL_SI = 4
-LEP_COL_STATUS = 8
-LEP_COL_FLAGS = 16
-LEP_COL_SEQ = 32
-LEP_COL_SENSOR = 64
+LEP_COL_RAW = 1  # fx_counts..mz_counts
+LEP_COL_ZEROED = 2  # fx_zeroed_counts..mz_zeroed_counts
+LEP_COL_SI = 4  # fx_N..mz_Nm
+LEP_COL_STATUS = 8  # status
+LEP_COL_FLAGS = 16  # flags (LEP_SF_*)
+LEP_COL_SEQ = 32  # seq (the reserved bytes)
+LEP_COL_SENSOR = 64  # sensor (the name given to lep_output_add_*)
 LEP_COL_DEFAULT = 12
 LEP_OUTPUT_CSV = 0
 LEP_OUTPUT_JSONL = 1
-LEP_TIME_REL = 0
-LEP_TIME_MONO = 1
-LEP_TIME_UTC = 2
+LEP_TIME_REL = 0  # t_s: seconds since t0_mono (default: the first sensor's start)
+LEP_TIME_MONO = 1  # t_mono_s: the monotonic clock
+LEP_TIME_UTC = 2  # t_utc_s: seconds since 1970-01-01 UTC
 
 # payload.h
 LEP_STANDARD_GRAVITY = 9.80665
@@ -126,47 +127,48 @@ LEP_PAYLOAD_MIN_POSES = 3
 LEP_PAYLOAD_MIN_SPREAD = 0.02
 
 # process.h
-LEP_EXIT_OK = 0
-LEP_EXIT_FAIL = 1
-LEP_EXIT_USAGE = 2
-LEP_EXIT_TIMEOUT = 3
-LEP_EXIT_DISCONNECTED = 4
-LEP_EXIT_SENSOR = 5
-LEP_EXIT_NOT_FOUND = 6
-LEP_EXIT_BUSY = 7
-LEP_EXIT_PERMISSION = 8
+LEP_EXIT_OK = 0  # success (a session that reached its end too)
+LEP_EXIT_FAIL = 1  # any other failure (I/O error, output file, protocol)
+LEP_EXIT_USAGE = 2  # bad command line (never returned by lep_exit_code)
+LEP_EXIT_TIMEOUT = 3  # the sensor did not answer / data stopped arriving
+LEP_EXIT_DISCONNECTED = 4  # the port went away
+LEP_EXIT_SENSOR = 5  # the sensor refused a command (result code or NAKs)
+LEP_EXIT_NOT_FOUND = 6  # no such port, or not a serial port
+LEP_EXIT_BUSY = 7  # the port is in use by another program
+LEP_EXIT_PERMISSION = 8  # no permission to open the port
 
 # serial.h
 LEP_BAUD = 460800
 
 # session.h
 LEP_SESSION_NOMINAL_HZ = 1200.0
-LEP_SF_GAP = 1
-LEP_SF_OVERLOAD = 2
-LEP_SF_TARING = 4
-LEP_SF_SETTLING = 8
-LEP_SF_LIMIT = 16
-LEP_EV_GAP = 1
-LEP_EV_DISCONNECTED = 2
-LEP_EV_RECONNECTED = 3
-LEP_EV_TARE = 4
+LEP_SF_GAP = 1  # a gap (hole, disconnect) lies just before this sample
+LEP_SF_OVERLOAD = 2  # overload status bit, or an axis at saturation
+LEP_SF_TARING = 4  # a tare is averaging this sample (zeroed uses the old offset)
+LEP_SF_SETTLING = 8  # the host low-pass has not settled since start or a gap
+LEP_SF_LIMIT = 16  # an SI value is beyond its limit (lep_session_set_limits)
+LEP_EV_GAP = 1  # a hole in the data: lost samples, a stall, a stolen read
+LEP_EV_DISCONNECTED = 2  # the port went away or the data timed out (error says which)
+LEP_EV_RECONNECTED = 3  # the stream runs again after a disconnect
+LEP_EV_TARE = 4  # the tare offsets changed (tare done, untare, set)
 LEP_EV_OVERLOAD_BEGIN = 5
 LEP_EV_OVERLOAD_END = 6
-LEP_EV_LIMIT_EXCEEDED = 7
-LEP_EV_LIMIT_CLEARED = 8
+LEP_EV_LIMIT_EXCEEDED = 7  # an SI value went beyond its limit (axes: which)
+LEP_EV_LIMIT_CLEARED = 8  # every SI value is back within 95 % of its limit
 
 # sim.h
 LEP_SIM_MODEL_SIZE = 32
 LEP_SIM_SERIAL_SIZE = 16
 LEP_SIM_FIRMWARE_SIZE = 8
 LEP_SIM_PATH_SIZE = 512
-LEP_SIM_OPT_FLAG = 0
-LEP_SIM_OPT_INT = 1
-LEP_SIM_OPT_UINT = 2
-LEP_SIM_OPT_DOUBLE = 3
-LEP_SIM_OPT_STRING = 4
-LEP_SIM_OPT_CHOICE = 5
-LEP_SIM_OPT_NUMBERS = 6
+LEP_SIM_OPT_FLAG = 0  # bool; takes no argument on a command line
+LEP_SIM_OPT_INT = 1  # integer in [min, max]
+LEP_SIM_OPT_UINT = 2  # non-negative integer in [min, max] (decimal)
+LEP_SIM_OPT_DOUBLE = 3  # finite number in [min, max] (or (min, max] with min_exclusive)
+LEP_SIM_OPT_STRING = 4  # text of min..max bytes (a path, a serial, a version)
+LEP_SIM_OPT_CHOICE = 5  # one of a fixed set of names (model: lep_sim_models())
+LEP_SIM_OPT_NUMBERS = 6  # comma-separated finite numbers, as many as arg names ("M,CX,CY,CZ"), each
+# in [min, max]
 LEP_SIM_TRACE_START = 18446744073709551615
 LEP_SIM_TRACE_END = 18446744073709551614
 
@@ -182,27 +184,27 @@ class Error(enum.IntEnum):
     """The library's error codes (enum lep_error): LEP_E_TIMEOUT is Error.TIMEOUT."""
 
     OK = 0
-    ARG = -1
-    BUFFER = -2
-    TOO_LONG = -3
-    BCC = -4
-    ESCAPE = -5
-    LENGTH = -6
-    RESERVED = -7
-    UNEXPECTED = -8
-    VALUE = -9
-    SENSOR = -10
-    NAK = -11
-    TIMEOUT = -12
-    IO = -13
-    DISCONNECTED = -14
-    BUSY = -15
-    NOT_FOUND = -16
-    PERMISSION = -17
-    NOT_TTY = -18
-    STATE = -19
-    NO_SYNC = -20
-    UNSUPPORTED = -21
-    END = -22
-    STALLED = -23
-    LOST = -24
+    ARG = -1  # invalid argument (NULL pointer, out-of-range value)
+    BUFFER = -2  # caller buffer too small
+    TOO_LONG = -3  # message longer than 128 bytes
+    BCC = -4  # frame check byte mismatch
+    ESCAPE = -5  # illegal byte after DLE inside a frame
+    LENGTH = -6  # Length field or message size wrong for its type
+    RESERVED = -7  # reserved byte does not hold its fixed value
+    UNEXPECTED = -8  # unknown code, or a message of the wrong type
+    VALUE = -9  # field value invalid (non-finite rating, bad filter code)
+    SENSOR = -10  # sensor answered with a non-zero result code
+    NAK = -11  # sensor kept answering DLE NAK past the retry limit
+    TIMEOUT = -12  # no answer within the timeout
+    IO = -13  # read or write failed
+    DISCONNECTED = -14  # the port went away (hang-up, device unplugged)
+    BUSY = -15  # port already in use by another program
+    NOT_FOUND = -16  # no such port
+    PERMISSION = -17  # no permission to open the port
+    NOT_TTY = -18  # path is not a terminal device
+    STATE = -19  # call not valid in the client's current state
+    NO_SYNC = -20  # the line never went quiet during recovery
+    UNSUPPORTED = -21  # not supported on this platform or port
+    END = -22  # a session reached its duration or count (not a failure)
+    STALLED = -23  # streaming, but no sample within the watchdog time
+    LOST = -24  # a session's stream is lost (no data for its data timeout)
