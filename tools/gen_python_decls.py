@@ -275,8 +275,8 @@ def parse(include: Path = INCLUDE) -> Parsed:
             pending[name] = (mhdr, ev(node.init))
             continue
         found = _header_of(node.coord)
-        if found is None:
-            continue
+        if found is None or isinstance(node, (c_ast.StaticAssert, c_ast.Pragma)):
+            continue  # not ours, or declares nothing
         hdr = found
         out.decls.append(node)
         for en in _enums_in(node):
@@ -378,6 +378,9 @@ def build_model(p: Parsed) -> Model:
             else:
                 raise GenError(f"{node.coord}: {node.name}: a declaration the generator does "
                                "not translate (a variable?)")
+        else:
+            raise GenError(f"{node.coord}: a {type(node).__name__} at file scope, which the "
+                           "generator does not translate")
     return m
 
 
