@@ -114,6 +114,8 @@ class Parsed:
     decls: List[c_ast.Node] = field(default_factory=list)
     #: constant -> the comment after it in its header ("" when none)
     notes: Dict[str, str] = field(default_factory=dict)
+    #: constants written in hexadecimal in the headers (written so in Python too)
+    hex: List[str] = field(default_factory=list)
 
 
 #: The include directory being read (parse() sets it).
@@ -243,6 +245,7 @@ def parse(include: Path = INCLUDE) -> Parsed:
         #    marker of its header.
         macros: List[Tuple[str, str]] = []
         line_of: Dict[str, int] = {}  # constant -> its line in its header (for the order)
+        hex_names: List[str] = []
         current: Optional[str] = None
         lineno = 0
         for line in _cpp(tu, fake, include, ["-dD"]).splitlines():
@@ -261,6 +264,8 @@ def parse(include: Path = INCLUDE) -> Parsed:
             if name not in line_of:
                 macros.append((name, current))
                 line_of[name] = lineno - 1
+                if re.fullmatch(r"\s*0[xX][0-9a-fA-F]+[uUlL]*\s*", line[d.end():]):
+                    hex_names.append(name)
         # 2. the declarations, plus one probe per macro for its value
         probes = "".join(f"static void *lep_probe_{name} = ({name});\n" for name, _ in macros)
         text = _cpp(tu + probes, fake, include)
@@ -290,6 +295,8 @@ def parse(include: Path = INCLUDE) -> Parsed:
                 items.append((e.name, value))
                 out.constants.append((e.name, value, hdr))
                 line_of[e.name] = e.coord.line
+                if isinstance(e.value, c_ast.Constant) and e.value.value[:2] in ("0x", "0X"):
+                    hex_names.append(e.name)
                 nxt = value + 1
             if en.name:
                 out.enums[en.name] = items
@@ -301,6 +308,7 @@ def parse(include: Path = INCLUDE) -> Parsed:
     order = {h: i for i, h in enumerate(headers)}
     out.constants.sort(key=lambda c: (order[c[2]], line_of[c[0]]))  # as in the headers
     out.notes = {n: _comment_at(hdr, line_of[n]) for n, _, hdr in out.constants}
+    out.hex = hex_names
     return out
 
 
@@ -397,8 +405,10 @@ def gen_constants(p: Parsed) -> str:
         if hdr != last:
             lines += ["", f"# {hdr}"]
             last = hdr
-        lines.append(_wrap(f"{name} = {value!r}" + (f"  # {p.notes[name]}" if p.notes[name]
-                                                     else ""), indent=""))
+        text = f"0x{value:02X}" if name in p.hex and isinstance(value, int) and value >= 0 \
+            else repr(value)
+        lines.append(_wrap(f"{name} = {text}" + (f"  # {p.notes[name]}" if p.notes[name]
+                                                 else ""), indent=""))
     errors = p.enums.get("lep_error")
     if not errors:
         raise GenError("no enum lep_error in the headers")
