@@ -269,7 +269,10 @@ def parse(include: Path = INCLUDE) -> Parsed:
         # 2. the declarations, plus one probe per macro for its value
         probes = "".join(f"static void *lep_probe_{name} = ({name});\n" for name, _ in macros)
         text = _cpp(tu + probes, fake, include)
-    ast = c_parser.CParser().parse(text, "<headers>")
+    try:
+        ast = c_parser.CParser().parse(text, "<headers>")
+    except Exception as exc:  # pycparser's ParseError (its module moved between versions)
+        raise GenError(f"pycparser cannot parse the preprocessed headers: {exc}") from exc
     out = Parsed(headers, ast)
     ev = Evaluator()
     probe_of = {f"lep_probe_{n}": (n, h) for n, h in macros}
