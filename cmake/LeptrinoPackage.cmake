@@ -36,7 +36,15 @@ set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_RELEASE 1)
 set(CPACK_DEBIAN_PACKAGE_SECTION science)
 set(CPACK_DEBIAN_PACKAGE_PRIORITY optional)
-set(CPACK_DEBIAN_PACKAGE_MAINTAINER "the leptrino authors")
+# Debian policy 5.6.2: the Maintainer field is "Name <address>". The default
+# address is a placeholder in the reserved .invalid domain (RFC 2606) until the
+# project has a real one; packagers set theirs with -DLEPTRINO_MAINTAINER=...
+set(LEPTRINO_MAINTAINER "leptrino maintainers <maintainers@leptrino.invalid>"
+    CACHE STRING "Maintainer field of the Debian package: Name <address>")
+if(NOT LEPTRINO_MAINTAINER MATCHES "^[^<>]+ <[^<>@ ]+@[^<>@ ]+>$")
+  message(FATAL_ERROR "LEPTRINO_MAINTAINER must read 'Name <address>', not '${LEPTRINO_MAINTAINER}'")
+endif()
+set(CPACK_DEBIAN_PACKAGE_MAINTAINER "${LEPTRINO_MAINTAINER}")
 # dpkg-shlibdeps on every ELF file of the package gives Depends (libc6 ...).
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 # No maintainer scripts. CPack's own shlibs generation would add postinst and

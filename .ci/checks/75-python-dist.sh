@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The Python sdist and wheel, built with `python -m build` and installed as a
-# user would, each in a fresh venv outside the checkout; auditwheel show on
-# the wheel; bindings/python copied alone refused with a clear message.
+# user would, each in a fresh venv outside the checkout; the wheel tagged
+# manylinux by the build's auditwheel repair, and auditwheel show on it;
+# bindings/python copied alone refused with a clear message.
 # (test/python/dist_check.py says what exactly.) Needs PyPI for build,
 # auditwheel, numpy, cffi and setuptools.
 set -euo pipefail

@@ -85,6 +85,8 @@ depends=$(dpkg-deb -f "$deb" Depends)
 grep -q 'libc6' <<<"$depends" || fail "Depends has no libc6 (dpkg-shlibdeps?): '$depends'"
 [ "$(dpkg-deb -f "$deb" Package)" = "$pkg" ] || fail "Package field"
 [ "$(dpkg-deb -f "$deb" Version)" = "${version}-1" ] || fail "Version field"
+grep -Eq '^[^<>]+ <[^<>@ ]+@[^<>@ ]+>$' <<<"$(dpkg-deb -f "$deb" Maintainer)" \
+  || fail "Maintainer field is not 'Name <address>': '$(dpkg-deb -f "$deb" Maintainer)'"
 dpkg-deb --fsys-tarfile "$deb" | tar -xO ./usr/share/doc/leptrino/copyright | grep '^License: MIT' >/dev/null \
   || fail "copyright file without License: MIT"
 echo "deb: Depends: $depends"

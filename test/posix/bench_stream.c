@@ -6,9 +6,9 @@
 
 #include <stdio.h>
 #include <stdlib.h>
-#include <sys/resource.h>
 
 #include "leptrino/leptrino.h"
+#include "leptrino/process.h"
 #include "leptrino/serial.h"
 #include "leptrino/sim.h"
 
@@ -41,14 +41,6 @@ static uint32_t c_now(void *user)
 {
     struct counting *k = user;
     return k->inner.now_ms(k->inner.user);
-}
-
-static double cpu_seconds(void)
-{
-    struct rusage ru;
-    getrusage(RUSAGE_SELF, &ru);
-    return (double)ru.ru_utime.tv_sec + (double)ru.ru_utime.tv_usec / 1e6 +
-           (double)ru.ru_stime.tv_sec + (double)ru.ru_stime.tv_usec / 1e6;
 }
 
 int main(int argc, char **argv)
@@ -89,7 +81,7 @@ int main(int argc, char **argv)
         return 1;
     }
     k.reads = k.empty_reads = k.bytes = 0;
-    cpu0 = cpu_seconds();
+    cpu0 = lep_cpu_seconds();
     t_end = lep_monotonic_seconds() + seconds;
     for (;;) {
         double t;
@@ -110,7 +102,7 @@ int main(int argc, char **argv)
         if (t >= t_end)
             break;
     }
-    cpu1 = cpu_seconds();
+    cpu1 = lep_cpu_seconds();
     lep_client_stop(&client);
     lep_sim_get_stats(sim, &st);
     {

@@ -14,11 +14,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/resource.h>
 #include <sys/time.h>
 #include <pthread.h>
 
 #include "leptrino/leptrino.h"
+#include "leptrino/process.h"
 #include "leptrino/sim.h"
 
 #define EXIT_USAGE 2
@@ -181,20 +181,10 @@ static int parse(int argc, char **argv, struct cli *c)
     return -1;
 }
 
-/* CPU time of this process (user + system), in seconds. */
-static double cpu_seconds(void)
-{
-    struct rusage ru;
-    if (getrusage(RUSAGE_SELF, &ru) != 0)
-        return 0.0;
-    return (double)ru.ru_utime.tv_sec + (double)ru.ru_utime.tv_usec * 1e-6 +
-           (double)ru.ru_stime.tv_sec + (double)ru.ru_stime.tv_usec * 1e-6;
-}
-
 static void print_stats(lep_sim *s)
 {
     lep_sim_stats st;
-    double cpu = cpu_seconds();
+    double cpu = lep_cpu_seconds();
     lep_sim_get_stats(s, &st);
     fprintf(stderr,
             "leptrino-sim: %llu samples sent, %llu dropped, %llu skipped, %llu blocked; "

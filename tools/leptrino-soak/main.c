@@ -15,11 +15,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/resource.h>
 #include <time.h>
 #include <unistd.h>
 
 #include "leptrino/leptrino.h"
+#include "leptrino/process.h"
 #include "leptrino/serial.h"
 #include "leptrino/sim.h"
 #include "soak.h"
@@ -293,15 +293,6 @@ static void run(soak *k)
     close_port(k);
 }
 
-static double cpu_seconds(void)
-{
-    struct rusage ru;
-    if (getrusage(RUSAGE_SELF, &ru) != 0)
-        return 0.0;
-    return (double)ru.ru_utime.tv_sec + (double)ru.ru_utime.tv_usec * 1e-6 +
-           (double)ru.ru_stime.tv_sec + (double)ru.ru_stime.tv_usec * 1e-6;
-}
-
 static void report(const soak *k, const lep_sim_stats *st, double elapsed, double cpu)
 {
     uint64_t generated =
@@ -454,10 +445,10 @@ int main(int argc, char **argv)
              (int)(sizeof k.want_info.firmware - 1), k.opt.firmware);
     (void)lep_sim_model_rated(k.opt.model, &k.want_rated);
     t0 = lep_monotonic_seconds();
-    cpu0 = cpu_seconds();
+    cpu0 = lep_cpu_seconds();
     run(&k);
     lep_sim_get_stats(k.sim, &st);
-    report(&k, &st, lep_monotonic_seconds() - t0, cpu_seconds() - cpu0);
+    report(&k, &st, lep_monotonic_seconds() - t0, lep_cpu_seconds() - cpu0);
     lep_sim_stop(k.sim);
     return k.wrong + k.duplicated + k.out_of_order + k.answers_wrong > 0 ? 1 : 0;
 }

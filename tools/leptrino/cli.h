@@ -4,7 +4,7 @@
  * cmd_*.c per command; the commands call the shared helpers below them,
  * never main.c. help.c prints the help's common end, args.c parses options,
  * sensors.c turns PORT / --sim / --sim-* into sessions (leptrino/session.h:
- * the one place that starts a sensor up) and maps errors to exit codes,
+ * the one place that starts a sensor up) and reports their errors,
  * term.c and signals.c deal with the terminal and signals, status.c draws
  * the live status line, watch_view.c the screen of `leptrino watch`.
  * No sensor logic lives here: tare, units, filtering, gaps, reconnection
@@ -20,22 +20,25 @@
 
 #include <leptrino/leptrino.h>
 #include <leptrino/output.h>
+#include <leptrino/process.h>
 #include <leptrino/serial.h>
 #include <leptrino/session.h>
 #include <leptrino/sim.h>
 
-/* Exit codes (documented in `leptrino --help` and docs/cli.md). */
+/* Exit codes (documented in `leptrino --help` and docs/cli.md): the
+ * library's table (leptrino/process.h), which lep_exit_code applies. */
 enum cli_exit {
-    CLI_OK = 0,           /* success (also after Ctrl-C / SIGTERM during stream) */
-    CLI_FAIL = 1,         /* any other failure (I/O error, output file, protocol) */
-    CLI_USAGE = 2,        /* bad command line */
-    CLI_TIMEOUT = 3,      /* the sensor did not answer / data stopped arriving */
-    CLI_DISCONNECTED = 4, /* the port went away */
-    CLI_SENSOR = 5,       /* the sensor refused a command (result code or NAKs) */
-    CLI_NOT_FOUND = 6,    /* no such port, or not a serial port */
-    CLI_BUSY = 7,         /* the port is in use by another program */
-    CLI_PERMISSION = 8,   /* no permission to open the port */
-    CLI_LIMIT = 9,        /* stream --stop-on-limit: a limit was exceeded */
+    CLI_OK = LEP_EXIT_OK,
+    CLI_FAIL = LEP_EXIT_FAIL,
+    CLI_USAGE = LEP_EXIT_USAGE,
+    CLI_TIMEOUT = LEP_EXIT_TIMEOUT,
+    CLI_DISCONNECTED = LEP_EXIT_DISCONNECTED,
+    CLI_SENSOR = LEP_EXIT_SENSOR,
+    CLI_NOT_FOUND = LEP_EXIT_NOT_FOUND,
+    CLI_BUSY = LEP_EXIT_BUSY,
+    CLI_PERMISSION = LEP_EXIT_PERMISSION,
+    /* the commands' own outcomes, above the library's statuses */
+    CLI_LIMIT = 9, /* stream --stop-on-limit: a limit was exceeded */
     /* leptrino check: the first criterion that failed, in this order */
     CLI_CHECK_STATUS = 10,   /* a status bit: ROM calibration data error or sensor error */
     CLI_CHECK_ERRORS = 11,   /* more frame errors than --max-errors */
@@ -128,8 +131,6 @@ void cli_sensors_close(cli_port_opts *po);
 /* `leptrino help sim`: every --sim-NAME option (from the simulator's table). */
 void cli_sim_help(FILE *f);
 int cli_session_fail(lep_session *s, const char *cmd, const char *port, const char *what, int err);
-/* Exit code for a LEP_E_* code. */
-int cli_exit_code(int err);
 
 /* ---- term.c: the user's terminal ---- */
 /* Single keys from stdin without echo when stdin is a terminal and we are in

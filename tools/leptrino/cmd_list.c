@@ -49,7 +49,7 @@ int cli_cmd_list(int argc, char **argv)
     if (rc != LEP_OK) {
         fprintf(stderr, "leptrino: list: cannot list serial ports: %s\n", lep_strerror(rc));
         free(ports);
-        return cli_exit_code(rc) == CLI_OK ? CLI_FAIL : cli_exit_code(rc);
+        return lep_exit_code(rc) == CLI_OK ? CLI_FAIL : lep_exit_code(rc);
     }
     if (n == 0) {
         printf("no serial ports found\n");

@@ -192,7 +192,7 @@ int cli_cmd_watch(int argc, char **argv)
             note_event(&v, &ev, t0);
         /* LEP_E_TIMEOUT: nothing yet; LEP_E_LOST, LEP_E_DISCONNECTED: the end */
         if (rc != LEP_OK && rc != LEP_E_TIMEOUT) {
-            code = rc == LEP_E_END ? CLI_OK : cli_exit_code(rc);
+            code = lep_exit_code(rc); /* LEP_E_END: LEP_EXIT_OK */
             break;
         }
 

@@ -1,5 +1,5 @@
 /* The help text every command ends with: the sensor options and the exit
- * codes (the codes themselves: cli_exit_code in sensors.c). */
+ * codes (the codes of LEP_E_* errors themselves: lep_exit_code, leptrino/process.h). */
 #include "cli.h"
 
 void cli_print_exit_codes(FILE *f)

@@ -251,33 +251,6 @@ void cli_sim_help(FILE *f)
     }
 }
 
-int cli_exit_code(int err)
-{
-    switch (err) {
-    case LEP_OK:
-        return CLI_OK;
-    case LEP_E_TIMEOUT:
-    case LEP_E_NO_SYNC:
-    case LEP_E_STALLED:
-    case LEP_E_LOST:
-        return CLI_TIMEOUT;
-    case LEP_E_DISCONNECTED:
-        return CLI_DISCONNECTED;
-    case LEP_E_SENSOR:
-    case LEP_E_NAK:
-        return CLI_SENSOR;
-    case LEP_E_NOT_FOUND:
-    case LEP_E_NOT_TTY:
-        return CLI_NOT_FOUND;
-    case LEP_E_BUSY:
-        return CLI_BUSY;
-    case LEP_E_PERMISSION:
-        return CLI_PERMISSION;
-    default:
-        return CLI_FAIL;
-    }
-}
-
 int cli_session_fail(lep_session *s, const char *cmd, const char *port, const char *what, int err)
 {
     lep_client *c = s != NULL ? lep_session_client(s) : NULL;
@@ -301,7 +274,7 @@ int cli_session_fail(lep_session *s, const char *cmd, const char *port, const ch
     } else {
         fprintf(stderr, "leptrino: %s: %s: %s: %s\n", cmd, port, what, lep_strerror(err));
     }
-    return cli_exit_code(err) == CLI_OK ? CLI_FAIL : cli_exit_code(err);
+    return lep_exit_code(err) == CLI_OK ? CLI_FAIL : lep_exit_code(err);
 }
 
 int cli_sensors_open(cli_port_opts *po, const lep_session_options *o, const char *cmd)
@@ -320,7 +293,7 @@ int cli_sensors_open(cli_port_opts *po, const lep_session_options *o, const char
         err[0] = '\0';
         rc = lep_session_open(&so, &s->session, err, sizeof err);
         if (rc != LEP_OK) {
-            int code = cli_exit_code(rc);
+            int code = lep_exit_code(rc);
             s->session = NULL;
             if (so.use_sim && code == CLI_NOT_FOUND)
                 code = CLI_FAIL; /* e.g. a missing --sim-replay file: not a port problem */

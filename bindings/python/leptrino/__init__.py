@@ -33,6 +33,7 @@ from .codec import (
 from .errors import (
     BusyError,
     DisconnectedError,
+    Error,
     LeptrinoError,
     NakError,
     NoSyncError,
@@ -51,6 +52,7 @@ from .sensor import PowerCycleWarning, Sensor, Stream, list_ports
 from .simulator import SimOption, Simulator
 from .values import (
     ClientStats,
+    FrameStats,
     Health,
     PortInfo,
     ProductInfo,
@@ -70,7 +72,9 @@ __all__ = [
     "Health",
     "Decoder",
     "DisconnectedError",
+    "Error",
     "Event",
+    "FrameStats",
     "Message",
     "LeptrinoError",
     "NakError",

@@ -1,16 +1,15 @@
 """cffi backend (ABI mode: ffi.cdef + ffi.dlopen, nothing to compile).
 
-The declarations are leptrino._cdef.CDEF; tests/test_declarations.py checks
-them against include/leptrino/*.h.
+The declarations are leptrino._cdef.CDEF, generated from include/leptrino/*.h
+by tools/gen_python_decls.py.
 """
 
 from __future__ import annotations
 
-import re
 from typing import Any, List, Optional
 
 from . import _loader
-from ._cdef import CDEF
+from ._cdef import CDEF, FUNCTIONS
 
 try:
     import cffi
@@ -50,8 +49,7 @@ class CffiBackend:
 
     def function_names(self) -> List[str]:
         """The functions CDEF declares (whether or not the library has them)."""
-        code = re.sub(r"/\*.*?\*/", " ", CDEF, flags=re.S)
-        return sorted(set(re.findall(r"\b(lep_\w+)\s*\(", code)))
+        return sorted(FUNCTIONS)
 
     # -- allocation --------------------------------------------------------
     def new(self, ctype: str) -> Any:

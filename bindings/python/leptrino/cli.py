@@ -3,7 +3,9 @@
 Every command but plot runs the bundled `leptrino` program (leptrino._tools),
 so options, output and exit codes are the C tool's own. `plot` records from a
 sensor (or a virtual one) and draws the six axes with matplotlib; its
---sim-* options come from the library's table of virtual sensor options.
+--sim-* options come from the library's table of virtual sensor options, and
+its exit status for an error from the library's table (lep_exit_code), the
+one the C tool uses.
 """
 
 from __future__ import annotations
@@ -13,12 +15,11 @@ import sys
 from contextlib import ExitStack
 from typing import Any, Dict, NoReturn, Optional, Sequence, TextIO
 
+from . import _constants as K
 from . import errors as E
-from ._backend import BACKENDS
+from ._backend import BACKENDS, get_backend
 
-EXIT_OK, EXIT_FAIL, EXIT_USAGE = 0, 1, 2
-EXIT_TIMEOUT, EXIT_DISCONNECTED, EXIT_SENSOR = 3, 4, 5
-EXIT_NOT_FOUND, EXIT_BUSY, EXIT_PERMISSION = 6, 7, 8
+EXIT_OK, EXIT_FAIL, EXIT_USAGE = K.LEP_EXIT_OK, K.LEP_EXIT_FAIL, K.LEP_EXIT_USAGE
 
 
 class _Parser(argparse.ArgumentParser):
@@ -60,10 +61,11 @@ class _Usage(Exception):
     pass
 
 
-def cmd_plot(argv: Sequence[str], out: TextIO) -> int:
+
+def cmd_plot(args: argparse.Namespace, out: TextIO) -> int:
+    """Run plot with the options build_plot_parser() parsed."""
     from .sensor import Sensor
 
-    args = build_plot_parser().parse_args(argv)
     sim: Dict[str, Any] = {k[4:]: v for k, v in vars(args).items()
                            if k.startswith("sim_") and v is not None}
     if args.sim and args.port:
@@ -99,20 +101,9 @@ def cmd_plot(argv: Sequence[str], out: TextIO) -> int:
     return EXIT_OK
 
 
-def _exit_code(exc: BaseException) -> int:
-    if isinstance(exc, E.TimeoutError):
-        return EXIT_TIMEOUT
-    if isinstance(exc, E.DisconnectedError):
-        return EXIT_DISCONNECTED
-    if isinstance(exc, (E.SensorError, E.NakError)):
-        return EXIT_SENSOR
-    if isinstance(exc, (E.PortNotFoundError, E.NotATerminalError)):
-        return EXIT_NOT_FOUND
-    if isinstance(exc, E.BusyError):
-        return EXIT_BUSY
-    if isinstance(exc, E.PortPermissionError):
-        return EXIT_PERMISSION
-    return EXIT_FAIL
+def exit_code(exc: BaseException, backend: Optional[str] = None) -> int:
+    """The C tool's exit status for exc (lep_exit_code through backend)."""
+    return E.exit_code(get_backend(backend), exc)
 
 
 def main(argv: Optional[Sequence[str]] = None, out: TextIO = sys.stdout) -> int:
@@ -125,8 +116,11 @@ def main(argv: Optional[Sequence[str]] = None, out: TextIO = sys.stdout) -> int:
         from ._tools import run
 
         run("leptrino", args)
+    backend: Optional[str] = None
     try:
-        return cmd_plot(args[1:], out)
+        ns = build_plot_parser().parse_args(args[1:])  # exits 2 on a bad command line
+        backend = ns.backend
+        return cmd_plot(ns, out)
     except _Usage as exc:
         print(f"python -m leptrino plot: {exc} (try --help)", file=sys.stderr)
         return EXIT_USAGE
@@ -134,7 +128,7 @@ def main(argv: Optional[Sequence[str]] = None, out: TextIO = sys.stdout) -> int:
         return EXIT_OK
     except E.LeptrinoError as exc:
         print(f"python -m leptrino plot: {exc}", file=sys.stderr)
-        return _exit_code(exc)
+        return exit_code(exc, backend)
     except (ImportError, OSError) as exc:
         print(f"python -m leptrino plot: {exc}", file=sys.stderr)
         return EXIT_FAIL

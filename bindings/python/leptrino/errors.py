@@ -1,9 +1,11 @@
 """Exceptions. Every error raised by leptrino is a LeptrinoError.
 
-    LeptrinoError                    .error: the library's LEP_E_* code
+    LeptrinoError                    .code: the library's error, an Error
+                                     (Error.TIMEOUT is LEP_E_TIMEOUT); .error:
+                                     the same as an int
     ├── TimeoutError                 also the built-in TimeoutError
     ├── DisconnectedError            also the built-in ConnectionError
-    ├── SensorError                  the sensor's own result code: .code, .meaning
+    ├── SensorError                  the sensor's own result code: .result, .meaning
     ├── NakError                     the sensor kept answering DLE NAK
     ├── ProtocolError                malformed or unexpected message
     ├── StateError                   call not valid now (e.g. sample while streaming)
@@ -18,18 +20,32 @@
 from __future__ import annotations
 
 import builtins
-from typing import Any, Dict, Optional, Type
+from typing import Any, Dict, Optional, Type, Union
 
 from . import _constants as K
+from ._constants import Error
+
+__all__ = ["Error", "LeptrinoError", "error_for", "exit_code"]
 
 
 class LeptrinoError(Exception):
-    """Base of every leptrino error; .error is the LEP_E_* code (0 when none)."""
+    """Base of every leptrino error.
 
-    def __init__(self, message: str, error: int = 0) -> None:
+    .code is the library's error code as an Error (Error.OK when the error
+    did not come from the library); .error is the same value as a plain int."""
+
+    def __init__(self, message: str, error: Union[int, Error] = Error.OK) -> None:
         super().__init__(message)
-        self.error = error
+        try:
+            self.code: Union[Error, int] = Error(error)
+        except ValueError:  # a code of another library version: kept as a number
+            self.code = int(error)
         self.message = message
+
+    @property
+    def error(self) -> int:
+        """The LEP_E_* code as an int (== .code)."""
+        return int(self.code)
 
     def __str__(self) -> str:
         return self.message
@@ -46,16 +62,17 @@ class DisconnectedError(LeptrinoError, builtins.ConnectionError):
 class SensorError(LeptrinoError):
     """The sensor answered with a non-zero result code.
 
-    .code is the result code (1 length error, 2 undefined command, 3 invalid
-    setting value, 4 state error), .meaning its description, .command the
-    command code answered when known."""
+    .code is Error.SENSOR; .result the sensor's result code (1 length
+    error, 2 undefined command, 3 invalid setting value, 4 state error:
+    LEP_RESULT_*), .meaning its description, .command the command code
+    answered when known."""
 
-    def __init__(self, code: int, meaning: str, command: Optional[int] = None) -> None:
+    def __init__(self, result: int, meaning: str, command: Optional[int] = None) -> None:
         what = f" to command 0x{command:02X}" if command is not None else ""
         super().__init__(
-            f"sensor answered{what} with result 0x{code:02X}: {meaning}", K.LEP_E_SENSOR
+            f"sensor answered{what} with result 0x{result:02X}: {meaning}", Error.SENSOR
         )
-        self.code = code
+        self.result = result
         self.meaning = meaning
         self.command = command
 
@@ -98,6 +115,7 @@ class BusyError(PortError):
 
 _BY_CODE: Dict[int, Type[LeptrinoError]] = {
     K.LEP_E_TIMEOUT: TimeoutError,
+    K.LEP_E_STALLED: TimeoutError,
     K.LEP_E_LOST: TimeoutError,  # the stream lost: no data for the data timeout
     K.LEP_E_DISCONNECTED: DisconnectedError,
     K.LEP_E_NAK: NakError,
@@ -131,3 +149,13 @@ def error_for(be: Any, rc: int, detail: str = "", *, result: Optional[int] = Non
     else:
         msg = f"{detail}: {text}" if detail and text not in detail else (detail or text)
     return _BY_CODE.get(rc, LeptrinoError)(msg, rc)
+
+
+def exit_code(be: Any, exc: BaseException) -> int:
+    """The exit status the `leptrino` tool gives for exc: the library's one
+    table (lep_exit_code, leptrino/process.h) applied to a LeptrinoError's
+    code; LEP_EXIT_FAIL for an error without a library code, or another
+    exception."""
+    if not isinstance(exc, LeptrinoError) or int(exc.code) == K.LEP_OK:
+        return int(K.LEP_EXIT_FAIL)
+    return int(be.lib.lep_exit_code(int(exc.code)))

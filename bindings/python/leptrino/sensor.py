@@ -39,7 +39,6 @@ from .values import (
     Recording,
     Sample,
     SessionEvent,
-    copy_fields,
 )
 
 #: Samples per lep_session_read in the sample iterator.
@@ -382,16 +381,7 @@ class Sensor:
         be = self._be
         h = be.new("lep_session_health")
         be.lib.lep_session_get_health(self._live(), h)
-        return Health(
-            elapsed_s=float(h.elapsed_s), nominal_hz=float(h.nominal_hz),
-            measured_hz=float(h.measured_hz), recent_hz=float(h.recent_hz),
-            shortfall=bool(h.shortfall), received=int(h.received), delivered=int(h.delivered),
-            lost=int(h.lost), gaps=int(h.gaps), errors=int(h.errors),
-            overloads=int(h.overloads), disconnects=int(h.disconnects),
-            reconnects=int(h.reconnects), events_dropped=int(h.events_dropped),
-            max_gap_s=float(h.max_gap_s),
-            client=copy_fields(ClientStats, h.client),
-        )
+        return Health.from_c(h)
 
     @property
     @_driving
@@ -399,7 +389,7 @@ class Sensor:
         """The current connection's client counters (messages, BCC errors, NAKs, ...)."""
         st = self._be.new("lep_client_stats")
         self._be.lib.lep_client_get_stats(self._client(), st)
-        return copy_fields(ClientStats, st)  # type: ignore[no-any-return]
+        return ClientStats.from_c(st)
 
     @property
     @_any_thread

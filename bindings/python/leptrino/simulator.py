@@ -9,7 +9,7 @@ from typing import Any, Dict, List, Optional
 from . import _constants as K
 from ._backend import get_backend
 from .errors import LeptrinoError, error_for
-from .values import Rated, SimStats, copy_fields
+from .values import Rated, SimStats
 
 _TYPES = {
     K.LEP_SIM_OPT_FLAG: "flag",
@@ -190,7 +190,7 @@ class Simulator:
     def stats(self) -> SimStats:
         st = self._be.new("lep_sim_stats")
         self._be.lib.lep_sim_get_stats(self._live(), st)
-        return copy_fields(SimStats, st)  # type: ignore[no-any-return]
+        return SimStats.from_c(st)
 
     @staticmethod
     def models(backend: Optional[str] = None) -> List[str]:

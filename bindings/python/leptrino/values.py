@@ -10,6 +10,11 @@ from typing import Any, Dict, List, NamedTuple, Optional, Sequence, Tuple
 import numpy as np
 
 from . import _constants as K
+# The counter structs' dataclasses are generated from the headers (_stats.py).
+from ._stats import ClientStats as ClientStats  # noqa: F401 - re-exported
+from ._stats import FrameStats as FrameStats  # noqa: F401 - re-exported
+from ._stats import Health as Health  # noqa: F401 - re-exported
+from ._stats import SimStats as SimStats  # noqa: F401 - re-exported
 
 Vec3 = Tuple[float, float, float]
 Raw6 = Tuple[int, int, int, int, int, int]
@@ -127,16 +132,10 @@ class Sample:
                 + ")")
 
 
-EVENT_NAMES = {
-    K.LEP_EV_GAP: "gap",
-    K.LEP_EV_DISCONNECTED: "disconnected",
-    K.LEP_EV_RECONNECTED: "reconnected",
-    K.LEP_EV_TARE: "tare",
-    K.LEP_EV_OVERLOAD_BEGIN: "overload_begin",
-    K.LEP_EV_OVERLOAD_END: "overload_end",
-    K.LEP_EV_LIMIT_EXCEEDED: "limit_exceeded",
-    K.LEP_EV_LIMIT_CLEARED: "limit_cleared",
-}
+#: LEP_EV_* value -> event name ("gap", "disconnected", ...): every event type
+#: of session.h, its name lower-cased without the prefix.
+EVENT_NAMES = {v: k[len("LEP_EV_"):].lower() for k, v in vars(K).items()
+               if k.startswith("LEP_EV_")}
 
 
 @dataclass(frozen=True)
@@ -295,70 +294,6 @@ def save_npz(rec: Recording, path: str) -> None:
 
 
 @dataclass(frozen=True)
-class Health:
-    """How the stream is doing, since it started (lep_session_health)."""
-
-    elapsed_s: float  # from the first sample to the last
-    nominal_hz: float  # 1200, or the sensor's output-rate field
-    measured_hz: float  # samples received / elapsed
-    recent_hz: float  # over the last second or so
-    shortfall: bool  # measured below 98 % of nominal over at least 1 s
-    received: int
-    delivered: int
-    lost: int  # samples estimated lost in gaps
-    gaps: int
-    errors: int  # framing, BCC, invalid messages, timeouts
-    overloads: int  # overload episodes begun
-    disconnects: int
-    reconnects: int
-    events_dropped: int  # events pushed out of the session's full queue, never read
-    max_gap_s: float
-    client: "ClientStats"  # the current connection's counters
-
-
-@dataclass(frozen=True)
-class ClientStats:
-    """Client counters (lep_client_stats)."""
-
-    messages: int
-    bcc_errors: int
-    frame_errors: int
-    bytes_discarded: int
-    naks: int
-    retries: int
-    unexpected: int
-    invalid: int
-    timeouts: int
-    samples: int
-
-
-@dataclass(frozen=True)
-class SimStats:
-    """What the virtual sensor did (lep_sim_stats)."""
-
-    samples_sent: int
-    samples_dropped: int
-    commands: int
-    naks: int
-    bytes_corrupted: int
-    hangups: int
-    streaming: bool
-    filter: int
-    filter_pending: int
-    hung_up: bool
-    sequence: int  # sequence number the next stream sample will carry
-    responses: int
-    faked_naks: int
-    samples_skipped: int
-    samples_blocked: int
-    garbage_bytes: int
-    bytes_received: int
-    reopens: int
-    power_cycles: int
-    stalls: int
-
-
-@dataclass(frozen=True)
 class PortInfo:
     """A serial port found on this machine."""
 
@@ -369,7 +304,3 @@ class PortInfo:
     pid: int
     likely_sensor: bool  # STM VCP 0483:5740 or FTDI 0403:6001
 
-
-def copy_fields(cls: Any, c: Any) -> Any:
-    """Build the dataclass cls from the same-named fields of a C struct."""
-    return cls(**{f.name: getattr(c, f.name) for f in fields(cls)})

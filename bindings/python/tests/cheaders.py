@@ -1,10 +1,15 @@
 """A small reader of leptrino's public C headers, for the declaration check.
 
-Extracts what the bindings declare by hand: LEP_API prototypes, typedef'd
-structs (with nested unions), enum constants and numeric #defines. Types are
-normalised to cffi's spelling: no const, "_Bool" for bool, "unsigned int"
-for unsigned, one " *" per pointer level, "T[N]" for arrays with N
-evaluated from the #defines; array parameters become pointers.
+Written apart from tools/gen_python_decls.py (which uses the C preprocessor
+and pycparser), with regular expressions on the header text, so that the
+check of the generated declarations is independent of the generator.
+
+Extracts LEP_API prototypes, typedef'd structs (with nested unions),
+function pointer types, enum constants and #defines. Types are normalised to
+cffi's spelling: no const, "_Bool" for bool, "unsigned int" for unsigned, one
+" *" per pointer level, "T[N]" for arrays with N evaluated from the
+#defines, "R(*)(A, B)" for function pointers; array parameters become
+pointers.
 """
 
 from __future__ import annotations
@@ -29,7 +34,15 @@ class Headers:
     functions: Dict[str, Tuple[str, List[str]]] = field(default_factory=dict)
     structs: Dict[str, Struct] = field(default_factory=dict)
     opaque: List[str] = field(default_factory=list)
-    constants: Dict[str, int] = field(default_factory=dict)
+    #: constants whose value this reader evaluates (int, float or str)
+    constants: Dict[str, Union[int, float, str]] = field(default_factory=dict)
+    #: every public constant name: LEP_* object-like macros (not config.h's or
+    #: export.h's switches, not private names ending in "_") and enumerators
+    constant_names: List[str] = field(default_factory=list)
+    #: enum name -> its enumerators, in order
+    enums: Dict[str, List[str]] = field(default_factory=dict)
+    #: function pointer typedefs: name -> "R(*)(A, B)"
+    funcptrs: Dict[str, str] = field(default_factory=dict)
 
 
 def _strip_comments(text: str) -> str:
@@ -37,8 +50,18 @@ def _strip_comments(text: str) -> str:
     return re.sub(r"//[^\n]*", " ", text)
 
 
-def _eval_int(expr: str, env: Dict[str, int]) -> Optional[int]:
-    expr = re.sub(r"\b(0[xX][0-9a-fA-F]+|\d+)[uUlL]*\b", r"\1", expr.strip())
+def _eval_int(expr: str, env: Dict[str, Union[int, float, str]]) -> Optional[int]:
+    v = _eval(expr, env)
+    return v if isinstance(v, int) else None
+
+
+def _eval(expr: str, env: Dict[str, Union[int, float, str]]) -> Union[int, float, str, None]:
+    expr = expr.strip()
+    if re.fullmatch(r'"[^"\\]*"', expr):
+        return expr[1:-1]
+    if re.fullmatch(r"\d+\.\d*([eE][-+]?\d+)?", expr):
+        return float(expr)
+    expr = re.sub(r"\b(0[xX][0-9a-fA-F]+|\d+)[uUlL]*\b", r"\1", expr)
     expr = re.sub(r"\b(LEP_\w+)\b", lambda m: str(env[m.group(1)]) if m.group(1) in env
                   else m.group(1), expr)
     if not re.fullmatch(r"[0-9a-fA-FxX+\-*/() <>|&]+", expr):
@@ -50,24 +73,50 @@ def _eval_int(expr: str, env: Dict[str, int]) -> Optional[int]:
     return int(value) if isinstance(value, int) else None
 
 
+_FUNCPTRS: Dict[str, str] = {}  # filled by parse(): typedef name -> spelling
+
+
 def normalise(decl_type: str) -> str:
-    """'const uint8_t *' -> 'uint8_t *'; 'bool' -> '_Bool'."""
+    """'const uint8_t *' -> 'uint8_t *'; 'bool' -> '_Bool'; a function pointer
+    typedef name -> its spelling."""
     t = decl_type.replace("*", " * ")
     words = [w for w in t.split() if w not in ("const", "volatile", "struct", "enum")]
     stars = words.count("*")
     base = " ".join(w for w in words if w != "*")
     base = {"bool": "_Bool", "unsigned": "unsigned int", "signed": "int"}.get(base, base)
+    if base in _FUNCPTRS and stars == 0:
+        return _FUNCPTRS[base]
     return base + " *" * stars
 
 
-def _split_decl(decl: str, env: Dict[str, int]) -> Tuple[str, str]:
+def _params(raw: str, env: Dict[str, Union[int, float, str]]) -> List[str]:
+    params: List[str] = []
+    raw = " ".join(raw.split())
+    if raw in ("", "void"):
+        return params
+    for p in raw.split(","):
+        p = p.strip()
+        arr = re.fullmatch(r"(.+?)\s*\b\w+\s*\[.*\]", p)
+        if arr:  # an array parameter is a pointer
+            params.append(normalise(arr.group(1) + " *"))
+            continue
+        t, _ = _split_decl(p, env)
+        params.append(t)
+    return params
+
+
+def _fnptr(ret: str, raw: str, env: Dict[str, Union[int, float, str]]) -> str:
+    return f"{normalise(ret)}(*)({', '.join(_params(raw, env))})"
+
+
+def _split_decl(decl: str, env: Dict[str, Union[int, float, str]]) -> Tuple[str, str]:
     """'const uint8_t *msg' -> ('uint8_t *', 'msg'); 'double si[LEP_AXES]' (param)
     is handled by the caller; a field 'char model[LEP_MODEL_LEN + 1]' ->
     ('char[17]', 'model')."""
     decl = " ".join(decl.split())
     fn = re.fullmatch(r"(.+?)\(\s*\*\s*(\w+)\s*\)\s*\((.*)\)", decl)
     if fn:  # function pointer member
-        return "fnptr", fn.group(2)
+        return _fnptr(fn.group(1), fn.group(3), env), fn.group(2)
     arr = re.fullmatch(r"(.+?)\s*\b(\w+)\s*\[(.*)\]", decl)
     if arr:
         n = _eval_int(arr.group(3), env)
@@ -78,7 +127,8 @@ def _split_decl(decl: str, env: Dict[str, int]) -> Tuple[str, str]:
     return normalise(m.group(1)), m.group(2)
 
 
-def _parse_body(body: str, env: Dict[str, int], counter: List[int]) -> List[Field]:
+def _parse_body(body: str, env: Dict[str, Union[int, float, str]],
+                counter: List[int]) -> List[Field]:
     fields: List[Field] = []
     i = 0
     while i < len(body):
@@ -113,20 +163,32 @@ def _parse_body(body: str, env: Dict[str, int], counter: List[int]) -> List[Fiel
     return fields
 
 
+#: Headers whose macros are build switches, not values.
+SWITCH_HEADERS = ("config.h", "export.h")
+
+
 def parse(include_dir: Path) -> Headers:
     h = Headers()
     texts = []
     for path in sorted(include_dir.glob("*.h")):
-        texts.append(_strip_comments(path.read_text(encoding="utf-8")))
+        text = _strip_comments(path.read_text(encoding="utf-8"))
+        texts.append(text)
+        if path.name in SWITCH_HEADERS:
+            continue
+        for m in re.finditer(r"^[ \t]*#[ \t]*define[ \t]+(LEP_\w+)([ \t]+[^\n]+)?$", text,
+                             re.M):
+            name = m.group(1)
+            if name.endswith("_") or name in h.constant_names:
+                continue  # private by the headers' convention
+            h.constant_names.append(name)
+            value = _eval(m.group(2) or "", h.constants)
+            if value is not None:
+                h.constants[name] = value
     text = "\n".join(texts)
-
-    for m in re.finditer(r"^[ \t]*#[ \t]*define[ \t]+(LEP_\w+)[ \t]+([^\n]+)$", text, re.M):
-        value = _eval_int(m.group(2), h.constants)
-        if value is not None:
-            h.constants[m.group(1)] = value
-    for m in re.finditer(r"\benum\s+\w+\s*\{([^}]*)\}", text):
+    for m in re.finditer(r"\benum\s+(\w+)\s*\{([^}]*)\}", text):
         nxt = 0
-        for item in m.group(1).split(","):
+        items = h.enums.setdefault(m.group(1), [])
+        for item in m.group(2).split(","):
             item = item.strip()
             if not item:
                 continue
@@ -136,24 +198,19 @@ def parse(include_dir: Path) -> Headers:
             if value is None:
                 raise ValueError(f"cannot evaluate enum value {item!r}")
             h.constants[name] = value
+            h.constant_names.append(name)
+            items.append(name)
             nxt = value + 1
 
     body_text = re.sub(r"^[ \t]*#[^\n]*$", " ", text, flags=re.M)
+    _FUNCPTRS.clear()
+    for m in re.finditer(r"\btypedef\s+([^;{}()]+?)\(\s*\*\s*(\w+)\s*\)\s*\(([^()]*)\)\s*;",
+                         body_text):
+        h.funcptrs[m.group(2)] = _fnptr(m.group(1), m.group(3), h.constants)
+        _FUNCPTRS[m.group(2)] = h.funcptrs[m.group(2)]
 
     for m in re.finditer(r"\bLEP_API\s+([^;{}()]*?)\b(\w+)\s*\(([^()]*)\)\s*;", body_text):
-        ret = normalise(m.group(1))
-        params: List[str] = []
-        raw = " ".join(m.group(3).split())
-        if raw not in ("", "void"):
-            for p in raw.split(","):
-                p = p.strip()
-                arr = re.fullmatch(r"(.+?)\s*\b\w+\s*\[.*\]", p)
-                if arr:  # an array parameter is a pointer
-                    params.append(normalise(arr.group(1) + " *"))
-                    continue
-                t, _ = _split_decl(p, h.constants)
-                params.append(t)
-        h.functions[m.group(2)] = (ret, params)
+        h.functions[m.group(2)] = (normalise(m.group(1)), _params(m.group(3), h.constants))
 
     for m in re.finditer(r"\btypedef\s+struct\s+(\w+)\s+(\w+)\s*;", body_text):
         h.opaque.append(m.group(2))

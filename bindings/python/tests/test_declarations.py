@@ -1,19 +1,32 @@
-"""The hand-written declarations of both backends against the C headers.
+"""The generated declarations of both backends against the C headers.
 
-Parses include/leptrino/*.h (see cheaders.py) and compares every prototype,
-struct layout and constant the bindings declare. Any drift fails here.
+tools/gen_python_decls.py writes leptrino/_constants.py, _cdef.py,
+_ctypes_decls.py and _stats.py from include/leptrino/*.h. Here:
+  - the committed files are what the generator makes of today's headers;
+  - an independent reader of the headers (cheaders.py: regular expressions,
+    not the generator's preprocessor and pycparser) agrees with them both
+    ways: every LEP_API function, struct, member, function pointer type,
+    constant, error code and counter of the headers is in Python, with the
+    same type and value, and Python declares nothing the headers do not;
+  - the loaded library exports exactly the declared functions.
 """
 
 from __future__ import annotations
 
 import ctypes
+import dataclasses
+import importlib.util
+import re
+import shutil
+import subprocess
+import sys
 from pathlib import Path
 from typing import Any, Dict, List, Tuple, Union
 
 import pytest
 
 import cheaders
-from leptrino import _constants, _ctypes_backend as ct
+from leptrino import _constants, _ctypes_backend as ct, _ctypes_decls as ct_decls, _stats
 
 
 @pytest.fixture(scope="module")
@@ -51,8 +64,49 @@ _BASE: Dict[str, Any] = {
 }
 
 
+_SPELL: Dict[Any, str] = {}
+for _name, _t in _BASE.items():  # the first name wins: c_int32 is c_int, spelled "int"
+    if _t is not None:
+        _SPELL.setdefault(_t, _name)
+
+
+def canonical_spelling(spelling: str) -> str:
+    """A function pointer's spelling with every scalar named as ctypes_spelling
+    names it (ctypes cannot tell uint32_t from unsigned int)."""
+    def one(part: str) -> str:
+        part = part.strip()
+        base, stars = part.rstrip(" *"), part.count("*")
+        t = _BASE.get(base)
+        return (_SPELL[t] if t is not None else base) + " *" * stars
+
+    m = re.fullmatch(r"(.*?)\(\*\)\((.*)\)", spelling)
+    assert m, spelling
+    args = [one(a) for a in m.group(2).split(",")] if m.group(2) else []
+    return f"{one(m.group(1))}(*)({', '.join(args)})"
+
+
+def ctypes_spelling(t: Any) -> str:
+    """A ctypes type in cheaders' (cffi's) spelling, for function pointers."""
+    if t is None:
+        return "void"
+    if t is ctypes.c_void_p:
+        return "void *"
+    if t is ctypes.c_char_p:
+        return "char *"
+    if isinstance(t, type) and issubclass(t, ctypes._Pointer):  # type: ignore[attr-defined]
+        return ctypes_spelling(t._type_) + " *"
+    if isinstance(t, type) and issubclass(t, ctypes._CFuncPtr):  # type: ignore[attr-defined]
+        args = ", ".join(ctypes_spelling(a) for a in t._argtypes_)
+        return f"{ctypes_spelling(t._restype_)}(*)({args})"
+    if t in _SPELL:
+        return _SPELL[t]
+    return str(getattr(t, "__name__", t))
+
+
 def ctypes_accepts(ctype_str: str) -> List[Any]:
     """The ctypes types that exactly represent a normalised C type."""
+    if "(*)(" in ctype_str:  # a function pointer: compared by spelling
+        return [ctype_str]
     if ctype_str.endswith(" *"):
         inner = ctype_str[:-2]
         if inner == "void":
@@ -71,6 +125,8 @@ def ctypes_accepts(ctype_str: str) -> List[Any]:
 def _same_ctypes(a: Any, b: Any) -> bool:
     if a is b:
         return True
+    if isinstance(b, str):  # a function pointer's spelling
+        return ctypes_spelling(a) == canonical_spelling(b)
     # arrays: compare element type and length
     if isinstance(a, type) and isinstance(b, type) and issubclass(a, ctypes.Array) \
             and issubclass(b, ctypes.Array):
@@ -138,6 +194,16 @@ def check_ctypes(h: cheaders.Headers, functions: Dict[str, Tuple[Any, List[Any]]
             errors.append(f"{name}: no such struct in the headers")
             continue
         compare_ctypes_struct(h.structs[name], cls, name, errors)
+    # the other way: nothing of the headers is missing
+    errors += [f"{n}: a function of the headers that ctypes does not declare"
+               for n in h.functions if n not in functions]
+    errors += [f"{n}: a type of the headers that ctypes does not declare"
+               for n in list(h.structs) + h.opaque if n not in structs]
+    for n, spelling in h.funcptrs.items():
+        if not hasattr(ct_decls, n) or \
+                ctypes_spelling(getattr(ct_decls, n)) != canonical_spelling(spelling):
+            errors.append(f"{n}: function pointer type {spelling!r} in the headers, ctypes "
+                          f"{ctypes_spelling(getattr(ct_decls, n, None))!r}")
     return errors
 
 
@@ -158,8 +224,9 @@ def test_ctypes_library_uses_the_declarations() -> None:
 def test_ctypes_check_catches_drift(headers: cheaders.Headers) -> None:
     funcs = dict(ct.FUNCTIONS)
     funcs["lep_bcc"] = (ctypes.c_uint8, [ctypes.POINTER(ctypes.c_uint8), ctypes.c_uint32])
-    funcs["lep_sim_stall"] = (None, [ctypes.POINTER(ct.lep_sim)])
+    funcs["lep_sim_stall"] = (None, [ctypes.POINTER(ct_decls.lep_sim)])
     funcs["lep_no_such_function"] = (ctypes.c_int, [])
+    del funcs["lep_exit_code"]  # the other way: a header function left out
 
     class lep_rated(ctypes.Structure):  # wrong element type
         _fields_ = [("axis", ctypes.c_double * 6)]
@@ -172,7 +239,7 @@ def test_ctypes_check_catches_drift(headers: cheaders.Headers) -> None:
     errors = check_ctypes(headers, funcs, structs)
     text = "\n".join(errors)
     for name in ("lep_bcc", "lep_sim_stall", "lep_no_such_function", "lep_rated.axis",
-                 "lep_sample"):
+                 "lep_sample", "lep_exit_code"):
         assert name in text, text
 
 
@@ -238,6 +305,16 @@ def check_cffi(h: cheaders.Headers, cdef: str) -> List[str]:
             errors.append(f"{name}: no such struct in the headers")
             continue
         compare_cffi_struct(h.structs[name], ctype, name, errors)
+    # the other way: nothing of the headers is missing
+    errors += [f"{n}: a function of the headers that the cdef does not declare"
+               for n in h.functions if f"function {n}" not in decl]
+    errors += [f"{n}: a type of the headers that the cdef does not declare"
+               for n in list(h.structs) + h.opaque + list(h.funcptrs)
+               if f"typedef {n}" not in decl]
+    for n, spelling in h.funcptrs.items():
+        if f"typedef {n}" in decl and ffi.typeof(n).cname != spelling:
+            errors.append(f"{n}: function pointer type {spelling!r} in the headers, cffi "
+                          f"{ffi.typeof(n).cname!r}")
     return errors
 
 
@@ -270,11 +347,12 @@ def test_cffi_check_catches_drift(headers: cheaders.Headers) -> None:
                         "uint8_t lep_bcc(const uint8_t *msg, uint32_t len);")
            .replace("void lep_sim_stall(lep_sim *s, int ms);", "void lep_sim_stall(lep_sim *s);")
            .replace("float axis[6];", "double axis[6];")
-           .replace("uint16_t reserved;\n    uint8_t status;",
-                    "uint8_t status;\n    uint16_t reserved;"))
-    assert bad.count("lep_") == CDEF.count("lep_")
+           .replace("uint16_t reserved;\n  uint8_t status;",
+                    "uint8_t status;\n  uint16_t reserved;")
+           .replace("int lep_exit_code(int err);", ""))  # the other way: left out
+    assert bad.count("lep_") == CDEF.count("lep_") - 1
     text = "\n".join(check_cffi(headers, bad))
-    for name in ("lep_bcc", "lep_sim_stall", "lep_rated.axis", "lep_sample"):
+    for name in ("lep_bcc", "lep_sim_stall", "lep_rated.axis", "lep_sample", "lep_exit_code"):
         assert name in text, text
 
 
@@ -291,14 +369,159 @@ def test_both_backends_declare_the_same_functions() -> None:
     assert cffi_funcs == set(ct.FUNCTIONS)
 
 
-# ---- constants and sizes ---------------------------------------------------
+# ---- constants, errors, counters ------------------------------------------
+
+def _python_constants() -> Dict[str, Any]:
+    return {k: v for k, v in vars(_constants).items() if k.startswith("LEP_")}
+
+
+def check_constants(h: cheaders.Headers, mine: Dict[str, Any]) -> List[str]:
+    """Both ways: the same names; the same value wherever the reader evaluates one."""
+    errors = [f"{k}: in the headers, not in _constants" for k in h.constant_names
+              if k not in mine]
+    errors += [f"{k}: in _constants, not in the headers" for k in mine
+               if k not in h.constant_names]
+    errors += [f"{k}: {v!r} in the headers, {mine.get(k)!r} in _constants"
+               for k, v in h.constants.items() if k in mine and mine[k] != v
+               or type(mine.get(k)) is not type(v)]
+    return errors
+
 
 def test_constants_match_headers(headers: cheaders.Headers) -> None:
-    mine = {k: v for k, v in vars(_constants).items() if k.startswith("LEP_")}
-    assert len(mine) > 50
-    wrong = {k: (v, headers.constants.get(k)) for k, v in mine.items()
-             if headers.constants.get(k) != v}
-    assert wrong == {}
+    mine = _python_constants()
+    assert len(mine) > 100 and len(headers.constants) > 100
+    assert check_constants(headers, mine) == []
+
+
+def test_constant_check_catches_drift(headers: cheaders.Headers) -> None:
+    mine = _python_constants()
+    mine["LEP_E_TIMEOUT"] = -99
+    del mine["LEP_SF_GAP"]
+    mine["LEP_NO_SUCH"] = 1
+    text = "\n".join(check_constants(headers, mine))
+    for name in ("LEP_E_TIMEOUT", "LEP_SF_GAP", "LEP_NO_SUCH"):
+        assert name in text, text
+
+
+def test_error_enum_is_every_error_code(headers: cheaders.Headers) -> None:
+    """leptrino.Error holds every enumerator of enum lep_error, named without
+    LEP_E_ (LEP_OK as OK), with its value; and nothing else."""
+    import leptrino
+
+    want = {n[len("LEP_E_"):] if n.startswith("LEP_E_") else n[len("LEP_"):]:
+            headers.constants[n] for n in headers.enums["lep_error"]}
+    assert len(want) >= 24 and "STALLED" in want
+    assert {e.name: int(e.value) for e in leptrino.Error} == want
+    assert leptrino.Error is leptrino.errors.Error is _constants.Error
+    assert leptrino.Error.TIMEOUT == _constants.LEP_E_TIMEOUT
+
+
+def _counter_structs(h: cheaders.Headers) -> List[str]:
+    return [n for n in h.structs if n.endswith("_stats") or n.endswith("_health")]
+
+
+def test_every_counter_struct_has_its_dataclass(headers: cheaders.Headers) -> None:
+    """Each *_stats / *_health struct of the headers is a dataclass of
+    leptrino with exactly its members, in order (nested counter structs as
+    their own dataclass)."""
+    import leptrino
+
+    structs = _counter_structs(headers)
+    assert {"lep_client_stats", "lep_sim_stats", "lep_session_health"} <= set(structs)
+    by_doc = {}
+    for cls in vars(_stats).values():
+        if dataclasses.is_dataclass(cls):
+            m = re.search(r"C: (lep_\w+) \(", cls.__doc__ or "")
+            assert m, cls
+            by_doc[m.group(1)] = cls
+    assert set(by_doc) == set(structs)
+    for name in structs:
+        cls = by_doc[name]
+        assert getattr(leptrino, cls.__name__) is cls  # exported
+        want = [f[0] for f in headers.structs[name].fields]
+        assert [f.name for f in dataclasses.fields(cls)] == want, name
+    assert [f.name for f in dataclasses.fields(leptrino.ClientStats)][-5:] == [
+        "resent_after_timeout", "resent_confirmed", "recoveries", "reserved_nonzero", "stalls"]
+
+
+def test_counters_are_copied_from_c(backend: str) -> None:
+    """from_c reads every member: distinct values in, the same values out."""
+    import leptrino
+
+    be = leptrino.get_backend(backend)
+    for cname, cls in (("lep_client_stats", leptrino.ClientStats),
+                       ("lep_sim_stats", leptrino.SimStats),
+                       ("lep_session_health", leptrino.Health)):
+        c = be.new(cname)
+        want: Dict[str, Any] = {}
+        for i, f in enumerate(dataclasses.fields(cls)):
+            if f.type in ("int", int):  # 1..40: fits every member, uint8_t too
+                setattr(c, f.name, 1 + i)
+                want[f.name] = 1 + i
+            elif f.type in ("float", float):
+                setattr(c, f.name, 0.5 + i)
+                want[f.name] = 0.5 + i
+            elif f.type in ("bool", bool):
+                setattr(c, f.name, True)
+                want[f.name] = True
+        got = cls.from_c(c)
+        assert {k: getattr(got, k) for k in want} == want, cname
+    h = be.new("lep_session_health")
+    sub = h.client
+    sub.stalls = 7
+    assert leptrino.Health.from_c(h).client.stalls == 7
+
+
+# ---- the generated files and the library ---------------------------------
+
+def _generator(root: Path) -> Any:
+    spec = importlib.util.spec_from_file_location("gen_python_decls",
+                                                  root / "tools" / "gen_python_decls.py")
+    assert spec and spec.loader
+    mod = importlib.util.module_from_spec(spec)
+    sys.modules["gen_python_decls"] = mod
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def test_generated_files_are_current(root: Path) -> None:
+    """The committed declarations are what the generator makes of the headers
+    (run tools/gen_python_decls.py after changing a header)."""
+    import leptrino
+
+    gen = _generator(root)
+    package = Path(leptrino.__file__).resolve().parent
+    fresh = gen.generate(root / "include")
+    assert set(fresh) == {"_constants.py", "_cdef.py", "_ctypes_decls.py", "_stats.py"}
+    stale = [name for name, text in fresh.items()
+             if (package / name).read_text(encoding="utf-8") != text]
+    assert stale == [], f"stale: {stale}; run python3 tools/gen_python_decls.py"
+
+
+def test_generator_refuses_what_it_cannot_translate(root: Path, tmp_path: Path) -> None:
+    """A header construct the generator has no translation for is an error
+    naming it, never silently left out."""
+    gen = _generator(root)
+    inc = tmp_path / "include"
+    shutil.copytree(root / "include", inc)
+    with open(inc / "leptrino" / "frame.h", "a", encoding="utf-8") as f:
+        f.write("\n#define LEP_NOT_A_NUMBER (sizeof(int) * 3)\n")
+    with pytest.raises(gen.GenError, match="cannot evaluate"):
+        gen.generate(inc)
+
+
+def test_library_exports_exactly_the_declared_functions() -> None:
+    """The loaded library's exported lep_* symbols are the declared functions."""
+    import leptrino
+
+    nm = shutil.which("nm")
+    assert nm, "nm (binutils) is needed to list the library's symbols"
+    path = leptrino.get_backend("ctypes").path
+    out = subprocess.run([nm, "-D", "--defined-only", path], capture_output=True, text=True,
+                         check=True).stdout
+    exported = {line.split()[-1] for line in out.splitlines()
+                if line.split() and line.split()[-1].startswith("lep_")}
+    assert exported == set(ct.FUNCTIONS)
 
 
 def test_client_size_covers_the_header_layout(backend: str) -> None:
@@ -308,27 +531,3 @@ def test_client_size_covers_the_header_layout(backend: str) -> None:
     be = leptrino.get_backend(backend)
     size = int(be.lib.lep_client_sizeof())
     assert 200 <= size <= 4096
-
-
-def test_session_and_output_are_fully_declared(headers: cheaders.Headers) -> None:
-    """Every function and structure of session.h and output.h (what Sensor and
-    Recording.save use) is declared by both backends, and so checked above."""
-    import re
-
-    from conftest import ROOT
-
-    assert ROOT is not None
-    for header in ("session.h", "output.h", "payload.h"):
-        text = (ROOT / "include" / "leptrino" / header).read_text(encoding="utf-8")
-        funcs = set(re.findall(r"\bLEP_API\b[^;(]*?\b(lep_\w+)\s*\(", text))
-        structs = set(re.findall(r"\btypedef\s+struct\s+\w+\s*\{.*?\}\s*(\w+)\s*;", text, re.S))
-        assert funcs and funcs <= set(ct.FUNCTIONS), (header, funcs - set(ct.FUNCTIONS))
-        assert structs <= set(ct.STRUCTS), (header, structs - set(ct.STRUCTS))
-        try:
-            from leptrino._cdef import CDEF
-        except ImportError:  # pragma: no cover
-            continue
-        for name in funcs:
-            assert re.search(rf"\b{name}\s*\(", CDEF), name
-        for name in structs:
-            assert re.search(rf"\}}\s*{name}\s*;", CDEF), name

@@ -221,7 +221,8 @@ def test_sensor_error_carries_the_result_code(backend: str) -> None:
         with s.stream():
             with pytest.raises(leptrino.SensorError) as info:
                 s.filter = 2  # a filter set while streaming: state error 0x04
-            assert info.value.code == K.LEP_RESULT_STATE
+            assert info.value.result == K.LEP_RESULT_STATE
+            assert info.value.code is leptrino.Error.SENSOR
             assert info.value.meaning and info.value.command == K.LEP_CMD_FILTER_SET
             with pytest.raises(leptrino.StateError):
                 s.start()  # the session refuses a second start
