@@ -574,7 +574,7 @@ static int loop(stream_state *st)
                      "no data for %g s (--data-timeout %g): the stream is lost (--reconnect "
                      "reopens the port and waits for the sensor instead)",
                      st->o.so.data_timeout_ms / 1000.0, st->o.so.data_timeout_ms / 1000.0);
-                return cli_exit_code(LEP_E_LOST);
+                return lep_exit_code(LEP_E_LOST);
             }
             if (r->failed != 0)
                 return cli_session_fail(r->s, "stream", r->sensor->name, "stream", r->failed);

@@ -20,7 +20,7 @@ from leptrino import _tools, cli, errors
 #: The statuses docs/cli.md gives, written out apart from the C table.
 DOCUMENTED = {
     "OK": 0, "END": 0,
-    "TIMEOUT": 3, "NO_SYNC": 3, "STALLED": 3,
+    "TIMEOUT": 3, "NO_SYNC": 3, "STALLED": 3, "LOST": 3,
     "DISCONNECTED": 4,
     "SENSOR": 5, "NAK": 5,
     "NOT_FOUND": 6, "NOT_TTY": 6,
