@@ -1,0 +1,1 @@
+pub use leptrino_sys as sys;
