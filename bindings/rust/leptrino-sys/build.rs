@@ -36,7 +36,10 @@ impl ParseCallbacks for ErrorCodes {
                 EnumVariantValue::Signed(v) => v,
                 EnumVariantValue::Unsigned(v) => v as i64,
             };
-            self.0.lock().unwrap().push((original_variant_name.to_owned(), v));
+            self.0
+                .lock()
+                .unwrap()
+                .push((original_variant_name.to_owned(), v));
         }
         None
     }
@@ -69,8 +72,14 @@ fn doc_of(bindings: &str, name: &str) -> Option<String> {
 }
 
 fn error_kind_source(codes: &[(String, i64)], bindings: &str) -> String {
-    let errors: Vec<&(String, i64)> = codes.iter().filter(|(n, _)| n.starts_with("LEP_E_")).collect();
-    assert!(!errors.is_empty(), "no LEP_E_* code found in leptrino/error.h");
+    let errors: Vec<&(String, i64)> = codes
+        .iter()
+        .filter(|(n, _)| n.starts_with("LEP_E_"))
+        .collect();
+    assert!(
+        !errors.is_empty(),
+        "no LEP_E_* code found in leptrino/error.h"
+    );
     let mut s = String::new();
     s.push_str(
         "/// A `LEP_E_*` code of `leptrino/error.h`: every failure the library reports.\n\
@@ -86,7 +95,11 @@ fn error_kind_source(codes: &[(String, i64)], bindings: &str) -> String {
         if let Some(doc) = doc_of(bindings, name) {
             let _ = writeln!(s, "    {doc}\n    ///");
         }
-        let _ = writeln!(s, "    /// `{name}` ({value})\n    {} = {value},", camel(name));
+        let _ = writeln!(
+            s,
+            "    /// `{name}` ({value})\n    {} = {value},",
+            camel(name)
+        );
     }
     s.push_str("}\n\nimpl ErrorKind {\n");
     s.push_str("    /// Every kind, in the header's order.\n    pub const ALL: &'static [ErrorKind] = &[\n");
@@ -100,7 +113,11 @@ fn error_kind_source(codes: &[(String, i64)], bindings: &str) -> String {
          \x20   pub const fn from_code(code: i32) -> Option<ErrorKind> {\n        match code {\n",
     );
     for (name, value) in &errors {
-        let _ = writeln!(s, "            {value} => Some(ErrorKind::{}),", camel(name));
+        let _ = writeln!(
+            s,
+            "            {value} => Some(ErrorKind::{}),",
+            camel(name)
+        );
     }
     s.push_str("            _ => None,\n        }\n    }\n\n");
     s.push_str(
@@ -126,9 +143,16 @@ fn probe_installed() -> Option<Vec<PathBuf>> {
     let mut parts = version.split('.');
     let major: u32 = parts.next().unwrap().parse().unwrap();
     let minor: u32 = parts.next().unwrap().parse().unwrap();
-    let next = if major == 0 { format!("0.{}.0", minor + 1) } else { format!("{}.0.0", major + 1) };
+    let next = if major == 0 {
+        format!("0.{}.0", minor + 1)
+    } else {
+        format!("{}.0.0", major + 1)
+    };
     let lower = format!("{major}.{minor}.0");
-    match pkg_config::Config::new().range_version(lower.as_str()..next.as_str()).probe("leptrino") {
+    match pkg_config::Config::new()
+        .range_version(lower.as_str()..next.as_str())
+        .probe("leptrino")
+    {
         Ok(lib) => Some(lib.include_paths),
         Err(e) => {
             if env::var_os("LEPTRINO_SYS_PKG_CONFIG").is_some_and(|v| v != "0") {
@@ -165,7 +189,10 @@ fn build_bundled(csrc: &Path) {
             build.file(f);
         }
     }
-    for f in c_files(&src.join("posix")).iter().map(|p| p.with_extension("h")) {
+    for f in c_files(&src.join("posix"))
+        .iter()
+        .map(|p| p.with_extension("h"))
+    {
         if f.exists() {
             println!("cargo:rerun-if-changed={}", f.display());
         }
@@ -226,7 +253,9 @@ fn main() {
     for d in &include_dirs {
         builder = builder.clang_arg(format!("-I{}", d.display()));
     }
-    let bindings = builder.generate().expect("bindgen failed on include/leptrino/*.h");
+    let bindings = builder
+        .generate()
+        .expect("bindgen failed on include/leptrino/*.h");
     let out = PathBuf::from(env::var("OUT_DIR").unwrap());
     let text = bindings.to_string();
     fs::write(out.join("bindings.rs"), &text).unwrap();

@@ -16,7 +16,11 @@
 #![no_std]
 #![allow(non_upper_case_globals, non_camel_case_types, non_snake_case)]
 #![allow(clippy::all)]
-#![allow(rustdoc::broken_intra_doc_links, rustdoc::invalid_html_tags, rustdoc::bare_urls)]
+#![allow(
+    rustdoc::broken_intra_doc_links,
+    rustdoc::invalid_html_tags,
+    rustdoc::bare_urls
+)]
 
 include!(concat!(env!("OUT_DIR"), "/bindings.rs"));
 
@@ -33,7 +37,10 @@ mod tests {
             assert_eq!(ErrorKind::from_code(k.code()), Some(k));
             assert!(k.code() < 0 && k.c_name().starts_with("LEP_E_"));
         }
-        assert_eq!(ErrorKind::from_code(LEP_E_TIMEOUT), Some(ErrorKind::Timeout));
+        assert_eq!(
+            ErrorKind::from_code(LEP_E_TIMEOUT),
+            Some(ErrorKind::Timeout)
+        );
         assert_eq!(ErrorKind::TooLong.c_name(), "LEP_E_TOO_LONG");
     }
 
