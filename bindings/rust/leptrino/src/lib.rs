@@ -52,3 +52,7 @@ pub fn library_version() -> &'static str {
         .to_str()
         .unwrap_or("")
 }
+
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;

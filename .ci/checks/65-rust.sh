@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# The Rust crates (bindings/rust: leptrino-sys and leptrino): rustfmt, clippy
+# with -D warnings, cargo test (unit, integration against the in-process
+# virtual sensor, rustdoc examples) with the C sources compiled by the crate,
+# the example, the same tests linked to an installed libleptrino found by
+# pkg-config (build/dev installed into a prefix under build/), and
+# `cargo package` of both crates, each verified by building the packaged
+# crate from its own files. Needs crates.io (bindgen, cc, pkg-config) and
+# rustup's cargo with clippy and rustfmt (on this machine kind).
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+ci_apt libclang-dev pkg-config gcc cmake ninja-build
+if ! command -v cargo >/dev/null && [ -x "$HOME/.cargo/bin/cargo" ]; then
+  export PATH="$HOME/.cargo/bin:$PATH"
+fi
+command -v cargo >/dev/null || { echo "65-rust: cargo not found (rustup's toolchain is needed)"; exit 1; }
+cargo --version
+root=$PWD
+export CARGO_TARGET_DIR="$root/build/rust"
+cd bindings/rust
+
+echo "-- rustfmt, clippy"
+cargo fmt --all --check
+cargo clippy --workspace --all-targets --locked -- -D warnings
+
+echo "-- cargo test (bundled C sources)"
+LEPTRINO_SYS_BUNDLED=1 timeout 600 cargo test --workspace --locked
+
+echo "-- the example"
+LEPTRINO_SYS_BUNDLED=1 cargo run -q --locked --example stream -- --sim --seconds 0.5 | tail -3
+
+echo "-- cargo test linked to an installed libleptrino (pkg-config)"
+if [ ! -f "$root/build/dev/CMakeCache.txt" ]; then
+  (cd "$root" && cmake --preset dev >/dev/null && cmake --build --preset dev >/dev/null)
+fi
+prefix="$root/build/rust-prefix"
+rm -rf "$prefix"
+cmake --install "$root/build/dev" --prefix "$prefix" >/dev/null
+libdir=$(dirname "$(find "$prefix" -name leptrino.pc | head -n 1)")/..
+PKG_CONFIG_PATH="$libdir/pkgconfig" LEPTRINO_SYS_PKG_CONFIG=1 LD_LIBRARY_PATH="$libdir" \
+  CARGO_TARGET_DIR="$root/build/rust-pkgconfig" timeout 600 cargo test --workspace --locked
+# the tests above ran against the shared library, not a static copy
+ldd "$(ls -t "$root"/build/rust-pkgconfig/debug/deps/sensor-* | grep -v '\.d$' | head -n 1)" |
+  grep -q "libleptrino.so" || { echo "65-rust: the pkg-config build did not link libleptrino.so"; exit 1; }
+
+echo "-- cargo package (both crates, each built from the packaged files)"
+LEPTRINO_SYS_BUNDLED=1 cargo package --workspace --locked
+for c in "$CARGO_TARGET_DIR"/package/leptrino-sys-*.crate; do
+  if tar tzvf "$c" | grep -q '^l'; then echo "65-rust: $c holds a symlink"; exit 1; fi
+  tar tzf "$c" | grep -q 'csrc/src/posix/session.c' || { echo "65-rust: $c lacks the C sources"; exit 1; }
+done
