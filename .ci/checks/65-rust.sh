@@ -49,3 +49,15 @@ for c in "$CARGO_TARGET_DIR"/package/leptrino-sys-*.crate; do
   if tar tzvf "$c" | grep -q '^l'; then echo "65-rust: $c holds a symlink"; exit 1; fi
   tar tzf "$c" | grep -q 'csrc/src/posix/session.c' || { echo "65-rust: $c lacks the C sources"; exit 1; }
 done
+
+echo "-- the README's Rust example is the crate README's (which runs as a doctest above)"
+cd "$root"
+python3 - <<'PY'
+import re, sys
+def block(path):
+    m = re.search(r"```rust\n(.*?)```", open(path, encoding="utf-8").read(), re.S)
+    return m.group(1) if m else None
+a, b = block("README.md"), block("bindings/rust/leptrino/README.md")
+if a is None or a != b:
+    sys.exit("65-rust: README.md's rust block differs from bindings/rust/leptrino/README.md's")
+PY
