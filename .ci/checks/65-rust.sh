@@ -40,14 +40,16 @@ libdir=$(dirname "$(find "$prefix" -name leptrino.pc | head -n 1)")/..
 PKG_CONFIG_PATH="$libdir/pkgconfig" LEPTRINO_SYS_PKG_CONFIG=1 LD_LIBRARY_PATH="$libdir" \
   CARGO_TARGET_DIR="$root/build/rust-pkgconfig" timeout 600 cargo test --workspace --locked
 # the tests above ran against the shared library, not a static copy
-ldd "$(ls -t "$root"/build/rust-pkgconfig/debug/deps/sensor-* | grep -v '\.d$' | head -n 1)" |
-  grep -q "libleptrino.so" || { echo "65-rust: the pkg-config build did not link libleptrino.so"; exit 1; }
+test_bin=$(ls -t "$root"/build/rust-pkgconfig/debug/deps/sensor-* | grep -v '\.d$' | head -n 1)
+deps=$(LD_LIBRARY_PATH="$libdir" ldd "$test_bin")
+grep -q "libleptrino.so" <<<"$deps" || { echo "65-rust: the pkg-config build did not link libleptrino.so"; exit 1; }
 
 echo "-- cargo package (both crates, each built from the packaged files)"
 LEPTRINO_SYS_BUNDLED=1 cargo package --workspace --locked
 for c in "$CARGO_TARGET_DIR"/package/leptrino-sys-*.crate; do
-  if tar tzvf "$c" | grep -q '^l'; then echo "65-rust: $c holds a symlink"; exit 1; fi
-  tar tzf "$c" | grep -q 'csrc/src/posix/session.c' || { echo "65-rust: $c lacks the C sources"; exit 1; }
+  listing=$(tar tzvf "$c")
+  if grep -q '^l' <<<"$listing"; then echo "65-rust: $c holds a symlink"; exit 1; fi
+  grep -q 'csrc/src/posix/session.c$' <<<"$listing" || { echo "65-rust: $c lacks the C sources"; exit 1; }
 done
 
 echo "-- the README's Rust example is the crate README's (which runs as a doctest above)"
