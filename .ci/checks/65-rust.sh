@@ -38,9 +38,9 @@ rm -rf "$prefix"
 cmake --install "$root/build/dev" --prefix "$prefix" >/dev/null
 libdir=$(dirname "$(find "$prefix" -name leptrino.pc | head -n 1)")/..
 PKG_CONFIG_PATH="$libdir/pkgconfig" LEPTRINO_SYS_PKG_CONFIG=1 LD_LIBRARY_PATH="$libdir" \
-  CARGO_TARGET_DIR="$root/build/rust-pkgconfig" timeout 600 cargo test --workspace --locked
+  timeout 600 cargo test --workspace --locked
 # the tests above ran against the shared library, not a static copy
-test_bin=$(ls -t "$root"/build/rust-pkgconfig/debug/deps/sensor-* | grep -v '\.d$' | head -n 1)
+test_bin=$(ls -t "$CARGO_TARGET_DIR"/debug/deps/sensor-* | grep -v '\.d$' | head -n 1)
 deps=$(LD_LIBRARY_PATH="$libdir" ldd "$test_bin")
 grep -q "libleptrino.so" <<<"$deps" || { echo "65-rust: the pkg-config build did not link libleptrino.so"; exit 1; }
 
