@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The Rust crates (bindings/rust: leptrino-sys and leptrino): rustfmt, clippy
-# with -D warnings, cargo test (unit, integration against the in-process
+# and rustdoc with -D warnings, cargo test (unit, integration against the in-process
 # virtual sensor, rustdoc examples) with the C sources compiled by the crate,
 # the example, the same tests linked to an installed libleptrino found by
 # pkg-config (build/dev installed into a prefix under build/), and
@@ -22,6 +22,7 @@ cd bindings/rust
 echo "-- rustfmt, clippy"
 cargo fmt --all --check
 cargo clippy --workspace --all-targets --locked -- -D warnings
+RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked -q
 
 echo "-- cargo test (bundled C sources)"
 LEPTRINO_SYS_BUNDLED=1 timeout 600 cargo test --workspace --locked

@@ -60,6 +60,12 @@ pub struct Options {
     raw: sys::lep_session_options,
 }
 
+// SAFETY: the one pointer of lep_session_options, port, is always NULL in an
+// Options (open sets it in a copy of its own, for the call only).
+unsafe impl Send for Options {}
+// SAFETY: as above; nothing is shared through &Options.
+unsafe impl Sync for Options {}
+
 impl Default for Options {
     fn default() -> Self {
         Options::new()
@@ -313,6 +319,11 @@ impl Control {
 ///
 /// `Send` but not `Sync`: one thread drives a session at a time (session.h);
 /// the calls other threads may make go through [`Control`].
+///
+/// ```compile_fail
+/// fn sync<T: Sync>() {}
+/// sync::<leptrino::Sensor>(); // two threads may not drive one session
+/// ```
 ///
 /// ```
 /// use std::time::Duration;
@@ -593,8 +604,7 @@ impl Sensor {
             scratch.clear_rows();
             let (rc, n) = read_into(self.ptr(), &mut scratch, ITER_BATCH, self.timeout_ms);
             self.delivered += n as u64;
-            let base = 0;
-            let mut new = self.drain_events(base);
+            let mut new = self.drain_events(0);
             self.events.append(&mut new);
             if rc < 0 && rc != sys::LEP_E_END {
                 return Err(self.cmd_error(rc, "tare"));

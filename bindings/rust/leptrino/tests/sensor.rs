@@ -421,6 +421,8 @@ fn send_where_the_contract_allows() {
     send_sync::<Simulator>();
     send_sync::<Error>();
     send_sync::<Recording>();
+    send_sync::<Options>();
+    send_sync::<SimOptions>();
     // a sensor opened here, driven there, while a third thread tares it
     let s = open_sim(
         &[("constant", "true"), ("amplitude", "0.1")],
