@@ -11,13 +11,13 @@ use std::fmt;
 use std::marker::PhantomData;
 use std::ptr::NonNull;
 use std::sync::Arc;
-use std::time::{Duration, SystemTime, UNIX_EPOCH};
+use std::time::Duration;
 
 use leptrino_sys as sys;
 
 use crate::error::{check, Error, Result};
 use crate::sim::{SimOptions, VirtualSensor};
-use crate::values::{Event, EventKind, ProductInfo, Rated, Recording, Sample};
+use crate::values::{Event, ProductInfo, Rated, Recording, Sample};
 
 /// Samples per `lep_session_read` of the sample iterator.
 const ITER_BATCH: usize = 256;
@@ -342,12 +342,9 @@ pub struct Sensor {
     control: Control,
     info: ProductInfo,
     rated: Rated,
-    rated_c: sys::lep_rated,
     nominal_hz: f64,
     decimate: u32,
     timeout_ms: i32,
-    data_timeout_s: f64,
-    reconnect: bool,
     /// samples delivered since the stream started: the events' sample base
     delivered: u64,
     start_mono: f64,
@@ -422,7 +419,6 @@ impl Sensor {
         Ok(Sensor {
             info: ProductInfo::from_c(&meta.info),
             rated: Rated::from_c(&meta.rated),
-            rated_c: meta.rated,
             nominal_hz: if meta.nominal_hz > 0.0 {
                 meta.nominal_hz
             } else {
@@ -430,8 +426,6 @@ impl Sensor {
             },
             decimate: raw.decimate.max(1),
             timeout_ms: raw.timeout_ms.max(1),
-            data_timeout_s: f64::from(raw.data_timeout_ms.max(1)) / 1000.0,
-            reconnect: raw.reconnect,
             control,
             delivered: 0,
             start_mono: 0.0,
@@ -526,9 +520,11 @@ impl Sensor {
         self.check_cmd(rc, "stopping the stream")
     }
 
-    /// One sample in handshake mode (command 0x30), outside the stream: raw
-    /// counts and SI values as the sensor gave them (no tare, filter or
-    /// frame: those apply to the stream). `ErrorKind::State` while streaming.
+    /// One sample in handshake mode (command 0x30), outside the stream,
+    /// through the session (`lep_session_read_one`): zeroed and SI values with
+    /// the tare, rotation and moment-point shift in force (the host low-pass
+    /// and decimation are the stream's and do not apply). `ErrorKind::State`
+    /// while streaming.
     ///
     /// ```
     /// let mut s = leptrino::Sensor::open_sim(&leptrino::SimOptions::new(), &Default::default())?;
@@ -537,32 +533,19 @@ impl Sensor {
     /// # Ok::<(), leptrino::Error>(())
     /// ```
     pub fn read(&mut self) -> Result<Sample> {
-        // SAFETY: driving-thread call.
-        let c = unsafe { sys::lep_session_client(self.ptr()) };
-        if c.is_null() {
-            return Err(Error::in_context(sys::LEP_E_DISCONNECTED, self.port()));
-        }
-        let mut smp = sys::lep_sample::default();
-        // SAFETY: a live client of this session, valid out pointer.
-        let rc = unsafe { sys::lep_client_sample(c, &mut smp) };
-        let t = monotonic();
-        let t_utc = SystemTime::now()
-            .duration_since(UNIX_EPOCH)
-            .map_or(0.0, |d| d.as_secs_f64());
+        let mut one = Recording::with_capacity(1);
+        let (rc, _) = append(&mut one, 1, |b| {
+            // SAFETY: driving-thread call; b has room for one row.
+            unsafe { sys::lep_session_read_one(self.ptr(), b) }
+        });
         self.check_cmd(rc, "reading a sample")?;
-        let mut si = [0.0; 6];
-        // SAFETY: valid sample, rated values, 6 doubles.
-        unsafe { sys::lep_sample_to_si(&smp, &self.rated_c, si.as_mut_ptr()) };
-        Ok(Sample {
-            t,
-            t_utc,
-            raw: smp.raw,
-            zeroed: smp.raw.map(f64::from),
-            si,
-            status: smp.status,
-            flags: 0,
-            seq: smp.reserved,
-        })
+        if one.is_empty() {
+            return Err(Error::in_context(
+                sys::LEP_E_UNEXPECTED,
+                &format!("{}: reading a sample", self.port()),
+            ));
+        }
+        Ok(one.sample(0))
     }
 
     /// Tare: zero on the mean raw counts of the next n samples, and return
@@ -623,20 +606,11 @@ impl Sensor {
         out
     }
 
-    /// After a read that brought nothing: has the session given the stream
-    /// up? It says so with a disconnected event (after data_timeout of
-    /// silence; with reconnect it keeps trying instead). The silence bound is
-    /// a fallback, should no event come.
-    fn stream_lost(&self, lost_seen: bool, silent_s: f64) -> bool {
-        !self.reconnect
-            && (lost_seen || silent_s >= self.data_timeout_s + f64::from(self.timeout_ms) / 1000.0)
-    }
-
     /// Record the stream for this long (from the first row's arrival, as
     /// `leptrino stream --duration` counts), into plain vectors. Starts the
     /// stream when it is not running and stops it again after. An error
-    /// (the port gone, the data timed out) carries what was recorded until
-    /// then: [`Error::recording`].
+    /// (the port gone: `Disconnected`; no data for the data timeout: `Lost`)
+    /// carries what was recorded until then: [`Error::recording`].
     ///
     /// ```
     /// use std::time::Duration;
@@ -704,8 +678,6 @@ impl Sensor {
         let timeout_s = f64::from(self.timeout_ms) / 1000.0;
         let mut now = monotonic();
         let mut end = f64::INFINITY;
-        let mut last_data = now;
-        let mut lost_seen = false;
         let mut final_reads = 0;
         loop {
             let n = rec.len();
@@ -741,25 +713,14 @@ impl Sensor {
                 }
             }
             self.delivered += added as u64;
-            let new = self.drain_events(base);
-            for e in &new {
-                match e.kind {
-                    EventKind::Disconnected { .. } => lost_seen = true,
-                    EventKind::Reconnected { .. } => lost_seen = false,
-                    _ => {}
-                }
-            }
-            rec.events.extend(new);
+            let mut new = self.drain_events(base);
+            rec.events.append(&mut new);
             now = monotonic();
-            if added > 0 {
-                last_data = now;
-                lost_seen = false;
-            }
             if rc == sys::LEP_E_END {
                 return Ok(());
             }
-            if rc == sys::LEP_E_TIMEOUT && !self.stream_lost(lost_seen, now - last_data) {
-                continue; // nothing in this slice of the wait
+            if rc == sys::LEP_E_TIMEOUT {
+                continue; // nothing in this slice of the wait (a lost stream is LEP_E_LOST)
             }
             if rc < 0 {
                 return Err(Error::in_context(
@@ -795,8 +756,6 @@ impl Sensor {
             pos: 0,
             base,
             events: Vec::new(),
-            last_data: monotonic(),
-            lost_seen: false,
             done: false,
         })
     }
@@ -809,6 +768,21 @@ fn read_into(
     room: usize,
     timeout_ms: i32,
 ) -> (i32, usize) {
+    append(rec, room, |b| {
+        // SAFETY: a driving-thread call on an open session; b as append says.
+        unsafe { sys::lep_session_read(s, b, timeout_ms) }
+    })
+}
+
+/// Let `fill` append up to `room` rows to rec through a `lep_session_batch`
+/// pointing into the columns' spare capacity (lep_session_read and
+/// lep_session_read_one append rows n..b.n to every column, nothing else);
+/// (its status, rows added).
+fn append(
+    rec: &mut Recording,
+    room: usize,
+    fill: impl FnOnce(&mut sys::lep_session_batch) -> i32,
+) -> (i32, usize) {
     let n = rec.len();
     let cap = n + room;
     rec.t.reserve(room);
@@ -819,6 +793,8 @@ fn read_into(
     rec.status.reserve(room);
     rec.flags.reserve(room);
     rec.seq.reserve(room);
+    // Every column has room for cap rows ([f64; 6] and [i16; 6] rows are 6
+    // contiguous values, as the batch's [cap*6] arrays).
     let mut b = sys::lep_session_batch {
         cap,
         n,
@@ -831,12 +807,9 @@ fn read_into(
         flags: rec.flags.as_mut_ptr(),
         seq: rec.seq.as_mut_ptr(),
     };
-    // SAFETY: every column has room for cap rows ([f64; 6] and [i16; 6] rows
-    // are 6 contiguous values, as the batch's [cap*6] arrays); the session
-    // appends rows n..b.n (<= cap) to every non-NULL column and nothing else.
-    let rc = unsafe { sys::lep_session_read(s, &mut b, timeout_ms) };
+    let rc = fill(&mut b);
     let m = b.n.clamp(n, cap);
-    // SAFETY: rows n..m of every column were written by the read.
+    // SAFETY: rows n..m of every column were written by the session.
     unsafe {
         rec.t.set_len(m);
         rec.t_utc.set_len(m);
@@ -872,8 +845,6 @@ pub struct Stream<'a> {
     pos: usize,
     base: u64,
     events: Vec<Event>,
-    last_data: f64,
-    lost_seen: bool,
     done: bool,
 }
 
@@ -914,27 +885,17 @@ impl Stream<'_> {
             self.pos = 0;
             let s = &mut *self.sensor;
             let (rc, n) = read_into(s.ptr(), &mut self.buf, ITER_BATCH, s.timeout_ms);
-            let now = monotonic();
             s.delivered += n as u64;
-            let new = s.drain_events(self.base);
-            for e in &new {
-                match e.kind {
-                    EventKind::Disconnected { .. } => self.lost_seen = true,
-                    EventKind::Reconnected { .. } => self.lost_seen = false,
-                    _ => {}
-                }
-            }
-            self.events.extend(new);
+            let mut new = s.drain_events(self.base);
+            self.events.append(&mut new);
             if n > 0 {
-                self.last_data = now;
-                self.lost_seen = false;
                 return Some(Ok(()));
             }
             if rc == sys::LEP_E_END {
                 return None;
             }
-            if rc == sys::LEP_E_TIMEOUT && !s.stream_lost(self.lost_seen, now - self.last_data) {
-                continue;
+            if rc == sys::LEP_E_TIMEOUT {
+                continue; // nothing in this wait (a lost stream is LEP_E_LOST)
             }
             if rc < 0 {
                 return Some(Err(Error::in_context(

@@ -148,10 +148,15 @@ fn handshake_read() {
     }
     assert_eq!(x.status, 0);
     assert!((x.t - unsafe { sys::lep_monotonic_seconds() }).abs() < 5.0);
+    assert_eq!(x.zeroed, [5000.0; 6]);
     s.start().unwrap();
     assert_eq!(s.read().unwrap_err().kind(), ErrorKind::State);
     s.stop().unwrap();
-    assert!(s.read().is_ok()); // handshake works again after the stream
+    // with the session's units: the tare in force applies to a lone sample too
+    assert_eq!(s.tare(20).unwrap(), [5000.0; 6]);
+    let x = s.read().unwrap();
+    assert_eq!((x.raw, x.zeroed), ([5000; 6], [0.0; 6]));
+    assert!(x.si.iter().all(|v| v.abs() < 1e-9));
 }
 
 #[test]
@@ -360,7 +365,8 @@ fn the_data_timeout_ends_the_recording() {
     let err = s.record(Duration::from_secs(10)).unwrap_err();
     // given up after the data timeout, not the 10 s (the stop then waits for the stalled sensor)
     assert!(t0.elapsed() < Duration::from_secs(6));
-    assert_eq!(err.kind(), ErrorKind::Timeout, "{err}");
+    assert_eq!(err.kind(), ErrorKind::Lost, "{err}");
+    assert_eq!(err.code(), sys::LEP_E_LOST);
     let partial = err.into_recording().unwrap();
     assert!(partial.len() > 100 && partial.t[partial.len() - 1] - partial.t[0] < 1.0);
     assert!(partial.events.iter().any(|e| matches!(
