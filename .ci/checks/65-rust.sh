@@ -46,6 +46,13 @@ deps=$(LD_LIBRARY_PATH="$libdir" ldd "$test_bin")
 grep -q "libleptrino.so" <<<"$deps" || { echo "65-rust: the pkg-config build did not link libleptrino.so"; exit 1; }
 
 echo "-- cargo package (both crates, each built from the packaged files)"
+# cargo verifies leptrino against the packaged leptrino-sys through a local
+# registry, and reuses what it built or unpacked before for the same version
+# (registry crates are not fingerprinted by content): a stale leptrino-sys
+# 0.1.0 of an earlier run. So: a target dir of its own, emptied, and no
+# earlier unpacked copy in $CARGO_HOME.
+export CARGO_TARGET_DIR="$root/build/rust-package"
+rm -rf "$CARGO_TARGET_DIR" "${CARGO_HOME:-$HOME/.cargo}"/registry/src/-*/leptrino-sys-*
 LEPTRINO_SYS_BUNDLED=1 cargo package --workspace --locked
 for c in "$CARGO_TARGET_DIR"/package/leptrino-sys-*.crate; do
   listing=$(tar tzvf "$c")
