@@ -267,6 +267,15 @@ impl Control {
         check(rc, &format!("{}: output frame", self.port))
     }
 
+    /// Limits on the SI values, per axis (N, N·m; 0: none): a sample beyond
+    /// one is flagged and `LimitExceeded` / `LimitCleared` events mark the
+    /// episodes. `ErrorKind::Arg` for negative or non-finite limits.
+    pub fn set_limits(&self, limits: [f64; 6]) -> Result<()> {
+        // SAFETY: any-thread call; 6 doubles.
+        let rc = unsafe { sys::lep_session_set_limits(self.ptr(), limits.as_ptr()) };
+        check(rc, &format!("{}: limits", self.port))
+    }
+
     /// Health since the stream started.
     pub fn health(&self) -> Health {
         let mut h = Health::default();

@@ -160,6 +160,18 @@ pub enum EventKind {
         /// The sensor's status bits.
         status: u8,
     },
+    /// An SI value went beyond its limit (set with the session's limits).
+    LimitExceeded {
+        /// Bit i set: axis i beyond its limit.
+        axes: u8,
+        /// The sample's SI values, N and N·m.
+        wrench: [f64; 6],
+    },
+    /// Every SI value is back within 95 % of its limit.
+    LimitCleared {
+        /// The sample's SI values, N and N·m.
+        wrench: [f64; 6],
+    },
     /// An event type this crate does not know (a newer library).
     Other(i32),
 }
@@ -205,6 +217,11 @@ impl Event {
                 axes: e.axes,
                 status: e.status,
             },
+            sys::LEP_EV_LIMIT_EXCEEDED => EventKind::LimitExceeded {
+                axes: e.axes,
+                wrench: e.wrench,
+            },
+            sys::LEP_EV_LIMIT_CLEARED => EventKind::LimitCleared { wrench: e.wrench },
             _ => EventKind::Other(e.type_),
         };
         // queued before this stream started (an untare while stopped): at its start

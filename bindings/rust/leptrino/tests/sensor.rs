@@ -471,3 +471,26 @@ fn the_sample_iterator_stops_the_stream_it_started() {
     assert_eq!(s.stream().unwrap().take(7).count(), 7);
     assert!(s.read().is_ok());
 }
+
+#[test]
+fn limits_are_events() {
+    // a constant load of 0.25 x rated: Fz of the default model is 125 N
+    let mut s = open_sim(
+        &[("constant", "true"), ("amplitude", "0.25")],
+        Options::new(),
+    );
+    s.set_limits([0.0, 0.0, 100.0, 0.0, 0.0, 0.0]).unwrap();
+    let rec = s.record_count(100).unwrap();
+    let exceeded: Vec<_> = rec
+        .events
+        .iter()
+        .filter_map(|e| match e.kind {
+            EventKind::LimitExceeded { axes, wrench } => Some((e.sample, axes, wrench[2])),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(exceeded.len(), 1, "{:?}", rec.events);
+    assert_eq!((exceeded[0].0, exceeded[0].1), (0, 1 << 2));
+    assert!((exceeded[0].2 - 0.25 * s.rated().force[2]).abs() < 1e-9);
+    assert_eq!(s.set_limits([-1.0; 6]).unwrap_err().kind(), ErrorKind::Arg);
+}
