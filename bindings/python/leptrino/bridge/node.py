@@ -19,13 +19,14 @@ import time
 from dataclasses import dataclass, field
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
-from .._backend import get_backend
+from .. import _constants as K
 from ..errors import LeptrinoError
 from ..sensor import Sensor
 from . import cdr
 from . import rmw_zenoh as rz
 from .mcap_out import McapRecorder
 from .typehash import rihs01
+from .wrench_batch import WrenchBatch
 
 log = logging.getLogger("leptrino.bridge")
 
@@ -68,34 +69,22 @@ class NodeOptions:
     data_timeout_s: float = 1.0
 
 
-class RawToSI:
-    """Raw counts to N and N·m by the library's lep_sample_to_si (counts x
-    rated / full scale), with the C structs made once: about 2 us a call
-    where leptrino.sample_to_si, which makes them each time, takes 10.
-    One per thread."""
+class Output:
+    """Another transport of a topic (DDS, Foxglove): publish() gets a batch of
+    payloads with their stamps (ns) and the publication time."""
 
-    def __init__(self, rated: Sequence[float]) -> None:
-        be = get_backend()
-        self._fn = be.lib.lep_sample_to_si
-        self._s = be.new("lep_sample")
-        self._r = be.new("lep_rated")
-        for i, v in enumerate(rated):
-            self._r.axis[i] = float(v)
-        self._si = be.doubles(6)
-        self._raw = self._s.raw
+    def publish(self, payloads: Sequence[bytes], stamps: Sequence[int], now_ns: int) -> None:
+        raise NotImplementedError
 
-    def __call__(self, raw: Sequence[int]) -> Tuple[float, ...]:
-        self._raw[0:6] = raw
-        self._fn(self._s, self._r, self._si)
-        si = self._si
-        return (si[0], si[1], si[2], si[3], si[4], si[5])
+    def close(self) -> None:
+        pass
 
 
 class Topic:
     """One publisher: its graph entity, its Zenoh publisher and/or MCAP
-    channel, and its sequence number."""
+    channel, further outputs, and its sequence number."""
 
-    __slots__ = ("entity", "gid", "pub", "cid", "mcap", "seq", "name")
+    __slots__ = ("entity", "gid", "pub", "cid", "mcap", "seq", "name", "outputs")
 
     def __init__(self, entity: rz.Entity, session: Any, mcap: Optional[McapRecorder],
                  qos_depth: int = 10) -> None:
@@ -105,6 +94,7 @@ class Topic:
         self.seq = 0
         self.pub: Any = None
         self.mcap = mcap
+        self.outputs: List[Output] = []
         self.cid = (mcap.channel(entity.name, entity.ros_type, qos_depth) if mcap is not None
                     else -1)
         if session is not None:
@@ -115,12 +105,22 @@ class Topic:
                 reliability=zenoh.Reliability.RELIABLE)
 
     def send(self, payload: bytes, stamp_ns: int) -> None:
-        self.seq += 1
+        self.send_batch((payload,), (stamp_ns,))
+
+    def send_batch(self, payloads: Sequence[bytes], stamps: Sequence[int]) -> None:
+        """Publish a batch: one time of publication, sequence numbers on."""
+        seq = self.seq
+        self.seq = seq + len(payloads)
         now = time.time_ns()
         if self.pub is not None:
-            self.pub.put(payload, attachment=rz.attachment(self.seq, now, self.gid))
+            put, pack, gid = self.pub.put, rz.ATTACHMENT.pack, self.gid
+            for p in payloads:
+                seq += 1
+                put(p, attachment=pack(seq, now, rz.GID_SIZE, gid))
         if self.mcap is not None:
-            self.mcap.write(self.cid, payload, stamp_ns, now)
+            self.mcap.write_batch(self.cid, payloads, stamps, now)
+        for out in self.outputs:
+            out.publish(payloads, stamps, now)
 
     def close(self) -> None:
         if self.pub is not None:
@@ -129,6 +129,12 @@ class Topic:
             except Exception:  # the session may be closing
                 pass
             self.pub = None
+        for out in self.outputs:
+            try:
+                out.close()
+            except Exception:
+                pass
+        self.outputs = []
 
 
 @dataclass
@@ -168,9 +174,8 @@ class SensorNode:
             spec.port, opts.timeout_s, sim=spec.sim, tare=opts.tare_at_start,
             lowpass=opts.lowpass_hz, rotation=opts.rotation, degrees=False, reconnect=True,
             latency=opts.latency_s, data_timeout=opts.data_timeout_s)
-        self._to_si = RawToSI(self.sensor.rated)  # wrench_raw
         try:
-            self._enc = cdr.WrenchStampedEncoder(spec.frame_id)
+            self._batch = WrenchBatch(self.sensor._be, self.sensor._rated_c, spec.frame_id)
         except ValueError:
             self.sensor.close()
             raise
@@ -256,50 +261,55 @@ class SensorNode:
 
     # -- data ----------------------------------------------------------------
     def _run(self) -> None:
-        stream = self.sensor.stream()
-        it = iter(stream)
-        enc = self._enc.encode
-        to_si = self._to_si
+        """Read the session in batches; each batch is serialized in one C
+        call and published topic by topic (no Python object per sample
+        but the payloads the transports take)."""
+        sensor = self.sensor
+        lib = sensor._be.lib
+        wb = self._batch
+        c_batch = wb.arrays.c
         wrench, wrench_raw, c = self.wrench, self.wrench_raw, self.counters
         assert wrench is not None and wrench_raw is not None
+        base = sensor._delivered
+        timeout_ms = max(1, int(self.opts.timeout_s * 1000))
         failing = False
-        last_ns = 0
+        silent_since = time.monotonic()
         while not self._stop.is_set():
+            c_batch.n = 0
             try:
-                s = next(it)
-            except StopIteration:
+                rc = int(lib.lep_session_read(sensor._live(), c_batch, timeout_ms))
+            except LeptrinoError:  # closed under us
                 break
-            except LeptrinoError as e:
-                # The session reconnects inside its reads; until it is back
-                # each read times out. Count it, say it once, go on.
-                c.read_errors += 1
-                c.last_error = str(e)
-                if not failing:
-                    log.warning("%s: %s (the session keeps trying)", self.spec.name, e)
-                    failing = True
-                self._take_events(stream)
+            n = int(c_batch.n)
+            sensor._delivered += n
+            self._take_events(sensor._drain_events(base))
+            if n:
+                if failing:
+                    log.warning("%s: data again", self.spec.name)
+                    failing = False
+                w, r, stamps = wb.encode()
+                wrench.send_batch(w, stamps)
+                wrench_raw.send_batch(r, stamps)
+                c.samples += n
+                c.last_sample_mono = float(wb.arrays.t_mono[n - 1])
+                silent_since = time.monotonic()
                 continue
-            if failing:
-                log.warning("%s: data again", self.spec.name)
-                failing = False
-            # The session's t_utc (a double: 238 ns steps today) can step back
-            # by a step or a few us when it re-reads the wall clock; a ROS
-            # stream's stamps should not: hold the previous one then.
-            ns = int(round(s.t_utc * 1e9))
-            if ns < last_ns:
-                ns = last_ns
-            last_ns = ns
-            sec, nsec = divmod(ns, 1_000_000_000)
-            wrench.send(enc(sec, nsec, s.si), ns)
-            wrench_raw.send(enc(sec, nsec, to_si(s.raw)), ns)
-            c.samples += 1
-            c.last_sample_mono = s.t
-            if stream.events:
-                self._take_events(stream)
-        stream.close()
+            if rc == K.LEP_E_END:
+                break
+            if rc == K.LEP_E_TIMEOUT and time.monotonic() - silent_since < self.opts.data_timeout_s:
+                continue
+            # The session reconnects inside its reads; until it is back each
+            # read fails or times out. Count it, say it once, go on.
+            c.read_errors += 1
+            c.last_error = (sensor._be.text(lib.lep_strerror(rc)) if rc != K.LEP_E_TIMEOUT
+                            else "no data")
+            if not failing:
+                log.warning("%s: %s (the session keeps trying)", self.spec.name, c.last_error)
+                failing = True
+            if rc < 0 and rc != K.LEP_E_TIMEOUT:
+                self._stop.wait(0.05)
 
-    def _take_events(self, stream: Any) -> None:
-        evs, stream.events = stream.events, []
+    def _take_events(self, evs: Sequence[Any]) -> None:
         for ev in evs:
             self.counters.events[ev.type] = self.counters.events.get(ev.type, 0) + 1
             if ev.type in ("disconnected", "reconnected"):

@@ -28,7 +28,9 @@ from typing import Tuple
 
 ADMIN_SPACE = "@ros2_lv"
 GID_SIZE = 16
-_ATTACHMENT = struct.Struct("<qqB16s")
+#: sequence number, source timestamp (ns), GID length, GID (attachment_helpers.cpp)
+ATTACHMENT = struct.Struct("<qqB16s")
+_ATTACHMENT = ATTACHMENT
 ATTACHMENT_SIZE = _ATTACHMENT.size  # 33
 
 NODE, PUBLISHER, SERVICE = "NN", "MP", "SS"
