@@ -78,9 +78,20 @@ def _diag_values(payload: bytes) -> Dict[str, str]:
     return {v.key: v.value for v in msg.status[0].values}
 
 
-def run(n: int, seconds: float, zenoh_mod: Any, extra: Optional[List[str]] = None
-        ) -> Dict[str, Any]:
-    """Bridge n virtual sensors for seconds; the figures as a dict."""
+def _stream_args(ports: List[str], latency_s: str) -> List[str]:
+    """`leptrino stream` writing CSV for the same kind of sensors, as the
+    reference the bridge's cost is compared with."""
+    from .._tools import program_path
+
+    args = [str(program_path("leptrino")), "stream", *ports, "--reconnect", "--latency",
+            str(max(0, int(round(float(latency_s) * 1000)))), "-o", os.devnull]
+    return args
+
+
+def run(n: int, seconds: float, zenoh_mod: Any, extra: Optional[List[str]] = None,
+        latency_s: str = "0.002") -> Dict[str, Any]:
+    """Bridge n virtual sensors for seconds, with `leptrino stream` on n
+    others beside it in the same run; the figures as a dict."""
     import leptrino
 
     ep = f"tcp/127.0.0.1:{_free_port()}"
@@ -92,32 +103,38 @@ def run(n: int, seconds: float, zenoh_mod: Any, extra: Optional[List[str]] = Non
     sink = _Sink()
     sub = router.declare_subscriber("0/**", sink)
     sims = [leptrino.Simulator() for _ in range(n)]
-    child = None
+    ref_sims = [leptrino.Simulator() for _ in range(n)]
+    child = ref = None
     try:
-        args = [sys.executable, "-m", "leptrino.bridge", "--connect", ep]
+        args = [sys.executable, "-m", "leptrino.bridge", "--connect", ep,
+                "--latency", latency_s]
         for i, sim in enumerate(sims):
             args += ["--sensor", f"s{i}={sim.port}"]
         child = subprocess.Popen(args + (extra or []), stderr=subprocess.PIPE, text=True)
-        time.sleep(2.0)  # start-up, discovery, the first diagnostics
+        ref = subprocess.Popen(_stream_args([s.port for s in ref_sims], latency_s),
+                               stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        time.sleep(3.0)  # start-up, discovery, the first diagnostics
         with sink.lock:
             sink.latency_ns.clear()
-        c0, t0 = _cpu_seconds(child.pid), time.monotonic()
+        c0, r0, t0 = _cpu_seconds(child.pid), _cpu_seconds(ref.pid), time.monotonic()
         time.sleep(seconds)
-        c1, t1 = _cpu_seconds(child.pid), time.monotonic()
+        c1, r1, t1 = _cpu_seconds(child.pid), _cpu_seconds(ref.pid), time.monotonic()
         time.sleep(1.2)  # one more diagnostics message
         with sink.lock:
             lat = sorted(sink.latency_ns)
             seqs = {k: list(v) for k, v in sink.seqs.items()}
             diag = dict(sink.diag)
     finally:
-        if child is not None:
-            child.terminate()
+        for proc in (child, ref):
+            if proc is None:
+                continue
+            proc.terminate()
             try:
-                child.communicate(timeout=20)
+                proc.communicate(timeout=20)
             except subprocess.TimeoutExpired:
-                child.kill()
-                child.communicate(timeout=10)
-        for sim in sims:
+                proc.kill()
+                proc.communicate(timeout=10)
+        for sim in sims + ref_sims:
             sim.stop()
         sub.undeclare()
         router.close()
@@ -139,11 +156,14 @@ def run(n: int, seconds: float, zenoh_mod: Any, extra: Optional[List[str]] = Non
     ok = (contiguous and n_wrench == n and len(rates) == n
           and all(abs(r - 1200) < 24 for r in rates) and lost <= 0.001 * max(received, 1))
     cpu = (c1 - c0) / (t1 - t0)
+    ref_cpu = (r1 - r0) / (t1 - t0)
 
     def pct(p: float) -> float:
         return lat[min(len(lat) - 1, int(p * len(lat)))] / 1e6 if lat else float("nan")
 
     return {"sensors": n, "cpu_total": cpu, "cpu_per_sensor": cpu / n,
+            "stream_cpu_per_sensor": ref_cpu / n,
+            "ratio": cpu / ref_cpu if ref_cpu > 0 else float("inf"),
             "latency_p50_ms": pct(0.50), "latency_p99_ms": pct(0.99),
             "messages": sum(len(v) for v in seqs.values()), "contiguous": contiguous,
             "lost": lost, "gaps": gaps, "rates": rates, "no_loss": ok}
@@ -159,7 +179,7 @@ def main(argv: Optional[List[str]] = None) -> int:
     p.add_argument("--latency", default="0.002", help="the bridge's --latency")
     a = p.parse_args(argv)
     secs = 3.0 if a.quick else a.seconds
-    extra = ["--latency", a.latency]
+    extra: List[str] = []
     print(f"leptrino-bridge figures: {os.cpu_count()} CPUs, load average "
           f"{os.getloadavg()[0]:.1f}, {secs:g} s per run, --latency {a.latency}")
     results: List[Dict[str, Any]] = []
@@ -168,10 +188,12 @@ def main(argv: Optional[List[str]] = None) -> int:
     for n in counts:
         if n > a.max_sensors:
             break
-        r = run(n, secs, zenoh, extra)
+        r = run(n, secs, zenoh, extra, a.latency)
         results.append(r)
         print(f"  {n:2d} sensors: CPU {100 * r['cpu_total']:5.1f} % "
-              f"({100 * r['cpu_per_sensor']:4.1f} % per sensor), latency p50 "
+              f"({100 * r['cpu_per_sensor']:4.1f} % per sensor; `leptrino stream` CSV beside it "
+              f"{100 * r['stream_cpu_per_sensor']:4.1f} % per sensor, ratio "
+              f"{r['ratio']:.2f}), latency p50 "
               f"{r['latency_p50_ms']:.2f} ms p99 {r['latency_p99_ms']:.2f} ms, "
               f"{r['messages']} messages, lost {r['lost']}, gaps {r['gaps']}, "
               f"contiguous {r['contiguous']}, rates {[round(x) for x in r['rates']]}"

@@ -181,9 +181,11 @@ class SensorNode:
             raise
 
     def declare(self, node_id: int, next_entity_id: Callable[[], int], session: Any = None,
-                mcap: Optional[McapRecorder] = None) -> None:
+                mcap: Optional[McapRecorder] = None, dds: Any = None, fox: Any = None) -> None:
         """Declare the node, its topics and services on session (a
-        zenoh.Session, or None) and its channels in mcap (or None)."""
+        zenoh.Session, or None), its channels in mcap (or None), its writers
+        and command topics on dds (a DdsParticipant, or None) and its
+        channels and services on fox (a FoxgloveServer, or None)."""
         spec, opts = self.spec, self.opts
         ns = rz.normalize_namespace(opts.namespace)
         zid = str(session.zid()) if session is not None else "0"
@@ -206,6 +208,18 @@ class SensorNode:
             "tare": entity(rz.SERVICE, "tare", TRIGGER),
             "untare": entity(rz.SERVICE, "untare", TRIGGER),
         }
+        node = (ns, spec.name)
+        for t in self.wrench, self.wrench_raw, self.diagnostics:
+            if dds is not None:
+                t.outputs.append(dds.writer(node, t.name, t.entity.ros_type))
+            if fox is not None:
+                t.outputs.append(fox.channel(t.name, t.entity.ros_type))
+        calls = {"tare": self.tare, "untare": self.untare}
+        for svc, ent in self.services.items():
+            if dds is not None:  # a command topic of the service's name
+                dds.command(node, ent.name, calls[svc])
+            if fox is not None:
+                fox.service(ent.name, calls[svc])
         if session is not None:
             for svc, ent in self.services.items():
                 self._queryables.append(session.declare_queryable(
