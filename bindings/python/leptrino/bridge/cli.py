@@ -222,6 +222,17 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
                        tare_at_start=a.tare, lowpass_hz=a.lowpass, rotation=a.rotate,
                        latency_s=a.latency)
 
+    for wanted, module, package in ((a.dds, "cyclonedds", "cyclonedds"),
+                                    (a.foxglove is not None, "foxglove", "foxglove-sdk")):
+        if wanted:
+            try:
+                __import__(module)
+            except ImportError:
+                print(f"{PROG}: {'--dds' if module == 'cyclonedds' else '--foxglove'} needs "
+                      f"the {package} package (Python >= 3.10): "
+                      "pip install \"leptrino[bridge]\"", file=sys.stderr)
+                return 2
+
     from ..errors import LeptrinoError
     from .bridge import Bridge
 
