@@ -88,10 +88,95 @@ def _stream_args(ports: List[str], latency_s: str) -> List[str]:
     return args
 
 
+def dds_reader(domain: int, n: int, seconds: float) -> int:
+    """A Cyclone DDS reader of every sN/wrench and sN/wrench_raw (a child
+    process of the benchmark, on 127.0.0.1): counts the samples, prints them
+    as JSON after seconds."""
+    from cyclonedds.core import Qos
+    from cyclonedds.domain import Domain, DomainParticipant
+    from cyclonedds.qos import Policy
+    from cyclonedds.sub import DataReader
+    from cyclonedds.topic import Topic
+
+    from .dds import _Types, config_xml
+
+    dom = Domain(domain, config_xml("127.0.0.1"))
+    p = DomainParticipant(domain)
+    T = _Types(16)
+    qos = Qos(Policy.Reliability.Reliable(0), Policy.History.KeepAll,
+              Policy.DataRepresentation(use_cdrv0_representation=True))
+    readers = {f"s{i}/{t}": DataReader(p, Topic(p, f"rt/s{i}/{t}", T.WrenchStamped), qos=qos)
+               for i in range(n) for t in ("wrench", "wrench_raw")}
+    counts = {k: 0 for k in readers}
+    end = time.monotonic() + seconds
+    while time.monotonic() < end:
+        for k, r in readers.items():
+            counts[k] += len(r.take(1000))
+        time.sleep(0.05)
+    print(json.dumps(counts), flush=True)
+    del dom
+    return 0
+
+
+class _FoxgloveCounter:
+    """A Foxglove WebSocket client in a thread: subscribes to every wrench
+    channel and counts the messages."""
+
+    def __init__(self, port: int) -> None:
+        self.port = port
+        self.count = 0
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._run, daemon=True)
+        self._thread.start()
+
+    def _run(self) -> None:
+        import asyncio
+
+        asyncio.run(self._client())
+
+    async def _client(self) -> None:
+        import asyncio
+
+        import websockets
+
+        for _ in range(100):  # the server starts with the bridge
+            try:
+                ws = await websockets.connect(f"ws://127.0.0.1:{self.port}",
+                                              subprotocols=["foxglove.sdk.v1"], max_size=None)
+                break
+            except OSError:
+                await asyncio.sleep(0.1)
+        else:
+            return
+        subscribed = set()
+        async with ws:
+            while not self._stop.is_set():
+                try:
+                    msg = await asyncio.wait_for(ws.recv(), 0.2)
+                except asyncio.TimeoutError:
+                    continue
+                if isinstance(msg, str):
+                    op = json.loads(msg)
+                    if op.get("op") == "advertise":
+                        subs = [{"id": c["id"], "channelId": c["id"]} for c in op["channels"]
+                                if "wrench" in c["topic"] and c["id"] not in subscribed]
+                        subscribed.update(s["id"] for s in subs)
+                        await ws.send(json.dumps({"op": "subscribe", "subscriptions": subs}))
+                elif msg[0] == 1:
+                    self.count += 1
+
+    def stop(self) -> int:
+        self._stop.set()
+        self._thread.join(5)
+        return self.count
+
+
 def run(n: int, seconds: float, zenoh_mod: Any, extra: Optional[List[str]] = None,
-        latency_s: str = "0.002") -> Dict[str, Any]:
+        latency_s: str = "0.002", all_transports: bool = False) -> Dict[str, Any]:
     """Bridge n virtual sensors for seconds, with `leptrino stream` on n
-    others beside it in the same run; the figures as a dict."""
+    others beside it in the same run; the figures as a dict. all_transports:
+    DDS (a Cyclone DDS reader in a child process) and Foxglove (a WebSocket
+    client here) beside Zenoh."""
     import leptrino
 
     ep = f"tcp/127.0.0.1:{_free_port()}"
@@ -101,13 +186,22 @@ def run(n: int, seconds: float, zenoh_mod: Any, extra: Optional[List[str]] = Non
     conf.insert_json5("scouting/multicast/enabled", "false")
     router = zenoh_mod.open(conf)
     sink = _Sink()
-    sub = router.declare_subscriber("0/**", sink)
+    domain = 1 + os.getpid() % 99
+    sub = router.declare_subscriber(f"{domain}/**", sink)
     sims = [leptrino.Simulator() for _ in range(n)]
     ref_sims = [leptrino.Simulator() for _ in range(n)]
-    child = ref = None
+    child = ref = reader = None
+    fox: Optional[_FoxgloveCounter] = None
     try:
         args = [sys.executable, "-m", "leptrino.bridge", "--connect", ep,
-                "--latency", latency_s]
+                "--latency", latency_s, "--domain", str(domain)]
+        if all_transports:
+            fport = _free_port()
+            args += ["--dds", "--dds-interface", "127.0.0.1", "--foxglove", f"127.0.0.1:{fport}"]
+            reader = subprocess.Popen(
+                [sys.executable, "-m", "leptrino.bridge.bench", "--dds-reader",
+                 f"{domain},{n},{seconds + 6}"], stdout=subprocess.PIPE, text=True)
+            fox = _FoxgloveCounter(fport)
         for i, sim in enumerate(sims):
             args += ["--sensor", f"s{i}={sim.port}"]
         child = subprocess.Popen(args + (extra or []), stderr=subprocess.PIPE, text=True)
@@ -124,8 +218,14 @@ def run(n: int, seconds: float, zenoh_mod: Any, extra: Optional[List[str]] = Non
             lat = sorted(sink.latency_ns)
             seqs = {k: list(v) for k, v in sink.seqs.items()}
             diag = dict(sink.diag)
+        dds_counts: Dict[str, int] = {}
+        if reader is not None:
+            out, _ = reader.communicate(timeout=seconds + 30)
+            dds_counts = json.loads(out.strip().splitlines()[-1]) if out.strip() else {}
+            reader = None
+        fox_count = fox.stop() if fox is not None else 0
     finally:
-        for proc in (child, ref):
+        for proc in (child, ref, reader):
             if proc is None:
                 continue
             proc.terminate()
@@ -164,6 +264,7 @@ def run(n: int, seconds: float, zenoh_mod: Any, extra: Optional[List[str]] = Non
     return {"sensors": n, "cpu_total": cpu, "cpu_per_sensor": cpu / n,
             "stream_cpu_per_sensor": ref_cpu / n,
             "ratio": cpu / ref_cpu if ref_cpu > 0 else float("inf"),
+            "dds_messages": sum(dds_counts.values()), "foxglove_messages": fox_count,
             "latency_p50_ms": pct(0.50), "latency_p99_ms": pct(0.99),
             "messages": sum(len(v) for v in seqs.values()), "contiguous": contiguous,
             "lost": lost, "gaps": gaps, "rates": rates, "no_loss": ok}
@@ -177,18 +278,26 @@ def main(argv: Optional[List[str]] = None) -> int:
     p.add_argument("--seconds", type=float, default=10.0)
     p.add_argument("--max-sensors", type=int, default=16)
     p.add_argument("--latency", default="0.002", help="the bridge's --latency")
+    p.add_argument("--all", action="store_true",
+                   help="also DDS (with a Cyclone DDS reader) and Foxglove (with a client)")
+    p.add_argument("--dds-reader", metavar="DOMAIN,N,SECONDS", help=argparse.SUPPRESS)
     a = p.parse_args(argv)
+    if a.dds_reader:
+        d, n_, secs_ = a.dds_reader.split(",")
+        return dds_reader(int(d), int(n_), float(secs_))
     secs = 3.0 if a.quick else a.seconds
     extra: List[str] = []
     print(f"leptrino-bridge figures: {os.cpu_count()} CPUs, load average "
-          f"{os.getloadavg()[0]:.1f}, {secs:g} s per run, --latency {a.latency}")
+          f"{os.getloadavg()[0]:.1f}, {secs:g} s per run, --latency {a.latency} (the bridge "
+          f"and `leptrino stream`), transports: "
+          f"{'Zenoh + DDS + Foxglove' if a.all else 'Zenoh'}")
     results: List[Dict[str, Any]] = []
     counts = [1, 2] if a.quick else [1, 2, 4, 6, 8, 10, 12, 14, 16]
     best = 0
     for n in counts:
         if n > a.max_sensors:
             break
-        r = run(n, secs, zenoh, extra, a.latency)
+        r = run(n, secs, zenoh, extra, a.latency, a.all)
         results.append(r)
         print(f"  {n:2d} sensors: CPU {100 * r['cpu_total']:5.1f} % "
               f"({100 * r['cpu_per_sensor']:4.1f} % per sensor; `leptrino stream` CSV beside it "
@@ -197,6 +306,8 @@ def main(argv: Optional[List[str]] = None) -> int:
               f"{r['latency_p50_ms']:.2f} ms p99 {r['latency_p99_ms']:.2f} ms, "
               f"{r['messages']} messages, lost {r['lost']}, gaps {r['gaps']}, "
               f"contiguous {r['contiguous']}, rates {[round(x) for x in r['rates']]}"
+              + (f", DDS reader {r['dds_messages']}, Foxglove client {r['foxglove_messages']}"
+                 if a.all else "") +
               f" -> {'no loss' if r['no_loss'] else 'LOSS'}", flush=True)
         if not r["no_loss"]:
             break
