@@ -214,3 +214,27 @@ def test_foxglove_client_subscribes_decodes_and_tares(ramp: str) -> None:
     diags = [ts.deserialize_cdr(p, "diagnostic_msgs/msg/DiagnosticArray")
              for _, p, _ in got["msgs"]["/a/diagnostics"]]
     assert diags and diags[0].status[0].name == "leptrino: a"
+
+
+def test_layout_file_uses_the_bridges_topics() -> None:
+    """docs/foxglove-layout.json plots the six axes of sensor a's topics and
+    shows its diagnostics; its services are the bridge's."""
+    from conftest import ROOT
+
+    if ROOT is None:
+        pytest.skip("not run from a leptrino checkout")
+    layout = json.loads((ROOT / "docs" / "foxglove-layout.json").read_text(encoding="utf-8"))
+    cfg = layout["configById"]
+    plots = [v for k, v in cfg.items() if k.startswith("Plot!")]
+    paths = {p["value"] for v in plots for p in v["paths"]}
+    want = {f"/a/wrench.wrench.{v}.{c}" for v in ("force", "torque") for c in "xyz"}
+    assert len(plots) == 6 and want <= paths
+    assert all(p.split(".")[0] in ("/a/wrench", "/a/wrench_raw") for p in paths)
+    diag = [v for k, v in cfg.items() if k.startswith("Diagnostic")]
+    assert len(diag) == 2 and all(v["topicToRender"] == "/a/diagnostics" for v in diag)
+    services = {v["serviceName"] for k, v in cfg.items() if k.startswith("CallService!")}
+    assert services == {"/a/tare", "/a/untare"}
+    # every panel the layout tree names is configured, and every configured one is placed
+    def leaves(node: Any) -> List[str]:
+        return [node] if isinstance(node, str) else leaves(node["first"]) + leaves(node["second"])
+    assert sorted(leaves(layout["layout"])) == sorted(cfg)
