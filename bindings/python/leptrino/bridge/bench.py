@@ -78,6 +78,10 @@ def _diag_values(payload: bytes) -> Dict[str, str]:
     return {v.key: v.value for v in msg.status[0].values}
 
 
+#: Ports one `leptrino stream` takes (its CLI_MAX_SENSORS).
+STREAM_MAX_SENSORS = 8
+
+
 def _stream_args(ports: List[str], latency_s: str) -> List[str]:
     """`leptrino stream` writing CSV for the same kind of sensors, as the
     reference the bridge's cost is compared with."""
@@ -190,7 +194,8 @@ def run(n: int, seconds: float, zenoh_mod: Any, extra: Optional[List[str]] = Non
     sub = router.declare_subscriber(f"{domain}/**", sink)
     sims = [leptrino.Simulator() for _ in range(n)]
     ref_sims = [leptrino.Simulator() for _ in range(n)]
-    child = ref = reader = None
+    child = reader = None
+    refs: List[subprocess.Popen] = []
     fox: Optional[_FoxgloveCounter] = None
     try:
         args = [sys.executable, "-m", "leptrino.bridge", "--connect", ep,
@@ -205,14 +210,22 @@ def run(n: int, seconds: float, zenoh_mod: Any, extra: Optional[List[str]] = Non
         for i, sim in enumerate(sims):
             args += ["--sensor", f"s{i}={sim.port}"]
         child = subprocess.Popen(args + (extra or []), stderr=subprocess.PIPE, text=True)
-        ref = subprocess.Popen(_stream_args([s.port for s in ref_sims], latency_s),
-                               stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        ports = [s.port for s in ref_sims]
+        for i in range(0, n, STREAM_MAX_SENSORS):  # `leptrino stream` takes up to 8 ports
+            refs.append(subprocess.Popen(
+                _stream_args(ports[i:i + STREAM_MAX_SENSORS], latency_s),
+                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True))
         time.sleep(3.0)  # start-up, discovery, the first diagnostics
         with sink.lock:
             sink.latency_ns.clear()
-        c0, r0, t0 = _cpu_seconds(child.pid), _cpu_seconds(ref.pid), time.monotonic()
+        c0, t0 = _cpu_seconds(child.pid), time.monotonic()
+        r0 = sum(_cpu_seconds(r.pid) for r in refs)
         time.sleep(seconds)
-        c1, r1, t1 = _cpu_seconds(child.pid), _cpu_seconds(ref.pid), time.monotonic()
+        c1, t1 = _cpu_seconds(child.pid), time.monotonic()
+        r1 = sum(_cpu_seconds(r.pid) for r in refs)
+        dead = [r.args for r in refs + [child] if r.poll() is not None]
+        if dead:
+            raise RuntimeError(f"ended during the measurement: {dead}")
         time.sleep(1.2)  # one more diagnostics message
         with sink.lock:
             lat = sorted(sink.latency_ns)
@@ -225,7 +238,7 @@ def run(n: int, seconds: float, zenoh_mod: Any, extra: Optional[List[str]] = Non
             reader = None
         fox_count = fox.stop() if fox is not None else 0
     finally:
-        for proc in (child, ref, reader):
+        for proc in [child, reader, *refs]:
             if proc is None:
                 continue
             proc.terminate()

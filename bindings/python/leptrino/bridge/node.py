@@ -31,6 +31,9 @@ from .wrench_batch import WrenchBatch
 log = logging.getLogger("leptrino.bridge")
 
 WRENCH = "geometry_msgs/msg/WrenchStamped"
+#: How often the reading thread takes the session's events while data flows
+#: (they feed the counters and the log; the session queues them meanwhile).
+EVENTS_PERIOD_S = 0.1
 DIAGNOSTICS = "diagnostic_msgs/msg/DiagnosticArray"
 TRIGGER = "std_srvs/srv/Trigger"
 
@@ -287,7 +290,7 @@ class SensorNode:
         base = sensor._delivered
         timeout_ms = max(1, int(self.opts.timeout_s * 1000))
         failing = False
-        silent_since = time.monotonic()
+        silent_since = next_events = time.monotonic()
         while not self._stop.is_set():
             c_batch.n = 0
             try:
@@ -296,7 +299,10 @@ class SensorNode:
                 break
             n = int(c_batch.n)
             sensor._delivered += n
-            self._take_events(sensor._drain_events(base))
+            now = time.monotonic()
+            if not n or now >= next_events:  # the events feed counters and logs only
+                self._take_events(sensor._drain_events(base))
+                next_events = now + EVENTS_PERIOD_S
             if n:
                 if failing:
                     log.warning("%s: data again", self.spec.name)
@@ -306,11 +312,11 @@ class SensorNode:
                 wrench_raw.send_batch(r, stamps)
                 c.samples += n
                 c.last_sample_mono = float(wb.arrays.t_mono[n - 1])
-                silent_since = time.monotonic()
+                silent_since = now
                 continue
             if rc == K.LEP_E_END:
                 break
-            if rc == K.LEP_E_TIMEOUT and time.monotonic() - silent_since < self.opts.data_timeout_s:
+            if rc == K.LEP_E_TIMEOUT and now - silent_since < self.opts.data_timeout_s:
                 continue
             # The session reconnects inside its reads; until it is back each
             # read fails or times out. Count it, say it once, go on.
