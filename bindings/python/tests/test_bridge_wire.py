@@ -50,7 +50,8 @@ def test_type_hashes_match_published_values(monkeypatch):
 
 def test_type_hashes_match_rosbags(store):
     for name in ("geometry_msgs/msg/WrenchStamped", "diagnostic_msgs/msg/DiagnosticArray",
-                 "diagnostic_msgs/msg/KeyValue", "std_msgs/msg/Header"):
+                 "diagnostic_msgs/msg/KeyValue", "std_msgs/msg/Header",
+                 "std_msgs/msg/Empty"):  # the DDS command topics' type
         assert typehash.rihs01(name) == store.hash_rihs01(name), name
 
 
@@ -232,3 +233,42 @@ def test_ros2msg_schema_parses_with_mcap_ros2():
         text = ros2msg_schema(t).decode()
         assert text.startswith(typehash.MESSAGES[t].rstrip("\n"))
         assert t in generate_dynamic(t, text)
+
+
+def test_dds_names_and_configuration():
+    """ROS 2's DDS names and --dds-interface's configuration fragment."""
+    from leptrino.bridge import dds
+
+    assert dds.topic_name("/cell/a/wrench") == "rt/cell/a/wrench"
+    assert rz.dds_type_name("std_msgs/msg/Empty") == "std_msgs::msg::dds_::Empty_"
+    assert dds.config_xml(None) is None
+    xml = dds.config_xml("127.0.0.1")
+    assert '<NetworkInterface address="127.0.0.1"/>' in xml
+    assert "<AllowMulticast>false</AllowMulticast>" in xml
+    assert '<Peer address="127.0.0.1"/>' in xml
+    with pytest.raises(ValueError):
+        dds.config_xml("eth0; <x/>")
+    assert dds.pad4(b"\x00\x01\x00\x00\x01") == b"\x00\x01\x00\x00\x01\x00\x00\x00"
+    assert dds.pad4(b"1234") == b"1234"
+
+
+def test_dds_configuration_honours_cyclonedds_uri(monkeypatch):
+    from leptrino.bridge import dds
+
+    monkeypatch.setenv("CYCLONEDDS_URI", "file:///etc/cyclone.xml")
+    cfg = dds.domain_config("127.0.0.1")
+    assert cfg is not None and cfg.startswith("file:///etc/cyclone.xml,<CycloneDDS>")
+    assert dds.domain_config(None) is None  # Cyclone reads CYCLONEDDS_URI itself
+    monkeypatch.delenv("CYCLONEDDS_URI")
+    assert dds.domain_config("127.0.0.1") == dds.config_xml("127.0.0.1")
+
+
+def test_foxglove_address():
+    from leptrino.bridge.foxglove_out import parse_address
+
+    assert parse_address("8765") == ("127.0.0.1", 8765)
+    assert parse_address("0.0.0.0:9000") == ("0.0.0.0", 9000)
+    assert parse_address("[::1]:8765") == ("::1", 8765)
+    for bad in ("", "host:", "x:99999", "a:b"):
+        with pytest.raises(ValueError):
+            parse_address(bad)

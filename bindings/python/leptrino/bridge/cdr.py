@@ -5,7 +5,9 @@ fields in order, each aligned to its own size (at most 8) counted from the
 end of the header; a string is a uint32 length that counts its terminating
 NUL, then the bytes and the NUL; a sequence is a uint32 count and the
 elements. This is what rmw_zenoh (like the DDS middlewares) puts on the wire
-and what an MCAP "cdr" channel holds.
+and what an MCAP "cdr" channel holds. The per-sample message,
+WrenchStamped, is serialized in C (lep_ros_wrench_cdr, wrench_batch.py);
+here are the rare ones (diagnostics, service answers).
 """
 
 from __future__ import annotations

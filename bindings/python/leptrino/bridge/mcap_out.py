@@ -102,13 +102,7 @@ class McapRecorder:
     def write(self, channel_id: int, payload: bytes, publish_ns: int, log_ns: int) -> None:
         """One message: publish_ns is the message's own time (header stamp),
         log_ns when the bridge handled it."""
-        with self._lock:
-            if self._f is None:
-                return
-            self._seq[channel_id] += 1
-            self._w.add_message(channel_id, log_time=log_ns, data=payload,
-                                publish_time=publish_ns, sequence=self._seq[channel_id])
-            self.messages += 1
+        self.write_batch(channel_id, (payload,), (publish_ns,), log_ns)
 
     def write_batch(self, channel_id: int, payloads: Sequence[bytes], publish_ns: Sequence[int],
                     log_ns: int) -> None:

@@ -2,13 +2,14 @@
 
 A SensorNode opens a leptrino.Sensor (the library's session does the tare,
 the low-pass, the rotation, the reconnects, the health and the timestamps)
-and runs one thread that turns each sample the session delivers into two
-geometry_msgs/WrenchStamped messages (`wrench`: the session's processed
-values; `wrench_raw`: the raw counts in N and N·m) and hands them to the
-outputs: Zenoh publishers in rmw_zenoh's layout and/or an MCAP file. The
-bridge calls publish_diagnostics() once a second, and the tare/untare
-services call tare()/untare() from Zenoh's threads (the session allows
-that beside the reading thread).
+and runs one thread that reads the session in batches and turns each batch,
+in one C call (wrench_batch.py), into two geometry_msgs/WrenchStamped
+messages per sample (`wrench`: the session's processed values;
+`wrench_raw`: the raw counts in N and N·m), handed to the outputs: Zenoh
+publishers in rmw_zenoh's layout, an MCAP file, DDS writers, Foxglove
+channels. The bridge calls publish_diagnostics() once a second, and the
+tare/untare services and command topics call tare()/untare() from the
+transports' threads (the session allows that beside the reading thread).
 """
 
 from __future__ import annotations
