@@ -167,3 +167,20 @@ def test_bad_arguments(tmp_path: Path, args: List[str], message: str, code: int)
     assert p.returncode == code, (p.stdout, p.stderr)
     assert message in p.stderr
     assert not (tmp_path / "x.mcap").exists()
+
+
+def test_foxglove_port_in_use(tmp_path: Path) -> None:
+    """A --foxglove port another program holds: one line, exit status 2, no file."""
+    pytest.importorskip("foxglove")
+    import socket
+
+    with socket.socket() as held:
+        held.bind(("127.0.0.1", 0))
+        held.listen(1)
+        port = held.getsockname()[1]
+        p = subprocess.run([sys.executable, "-m", "leptrino.bridge", "--sim", "a", "--foxglove",
+                            f"127.0.0.1:{port}", "--mcap", "x.mcap"], cwd=tmp_path,
+                           capture_output=True, text=True, env=subprocess_env(), timeout=60)
+    assert p.returncode == 2, (p.stdout, p.stderr)
+    assert f"--foxglove 127.0.0.1:{port}" in p.stderr
+    assert not (tmp_path / "x.mcap").exists()

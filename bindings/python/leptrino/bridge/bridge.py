@@ -97,23 +97,23 @@ class Bridge:
                 self.nodes.append(SensorNode(spec, self.opts))
             if zenoh_opts is not None:
                 self.session = open_session(zenoh_opts)
-            if mcap_path is not None:
-                self.mcap = McapRecorder(mcap_path, force)
+            if foxglove is not None:  # the port is taken now: a failure leaves no file
+                from .foxglove_out import FoxgloveServer
+
+                self.foxglove = FoxgloveServer(*foxglove)
             if dds_opts is not None:
                 from .dds import DdsParticipant
 
                 self.dds = DdsParticipant(self.opts.domain, dds_opts)
-            if foxglove is not None:
-                from .foxglove_out import FoxgloveServer
-
-                self.foxglove = FoxgloveServer(*foxglove)
+            if mcap_path is not None:  # last: whatever failed before, no file was made
+                self.mcap = McapRecorder(mcap_path, force)
             for i, node in enumerate(self.nodes):
                 node.declare(i, lambda: next(ids), self.session, self.mcap, self.dds,
                              self.foxglove)
             if self.dds is not None:
                 self.dds.announce()
             if self.foxglove is not None:
-                self.foxglove.start()
+                self.foxglove.add_services()
         except BaseException:
             self.close()
             raise

@@ -218,8 +218,12 @@ class DdsParticipant:
         self.types = _Types(GID_LENGTH[opts.distro])
         self.gid_len = GID_LENGTH[opts.distro]
         cfg = domain_config(opts.interface)
-        self._domain = Domain(domain, cfg) if cfg is not None else None
-        self.participant = DomainParticipant(domain, qos=Qos(Policy.Userdata(b"enclave=/;")))
+        try:
+            self._domain = Domain(domain, cfg) if cfg is not None else None
+            self.participant = DomainParticipant(domain,
+                                                 qos=Qos(Policy.Userdata(b"enclave=/;")))
+        except Exception as e:  # cyclonedds' DDSException: a bad configuration, no interface
+            raise OSError(f"DDS domain {domain}: {e}") from None
         self._nodes: Dict[Tuple[str, str], Tuple[List[bytes], List[bytes]]] = {}
         self._lock = threading.Lock()
         self._readers: List[Any] = []

@@ -61,16 +61,23 @@ class FoxgloveChannel:
 
 class FoxgloveServer:
     """A Foxglove WebSocket server on host:port with its own context (so
-    that nothing else logged in the process leaks into it)."""
+    that nothing else logged in the process leaks into it). Listens from
+    construction (OSError when it cannot); channels are advertised as they
+    are made, the services by add_services()."""
 
     def __init__(self, host: str, port: int) -> None:
         import foxglove
+        from foxglove import Capability
 
         self.ctx = foxglove.Context()
         self.host = host
         self._services: List[Any] = []
-        self._server: Any = None
-        self._port = port
+        try:
+            self._server: Any = foxglove.start_server(
+                name="leptrino-bridge", host=host, port=port, context=self.ctx,
+                capabilities=[Capability.Services], supported_encodings=["cdr"])
+        except Exception as e:  # the SDK's error for a port in use, a bad host
+            raise OSError(f"--foxglove {host}:{port}: {e}") from None
 
     def channel(self, topic: str, ros_type: str) -> FoxgloveChannel:
         return FoxgloveChannel(self.ctx, topic, ros_type)
@@ -94,19 +101,14 @@ class FoxgloveServer:
                 data=TRIGGER_RESPONSE_MSG.encode())))
         self._services.append(Service(name=name, schema=schema, handler=handler))
 
-    def start(self) -> None:
-        """Start listening (after every channel and service is made)."""
-        import foxglove
-        from foxglove import Capability
-
-        self._server = foxglove.start_server(
-            name="leptrino-bridge", host=self.host, port=self._port, context=self.ctx,
-            capabilities=[Capability.Services], supported_encodings=["cdr"],
-            services=self._services)
+    def add_services(self) -> None:
+        """Offer the services made by service() (after every node declared them)."""
+        if self._services:
+            self._server.add_services(self._services)
 
     @property
     def port(self) -> int:
-        return int(self._server.port) if self._server is not None else self._port
+        return int(self._server.port) if self._server is not None else 0
 
     def close(self) -> None:
         if self._server is not None:
