@@ -18,7 +18,7 @@ import logging
 import threading
 import time
 from dataclasses import dataclass, field
-from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
+from typing import Any, Callable, Dict, List, Optional, Protocol, Sequence, Tuple
 
 from .. import _constants as K
 from ..errors import LeptrinoError
@@ -73,15 +73,16 @@ class NodeOptions:
     data_timeout_s: float = 1.0
 
 
-class Output:
-    """Another transport of a topic (DDS, Foxglove): publish() gets a batch of
-    payloads with their stamps (ns) and the publication time."""
+class Output(Protocol):
+    """Another transport of a topic (dds.DdsWriter, foxglove_out.FoxgloveChannel):
+    publish() gets a batch of payloads with their stamps (ns) and the
+    publication time (ns); close() withdraws it."""
 
     def publish(self, payloads: Sequence[bytes], stamps: Sequence[int], now_ns: int) -> None:
-        raise NotImplementedError
+        ...
 
     def close(self) -> None:
-        pass
+        ...
 
 
 class Topic:
