@@ -145,14 +145,15 @@ class _FoxgloveCounter:
 
         for _ in range(100):  # the server starts with the bridge
             try:
-                ws = await websockets.connect(f"ws://127.0.0.1:{self.port}",
-                                              subprotocols=["foxglove.sdk.v1"], max_size=None)
+                ws = await websockets.connect(
+                    f"ws://127.0.0.1:{self.port}",
+                    subprotocols=[websockets.Subprotocol("foxglove.sdk.v1")], max_size=None)
                 break
             except OSError:
                 await asyncio.sleep(0.1)
         else:
             return
-        subscribed = set()
+        subscribed: set = set()
         async with ws:
             while not self._stop.is_set():
                 try:

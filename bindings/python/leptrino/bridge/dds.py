@@ -1,3 +1,6 @@
+# cyclonedds' IDL annotations (types.sequence[T], types.array[T, N], bounded_str)
+# are its own runtime markers, not PEP 484 types:
+# mypy: disable-error-code="type-arg, arg-type, var-annotated, valid-type"
 """ROS 2 on DDS: the bridge's topics as a ROS 2 node on Cyclone DDS would
 publish them, for ROS 2 nodes on Fast DDS (rmw_fastrtps_cpp, the default
 middleware) and Cyclone DDS (rmw_cyclonedds_cpp). Needs the PyPI
