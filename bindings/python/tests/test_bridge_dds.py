@@ -298,3 +298,50 @@ def test_tare_command_topic_and_diagnostics(participant: Any, domain: int) -> No
     finally:
         err = stop(proc)
     assert proc.returncode == 0, err
+
+
+@dataclass
+class Gid24_(IdlStruct, typename="rmw_dds_common::msg::dds_::Gid_"):
+    data: t.array[t.uint8, 24]
+
+
+@dataclass
+class NodeEntitiesInfo24_(IdlStruct, typename="rmw_dds_common::msg::dds_::NodeEntitiesInfo_"):
+    node_namespace: t.bounded_str[256]
+    node_name: t.bounded_str[256]
+    reader_gid_seq: t.sequence[Gid24_]
+    writer_gid_seq: t.sequence[Gid24_]
+
+
+@dataclass
+class ParticipantEntitiesInfo24_(
+        IdlStruct, typename="rmw_dds_common::msg::dds_::ParticipantEntitiesInfo_"):
+    gid: Gid24_
+    node_entities_info_seq: t.sequence[NodeEntitiesInfo24_]
+
+
+def test_humble_node_announcement(domain: int) -> None:
+    """--ros-distro humble: the Gid is 24 bytes, the GUID then zeros."""
+    d = domain + 100  # a domain (and a participant) of its own for the other layout
+    dom = Domain(d, LOOPBACK)
+    p = DomainParticipant(d)
+    info = DataReader(p, Topic(p, "ros_discovery_info", ParticipantEntitiesInfo24_),
+                      qos=Qos(Policy.Reliability.Reliable(0), Policy.Durability.TransientLocal,
+                              Policy.History.KeepLast(1)))
+    proc = start_bridge(d, "--sim", "h", "--ros-distro", "humble", "--namespace", "/lab")
+    try:
+        got: List[Any] = []
+        end = time.monotonic() + 15
+        while time.monotonic() < end and not got:
+            got = [s for s in info.read(10) if isinstance(s, ParticipantEntitiesInfo24_)]
+            time.sleep(0.05)
+    finally:
+        err = stop(proc)
+        del dom
+    assert proc.returncode == 0, err
+    assert got, "nothing on ros_discovery_info"
+    (node,) = got[-1].node_entities_info_seq
+    assert (node.node_namespace, node.node_name) == ("/lab", "h")
+    gids = [bytes(g.data) for g in [got[-1].gid, *node.writer_gid_seq, *node.reader_gid_seq]]
+    assert len(gids) == 6 and all(len(g) == 24 and g[16:] == bytes(8) for g in gids)
+    assert len(set(gids)) == 6
