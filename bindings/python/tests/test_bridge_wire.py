@@ -81,11 +81,7 @@ def _wrench_batch(frame, t_utc, si, raw=None, rated=(200, 200, 400, 4, 4, 4)):
     import leptrino
     from leptrino.bridge.wrench_batch import WrenchBatch
 
-    be = leptrino.get_backend()
-    r = be.new("lep_rated")
-    for i, v in enumerate(rated):
-        r.axis[i] = float(v)
-    wb = WrenchBatch(be, r, frame, cap=8)
+    wb = WrenchBatch(leptrino.get_backend(), rated, frame, cap=8)
     n = len(t_utc)
     wb.arrays.t_utc[:n] = t_utc
     wb.arrays.si[:n] = si

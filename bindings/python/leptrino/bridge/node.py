@@ -180,7 +180,7 @@ class SensorNode:
             lowpass=opts.lowpass_hz, rotation=opts.rotation, degrees=False, reconnect=True,
             latency=opts.latency_s, data_timeout=opts.data_timeout_s)
         try:
-            self._batch = WrenchBatch(self.sensor._be, self.sensor._rated_c, spec.frame_id)
+            self._batch = WrenchBatch(self.sensor._be, self.sensor.rated, spec.frame_id)
         except ValueError:
             self.sensor.close()
             raise

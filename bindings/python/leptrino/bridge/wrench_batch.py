@@ -8,7 +8,7 @@ same bytes go to Zenoh, DDS, Foxglove and MCAP.
 
 from __future__ import annotations
 
-from typing import Any, List, Tuple
+from typing import Any, List, Sequence, Tuple
 
 import numpy as np
 
@@ -24,20 +24,22 @@ BATCH = 256
 class WrenchBatch:
     """Session batch arrays and the CDR buffers of their messages.
 
-    be: the backend (leptrino.get_backend()); rated: a lep_rated struct (the
-    sensor's, for wrench_raw); frame_id: header.frame_id. ValueError for a
+    be: the backend (leptrino.get_backend()); rated: the sensor's six rated
+    values (Sensor.rated: N, N·m; for wrench_raw); frame_id: header.frame_id. ValueError for a
     frame_id the C side refuses (a NUL, longer than LEP_ROS_FRAME_ID_MAX
     bytes). One per reading thread.
     """
 
-    def __init__(self, be: Any, rated: Any, frame_id: str, cap: int = BATCH) -> None:
+    def __init__(self, be: Any, rated: Sequence[float], frame_id: str, cap: int = BATCH) -> None:
         fid = frame_id.encode("utf-8")
         if b"\x00" in fid or len(fid) > K.LEP_ROS_FRAME_ID_MAX:
             raise ValueError(f"frame_id {frame_id!r}: no NUL, at most "
                              f"{K.LEP_ROS_FRAME_ID_MAX} bytes")
         self._be = be
         self._fn = be.lib.lep_ros_wrench_cdr
-        self._rated = rated
+        self._rated = be.new("lep_rated")
+        for i, v in enumerate(rated):
+            self._rated.axis[i] = float(v)
         self._fid = fid
         self.cap = cap
         self.size = int(be.lib.lep_ros_wrench_size(len(fid)))
