@@ -322,7 +322,9 @@ class ParticipantEntitiesInfo24_(
 
 def test_humble_node_announcement(domain: int) -> None:
     """--ros-distro humble: the Gid is 24 bytes, the GUID then zeros."""
-    d = domain + 100  # a domain (and a participant) of its own for the other layout
+    # a domain (and a participant) of its own for the other layout: 200..229,
+    # apart from the module's 100..199 (DDS domain ids end at 232)
+    d = 200 + domain % 30
     dom = Domain(d, LOOPBACK)
     p = DomainParticipant(d)
     info = DataReader(p, Topic(p, "ros_discovery_info", ParticipantEntitiesInfo24_),
