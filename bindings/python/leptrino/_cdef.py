@@ -634,6 +634,9 @@ typedef struct lep_record_batch
   uint16_t *seq;
 } lep_record_batch;
 int lep_record_fill(lep_client *c, const lep_rated *rated, lep_record_batch *b, double until_s, int timeout_ms);
+/* ros_cdr.h */
+size_t lep_ros_wrench_size(size_t frame_id_len);
+int lep_ros_wrench_cdr(const lep_session_batch *b, size_t from, size_t n, const lep_rated *rated, const char *frame_id, int64_t *last_ns, uint8_t *wrench, uint8_t *wrench_raw, size_t cap, int64_t *stamp_ns);
 """
 
 #: The LEP_API functions CDEF declares.
@@ -772,4 +775,6 @@ FUNCTIONS = (
     'lep_exit_code',
     'lep_cpu_seconds',
     'lep_record_fill',
+    'lep_ros_wrench_size',
+    'lep_ros_wrench_cdr',
 )

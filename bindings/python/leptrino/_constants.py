@@ -137,6 +137,9 @@ LEP_EXIT_NOT_FOUND = 6  # no such port, or not a serial port
 LEP_EXIT_BUSY = 7  # the port is in use by another program
 LEP_EXIT_PERMISSION = 8  # no permission to open the port
 
+# ros_cdr.h
+LEP_ROS_FRAME_ID_MAX = 255
+
 # serial.h
 LEP_BAUD = 460800
 

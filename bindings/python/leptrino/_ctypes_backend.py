@@ -6,7 +6,17 @@ the high-level code uses (allocation, strings, pointers).
 from __future__ import annotations
 
 import ctypes
-from ctypes import POINTER, c_char_p, c_double, c_int16, c_size_t, c_uint8, c_uint16, c_uint64
+from ctypes import (
+    POINTER,
+    c_char_p,
+    c_double,
+    c_int16,
+    c_int64,
+    c_size_t,
+    c_uint8,
+    c_uint16,
+    c_uint64,
+)
 from typing import Any, Dict, List, Optional
 
 from . import _loader
@@ -18,6 +28,7 @@ _SCALARS: Dict[str, Any] = {
     "uint8_t": c_uint8,
     "int16_t": c_int16,
     "uint16_t": c_uint16,
+    "int64_t": c_int64,
     "size_t": c_size_t,
     "double": c_double,
     "uint64_t": c_uint64,

@@ -683,4 +683,6 @@ FUNCTIONS: Dict[str, Tuple[Any, List[Any]]] = {
     'lep_exit_code': (c_int, [c_int]),
     'lep_cpu_seconds': (c_double, []),
     'lep_record_fill': (c_int, [POINTER(lep_client), POINTER(lep_rated), POINTER(lep_record_batch), c_double, c_int]),
+    'lep_ros_wrench_size': (c_size_t, [c_size_t]),
+    'lep_ros_wrench_cdr': (c_int, [POINTER(lep_session_batch), c_size_t, c_size_t, POINTER(lep_rated), c_char_p, POINTER(c_int64), POINTER(c_uint8), POINTER(c_uint8), c_size_t, POINTER(c_int64)]),
 }

@@ -153,6 +153,10 @@ def test_sigint_and_sigterm_close_the_file(tmp_path: Path) -> None:
     (["--sim", "a", "--frame-id", "zz=f", "--mcap", "x.mcap"], "--frame-id", 2),
     (["--sim", "a", "--namespace", "a b", "--mcap", "x.mcap"], "namespace", 2),
     (["--sim", "a", "--duration", "0", "--mcap", "x.mcap"], "> 0", 2),
+    (["--sim", "a", "--dds-interface", "127.0.0.1", "--mcap", "x.mcap"], "needs --dds", 2),
+    (["--sim", "a", "--dds", "--dds-interface", "eth0", "--mcap", "x.mcap"], "IP address", 2),
+    (["--sim", "a", "--foxglove", "host:port", "--mcap", "x.mcap"], "[HOST:]PORT", 2),
+    (["--sim", "a", "--dds", "--ros-distro", "foxy"], "invalid choice", 2),
     # the `leptrino` tool's exit codes: a missing port 6, an output that cannot be created 1
     (["--sensor", "a=/nonexistent/tty", "--mcap", "x.mcap"], "/nonexistent/tty", 6),
     (["--sim", "a", "--mcap", "/nonexistent/dir/x.mcap"], "nonexistent", 1),
@@ -162,4 +166,22 @@ def test_bad_arguments(tmp_path: Path, args: List[str], message: str, code: int)
                        capture_output=True, text=True, env=subprocess_env(), timeout=60)
     assert p.returncode == code, (p.stdout, p.stderr)
     assert message in p.stderr
+    assert not (tmp_path / "x.mcap").exists()
+
+
+def test_foxglove_port_in_use(tmp_path: Path) -> None:
+    """A --foxglove port another program holds: one line, exit status 1 (an
+    output that cannot be made, as the `leptrino` tool's), no file."""
+    pytest.importorskip("foxglove")
+    import socket
+
+    with socket.socket() as held:
+        held.bind(("127.0.0.1", 0))
+        held.listen(1)
+        port = held.getsockname()[1]
+        p = subprocess.run([sys.executable, "-m", "leptrino.bridge", "--sim", "a", "--foxglove",
+                            f"127.0.0.1:{port}", "--mcap", "x.mcap"], cwd=tmp_path,
+                           capture_output=True, text=True, env=subprocess_env(), timeout=60)
+    assert p.returncode == 1, (p.stdout, p.stderr)
+    assert f"--foxglove 127.0.0.1:{port}" in p.stderr
     assert not (tmp_path / "x.mcap").exists()

@@ -50,7 +50,8 @@ def test_type_hashes_match_published_values(monkeypatch):
 
 def test_type_hashes_match_rosbags(store):
     for name in ("geometry_msgs/msg/WrenchStamped", "diagnostic_msgs/msg/DiagnosticArray",
-                 "diagnostic_msgs/msg/KeyValue", "std_msgs/msg/Header"):
+                 "diagnostic_msgs/msg/KeyValue", "std_msgs/msg/Header",
+                 "std_msgs/msg/Empty"):  # the DDS command topics' type
         assert typehash.rihs01(name) == store.hash_rihs01(name), name
 
 
@@ -75,13 +76,28 @@ def test_msg_parser_types_and_errors():
         typehash.parse_fields("float64", "p")
 
 
+def _wrench_batch(frame, t_utc, si, raw=None, rated=(200, 200, 400, 4, 4, 4)):
+    """The C encoder (lep_ros_wrench_cdr) on a batch filled here."""
+    import leptrino
+    from leptrino.bridge.wrench_batch import WrenchBatch
+
+    wb = WrenchBatch(leptrino.get_backend(), rated, frame, cap=8)
+    n = len(t_utc)
+    wb.arrays.t_utc[:n] = t_utc
+    wb.arrays.si[:n] = si
+    wb.arrays.raw[:n] = raw if raw is not None else [[0] * 6] * n
+    wb.arrays.c.n = n
+    return wb.encode()
+
+
 def test_wrench_golden_bytes(store):
-    got = cdr.WrenchStampedEncoder("ft").encode(
-        1700000000, 123456789, (1.0, -2.0, 0.5, 0.25, -0.125, 3.0))
+    (got,), (raw,), stamps = _wrench_batch("ft", [1700000000.25],
+                                           [(1.0, -2.0, 0.5, 0.25, -0.125, 3.0)],
+                                           [(10000, -10000, 5000, 2500, 0, -1)])
     want = bytes.fromhex(
         "00010000"          # encapsulation: CDR little-endian
         "00f15365"          # header.stamp.sec 1700000000
-        "15cd5b07"          # header.stamp.nanosec 123456789
+        "80b2e60e"          # header.stamp.nanosec 250000000
         "03000000" "667400"  # frame_id: length 3 with the NUL, "ft\0"
         "00"                # padding to 8 (offset 15 -> 16)
         "000000000000f03f"  # force.x 1.0
@@ -91,10 +107,17 @@ def test_wrench_golden_bytes(store):
         "000000000000c0bf"  # torque.y -0.125
         "0000000000000840")  # torque.z 3.0
     assert got == want
+    assert stamps == [1700000000_250000000]
     msg = store.deserialize_cdr(got, "geometry_msgs/msg/WrenchStamped")
-    assert (msg.header.stamp.sec, msg.header.stamp.nanosec) == (1700000000, 123456789)
+    assert (msg.header.stamp.sec, msg.header.stamp.nanosec) == (1700000000, 250000000)
     assert msg.header.frame_id == "ft"
     assert (msg.wrench.force.x, msg.wrench.force.y, msg.wrench.torque.z) == (1.0, -2.0, 3.0)
+    # wrench_raw: counts x rated / 10000, the same header
+    m = store.deserialize_cdr(raw, "geometry_msgs/msg/WrenchStamped")
+    assert raw[:20] == got[:20]
+    assert (m.wrench.force.x, m.wrench.force.y, m.wrench.force.z) == (200.0, -200.0, 200.0)
+    assert (m.wrench.torque.x, m.wrench.torque.y) == (1.0, 0.0)
+    assert m.wrench.torque.z == pytest.approx(-4e-4)
 
 
 @pytest.mark.parametrize("frame", ["", "a", "abcd", "sensor_frame_7", "é"])
@@ -108,8 +131,25 @@ def test_wrench_matches_rosbags_serializer(store, frame):
     ref = WS(header=Header(stamp=Time(sec=5, nanosec=6), frame_id=frame),
              wrench=W(force=V(x=1.5, y=2.5, z=-3.5), torque=V(x=0.1, y=0.2, z=0.3)))
     want = bytes(store.serialize_cdr(ref, "geometry_msgs/msg/WrenchStamped"))
-    got = cdr.WrenchStampedEncoder(frame).encode(5, 6, (1.5, 2.5, -3.5, 0.1, 0.2, 0.3))
+    (got,), _, _ = _wrench_batch(frame, [5.000000006], [(1.5, 2.5, -3.5, 0.1, 0.2, 0.3)])
     assert got == want
+
+
+def test_wrench_batch_stamps_and_refusals():
+    """A batch: stamps rounded to the ns and never going back; bad input refused."""
+    from leptrino.errors import LeptrinoError
+
+    w, r, stamps = _wrench_batch("f", [10.5, 10.4999999, 11.0],
+                                 [(i, 0, 0, 0, 0, 0) for i in range(3)])
+    assert stamps == [10_500_000_000, 10_500_000_000, 11_000_000_000]
+    assert [struct.unpack_from("<d", p, 20)[0] for p in w] == [0.0, 1.0, 2.0]
+    assert len(set(map(len, w + r))) == 1
+    with pytest.raises(LeptrinoError):
+        _wrench_batch("f", [float("nan")], [(0,) * 6])
+    with pytest.raises(ValueError):
+        _wrench_batch("a\x00b", [1.0], [(0,) * 6])
+    with pytest.raises(ValueError):
+        _wrench_batch("x" * 256, [1.0], [(0,) * 6])
 
 
 def test_diagnostic_array_decodes(store):
@@ -189,3 +229,42 @@ def test_ros2msg_schema_parses_with_mcap_ros2():
         text = ros2msg_schema(t).decode()
         assert text.startswith(typehash.MESSAGES[t].rstrip("\n"))
         assert t in generate_dynamic(t, text)
+
+
+def test_dds_names_and_configuration():
+    """ROS 2's DDS names and --dds-interface's configuration fragment."""
+    from leptrino.bridge import dds
+
+    assert dds.topic_name("/cell/a/wrench") == "rt/cell/a/wrench"
+    assert rz.dds_type_name("std_msgs/msg/Empty") == "std_msgs::msg::dds_::Empty_"
+    assert dds.config_xml(None) is None
+    xml = dds.config_xml("127.0.0.1")
+    assert '<NetworkInterface address="127.0.0.1"/>' in xml
+    assert "<AllowMulticast>false</AllowMulticast>" in xml
+    assert '<Peer address="127.0.0.1"/>' in xml
+    with pytest.raises(ValueError):
+        dds.config_xml("eth0; <x/>")
+    assert dds.pad4(b"\x00\x01\x00\x00\x01") == b"\x00\x01\x00\x00\x01\x00\x00\x00"
+    assert dds.pad4(b"1234") == b"1234"
+
+
+def test_dds_configuration_honours_cyclonedds_uri(monkeypatch):
+    from leptrino.bridge import dds
+
+    monkeypatch.setenv("CYCLONEDDS_URI", "file:///etc/cyclone.xml")
+    cfg = dds.domain_config("127.0.0.1")
+    assert cfg is not None and cfg.startswith("file:///etc/cyclone.xml,<CycloneDDS>")
+    assert dds.domain_config(None) is None  # Cyclone reads CYCLONEDDS_URI itself
+    monkeypatch.delenv("CYCLONEDDS_URI")
+    assert dds.domain_config("127.0.0.1") == dds.config_xml("127.0.0.1")
+
+
+def test_foxglove_address():
+    from leptrino.bridge.foxglove_out import parse_address
+
+    assert parse_address("8765") == ("127.0.0.1", 8765)
+    assert parse_address("0.0.0.0:9000") == ("0.0.0.0", 9000)
+    assert parse_address("[::1]:8765") == ("::1", 8765)
+    for bad in ("", "host:", "x:99999", "a:b"):
+        with pytest.raises(ValueError):
+            parse_address(bad)

@@ -78,9 +78,110 @@ def _diag_values(payload: bytes) -> Dict[str, str]:
     return {v.key: v.value for v in msg.status[0].values}
 
 
-def run(n: int, seconds: float, zenoh_mod: Any, extra: Optional[List[str]] = None
-        ) -> Dict[str, Any]:
-    """Bridge n virtual sensors for seconds; the figures as a dict."""
+#: Ports one `leptrino stream` takes (its CLI_MAX_SENSORS).
+STREAM_MAX_SENSORS = 8
+
+
+def _stream_args(ports: List[str], latency_s: str) -> List[str]:
+    """`leptrino stream` writing CSV for the same kind of sensors, as the
+    reference the bridge's cost is compared with."""
+    from .._tools import program_path
+
+    args = [str(program_path("leptrino")), "stream", *ports, "--reconnect", "--latency",
+            str(max(0, int(round(float(latency_s) * 1000)))), "-o", os.devnull]
+    return args
+
+
+def dds_reader(domain: int, n: int, seconds: float) -> int:
+    """A Cyclone DDS reader of every sN/wrench and sN/wrench_raw (a child
+    process of the benchmark, on 127.0.0.1): counts the samples, prints them
+    as JSON after seconds."""
+    from cyclonedds.core import Qos
+    from cyclonedds.domain import Domain, DomainParticipant
+    from cyclonedds.qos import Policy
+    from cyclonedds.sub import DataReader
+    from cyclonedds.topic import Topic
+
+    from .dds import _Types, config_xml
+
+    dom = Domain(domain, config_xml("127.0.0.1"))
+    p = DomainParticipant(domain)
+    T = _Types(16)
+    qos = Qos(Policy.Reliability.Reliable(0), Policy.History.KeepAll,
+              Policy.DataRepresentation(use_cdrv0_representation=True))
+    readers = {f"s{i}/{t}": DataReader(p, Topic(p, f"rt/s{i}/{t}", T.WrenchStamped), qos=qos)
+               for i in range(n) for t in ("wrench", "wrench_raw")}
+    counts = {k: 0 for k in readers}
+    end = time.monotonic() + seconds
+    while time.monotonic() < end:
+        for k, r in readers.items():
+            counts[k] += len(r.take(1000))
+        time.sleep(0.05)
+    print(json.dumps(counts), flush=True)
+    del dom
+    return 0
+
+
+class _FoxgloveCounter:
+    """A Foxglove WebSocket client in a thread: subscribes to every wrench
+    channel and counts the messages."""
+
+    def __init__(self, port: int) -> None:
+        self.port = port
+        self.count = 0
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._run, daemon=True)
+        self._thread.start()
+
+    def _run(self) -> None:
+        import asyncio
+
+        asyncio.run(self._client())
+
+    async def _client(self) -> None:
+        import asyncio
+
+        import websockets
+
+        for _ in range(100):  # the server starts with the bridge
+            try:
+                ws = await websockets.connect(
+                    f"ws://127.0.0.1:{self.port}",
+                    subprotocols=[websockets.Subprotocol("foxglove.sdk.v1")], max_size=None)
+                break
+            except OSError:
+                await asyncio.sleep(0.1)
+        else:
+            return
+        subscribed: set = set()
+        async with ws:
+            while not self._stop.is_set():
+                try:
+                    msg = await asyncio.wait_for(ws.recv(), 0.2)
+                except asyncio.TimeoutError:
+                    continue
+                if isinstance(msg, str):
+                    op = json.loads(msg)
+                    if op.get("op") == "advertise":
+                        subs = [{"id": c["id"], "channelId": c["id"]} for c in op["channels"]
+                                if "wrench" in c["topic"] and c["id"] not in subscribed]
+                        subscribed.update(s["id"] for s in subs)
+                        await ws.send(json.dumps({"op": "subscribe", "subscriptions": subs}))
+                elif msg[0] == 1:
+                    self.count += 1
+
+    def stop(self) -> int:
+        self._stop.set()
+        self._thread.join(5)
+        return self.count
+
+
+def run(n: int, seconds: float, zenoh_mod: Any, extra: Optional[List[str]] = None,
+        latency_s: str = "0.002", all_transports: bool = False) -> Dict[str, Any]:
+    """Bridge n virtual sensors for seconds, with `leptrino stream` on n
+    others beside it in the same run; the figures as a dict. all_transports:
+    DDS (a Cyclone DDS reader in a child process) and Foxglove (a WebSocket
+    client here) beside Zenoh."""
     import leptrino
 
     ep = f"tcp/127.0.0.1:{_free_port()}"
@@ -90,34 +191,64 @@ def run(n: int, seconds: float, zenoh_mod: Any, extra: Optional[List[str]] = Non
     conf.insert_json5("scouting/multicast/enabled", "false")
     router = zenoh_mod.open(conf)
     sink = _Sink()
-    sub = router.declare_subscriber("0/**", sink)
+    domain = 1 + os.getpid() % 99
+    sub = router.declare_subscriber(f"{domain}/**", sink)
     sims = [leptrino.Simulator() for _ in range(n)]
-    child = None
+    ref_sims = [leptrino.Simulator() for _ in range(n)]
+    child = reader = None
+    refs: List[subprocess.Popen] = []
+    fox: Optional[_FoxgloveCounter] = None
     try:
-        args = [sys.executable, "-m", "leptrino.bridge", "--connect", ep]
+        args = [sys.executable, "-m", "leptrino.bridge", "--connect", ep,
+                "--latency", latency_s, "--domain", str(domain)]
+        if all_transports:
+            fport = _free_port()
+            args += ["--dds", "--dds-interface", "127.0.0.1", "--foxglove", f"127.0.0.1:{fport}"]
+            reader = subprocess.Popen(
+                [sys.executable, "-m", "leptrino.bridge.bench", "--dds-reader",
+                 f"{domain},{n},{seconds + 6}"], stdout=subprocess.PIPE, text=True)
+            fox = _FoxgloveCounter(fport)
         for i, sim in enumerate(sims):
             args += ["--sensor", f"s{i}={sim.port}"]
         child = subprocess.Popen(args + (extra or []), stderr=subprocess.PIPE, text=True)
-        time.sleep(2.0)  # start-up, discovery, the first diagnostics
+        ports = [s.port for s in ref_sims]
+        for i in range(0, n, STREAM_MAX_SENSORS):  # `leptrino stream` takes up to 8 ports
+            refs.append(subprocess.Popen(
+                _stream_args(ports[i:i + STREAM_MAX_SENSORS], latency_s),
+                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True))
+        time.sleep(3.0)  # start-up, discovery, the first diagnostics
         with sink.lock:
             sink.latency_ns.clear()
         c0, t0 = _cpu_seconds(child.pid), time.monotonic()
+        r0 = sum(_cpu_seconds(r.pid) for r in refs)
         time.sleep(seconds)
         c1, t1 = _cpu_seconds(child.pid), time.monotonic()
+        r1 = sum(_cpu_seconds(r.pid) for r in refs)
+        dead = [r.args for r in refs + [child] if r.poll() is not None]
+        if dead:
+            raise RuntimeError(f"ended during the measurement: {dead}")
         time.sleep(1.2)  # one more diagnostics message
         with sink.lock:
             lat = sorted(sink.latency_ns)
             seqs = {k: list(v) for k, v in sink.seqs.items()}
             diag = dict(sink.diag)
+        dds_counts: Dict[str, int] = {}
+        if reader is not None:
+            out, _ = reader.communicate(timeout=seconds + 30)
+            dds_counts = json.loads(out.strip().splitlines()[-1]) if out.strip() else {}
+            reader = None
+        fox_count = fox.stop() if fox is not None else 0
     finally:
-        if child is not None:
-            child.terminate()
+        for proc in [child, reader, *refs]:
+            if proc is None:
+                continue
+            proc.terminate()
             try:
-                child.communicate(timeout=20)
+                proc.communicate(timeout=20)
             except subprocess.TimeoutExpired:
-                child.kill()
-                child.communicate(timeout=10)
-        for sim in sims:
+                proc.kill()
+                proc.communicate(timeout=10)
+        for sim in sims + ref_sims:
             sim.stop()
         sub.undeclare()
         router.close()
@@ -139,11 +270,15 @@ def run(n: int, seconds: float, zenoh_mod: Any, extra: Optional[List[str]] = Non
     ok = (contiguous and n_wrench == n and len(rates) == n
           and all(abs(r - 1200) < 24 for r in rates) and lost <= 0.001 * max(received, 1))
     cpu = (c1 - c0) / (t1 - t0)
+    ref_cpu = (r1 - r0) / (t1 - t0)
 
     def pct(p: float) -> float:
         return lat[min(len(lat) - 1, int(p * len(lat)))] / 1e6 if lat else float("nan")
 
     return {"sensors": n, "cpu_total": cpu, "cpu_per_sensor": cpu / n,
+            "stream_cpu_per_sensor": ref_cpu / n,
+            "ratio": cpu / ref_cpu if ref_cpu > 0 else float("inf"),
+            "dds_messages": sum(dds_counts.values()), "foxglove_messages": fox_count,
             "latency_p50_ms": pct(0.50), "latency_p99_ms": pct(0.99),
             "messages": sum(len(v) for v in seqs.values()), "contiguous": contiguous,
             "lost": lost, "gaps": gaps, "rates": rates, "no_loss": ok}
@@ -157,24 +292,36 @@ def main(argv: Optional[List[str]] = None) -> int:
     p.add_argument("--seconds", type=float, default=10.0)
     p.add_argument("--max-sensors", type=int, default=16)
     p.add_argument("--latency", default="0.002", help="the bridge's --latency")
+    p.add_argument("--all", action="store_true",
+                   help="also DDS (with a Cyclone DDS reader) and Foxglove (with a client)")
+    p.add_argument("--dds-reader", metavar="DOMAIN,N,SECONDS", help=argparse.SUPPRESS)
     a = p.parse_args(argv)
+    if a.dds_reader:
+        d, n_, secs_ = a.dds_reader.split(",")
+        return dds_reader(int(d), int(n_), float(secs_))
     secs = 3.0 if a.quick else a.seconds
-    extra = ["--latency", a.latency]
+    extra: List[str] = []
     print(f"leptrino-bridge figures: {os.cpu_count()} CPUs, load average "
-          f"{os.getloadavg()[0]:.1f}, {secs:g} s per run, --latency {a.latency}")
+          f"{os.getloadavg()[0]:.1f}, {secs:g} s per run, --latency {a.latency} (the bridge "
+          f"and `leptrino stream`), transports: "
+          f"{'Zenoh + DDS + Foxglove' if a.all else 'Zenoh'}")
     results: List[Dict[str, Any]] = []
     counts = [1, 2] if a.quick else [1, 2, 4, 6, 8, 10, 12, 14, 16]
     best = 0
     for n in counts:
         if n > a.max_sensors:
             break
-        r = run(n, secs, zenoh, extra)
+        r = run(n, secs, zenoh, extra, a.latency, a.all)
         results.append(r)
         print(f"  {n:2d} sensors: CPU {100 * r['cpu_total']:5.1f} % "
-              f"({100 * r['cpu_per_sensor']:4.1f} % per sensor), latency p50 "
+              f"({100 * r['cpu_per_sensor']:4.1f} % per sensor; `leptrino stream` CSV beside it "
+              f"{100 * r['stream_cpu_per_sensor']:4.1f} % per sensor, ratio "
+              f"{r['ratio']:.2f}), latency p50 "
               f"{r['latency_p50_ms']:.2f} ms p99 {r['latency_p99_ms']:.2f} ms, "
               f"{r['messages']} messages, lost {r['lost']}, gaps {r['gaps']}, "
               f"contiguous {r['contiguous']}, rates {[round(x) for x in r['rates']]}"
+              + (f", DDS reader {r['dds_messages']}, Foxglove client {r['foxglove_messages']}"
+                 if a.all else "") +
               f" -> {'no loss' if r['no_loss'] else 'LOSS'}", flush=True)
         if not r["no_loss"]:
             break

@@ -9,10 +9,14 @@ import os
 import threading
 import time
 from dataclasses import dataclass, field
-from typing import Any, List, Optional
+from typing import TYPE_CHECKING, Any, List, Optional, Tuple
 
 from .mcap_out import FileExistsRefused, McapRecorder
 from .node import NodeOptions, SensorNode, SensorSpec
+
+if TYPE_CHECKING:
+    from .dds import DdsOptions, DdsParticipant
+    from .foxglove_out import FoxgloveServer
 
 log = logging.getLogger("leptrino.bridge")
 
@@ -52,7 +56,7 @@ def open_session(zopts: ZenohOptions) -> Any:
 
 
 class Bridge:
-    """Sensors to Zenoh (rmw_zenoh layout) and/or MCAP.
+    """Sensors to Zenoh (rmw_zenoh layout), DDS (ROS 2 on DDS), Foxglove live and/or MCAP.
 
     zenoh_opts None: no network at all. mcap_path: record there (refusing
     an existing file unless force). Construction opens everything (and undoes
@@ -63,19 +67,23 @@ class Bridge:
 
     def __init__(self, sensors: List[SensorSpec], node_opts: Optional[NodeOptions] = None,
                  zenoh_opts: Optional[ZenohOptions] = None, mcap_path: Optional[str] = None,
-                 force: bool = False, diagnostics_period_s: float = 1.0) -> None:
+                 force: bool = False, diagnostics_period_s: float = 1.0,
+                 dds_opts: Optional[DdsOptions] = None,
+                 foxglove: Optional[Tuple[str, int]] = None) -> None:
         if not sensors:
             raise ValueError("no sensors: give --sensor NAME=PORT or --sim NAME")
         names = [s.name for s in sensors]
         dup = {n for n in names if names.count(n) > 1}
         if dup:
             raise ValueError(f"sensor names must differ: {', '.join(sorted(dup))}")
-        if zenoh_opts is None and mcap_path is None:
-            raise ValueError("nothing to do: no Zenoh session and no MCAP file")
+        if zenoh_opts is None and mcap_path is None and dds_opts is None and foxglove is None:
+            raise ValueError("nothing to do: no Zenoh, DDS, Foxglove or MCAP output")
         self.opts = node_opts or NodeOptions()
         self.period = diagnostics_period_s
         self.session: Any = None
         self.mcap: Optional[McapRecorder] = None
+        self.dds: Optional[DdsParticipant] = None
+        self.foxglove: Optional[FoxgloveServer] = None
         self.nodes: List[SensorNode] = []
         self._stop = threading.Event()
         self._diag: Optional[threading.Thread] = None
@@ -89,10 +97,23 @@ class Bridge:
                 self.nodes.append(SensorNode(spec, self.opts))
             if zenoh_opts is not None:
                 self.session = open_session(zenoh_opts)
-            if mcap_path is not None:
+            if foxglove is not None:  # the port is taken now: a failure leaves no file
+                from .foxglove_out import FoxgloveServer
+
+                self.foxglove = FoxgloveServer(*foxglove)
+            if dds_opts is not None:
+                from .dds import DdsParticipant
+
+                self.dds = DdsParticipant(self.opts.domain, dds_opts)
+            if mcap_path is not None:  # last: whatever failed before, no file was made
                 self.mcap = McapRecorder(mcap_path, force)
             for i, node in enumerate(self.nodes):
-                node.declare(i, lambda: next(ids), self.session, self.mcap)
+                node.declare(i, lambda: next(ids), self.session, self.mcap, self.dds,
+                             self.foxglove)
+            if self.dds is not None:
+                self.dds.announce()
+            if self.foxglove is not None:
+                self.foxglove.add_services()
         except BaseException:
             self.close()
             raise
@@ -151,6 +172,12 @@ class Bridge:
         for n in self.nodes:
             n.close()
         self.nodes = []
+        if self.dds is not None:
+            self.dds.close()
+            self.dds = None
+        if self.foxglove is not None:
+            self.foxglove.close()
+            self.foxglove = None
         if self.session is not None:
             try:
                 self.session.close()

@@ -5,7 +5,9 @@ fields in order, each aligned to its own size (at most 8) counted from the
 end of the header; a string is a uint32 length that counts its terminating
 NUL, then the bytes and the NUL; a sequence is a uint32 count and the
 elements. This is what rmw_zenoh (like the DDS middlewares) puts on the wire
-and what an MCAP "cdr" channel holds.
+and what an MCAP "cdr" channel holds. The per-sample message,
+WrenchStamped, is serialized in C (lep_ros_wrench_cdr, wrench_batch.py);
+here are the rare ones (diagnostics, service answers).
 """
 
 from __future__ import annotations
@@ -70,33 +72,6 @@ class CdrWriter:
 
     def getvalue(self) -> bytes:
         return b"".join(self._parts)
-
-
-def split_stamp(t_utc: float) -> Tuple[int, int]:
-    """Seconds since the epoch as builtin_interfaces/Time (sec, nanosec)."""
-    ns = int(round(t_utc * 1e9))
-    return ns // 1_000_000_000, ns % 1_000_000_000
-
-
-class WrenchStampedEncoder:
-    """geometry_msgs/msg/WrenchStamped for one frame_id, with one precompiled
-    struct (the frame_id, its length and the padding before the doubles are
-    constant), so that encoding a sample is one struct.pack."""
-
-    def __init__(self, frame_id: str) -> None:
-        raw = frame_id.encode("utf-8")
-        if b"\x00" in raw:
-            raise ValueError("frame_id cannot hold a NUL character")
-        mid = struct.pack("<I", len(raw) + 1) + raw + b"\x00"
-        end = 8 + len(mid)
-        mid += b"\x00" * (-end % 8)
-        self._mid = mid
-        self._st = struct.Struct(f"<4siI{len(mid)}s6d")
-
-    def encode(self, sec: int, nanosec: int, wrench: Sequence[float]) -> bytes:
-        """wrench: Fx Fy Fz (N), Mx My Mz (N·m)."""
-        fx, fy, fz, mx, my, mz = wrench
-        return self._st.pack(CDR_LE_HEADER, sec, nanosec, self._mid, fx, fy, fz, mx, my, mz)
 
 
 #: diagnostic_msgs/msg/DiagnosticStatus levels.

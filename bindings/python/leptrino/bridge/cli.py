@@ -1,8 +1,9 @@
-"""leptrino-bridge: Leptrino sensors on Zenoh in ROS 2's layout (rmw_zenoh), and to MCAP.
+"""leptrino-bridge: Leptrino sensors as ROS 2 topics on Zenoh (rmw_zenoh), DDS, Foxglove and MCAP.
 
     leptrino-bridge --sim a --sim b                       # two virtual sensors, router on :7447
     leptrino-bridge --sensor left=/dev/ttyACM0 --connect tcp/192.0.2.10:7447
     leptrino-bridge --sim a --mcap out.mcap --duration 10 # no network at all
+    leptrino-bridge --sim a --dds --foxglove              # ROS 2 on DDS, Foxglove live
 
 Exit status: 0 after a clean stop (Ctrl-C, SIGTERM, --duration), 2 for a bad
 argument or a sensor/file that cannot be opened.
@@ -128,11 +129,30 @@ def build_parser() -> argparse.ArgumentParser:
                    help="listen on this endpoint (peer mode; repeatable)")
     z.add_argument("--mode", choices=("peer", "client"), default="peer")
     z.add_argument("--scout", action="store_true", help="enable multicast scouting (off)")
+    z.add_argument("--zenoh", action="store_true",
+                   help="Zenoh with its defaults beside --dds/--foxglove/--mcap")
     z.add_argument("--no-zenoh", action="store_true",
-                   help="no network (implied by --mcap without --connect/--listen/--scout)")
+                   help="no Zenoh (implied by --mcap, --dds or --foxglove without "
+                        "--zenoh/--connect/--listen/--scout)")
     z.add_argument("--domain", type=_count, default=None, metavar="ID",
                    help="ROS domain id (default: $ROS_DOMAIN_ID, else 0)")
     z.add_argument("--namespace", default="/", metavar="NS", help="ROS namespace (default /)")
+    d = p.add_argument_group("DDS (ROS 2 on Fast DDS or Cyclone DDS)")
+    d.add_argument("--dds", action="store_true",
+                   help="publish on DDS as a ROS 2 node (domain --domain; Cyclone DDS, "
+                        "CYCLONEDDS_URI honoured)")
+    d.add_argument("--dds-interface", metavar="ADDR", default=None,
+                   help="DDS on this interface address only, no multicast, ADDR as its peer "
+                        "(e.g. 127.0.0.1)")
+    d.add_argument("--ros-distro", choices=("humble", "jazzy", "kilted", "rolling"),
+                   default="jazzy",
+                   help="layout of the node announcement (ros_discovery_info): humble "
+                        "(24-byte Gid) or jazzy and later (16 bytes; default)")
+    f = p.add_argument_group("Foxglove live")
+    f.add_argument("--foxglove", nargs="?", const="127.0.0.1:8765", default=None,
+                   metavar="[HOST:]PORT",
+                   help="serve the topics and the tare services to Foxglove over WebSocket "
+                        "(default 127.0.0.1:8765; 0.0.0.0:8765 for other hosts)")
     o = p.add_argument_group("output and run")
     o.add_argument("--mcap", metavar="FILE", help="record the same messages to a ROS 2 MCAP file")
     o.add_argument("--overwrite", action="store_true",
@@ -168,25 +188,56 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         namespace = rz.normalize_namespace(a.namespace)
     except ValueError as e:
         p.error(str(e))
-    wants_net = bool(a.connect or a.listen or a.scout)
+    wants_net = bool(a.zenoh or a.connect or a.listen or a.scout)
     if a.no_zenoh and wants_net:
-        p.error("--no-zenoh with --connect/--listen/--scout")
+        p.error("--no-zenoh with --zenoh/--connect/--listen/--scout")
+    others = a.mcap is not None or a.dds or a.foxglove is not None
     zopts = None
-    if not a.no_zenoh and (wants_net or a.mcap is None):
+    if not a.no_zenoh and (wants_net or not others):
         from .bridge import ZenohOptions
 
         zopts = ZenohOptions(mode=a.mode, connect=a.connect, listen=a.listen, scout=a.scout)
-    if a.mcap is None and zopts is None:
-        p.error("--no-zenoh needs --mcap FILE")
+    if not others and zopts is None:
+        p.error("--no-zenoh needs --mcap FILE, --dds or --foxglove")
+    dds_opts = None
+    if a.dds_interface is not None and not a.dds:
+        p.error("--dds-interface needs --dds")
+    if a.dds:
+        from .dds import DdsOptions, config_xml
+
+        try:
+            config_xml(a.dds_interface)
+        except ValueError:
+            p.error(f"--dds-interface {a.dds_interface!r}: expected an IP address")
+        dds_opts = DdsOptions(interface=a.dds_interface, distro=a.ros_distro)
+    fox = None
+    if a.foxglove is not None:
+        from .foxglove_out import parse_address
+
+        try:
+            fox = parse_address(a.foxglove)
+        except ValueError as e:
+            p.error(str(e))
     opts = NodeOptions(domain=domain, namespace=namespace, tare_samples=a.retare or 100,
                        tare_at_start=a.tare, lowpass_hz=a.lowpass, rotation=a.rotate,
                        latency_s=a.latency)
+
+    for wanted, module, package in ((a.dds, "cyclonedds", "cyclonedds"),
+                                    (a.foxglove is not None, "foxglove", "foxglove-sdk")):
+        if wanted:
+            try:
+                __import__(module)
+            except ImportError:
+                print(f"{PROG}: {'--dds' if module == 'cyclonedds' else '--foxglove'} needs "
+                      f"the {package} package (Python >= 3.10): "
+                      "pip install \"leptrino[bridge]\"", file=sys.stderr)
+                return 2
 
     from ..errors import LeptrinoError
     from .bridge import Bridge
 
     try:
-        bridge = Bridge(specs, opts, zopts, a.mcap, a.overwrite)
+        bridge = Bridge(specs, opts, zopts, a.mcap, a.overwrite, dds_opts=dds_opts, foxglove=fox)
     except (LeptrinoError, OSError, ValueError, TypeError) as e:
         print(f"{PROG}: {e}", file=sys.stderr)
         return exit_code(e)
@@ -200,10 +251,11 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     old = {sig: signal.signal(sig, on_signal) for sig in (signal.SIGINT, signal.SIGTERM)}
     try:
         bridge.start()
+        names = ", ".join(s.name for s in specs)
         reached = False
         if bridge.session is not None:
             print(f"{PROG}: zenoh session {bridge.zid}, domain {domain}, namespace "
-                  f"{namespace}: " + ", ".join(s.name for s in specs), file=sys.stderr)
+                  f"{namespace}: {names}", file=sys.stderr)
             reached = bool(bridge.reachable())
             if not reached:
                 where = ", ".join(zopts.connect) if zopts and zopts.connect else (
@@ -211,6 +263,12 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
                 print(f"{PROG}: warning: no Zenoh router or peer reachable ({where}): nobody "
                       "can receive the topics until one is (start `ros2 run rmw_zenoh_cpp "
                       "rmw_zenohd`, or give --connect / --listen / --scout)", file=sys.stderr)
+        if bridge.dds is not None:
+            print(f"{PROG}: DDS domain {domain} ({a.ros_distro} node announcement), "
+                  f"namespace {namespace}: {names}", file=sys.stderr)
+        if bridge.foxglove is not None:
+            print(f"{PROG}: Foxglove: ws://{bridge.foxglove.host}:{bridge.foxglove.port}",
+                  file=sys.stderr)
         bridge.wait(a.duration)
         if bridge.session is not None and not reached and bridge.reachable():
             reached = True

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import os
 import threading
-from typing import IO, Dict, List, Optional
+from typing import IO, Dict, List, Optional, Sequence
 
 from .typehash import MESSAGES, type_description
 
@@ -102,13 +102,21 @@ class McapRecorder:
     def write(self, channel_id: int, payload: bytes, publish_ns: int, log_ns: int) -> None:
         """One message: publish_ns is the message's own time (header stamp),
         log_ns when the bridge handled it."""
+        self.write_batch(channel_id, (payload,), (publish_ns,), log_ns)
+
+    def write_batch(self, channel_id: int, payloads: Sequence[bytes], publish_ns: Sequence[int],
+                    log_ns: int) -> None:
+        """Several messages of one channel, handled at log_ns."""
         with self._lock:
             if self._f is None:
                 return
-            self._seq[channel_id] += 1
-            self._w.add_message(channel_id, log_time=log_ns, data=payload,
-                                publish_time=publish_ns, sequence=self._seq[channel_id])
-            self.messages += 1
+            seq = self._seq[channel_id]
+            add = self._w.add_message
+            for p, t in zip(payloads, publish_ns):
+                seq += 1
+                add(channel_id, log_time=log_ns, data=p, publish_time=t, sequence=seq)
+            self._seq[channel_id] = seq
+            self.messages += len(payloads)
 
     def close(self) -> None:
         """Finish the file (summary, footer) and close it. Idempotent."""

@@ -2,13 +2,14 @@
 
 A SensorNode opens a leptrino.Sensor (the library's session does the tare,
 the low-pass, the rotation, the reconnects, the health and the timestamps)
-and runs one thread that turns each sample the session delivers into two
-geometry_msgs/WrenchStamped messages (`wrench`: the session's processed
-values; `wrench_raw`: the raw counts in N and N·m) and hands them to the
-outputs: Zenoh publishers in rmw_zenoh's layout and/or an MCAP file. The
-bridge calls publish_diagnostics() once a second, and the tare/untare
-services call tare()/untare() from Zenoh's threads (the session allows
-that beside the reading thread).
+and runs one thread that reads the session in batches and turns each batch,
+in one C call (wrench_batch.py), into two geometry_msgs/WrenchStamped
+messages per sample (`wrench`: the session's processed values;
+`wrench_raw`: the raw counts in N and N·m), handed to the outputs: Zenoh
+publishers in rmw_zenoh's layout, an MCAP file, DDS writers, Foxglove
+channels. The bridge calls publish_diagnostics() once a second, and the
+tare/untare services and command topics call tare()/untare() from the
+transports' threads (the session allows that beside the reading thread).
 """
 
 from __future__ import annotations
@@ -17,19 +18,23 @@ import logging
 import threading
 import time
 from dataclasses import dataclass, field
-from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
+from typing import Any, Callable, Dict, List, Optional, Protocol, Sequence, Tuple
 
-from .._backend import get_backend
+from .. import _constants as K
 from ..errors import LeptrinoError
 from ..sensor import Sensor
 from . import cdr
 from . import rmw_zenoh as rz
 from .mcap_out import McapRecorder
 from .typehash import rihs01
+from .wrench_batch import WrenchBatch
 
 log = logging.getLogger("leptrino.bridge")
 
 WRENCH = "geometry_msgs/msg/WrenchStamped"
+#: How often the reading thread takes the session's events while data flows
+#: (they feed the counters and the log; the session queues them meanwhile).
+EVENTS_PERIOD_S = 0.1
 DIAGNOSTICS = "diagnostic_msgs/msg/DiagnosticArray"
 TRIGGER = "std_srvs/srv/Trigger"
 
@@ -68,34 +73,23 @@ class NodeOptions:
     data_timeout_s: float = 1.0
 
 
-class RawToSI:
-    """Raw counts to N and N·m by the library's lep_sample_to_si (counts x
-    rated / full scale), with the C structs made once: about 2 us a call
-    where leptrino.sample_to_si, which makes them each time, takes 10.
-    One per thread."""
+class Output(Protocol):
+    """Another transport of a topic (dds.DdsWriter, foxglove_out.FoxgloveChannel):
+    publish() gets a batch of payloads with their stamps (ns) and the
+    publication time (ns); close() withdraws it."""
 
-    def __init__(self, rated: Sequence[float]) -> None:
-        be = get_backend()
-        self._fn = be.lib.lep_sample_to_si
-        self._s = be.new("lep_sample")
-        self._r = be.new("lep_rated")
-        for i, v in enumerate(rated):
-            self._r.axis[i] = float(v)
-        self._si = be.doubles(6)
-        self._raw = self._s.raw
+    def publish(self, payloads: Sequence[bytes], stamps: Sequence[int], now_ns: int) -> None:
+        ...
 
-    def __call__(self, raw: Sequence[int]) -> Tuple[float, ...]:
-        self._raw[0:6] = raw
-        self._fn(self._s, self._r, self._si)
-        si = self._si
-        return (si[0], si[1], si[2], si[3], si[4], si[5])
+    def close(self) -> None:
+        ...
 
 
 class Topic:
     """One publisher: its graph entity, its Zenoh publisher and/or MCAP
-    channel, and its sequence number."""
+    channel, further outputs, and its sequence number."""
 
-    __slots__ = ("entity", "gid", "pub", "cid", "mcap", "seq", "name")
+    __slots__ = ("entity", "gid", "pub", "cid", "mcap", "seq", "name", "outputs")
 
     def __init__(self, entity: rz.Entity, session: Any, mcap: Optional[McapRecorder],
                  qos_depth: int = 10) -> None:
@@ -105,6 +99,7 @@ class Topic:
         self.seq = 0
         self.pub: Any = None
         self.mcap = mcap
+        self.outputs: List[Output] = []
         self.cid = (mcap.channel(entity.name, entity.ros_type, qos_depth) if mcap is not None
                     else -1)
         if session is not None:
@@ -115,12 +110,22 @@ class Topic:
                 reliability=zenoh.Reliability.RELIABLE)
 
     def send(self, payload: bytes, stamp_ns: int) -> None:
-        self.seq += 1
+        self.send_batch((payload,), (stamp_ns,))
+
+    def send_batch(self, payloads: Sequence[bytes], stamps: Sequence[int]) -> None:
+        """Publish a batch: one time of publication, sequence numbers on."""
+        seq = self.seq
+        self.seq = seq + len(payloads)
         now = time.time_ns()
         if self.pub is not None:
-            self.pub.put(payload, attachment=rz.attachment(self.seq, now, self.gid))
+            put, pack, gid = self.pub.put, rz.ATTACHMENT.pack, self.gid
+            for p in payloads:
+                seq += 1
+                put(p, attachment=pack(seq, now, rz.GID_SIZE, gid))
         if self.mcap is not None:
-            self.mcap.write(self.cid, payload, stamp_ns, now)
+            self.mcap.write_batch(self.cid, payloads, stamps, now)
+        for out in self.outputs:
+            out.publish(payloads, stamps, now)
 
     def close(self) -> None:
         if self.pub is not None:
@@ -129,6 +134,12 @@ class Topic:
             except Exception:  # the session may be closing
                 pass
             self.pub = None
+        for out in self.outputs:
+            try:
+                out.close()
+            except Exception:
+                pass
+        self.outputs = []
 
 
 @dataclass
@@ -168,17 +179,18 @@ class SensorNode:
             spec.port, opts.timeout_s, sim=spec.sim, tare=opts.tare_at_start,
             lowpass=opts.lowpass_hz, rotation=opts.rotation, degrees=False, reconnect=True,
             latency=opts.latency_s, data_timeout=opts.data_timeout_s)
-        self._to_si = RawToSI(self.sensor.rated)  # wrench_raw
         try:
-            self._enc = cdr.WrenchStampedEncoder(spec.frame_id)
+            self._batch = WrenchBatch(self.sensor._be, self.sensor.rated, spec.frame_id)
         except ValueError:
             self.sensor.close()
             raise
 
     def declare(self, node_id: int, next_entity_id: Callable[[], int], session: Any = None,
-                mcap: Optional[McapRecorder] = None) -> None:
+                mcap: Optional[McapRecorder] = None, dds: Any = None, fox: Any = None) -> None:
         """Declare the node, its topics and services on session (a
-        zenoh.Session, or None) and its channels in mcap (or None)."""
+        zenoh.Session, or None), its channels in mcap (or None), its writers
+        and command topics on dds (a DdsParticipant, or None) and its
+        channels and services on fox (a FoxgloveServer, or None)."""
         spec, opts = self.spec, self.opts
         ns = rz.normalize_namespace(opts.namespace)
         zid = str(session.zid()) if session is not None else "0"
@@ -201,6 +213,18 @@ class SensorNode:
             "tare": entity(rz.SERVICE, "tare", TRIGGER),
             "untare": entity(rz.SERVICE, "untare", TRIGGER),
         }
+        node = (ns, spec.name)
+        for t in self.wrench, self.wrench_raw, self.diagnostics:
+            if dds is not None:
+                t.outputs.append(dds.writer(node, t.name, t.entity.ros_type))
+            if fox is not None:
+                t.outputs.append(fox.channel(t.name, t.entity.ros_type))
+        calls = {"tare": self.tare, "untare": self.untare}
+        for svc, ent in self.services.items():
+            if dds is not None:  # a command topic of the service's name
+                dds.command(node, ent.name, calls[svc])
+            if fox is not None:
+                fox.service(ent.name, calls[svc])
         if session is not None:
             for svc, ent in self.services.items():
                 self._queryables.append(session.declare_queryable(
@@ -256,50 +280,58 @@ class SensorNode:
 
     # -- data ----------------------------------------------------------------
     def _run(self) -> None:
-        stream = self.sensor.stream()
-        it = iter(stream)
-        enc = self._enc.encode
-        to_si = self._to_si
+        """Read the session in batches; each batch is serialized in one C
+        call and published topic by topic (no Python object per sample
+        but the payloads the transports take)."""
+        sensor = self.sensor
+        lib = sensor._be.lib
+        wb = self._batch
+        c_batch = wb.arrays.c
         wrench, wrench_raw, c = self.wrench, self.wrench_raw, self.counters
         assert wrench is not None and wrench_raw is not None
+        base = sensor._delivered
+        timeout_ms = max(1, int(self.opts.timeout_s * 1000))
         failing = False
-        last_ns = 0
+        silent_since = next_events = time.monotonic()
         while not self._stop.is_set():
+            c_batch.n = 0
             try:
-                s = next(it)
-            except StopIteration:
+                rc = int(lib.lep_session_read(sensor._live(), c_batch, timeout_ms))
+            except LeptrinoError:  # closed under us
                 break
-            except LeptrinoError as e:
-                # The session reconnects inside its reads; until it is back
-                # each read times out. Count it, say it once, go on.
-                c.read_errors += 1
-                c.last_error = str(e)
-                if not failing:
-                    log.warning("%s: %s (the session keeps trying)", self.spec.name, e)
-                    failing = True
-                self._take_events(stream)
+            n = int(c_batch.n)
+            sensor._delivered += n
+            now = time.monotonic()
+            if not n or now >= next_events:  # the events feed counters and logs only
+                self._take_events(sensor._drain_events(base))
+                next_events = now + EVENTS_PERIOD_S
+            if n:
+                if failing:
+                    log.warning("%s: data again", self.spec.name)
+                    failing = False
+                w, r, stamps = wb.encode()
+                wrench.send_batch(w, stamps)
+                wrench_raw.send_batch(r, stamps)
+                c.samples += n
+                c.last_sample_mono = float(wb.arrays.t_mono[n - 1])
+                silent_since = now
                 continue
-            if failing:
-                log.warning("%s: data again", self.spec.name)
-                failing = False
-            # The session's t_utc (a double: 238 ns steps today) can step back
-            # by a step or a few us when it re-reads the wall clock; a ROS
-            # stream's stamps should not: hold the previous one then.
-            ns = int(round(s.t_utc * 1e9))
-            if ns < last_ns:
-                ns = last_ns
-            last_ns = ns
-            sec, nsec = divmod(ns, 1_000_000_000)
-            wrench.send(enc(sec, nsec, s.si), ns)
-            wrench_raw.send(enc(sec, nsec, to_si(s.raw)), ns)
-            c.samples += 1
-            c.last_sample_mono = s.t
-            if stream.events:
-                self._take_events(stream)
-        stream.close()
+            if rc == K.LEP_E_END:
+                break
+            if rc == K.LEP_E_TIMEOUT and now - silent_since < self.opts.data_timeout_s:
+                continue
+            # The session reconnects inside its reads; until it is back each
+            # read fails or times out. Count it, say it once, go on.
+            c.read_errors += 1
+            c.last_error = (sensor._be.text(lib.lep_strerror(rc)) if rc != K.LEP_E_TIMEOUT
+                            else "no data")
+            if not failing:
+                log.warning("%s: %s (the session keeps trying)", self.spec.name, c.last_error)
+                failing = True
+            if rc < 0 and rc != K.LEP_E_TIMEOUT:
+                self._stop.wait(0.05)
 
-    def _take_events(self, stream: Any) -> None:
-        evs, stream.events = stream.events, []
+    def _take_events(self, evs: Sequence[Any]) -> None:
         for ev in evs:
             self.counters.events[ev.type] = self.counters.events.get(ev.type, 0) + 1
             if ev.type in ("disconnected", "reconnected"):

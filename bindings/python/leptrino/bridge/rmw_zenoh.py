@@ -28,8 +28,9 @@ from typing import Tuple
 
 ADMIN_SPACE = "@ros2_lv"
 GID_SIZE = 16
-_ATTACHMENT = struct.Struct("<qqB16s")
-ATTACHMENT_SIZE = _ATTACHMENT.size  # 33
+#: sequence number, source timestamp (ns), GID length, GID (attachment_helpers.cpp)
+ATTACHMENT = struct.Struct("<qqB16s")
+ATTACHMENT_SIZE = ATTACHMENT.size  # 33
 
 NODE, PUBLISHER, SERVICE = "NN", "MP", "SS"
 
@@ -122,14 +123,14 @@ def attachment(sequence_number: int, source_timestamp_ns: int, gid: bytes) -> by
     """The 33-byte attachment of a put, a request or a reply."""
     if len(gid) != GID_SIZE:
         raise ValueError("a GID is 16 bytes")
-    return _ATTACHMENT.pack(sequence_number, source_timestamp_ns, GID_SIZE, gid)
+    return ATTACHMENT.pack(sequence_number, source_timestamp_ns, GID_SIZE, gid)
 
 
 def parse_attachment(data: bytes) -> Tuple[int, int, bytes]:
     """(sequence number, source timestamp ns, GID); ValueError when malformed."""
     if len(data) != ATTACHMENT_SIZE:
         raise ValueError(f"attachment is {len(data)} bytes, not {ATTACHMENT_SIZE}")
-    seq, ts, n, gid = _ATTACHMENT.unpack(data)
+    seq, ts, n, gid = ATTACHMENT.unpack(data)
     if n != GID_SIZE:
         raise ValueError(f"attachment GID length {n}, not {GID_SIZE}")
     return seq, ts, gid

@@ -35,6 +35,7 @@ _ARRAY, _BOUNDED_SEQ, _UNBOUNDED_SEQ = 48, 96, 144
 MESSAGES: Dict[str, str] = {
     "builtin_interfaces/msg/Time": "int32 sec\nuint32 nanosec\n",
     "std_msgs/msg/Header": "builtin_interfaces/Time stamp\nstring frame_id\n",
+    "std_msgs/msg/Empty": "",
     "geometry_msgs/msg/Vector3": "float64 x\nfloat64 y\nfloat64 z\n",
     "geometry_msgs/msg/Wrench": "Vector3 force\nVector3 torque\n",
     "geometry_msgs/msg/WrenchStamped": "std_msgs/Header header\nWrench wrench\n",

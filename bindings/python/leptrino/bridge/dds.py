@@ -1,0 +1,351 @@
+# cyclonedds' IDL annotations (types.sequence[T], types.array[T, N], bounded_str)
+# are its own runtime markers, not PEP 484 types:
+# mypy: disable-error-code="type-arg, arg-type, var-annotated, valid-type"
+"""ROS 2 on DDS: the bridge's topics as a ROS 2 node on Cyclone DDS would
+publish them, for ROS 2 nodes on Fast DDS (rmw_fastrtps_cpp, the default
+middleware) and Cyclone DDS (rmw_cyclonedds_cpp). Needs the PyPI
+`cyclonedds` package (the "bridge" extra).
+
+The conventions (docs/bridge.md, "DDS", cites the sources):
+- topic names: "rt" + the ROS name ("rt/cell/a/wrench"); type names: the
+  ROS type as package::msg::dds_::Type_, every nested type alike; keyless;
+- data: XCDR1 little-endian (encapsulation 00 01 00 00), the very payload
+  the bridge puts on Zenoh and in MCAP (serialized in C for the wrench
+  topics); writers RELIABLE, VOLATILE, KEEP_LAST(10);
+- USER_DATA: "enclave=/;" on the participant, "typehash=RIHS01_...;" on each
+  writer and reader;
+- the nodes announced on "ros_discovery_info"
+  (rmw_dds_common/msg/ParticipantEntitiesInfo; the Gid is 16 bytes from Iron
+  on, 24 in Humble: --ros-distro);
+- tare/untare: a `NAME/tare` and a `NAME/untare` topic (std_msgs/msg/Empty)
+  that any DDS middleware can publish to; ROS 2 services are not served on
+  DDS (docs/bridge.md says why).
+"""
+
+# no "from __future__ import annotations": the IDL classes below are made
+# in a function and cyclonedds resolves their annotations as objects
+
+import logging
+import os
+import threading
+from dataclasses import dataclass
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
+
+log = logging.getLogger("leptrino.bridge")
+
+#: --ros-distro: the Gid length of rmw_dds_common/msg/Gid in that release.
+GID_LENGTH = {"humble": 24, "jazzy": 16, "kilted": 16, "rolling": 16}
+
+
+def topic_name(fq_name: str) -> str:
+    """/cell/a/wrench -> rt/cell/a/wrench (ROS topic prefix "rt")."""
+    return "rt" + fq_name
+
+
+def config_xml(interface: Optional[str]) -> Optional[str]:
+    """Cyclone DDS configuration restricting it to one interface address,
+    with no multicast and that address as its unicast peer (None: no
+    restriction). Combined with CYCLONEDDS_URI by domain_config()."""
+    if interface is None:
+        return None
+    import ipaddress
+
+    ipaddress.ip_address(interface)  # ValueError for a name that is not an address
+    return ("<CycloneDDS><Domain Id=\"any\"><General><Interfaces>"
+            f"<NetworkInterface address=\"{interface}\"/></Interfaces>"
+            "<AllowMulticast>false</AllowMulticast></General>"
+            f"<Discovery><ParticipantIndex>auto</ParticipantIndex>"
+            "<MaxAutoParticipantIndex>60</MaxAutoParticipantIndex>"
+            f"<Peers><Peer address=\"{interface}\"/></Peers></Discovery>"
+            "</Domain></CycloneDDS>")
+
+
+def domain_config(interface: Optional[str]) -> Optional[str]:
+    """The configuration given to the domain: CYCLONEDDS_URI (files or XML,
+    comma-separated, as Cyclone reads it) then --dds-interface's fragment,
+    which wins where they overlap. None: Cyclone reads CYCLONEDDS_URI itself."""
+    extra = config_xml(interface)
+    if extra is None:
+        return None
+    env = os.environ.get("CYCLONEDDS_URI", "").strip()
+    return f"{env},{extra}" if env else extra
+
+
+@dataclass
+class DdsOptions:
+    """How the DDS participant is made."""
+
+    interface: Optional[str] = None  # --dds-interface ADDR
+    distro: str = "jazzy"  # --ros-distro: the Gid layout of ros_discovery_info
+
+
+class _Types:
+    """The IDL types, named as rosidl names them for DDS."""
+
+    def __init__(self, gid_len: int) -> None:
+        from dataclasses import dataclass as dc
+
+        from cyclonedds.idl import IdlStruct
+        from cyclonedds.idl import types as t
+
+        @dc
+        class Time(IdlStruct, typename="builtin_interfaces::msg::dds_::Time_"):
+            sec: t.int32
+            nanosec: t.uint32
+
+        @dc
+        class Header(IdlStruct, typename="std_msgs::msg::dds_::Header_"):
+            stamp: Time
+            frame_id: str
+
+        @dc
+        class Vector3(IdlStruct, typename="geometry_msgs::msg::dds_::Vector3_"):
+            x: t.float64
+            y: t.float64
+            z: t.float64
+
+        @dc
+        class Wrench(IdlStruct, typename="geometry_msgs::msg::dds_::Wrench_"):
+            force: Vector3
+            torque: Vector3
+
+        @dc
+        class WrenchStamped(IdlStruct, typename="geometry_msgs::msg::dds_::WrenchStamped_"):
+            header: Header
+            wrench: Wrench
+
+        @dc
+        class KeyValue(IdlStruct, typename="diagnostic_msgs::msg::dds_::KeyValue_"):
+            key: str
+            value: str
+
+        @dc
+        class DiagnosticStatus(IdlStruct,
+                               typename="diagnostic_msgs::msg::dds_::DiagnosticStatus_"):
+            level: t.uint8
+            name: str
+            message: str
+            hardware_id: str
+            values: t.sequence[KeyValue]
+
+        @dc
+        class DiagnosticArray(IdlStruct,
+                              typename="diagnostic_msgs::msg::dds_::DiagnosticArray_"):
+            header: Header
+            status: t.sequence[DiagnosticStatus]
+
+        @dc
+        class Empty(IdlStruct, typename="std_msgs::msg::dds_::Empty_"):
+            structure_needs_at_least_one_member: t.uint8
+
+        @dc
+        class Gid(IdlStruct, typename="rmw_dds_common::msg::dds_::Gid_"):
+            data: t.array[t.uint8, gid_len]
+
+        @dc
+        class NodeEntitiesInfo(IdlStruct,
+                               typename="rmw_dds_common::msg::dds_::NodeEntitiesInfo_"):
+            node_namespace: t.bounded_str[256]
+            node_name: t.bounded_str[256]
+            reader_gid_seq: t.sequence[Gid]
+            writer_gid_seq: t.sequence[Gid]
+
+        @dc
+        class ParticipantEntitiesInfo(
+                IdlStruct, typename="rmw_dds_common::msg::dds_::ParticipantEntitiesInfo_"):
+            gid: Gid
+            node_entities_info_seq: t.sequence[NodeEntitiesInfo]
+
+        self.Time, self.Header, self.Vector3, self.Wrench = Time, Header, Vector3, Wrench
+        self.WrenchStamped, self.KeyValue = WrenchStamped, KeyValue
+        self.DiagnosticStatus, self.DiagnosticArray = DiagnosticStatus, DiagnosticArray
+        self.Empty, self.Gid, self.NodeEntitiesInfo = Empty, Gid, NodeEntitiesInfo
+        self.ParticipantEntitiesInfo = ParticipantEntitiesInfo
+        self.by_ros = {
+            "geometry_msgs/msg/WrenchStamped": WrenchStamped,
+            "diagnostic_msgs/msg/DiagnosticArray": DiagnosticArray,
+            "std_msgs/msg/Empty": Empty,
+        }
+
+
+class DdsWriter:
+    """One ROS 2 publisher on DDS: writes payloads already in CDR (the
+    bridge's bytes) without making a Python sample of them."""
+
+    def __init__(self, dds: "DdsParticipant", fq_name: str, ros_type: str) -> None:
+        from cyclonedds._clayer import ddspy_write
+        from cyclonedds.pub import DataWriter
+        from cyclonedds.topic import Topic
+
+        from .typehash import rihs01
+
+        self.topic = Topic(dds.participant, topic_name(fq_name), dds.types.by_ros[ros_type],
+                           qos=dds.topic_qos())
+        self.writer = DataWriter(dds.participant, self.topic,
+                                 qos=dds.endpoint_qos(rihs01(ros_type), reliable=True))
+        self.gid = self.writer.guid.bytes
+        self._ref = self.writer._ref
+        self._write = ddspy_write
+
+    def publish(self, payloads: Sequence[bytes], stamps: Sequence[int], now_ns: int) -> None:
+        write, ref = self._write, self._ref
+        for p in payloads:
+            rc = write(ref, p if not len(p) & 3 else pad4(p))
+            if rc < 0:
+                log.debug("dds write: %d", rc)
+
+    def close(self) -> None:
+        self.writer = None  # type: ignore[assignment]
+        self.topic = None  # type: ignore[assignment]
+
+
+def pad4(payload: bytes) -> bytes:
+    """A serialized sample padded to a multiple of 4 bytes, as Cyclone's
+    Python writer pads its own."""
+    return payload + b"\x00" * (-len(payload) % 4)
+
+
+class DdsParticipant:
+    """The bridge's one DDS participant (domain, USER_DATA enclave=/;), its
+    ros_discovery_info writer, its writers and its command readers."""
+
+    def __init__(self, domain: int, opts: DdsOptions) -> None:
+        from cyclonedds.core import Qos
+        from cyclonedds.domain import Domain, DomainParticipant
+        from cyclonedds.qos import Policy
+
+        if opts.distro not in GID_LENGTH:
+            raise ValueError(f"--ros-distro {opts.distro!r}: one of {', '.join(GID_LENGTH)}")
+        self.Policy = Policy
+        self.Qos = Qos
+        self.types = _Types(GID_LENGTH[opts.distro])
+        self.gid_len = GID_LENGTH[opts.distro]
+        cfg = domain_config(opts.interface)
+        try:
+            self._domain = Domain(domain, cfg) if cfg is not None else None
+            self.participant = DomainParticipant(domain,
+                                                 qos=Qos(Policy.Userdata(b"enclave=/;")))
+        except Exception as e:  # cyclonedds' DDSException: a bad configuration, no interface
+            raise OSError(f"DDS domain {domain}: {e}") from None
+        self._nodes: Dict[Tuple[str, str], Tuple[List[bytes], List[bytes]]] = {}
+        self._lock = threading.Lock()
+        self._readers: List[Any] = []
+        self._commands = _CommandRunner()
+        from cyclonedds.pub import DataWriter
+        from cyclonedds.topic import Topic
+
+        info_qos = Qos(Policy.Reliability.Reliable(0), Policy.Durability.TransientLocal,
+                       Policy.History.KeepLast(1),
+                       Policy.DataRepresentation(use_cdrv0_representation=True))
+        self._info_topic = Topic(self.participant, "ros_discovery_info",
+                                 self.types.ParticipantEntitiesInfo, qos=info_qos)
+        self._info_writer = DataWriter(self.participant, self._info_topic, qos=info_qos)
+
+    def topic_qos(self) -> Any:
+        P = self.Policy
+        return self.Qos(P.DataRepresentation(use_cdrv0_representation=True))
+
+    def endpoint_qos(self, typehash: str, reliable: bool) -> Any:
+        P = self.Policy
+        rel = P.Reliability.Reliable(100_000_000) if reliable else P.Reliability.BestEffort
+        return self.Qos(rel, P.Durability.Volatile, P.History.KeepLast(10),
+                        P.DataRepresentation(use_cdrv0_representation=True),
+                        P.Userdata(f"typehash={typehash};".encode()))
+
+    def gid(self, guid16: bytes) -> Any:
+        return self.types.Gid(data=list(guid16) + [0] * (self.gid_len - 16))
+
+    def writer(self, node: Tuple[str, str], fq_name: str, ros_type: str) -> DdsWriter:
+        w = DdsWriter(self, fq_name, ros_type)
+        with self._lock:
+            self._nodes.setdefault(node, ([], []))[1].append(w.gid)
+        return w
+
+    def command(self, node: Tuple[str, str], fq_name: str, action: Callable[[], Any]) -> None:
+        """A `std_msgs/msg/Empty` topic: each sample received runs action
+        (in a thread of its own: a tare waits for its samples). The reader is
+        best effort, so that reliable and best-effort publishers both match."""
+        from cyclonedds.core import Listener
+        from cyclonedds.sub import DataReader
+        from cyclonedds.topic import Topic
+
+        from .typehash import rihs01
+
+        runner = self._commands
+
+        def on_data(reader: Any) -> None:
+            for s in reader.take(16):
+                if isinstance(s, self.types.Empty):
+                    runner.submit(fq_name, action)
+
+        topic = Topic(self.participant, topic_name(fq_name), self.types.Empty,
+                      qos=self.topic_qos())
+        reader = DataReader(self.participant, topic,
+                            qos=self.endpoint_qos(rihs01("std_msgs/msg/Empty"), reliable=False),
+                            listener=Listener(on_data_available=on_data))
+        self._readers.append((topic, reader))
+        with self._lock:
+            self._nodes.setdefault(node, ([], []))[0].append(reader.guid.bytes)
+
+    def announce(self) -> None:
+        """Publish the nodes on ros_discovery_info (after every endpoint is made)."""
+        T = self.types
+        with self._lock:
+            infos = [T.NodeEntitiesInfo(node_namespace=ns, node_name=name,
+                                        reader_gid_seq=[self.gid(g) for g in readers],
+                                        writer_gid_seq=[self.gid(g) for g in writers])
+                     for (ns, name), (readers, writers) in self._nodes.items()]
+        self._info_writer.write(T.ParticipantEntitiesInfo(
+            gid=self.gid(self.participant.guid.bytes), node_entities_info_seq=infos))
+
+    def close(self) -> None:
+        """Withdraw the nodes (an empty announcement), then delete everything."""
+        try:
+            T = self.types
+            self._info_writer.write(T.ParticipantEntitiesInfo(
+                gid=self.gid(self.participant.guid.bytes), node_entities_info_seq=[]))
+        except Exception:
+            pass
+        self._commands.stop()
+        self._readers = []
+        self._info_writer = None  # type: ignore[assignment]
+        self.participant = None  # type: ignore[assignment]
+        self._domain = None
+
+
+class _CommandRunner:
+    """Runs tare/untare commands one at a time off Cyclone's listener thread."""
+
+    def __init__(self) -> None:
+        self._cv = threading.Condition()
+        self._queue: List[Tuple[str, Callable[[], Any]]] = []
+        self._stop = False
+        self._thread = threading.Thread(target=self._run, name="bridge-dds-commands",
+                                        daemon=True)
+        self._thread.start()
+
+    def submit(self, name: str, action: Callable[[], Any]) -> None:
+        with self._cv:
+            if len(self._queue) < 16:  # a flood of commands is cut, not queued forever
+                self._queue.append((name, action))
+                self._cv.notify()
+
+    def _run(self) -> None:
+        while True:
+            with self._cv:
+                while not self._queue and not self._stop:
+                    self._cv.wait()
+                if self._stop:
+                    return
+                name, action = self._queue.pop(0)
+            try:
+                result = action()
+                log.info("%s: %s", name, result)
+            except Exception as e:  # a command must not end the thread
+                log.warning("%s: %s", name, e)
+
+    def stop(self) -> None:
+        with self._cv:
+            self._stop = True
+            self._cv.notify()
+        self._thread.join(2.0)

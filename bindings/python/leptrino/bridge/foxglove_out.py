@@ -1,0 +1,121 @@
+"""Foxglove live: the bridge's topics on a Foxglove WebSocket server
+(the PyPI `foxglove-sdk`, the "bridge" extra), with the schemas and
+payloads of its MCAP file (ros2msg schemas, CDR messages), and the tare and
+untare services as Foxglove services (std_srvs/srv/Trigger in CDR).
+
+Foxglove (app or web) connects with "Open connection" -> Foxglove WebSocket
+-> ws://HOST:PORT; docs/bridge.md tells how from another host and where the
+layout is.
+"""
+
+from __future__ import annotations
+
+import logging
+from typing import Any, Callable, List, Optional, Sequence, Tuple
+
+from . import cdr
+from .mcap_out import ros2msg_schema
+
+log = logging.getLogger("leptrino.bridge")
+
+TRIGGER_REQUEST_MSG = ""  # std_srvs/srv/Trigger: an empty request
+TRIGGER_RESPONSE_MSG = "bool success\nstring message\n"
+
+
+def parse_address(text: str) -> Tuple[str, int]:
+    """[HOST:]PORT -> (host, port); the host defaults to 127.0.0.1.
+    ValueError for anything else."""
+    host, sep, port = text.rpartition(":")
+    if not sep:
+        host = "127.0.0.1"
+    host = host.strip("[]") or "127.0.0.1"
+    if not port.isdigit() or not 0 <= int(port) <= 65535:
+        raise ValueError(f"--foxglove {text!r}: expected [HOST:]PORT")
+    return host, int(port)
+
+
+class FoxgloveChannel:
+    """One topic on the server: logs the payloads as they are published."""
+
+    def __init__(self, ctx: Any, topic: str, ros_type: str) -> None:
+        import foxglove
+
+        self.channel = foxglove.Channel(
+            topic, message_encoding="cdr",
+            schema=foxglove.Schema(name=ros_type, encoding="ros2msg",
+                                   data=ros2msg_schema(ros_type)),
+            context=ctx)
+        self._log = self.channel.log
+
+    def publish(self, payloads: Sequence[bytes], stamps: Sequence[int], now_ns: int) -> None:
+        log_ = self._log
+        for p, t in zip(payloads, stamps):
+            log_(p, log_time=t)
+
+    def close(self) -> None:
+        try:
+            self.channel.close()
+        except Exception:
+            pass
+
+
+class FoxgloveServer:
+    """A Foxglove WebSocket server on host:port with its own context (so
+    that nothing else logged in the process leaks into it). Listens from
+    construction (OSError when it cannot); channels are advertised as they
+    are made, the services by add_services()."""
+
+    def __init__(self, host: str, port: int) -> None:
+        import foxglove
+        from foxglove import Capability
+
+        self.ctx = foxglove.Context()
+        self.host = host
+        self._services: List[Any] = []
+        try:
+            self._server: Any = foxglove.start_server(
+                name="leptrino-bridge", host=host, port=port, context=self.ctx,
+                capabilities=[Capability.Services], supported_encodings=["cdr"])
+        except Exception as e:  # the SDK's error for a port in use, a bad host
+            raise OSError(f"--foxglove {host}:{port}: {e}") from None
+
+    def channel(self, topic: str, ros_type: str) -> FoxgloveChannel:
+        return FoxgloveChannel(self.ctx, topic, ros_type)
+
+    def service(self, name: str, call: Callable[[], Tuple[bool, str]]) -> None:
+        """A std_srvs/srv/Trigger service: call() runs in the server's
+        thread; its answer goes back as Trigger_Response in CDR."""
+        from foxglove import MessageSchema, Schema, Service, ServiceSchema
+
+        def handler(request: Any) -> bytes:
+            ok, message = call()
+            return cdr.encode_trigger_response(ok, message)
+
+        schema = ServiceSchema(
+            name="std_srvs/srv/Trigger",
+            request=MessageSchema(encoding="cdr", schema=Schema(
+                name="std_srvs/srv/Trigger_Request", encoding="ros2msg",
+                data=TRIGGER_REQUEST_MSG.encode())),
+            response=MessageSchema(encoding="cdr", schema=Schema(
+                name="std_srvs/srv/Trigger_Response", encoding="ros2msg",
+                data=TRIGGER_RESPONSE_MSG.encode())))
+        self._services.append(Service(name=name, schema=schema, handler=handler))
+
+    def add_services(self) -> None:
+        """Offer the services made by service() (after every node declared them)."""
+        if self._services:
+            self._server.add_services(self._services)
+
+    @property
+    def port(self) -> int:
+        return int(self._server.port) if self._server is not None else 0
+
+    def close(self) -> None:
+        if self._server is not None:
+            try:
+                self._server.stop()
+            except Exception:
+                pass
+            self._server = None
+
+
