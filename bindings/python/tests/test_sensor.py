@@ -250,7 +250,11 @@ def test_disconnect_during_record(backend: str) -> None:
 
 def test_ctrl_c_during_record_keeps_the_samples(backend: str) -> None:
     import _thread
+    import signal
 
+    # A shell starts a background job with SIGINT ignored, and interrupt_main
+    # then does nothing: take Python's own handler for this test.
+    before = signal.signal(signal.SIGINT, signal.default_int_handler)
     with leptrino.Simulator(backend=backend) as port, \
             leptrino.Sensor(port, backend=backend) as s:
         timer = threading.Timer(0.4, _thread.interrupt_main)  # as Ctrl-C would
@@ -260,6 +264,7 @@ def test_ctrl_c_during_record_keeps_the_samples(backend: str) -> None:
                 s.record(seconds=60.0)  # ends by the interrupt long before
         finally:
             timer.cancel()
+            signal.signal(signal.SIGINT, before)
         partial = info.value.recording  # type: ignore[attr-defined]
         assert 100 <= len(partial) <= 72000 and partial.missing() == 0
         assert not s.streaming  # and the stream was stopped
