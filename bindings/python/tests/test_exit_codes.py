@@ -57,6 +57,7 @@ def test_exceptions_keep_their_classes_and_carry_an_error(backend: str) -> None:
     be = leptrino.get_backend(backend)
     for code, cls in ((K.LEP_E_TIMEOUT, leptrino.TimeoutError),
                       (K.LEP_E_STALLED, leptrino.TimeoutError),
+                      (K.LEP_E_LOST, leptrino.TimeoutError),
                       (K.LEP_E_NO_SYNC, leptrino.NoSyncError),
                       (K.LEP_E_NOT_FOUND, leptrino.PortNotFoundError),
                       (K.LEP_E_BUSY, leptrino.BusyError),
