@@ -92,7 +92,8 @@ static void note_event(cli_watch_view *v, const lep_session_event *ev, double t0
         break;
     case LEP_EV_DISCONNECTED:
         snprintf(v->message, sizeof v->message, "%s at %.1f s",
-                 ev->error == LEP_E_TIMEOUT ? "no data" : "disconnected", ev->t_mono - t0);
+                 ev->error == LEP_E_TIMEOUT ? "no data for --data-timeout" : "disconnected",
+                 ev->t_mono - t0);
         break;
     case LEP_EV_RECONNECTED:
         snprintf(v->message, sizeof v->message, "reconnected at %.1f s after %.1f s",
@@ -229,7 +230,7 @@ int cli_cmd_watch(int argc, char **argv)
     lep_session_get_health(s, &v.health);
     if (code != CLI_OK) {
         cli_session_fail(s, "watch", port, "stream", rc);
-        if (rc == LEP_E_TIMEOUT && lep_session_streaming(s)) {
+        if (rc == LEP_E_LOST && lep_session_streaming(s)) {
             /* a quiet sensor may not answer the stop: say the wait first */
             fprintf(stderr,
                     "leptrino: watch: %s: stopping the sensor's stream: up to %.1f s without an "

@@ -561,6 +561,7 @@ class Sensor:
         self._check(be.lib.lep_session_set_rotation(self._live(), r, sh))
 
     # -- payload and limits (leptrino/payload.h; docs/session.md) ------------
+    @_any_thread
     def set_payload(self, payload: Optional[Any]) -> None:
         """Remove a tool's gravity wrench from the SI values (raw and zeroed
         counts stay as measured): a leptrino.Payload (its mass and centre of
@@ -579,6 +580,7 @@ class Sensor:
         if be.lib.lep_session_set_payload(self._live(), c) < 0:
             raise ValueError(f"payload {payload!r}: a mass >= 0 and finite numbers expected")
 
+    @_any_thread
     def set_gravity(self, gravity: Sequence[float]) -> None:
         """Gravity in the sensor frame, m/s² ((0, 0, -9.80665) when the z axis
         points up); call it as often as the robot moves. ValueError when not
@@ -593,6 +595,7 @@ class Sensor:
         if be.lib.lep_session_set_gravity(self._live(), g) < 0:
             raise ValueError(f"gravity {gravity!r}: three finite numbers expected")
 
+    @_any_thread
     def set_limits(self, limits: Optional[Any] = None, **axes: float) -> None:
         """Limits on the SI values (compensated, output frame), N and N·m:
         set_limits(fz=50, mz=2), a dict of the same, six numbers (fx..mz, 0 =

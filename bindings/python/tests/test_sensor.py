@@ -4,7 +4,6 @@ virtual sensor through a real pty, for both backends."""
 from __future__ import annotations
 
 import builtins
-import math
 import threading
 import time
 import warnings
