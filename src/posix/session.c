@@ -278,7 +278,8 @@ static int session_start(lep_session *s)
     return LEP_OK;
 }
 
-int lep_session_start(lep_session *s)
+/* A driving call: fn runs inside the thread guard (session_guard.c). */
+static int guarded(lep_session *s, int (*fn)(lep_session *))
 {
     int rc;
     if (s == NULL)
@@ -286,9 +287,14 @@ int lep_session_start(lep_session *s)
     rc = lep_priv_guard_enter(&s->guard);
     if (rc != LEP_OK)
         return rc;
-    rc = session_start(s);
+    rc = fn(s);
     lep_priv_guard_leave(&s->guard);
     return rc;
+}
+
+int lep_session_start(lep_session *s)
+{
+    return guarded(s, session_start);
 }
 
 int lep_session_set_latency(lep_session *s, int latency_ms)
@@ -331,15 +337,7 @@ static int session_stop(lep_session *s)
 
 int lep_session_stop(lep_session *s)
 {
-    int rc;
-    if (s == NULL)
-        return LEP_E_ARG;
-    rc = lep_priv_guard_enter(&s->guard);
-    if (rc != LEP_OK)
-        return rc;
-    rc = session_stop(s);
-    lep_priv_guard_leave(&s->guard);
-    return rc;
+    return guarded(s, session_stop);
 }
 
 lep_client *lep_session_client(lep_session *s)

@@ -79,3 +79,20 @@ def subprocess_env(**extra: str) -> dict:
     env["PYTHONPATH"] = os.pathsep.join(
         [pkg_parent] + [p for p in env.get("PYTHONPATH", "").split(os.pathsep) if p])
     return env
+
+
+#: Rows of the replayed ramp (the bridge tests' virtual sensor input).
+RAMP_ROWS = 6000
+
+
+@pytest.fixture
+def ramp(tmp_path: Path) -> str:
+    """A replay file: row k has fx = k - 3000, fy = -fx, fz = 3 (k mod 100),
+    mx = 100 (k mod 7), my = 1234, mz = -1234 (raw counts)."""
+    p = tmp_path / "ramp.csv"
+    lines = ["fx,fy,fz,mx,my,mz"]
+    for k in range(RAMP_ROWS):
+        fx = k - 3000
+        lines.append(f"{fx},{-fx},{3 * (k % 100)},{100 * (k % 7)},1234,-1234")
+    p.write_text("\n".join(lines) + "\n")
+    return str(p)

@@ -16,10 +16,10 @@ import subprocess
 import sys
 import time
 from dataclasses import dataclass
-from pathlib import Path
 from typing import Any, Dict, Iterator, List
 
 import pytest
+from conftest import RAMP_ROWS
 
 cyclonedds = pytest.importorskip("cyclonedds")  # the "bridge" extra
 
@@ -35,7 +35,7 @@ from cyclonedds.topic import Topic  # noqa: E402
 import leptrino  # noqa: E402
 
 WRENCH_HASH = "RIHS01_8dc3deaf06b2ab281f9f9a742a8961c328ca7cec16e3fd6586d3a5c83fa78f77"
-ROWS = 6000
+ROWS = RAMP_ROWS  # the replayed ramp's length (conftest.ramp)
 
 
 # -- the reader's own types (rosidl's DDS names for geometry_msgs etc.) -------
@@ -139,16 +139,6 @@ def domain() -> Iterator[int]:
 def participant(domain: int) -> Any:
     return DomainParticipant(domain)
 
-
-@pytest.fixture
-def ramp(tmp_path: Path) -> str:
-    p = tmp_path / "ramp.csv"
-    lines = ["fx,fy,fz,mx,my,mz"]
-    for k in range(ROWS):
-        fx = k - 3000
-        lines.append(f"{fx},{-fx},{3 * (k % 100)},{100 * (k % 7)},1234,-1234")
-    p.write_text("\n".join(lines) + "\n")
-    return str(p)
 
 
 def reader_qos(reliable: bool = True) -> Qos:

@@ -20,22 +20,13 @@ from pathlib import Path
 from typing import Any, Dict, List, Tuple
 
 import pytest
+from conftest import RAMP_ROWS
 
 import leptrino
 
-ROWS = 6000
+ROWS = RAMP_ROWS  # the replayed ramp's length (conftest.ramp)
 Row = Tuple[int, int, str, List[float]]
 
-
-@pytest.fixture
-def ramp(tmp_path: Path) -> str:
-    p = tmp_path / "ramp.csv"
-    lines = ["fx,fy,fz,mx,my,mz"]
-    for k in range(ROWS):
-        fx = k - 3000
-        lines.append(f"{fx},{-fx},{3 * (k % 100)},{100 * (k % 7)},1234,-1234")
-    p.write_text("\n".join(lines) + "\n")
-    return str(p)
 
 
 @pytest.fixture(scope="module")

@@ -18,17 +18,17 @@ import struct
 import subprocess
 import sys
 import time
-from pathlib import Path
 from typing import Any, Dict, List, Tuple
 
 import pytest
+from conftest import RAMP_ROWS
 
 websockets = pytest.importorskip("websockets")  # the "test" extra
 pytest.importorskip("foxglove")  # the "bridge" extra
 
 import leptrino  # noqa: E402
 
-ROWS = 6000
+ROWS = RAMP_ROWS  # the replayed ramp's length (conftest.ramp)
 SUBPROTOCOL = "foxglove.sdk.v1"
 
 
@@ -37,16 +37,6 @@ def free_port() -> int:
         s.bind(("127.0.0.1", 0))
         return int(s.getsockname()[1])
 
-
-@pytest.fixture
-def ramp(tmp_path: Path) -> str:
-    p = tmp_path / "ramp.csv"
-    lines = ["fx,fy,fz,mx,my,mz"]
-    for k in range(ROWS):
-        fx = k - 3000
-        lines.append(f"{fx},{-fx},{3 * (k % 100)},{100 * (k % 7)},1234,-1234")
-    p.write_text("\n".join(lines) + "\n")
-    return str(p)
 
 
 def typestore_from(schemas: Dict[str, str]) -> Any:

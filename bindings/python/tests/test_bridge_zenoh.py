@@ -14,6 +14,7 @@ from pathlib import Path
 from typing import Any, Dict, Iterator, List, Tuple
 
 import pytest
+from conftest import RAMP_ROWS
 import zenoh  # the "bridge" extra (make test and .ci/checks/60-bridge.sh install it)
 
 import leptrino
@@ -24,7 +25,7 @@ from leptrino.bridge import rmw_zenoh as rz
 WRENCH_HASH = "RIHS01_8dc3deaf06b2ab281f9f9a742a8961c328ca7cec16e3fd6586d3a5c83fa78f77"
 TRIGGER_HASH = "RIHS01_eeff2cd6fa5ad9d27cdf4dec64818317839b62f212a91e6b5304b634b2062c5f"
 DIAG_HASH = "RIHS01_5a8a36efb05fb25070fa0fb3810290c0e6cd4862b54a8fb975a1ee8dc55a333e"
-ROWS = 6000  # the replayed ramp's length
+ROWS = RAMP_ROWS  # the replayed ramp's length (conftest.ramp)
 
 
 def wrench_key(sensor: str, topic: str = "wrench", ns: str = "") -> str:
@@ -77,18 +78,6 @@ def store() -> Any:
                                    "std_srvs/msg/Trigger_Response"))
     return ts
 
-
-@pytest.fixture
-def ramp(tmp_path: Path) -> str:
-    """A replay file: row k has fx = k - 3000, fy = -fx, fz = 3 (k mod 100),
-    mx = 100 (k mod 7), my = 1234, mz = -1234 (raw counts)."""
-    p = tmp_path / "ramp.csv"
-    lines = ["fx,fy,fz,mx,my,mz"]
-    for k in range(ROWS):
-        fx = k - 3000
-        lines.append(f"{fx},{-fx},{3 * (k % 100)},{100 * (k % 7)},1234,-1234")
-    p.write_text("\n".join(lines) + "\n")
-    return str(p)
 
 
 class Received:
