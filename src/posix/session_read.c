@@ -116,8 +116,6 @@ static int read_pass(lep_session *s, lep_session_batch *b, int timeout_ms)
     read_call c;
     double kernel_s;
 
-    if (s == NULL || b == NULL || b->n > b->cap)
-        return LEP_E_ARG;
     if (!s->streaming)
         return LEP_E_STATE;
     memset(&c, 0, sizeof c);
@@ -152,8 +150,6 @@ static int read_one(lep_session *s, lep_session_batch *b)
     double t;
     int rc;
 
-    if (s == NULL || b == NULL || b->n >= b->cap)
-        return LEP_E_ARG;
     if (s->streaming)
         return LEP_E_STATE;
     if (s->conn != CONN_UP)

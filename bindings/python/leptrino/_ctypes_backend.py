@@ -101,14 +101,6 @@ class CtypesBackend:
         ptr = ctypes.cast(words, POINTER(STRUCTS[ctype]))
         return (ptr, words)
 
-    def new_opaque(self, ctype: str) -> Any:
-        """A zeroed context of private layout, (pointer, memory to keep alive):
-        ctype_sizeof() bytes, 8-aligned."""
-        size = int(getattr(self.lib, ctype + "_sizeof")())
-        words = (c_uint64 * ((size + 7) // 8))()
-        ptr = ctypes.cast(words, POINTER(STRUCTS[ctype]))
-        return (ptr, words)
-
     def new_client(self) -> Any:
         return self.new_opaque("lep_client")
 
