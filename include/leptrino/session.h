@@ -272,7 +272,10 @@ LEP_API int lep_session_read_one(lep_session *s, lep_session_batch *b);
 
 /* Pop the oldest queued event into *ev; false when none. A full queue (1024
  * events) drops its oldest to take a new one: counted in
- * lep_session_health.events_dropped. */
+ * lep_session_health.events_dropped. Events are queued as samples are
+ * processed, and a read processes everything the port gave even when the
+ * batch fills first: an event's sample may be one still waiting for the next
+ * lep_session_read (ev->sample at or past the samples read so far). */
 LEP_API bool lep_session_next_event(lep_session *s, lep_session_event *ev);
 
 /* Tare: average the raw counts of the next n samples (or of duration_s

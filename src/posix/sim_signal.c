@@ -43,8 +43,16 @@ int lep_priv_signal_init(lep_sim_signal *g, const lep_sim_options *o, const lep_
     g->noise = o->noise;
     g->constant = o->constant;
     g->seed = o->seed;
-    g->overload_every_s = o->overload_every_s;
-    g->overload_duration_s = o->overload_duration_s;
+    /* Episodes in whole samples of the sample clock, so that each is as long
+     * as every other (0.05 s at 1.2 kHz: 60 samples, never 59 or 61). */
+    if (o->overload_every_s > 0 && o->overload_duration_s > 0) {
+        g->overload_every_n = (uint64_t)(o->overload_every_s * o->rate_hz + 0.5);
+        g->overload_duration_n = (uint64_t)(o->overload_duration_s * o->rate_hz + 0.5);
+        if (g->overload_duration_n == 0)
+            g->overload_duration_n = 1;
+        if (g->overload_duration_n >= g->overload_every_n) /* under two samples apart */
+            g->overload_every_n = g->overload_duration_n = 0;
+    }
     {
         /* what the tool weighs at this orientation, through the rated values */
         lep_payload p;
@@ -146,14 +154,12 @@ int lep_priv_signal_counts(const lep_sim_signal *g, uint64_t n, double counts[LE
             counts[i] = v * LEP_RAW_FULL_SCALE + g->payload_counts[i];
         }
     }
-    if (g->overload_every_s > 0 && g->overload_duration_s > 0 && t >= g->overload_every_s) {
-        double k = floor_pos(t / g->overload_every_s);
-        if (t - k * g->overload_every_s < g->overload_duration_s) {
-            uint64_t episode = (uint64_t)k; /* 1, 2, ... */
-            int axis = (int)((episode - 1u) % LEP_AXES);
-            double sign = (episode & 1u) ? 1.0 : -1.0;
-            counts[axis] = sign * OVERLOAD_LEVEL * LEP_RAW_FULL_SCALE;
-        }
+    if (g->overload_every_n > 0 && n >= g->overload_every_n &&
+        n % g->overload_every_n < g->overload_duration_n) {
+        uint64_t episode = n / g->overload_every_n; /* 1, 2, ... */
+        int axis = (int)((episode - 1u) % LEP_AXES);
+        double sign = (episode & 1u) ? 1.0 : -1.0;
+        counts[axis] = sign * OVERLOAD_LEVEL * LEP_RAW_FULL_SCALE;
     }
     return given_status;
 }

@@ -22,10 +22,10 @@ typedef struct lep_sim_signal {
     int constant;
     uint64_t seed;
     double freq[LEP_AXES], phase[LEP_AXES];
-    double overload_every_s, overload_duration_s;
-    double payload_counts[LEP_AXES]; /* the payload's gravity wrench, in counts */
-    lep_sample *replay;              /* rows of the replay file (status -1 = derive), or NULL */
-    int16_t *replay_status;          /* per row: status given in the file, or -1 */
+    uint64_t overload_every_n, overload_duration_n; /* in samples (0: no episodes) */
+    double payload_counts[LEP_AXES];                /* the payload's gravity wrench, in counts */
+    lep_sample *replay;     /* rows of the replay file (status -1 = derive), or NULL */
+    int16_t *replay_status; /* per row: status given in the file, or -1 */
     size_t replay_rows;
 } lep_sim_signal;
 
