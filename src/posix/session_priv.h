@@ -55,6 +55,9 @@
 /* Samples one read can complete: every byte in whole frames, plus the frame
  * begun by the previous read. */
 #define SESSION_PENDING (SESSION_RBUF / SESSION_MIN_FRAME + 2u)
+/* Rows kept for reads: those held back while a hole is suspected (one read's
+ * worth at most) and the next read's. */
+#define SESSION_ROWS (2u * SESSION_PENDING)
 /* How soon a read judges a suspected hole when a latency budget would wait longer. */
 #define SESSION_CONFIRM_S 0.02
 /* How often a vanished port is looked for while reconnecting. */
@@ -151,7 +154,7 @@ typedef struct session_load {
 
 /* session_rows.c: processed rows waiting for a read (driving thread). */
 typedef struct session_rows {
-    session_row pending[SESSION_PENDING];
+    session_row pending[SESSION_ROWS];
     size_t head, len;
     size_t held; /* newest rows held back: a suspected hole before them */
 } session_rows;
@@ -173,6 +176,7 @@ typedef struct session_timing {
     uint64_t anchor_k, k;
     double window_t, window_min;
     double suspect_from, suspect_to;
+    double suspect_late; /* how late the suspected read left the stream, s */
     uint64_t suspect_index;
     /* UTC - monotonic offset the samples are stamped with: held between
      * batches so UTC intervals equal monotonic ones, and moved only when the

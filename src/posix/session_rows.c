@@ -1,5 +1,5 @@
 /* Host session, rows: processed samples waiting for lep_session_read (a ring
- * of one read's worth), the newest held back while a hole is suspected, and
+ * of two reads' worth), the newest held back while a hole is suspected, and
  * their delivery into the caller's batch. */
 #include <string.h>
 
@@ -13,9 +13,9 @@ void lep_priv_rows_clear(session_rows *r)
 
 session_row *lep_priv_rows_slot(session_rows *r)
 {
-    if (r->len >= SESSION_PENDING)
+    if (r->len >= SESSION_ROWS)
         return NULL;
-    return &r->pending[(r->head + r->len) % SESSION_PENDING];
+    return &r->pending[(r->head + r->len) % SESSION_ROWS];
 }
 
 void lep_priv_rows_push(session_rows *r)
@@ -25,7 +25,7 @@ void lep_priv_rows_push(session_rows *r)
 
 session_row *lep_priv_rows_back(session_rows *r, size_t back)
 {
-    return &r->pending[(r->head + r->len - 1u - back) % SESSION_PENDING];
+    return &r->pending[(r->head + r->len - 1u - back) % SESSION_ROWS];
 }
 
 void lep_priv_rows_append(lep_session_batch *b, const session_row *r)
@@ -59,7 +59,7 @@ void lep_priv_rows_deliver(session_rows *r, lep_session_batch *b, double *first)
         if (*first < 0.0)
             *first = row->t_mono;
         lep_priv_rows_append(b, row);
-        r->head = (r->head + 1u) % SESSION_PENDING;
+        r->head = (r->head + 1u) % SESSION_ROWS;
         r->len--;
     }
     if (r->len == 0)

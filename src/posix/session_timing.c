@@ -91,8 +91,8 @@ uint8_t lep_priv_timing_sample(lep_session *s, const lep_sample *smp, double t)
  * samples arrive; a hole makes it rise and stay. So a read that leaves the
  * stream late by more than gap_periods is only a suspect: its rows are held
  * back until the next read, which confirms the hole (still late: LEP_EV_GAP,
- * the first held row flagged) or refutes it (caught up: rows released as
- * they are). The anchor follows a sensor running fast (lateness below 0) at
+ * the first held row flagged) or refutes it (caught up, or catching up as a
+ * reader behind the stream does: rows released as they are). The anchor follows a sensor running fast (lateness below 0) at
  * once, and one running slow by the smallest lateness of each second. */
 void lep_priv_timing_read(lep_session *s, size_t n, double t_read, double before_t, double first_t,
                           size_t rows_before)
@@ -119,7 +119,10 @@ void lep_priv_timing_read(lep_session *s, size_t n, double t_read, double before
         late = 0.0;
     }
     if (rows->held > 0) {
-        if (late > thr) {
+        /* Still late, and not catching up: a reader behind the stream takes
+         * in one read far more than arrived meanwhile, and its lateness falls
+         * by about that much (the samples were waiting in the kernel). */
+        if (late > thr && late > tm->suspect_late - 0.5 * (double)n * s->period_s) {
             /* the held rows are the ones just before this read's */
             lep_priv_rows_back(rows, rows->len - rows_before + rows->held - 1u)->flags |=
                 LEP_SF_GAP;
@@ -135,6 +138,7 @@ void lep_priv_timing_read(lep_session *s, size_t n, double t_read, double before
         tm->suspect_from = before_t;
         tm->suspect_to = first_t;
         tm->suspect_index = s->hs.h.delivered - rows->held;
+        tm->suspect_late = late;
         return;
     }
     if (late < tm->window_min)

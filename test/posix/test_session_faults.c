@@ -9,6 +9,7 @@
 #include <pthread.h>
 #include <stdio.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "leptrino/error.h"
@@ -414,6 +415,51 @@ static void test_a_stall_on_a_port_is_found_from_arrival_times(void)
     st_batch_free(&b);
 }
 
+/* A reader that falls behind (a caller busy for 1.5 s between reads, the
+ * sensor on time): the kernel holds the samples, and the reads that catch up
+ * take more than one buffer of them. Nothing is lost and no hole is
+ * reported: a suspected hole is refuted when the reads catch up, and the rows
+ * held meanwhile are all delivered. */
+static void test_a_reader_behind_by_several_buffers_loses_nothing(void)
+{
+    lep_sim *sim = NULL;
+    lep_session_options o;
+    lep_session *s = NULL;
+    st_batch b;
+    lep_session_health h;
+    lep_sim_stats st;
+    lep_session_event ev;
+    size_t holes;
+    uint64_t lost;
+
+    lep_session_options_init(&o);
+    s = open_on_port(&sim, NULL, &o);
+    st_batch_init(&b, 4000);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, read_until(s, &b, 100));
+    {
+        struct timespec busy = { 1, 500000000L }; /* 1800 samples, 50 kB: three reads of 16 KiB */
+        nanosleep(&busy, NULL);
+    }
+    TEST_ASSERT_EQUAL_INT(LEP_OK, read_until(s, &b, 3000));
+    lost = missing(&b, &holes);
+    lep_session_get_health(s, &h);
+    printf("reader 1.5 s behind: %zu samples read, %llu missing in %zu holes, "
+           "%llu gaps reported\n",
+           b.b.n, (unsigned long long)lost, holes, (unsigned long long)h.gaps);
+    lep_sim_get_stats(sim, &st);
+    TEST_ASSERT_EQUAL_UINT64_MESSAGE(0, st.samples_skipped + st.samples_blocked,
+                                     "the virtual sensor did not send every sample");
+    TEST_ASSERT_EQUAL_UINT64(0, lost);
+    TEST_ASSERT_EQUAL_UINT64(0, h.gaps);
+    TEST_ASSERT_EQUAL_UINT64(h.received, h.delivered);
+    while (lep_session_next_event(s, &ev))
+        TEST_ASSERT_TRUE(ev.type != LEP_EV_GAP);
+    lep_session_close(s);
+    lep_sim_stop(sim);
+    st_batch_free(&b);
+}
+
 /* The port comes back with another sensor (another serial number): the
  * session does not take its data as the same recording. */
 static void test_another_sensor_after_a_reconnect_is_refused(void)
@@ -459,6 +505,7 @@ int main(void)
     RUN_TEST(test_overload_episodes_are_events);
     RUN_TEST(test_a_stall_on_a_port_is_found_from_arrival_times);
     RUN_TEST(test_another_reader_on_a_port_is_reported);
+    RUN_TEST(test_a_reader_behind_by_several_buffers_loses_nothing);
     RUN_TEST(test_another_sensor_after_a_reconnect_is_refused);
     return UNITY_END();
 }
