@@ -155,7 +155,7 @@ typedef struct lep_session_health {
     double recent_hz;   /* over the last second or so (the run so far in its first second) */
     bool shortfall;     /* measured_hz below 98 % of nominal over at least 1 s */
     uint64_t received;  /* samples received (tare samples included) */
-    uint64_t delivered; /* samples delivered (after decimation) */
+    uint64_t delivered; /* samples returned by lep_session_read (after decimation) */
     uint64_t lost;      /* samples estimated lost in gaps */
     uint64_t gaps;
     uint64_t errors;    /* framing, BCC, invalid messages, timeouts (all connections) */
@@ -272,10 +272,11 @@ LEP_API int lep_session_read_one(lep_session *s, lep_session_batch *b);
 
 /* Pop the oldest queued event into *ev; false when none. A full queue (1024
  * events) drops its oldest to take a new one: counted in
- * lep_session_health.events_dropped. Events are queued as samples are
- * processed, and a read processes everything the port gave even when the
- * batch fills first: an event's sample may be one still waiting for the next
- * lep_session_read (ev->sample at or past the samples read so far). */
+ * lep_session_health.events_dropped. While streaming, an event is returned
+ * once lep_session_read has returned the samples before it (ev->sample <= the
+ * samples read so far: it applies at most to the next sample to be read),
+ * though a read may have processed more rows than its batch took; stopped,
+ * every queued event is returned. */
 LEP_API bool lep_session_next_event(lep_session *s, lep_session_event *ev);
 
 /* Tare: average the raw counts of the next n samples (or of duration_s

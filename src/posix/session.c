@@ -153,6 +153,7 @@ int lep_session_open(const lep_session_options *o, lep_session **out, char *err,
         lep_priv_set_err(err, errlen, "session: out of memory");
         return LEP_E_IO;
     }
+    lep_priv_events_stop(&s->events); /* not streaming: events go as they come */
     if (pthread_mutex_init(&s->mu, NULL) != 0) {
         free(s);
         lep_priv_set_err(err, errlen, "session: cannot create a mutex");
@@ -322,6 +323,9 @@ static int session_stop(lep_session *s)
         return LEP_E_STATE;
     s->streaming = false;
     lep_priv_rows_clear(&s->rows);
+    pthread_mutex_lock(&s->mu);
+    lep_priv_events_stop(&s->events); /* the rows their samples wait for are gone */
+    pthread_mutex_unlock(&s->mu);
     if (s->conn == CONN_UP && lep_client_streaming(&s->client)) {
         rc = lep_client_stop(&s->client);
         /* one more try, e.g. after a lost answer; not after a silence that

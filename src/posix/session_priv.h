@@ -24,7 +24,8 @@
  *   session_load.c      payload compensation and limits on the SI values
  *                       (session_load)
  *   session_health.c    health counters (session_health_state; session_proc.c
- *                       counts h.delivered and h.overloads itself)
+ *                       counts processed rows and h.overloads itself;
+ *                       session_read.c counts h.delivered as rows are returned)
  *   session_events.c    the event queue (session_events)
  *   session_clock.c     UTC offset of the monotonic clock, waits in ms
  *   session_meta.c      metadata and its JSON (reads the structs above)
@@ -58,6 +59,12 @@
 /* Rows kept for reads: those held back while a hole is suspected (one read's
  * worth at most) and the next read's. */
 #define SESSION_ROWS (2u * SESSION_PENDING)
+/* A reader that lags (a caller busy elsewhere) finds samples waiting in the
+ * kernel: a read brings a tty buffer's worth (4 KiB: 146 frames or more),
+ * and the next one again more than was due since, beyond the burst of a USB
+ * adapter (a 16 ms latency timer holds 20 samples at 1.2 kHz). */
+#define SESSION_LAG_READ 128u
+#define SESSION_BURST 32.0
 /* How soon a read judges a suspected hole when a latency budget would wait longer. */
 #define SESSION_CONFIRM_S 0.02
 /* How often a vanished port is looked for while reconnecting. */
@@ -86,11 +93,17 @@ typedef struct session_events {
     size_t head, len;
     uint64_t pushed;  /* queued since open (tells a read it has news) */
     uint64_t dropped; /* pushed out of a full queue since start */
+    /* An event waits until the rows before its sample are returned: the head
+     * goes when its sample <= gate (rows returned; UINT64_MAX when stopped),
+     * or while ungated > 0 (queued before a start: another stream's numbers). */
+    uint64_t gate;
+    size_t ungated;
 } session_events;
 
 /* session_health.c: [mu] the health counters and what they are computed from. */
 typedef struct session_health_state {
-    lep_session_health h;
+    lep_session_health h; /* h.delivered: rows returned by lep_session_read */
+    uint64_t processed;   /* rows processed: the next row's number (events' sample) */
     double first_t;
     double window_t;
     uint64_t window_n;
@@ -176,8 +189,9 @@ typedef struct session_timing {
     uint64_t anchor_k, k;
     double window_t, window_min;
     double suspect_from, suspect_to;
-    double suspect_late; /* how late the suspected read left the stream, s */
     uint64_t suspect_index;
+    double suspect_read_t; /* when the suspected read returned */
+    size_t suspect_n;      /* samples it brought */
     /* UTC - monotonic offset the samples are stamped with: held between
      * batches so UTC intervals equal monotonic ones, and moved only when the
      * wall clock steps by more than SESSION_UTC_STEP_S. */
@@ -352,11 +366,18 @@ void lep_priv_health_reconnected(session_health_state *hs, const lep_client_stat
 
 /* ---- session_events.c ---- */
 void lep_priv_event_init(lep_session_event *ev, int type, uint64_t sample, double t_mono);
-/* A stream starts: the dropped count starts over (events queued stay). [mu] held. */
+/* A stream starts: the dropped count starts over; events queued stay and go
+ * out ahead of the new stream's. [mu] held. */
 void lep_priv_events_start(session_events *q);
+/* Not streaming (opened, or stopped: the rows an event waited for are gone):
+ * every event queued may go. [mu] held. */
+void lep_priv_events_stop(session_events *q);
+/* Rows returned so far: the events up to that sample may go. [mu] held. */
+void lep_priv_events_returned(session_events *q, uint64_t rows);
 /* Queue ev; a full queue drops its oldest (counted). [mu] held. */
 void lep_priv_events_push(session_events *q, const lep_session_event *ev);
-bool lep_priv_events_pop(session_events *q, lep_session_event *ev); /* [mu] held */
+/* The oldest event, once the rows before its sample are returned. [mu] held. */
+bool lep_priv_events_pop(session_events *q, lep_session_event *ev);
 
 /* ---- session_clock.c ---- */
 /* UTC - monotonic offset, measured (the narrowest of three brackets). */

@@ -232,7 +232,7 @@ int lep_session_untare(lep_session *s)
     s->proc.tare_hold = false;
     s->proc.tared = false;
     memset(s->proc.tare, 0, sizeof s->proc.tare);
-    tare_event(s, lep_monotonic_seconds(), s->hs.h.delivered);
+    tare_event(s, lep_monotonic_seconds(), s->hs.processed);
     pthread_mutex_unlock(&s->mu);
     return LEP_OK;
 }
@@ -250,7 +250,7 @@ int lep_session_set_tare(lep_session *s, const double offset[LEP_AXES])
     s->proc.tare_hold = false;
     s->proc.tared = true;
     memcpy(s->proc.tare, offset, sizeof s->proc.tare);
-    tare_event(s, lep_monotonic_seconds(), s->hs.h.delivered);
+    tare_event(s, lep_monotonic_seconds(), s->hs.processed);
     pthread_mutex_unlock(&s->mu);
     return LEP_OK;
 }
@@ -294,7 +294,7 @@ static void overload(lep_session *s, const lep_sample *smp, double t, uint8_t *f
     if (over == s->proc.overloaded)
         return;
     s->proc.overloaded = over;
-    lep_priv_event_init(&ev, over ? LEP_EV_OVERLOAD_BEGIN : LEP_EV_OVERLOAD_END, s->hs.h.delivered,
+    lep_priv_event_init(&ev, over ? LEP_EV_OVERLOAD_BEGIN : LEP_EV_OVERLOAD_END, s->hs.processed,
                         t);
     ev.axes = axes;
     ev.status = smp->status;
@@ -360,7 +360,7 @@ bool lep_priv_session_process(lep_session *s, const lep_sample *smp, double t, d
         if (by_time && s->proc.tare_n == 0)
             s->proc.tare_until = t + s->proc.tare_duration;
         if (by_time && t >= s->proc.tare_until && s->proc.tare_n > 0) {
-            tare_finish(s, t, s->hs.h.delivered); /* this sample comes after the averaging time */
+            tare_finish(s, t, s->hs.processed); /* this sample comes after the averaging time */
             memcpy(off, s->proc.tare, sizeof off);
         } else {
             bool hold = s->proc.tare_hold;
@@ -369,7 +369,7 @@ bool lep_priv_session_process(lep_session *s, const lep_sample *smp, double t, d
             s->proc.tare_n++;
             flags |= LEP_SF_TARING;
             if (!by_time && s->proc.tare_n >= s->proc.tare_n_goal)
-                tare_finish(s, t, s->hs.h.delivered + (hold || s->proc.dec_phase != 0u ? 0u : 1u));
+                tare_finish(s, t, s->hs.processed + (hold || s->proc.dec_phase != 0u ? 0u : 1u));
             if (hold) {
                 s->proc.carry_flags |= flags & LEP_SF_GAP;
                 return false;
@@ -382,7 +382,7 @@ bool lep_priv_session_process(lep_session *s, const lep_sample *smp, double t, d
         s->proc.carry_flags |= flags & LEP_SF_GAP;
         return false;
     }
-    if (s->opt.duration_s > 0.0 && s->hs.h.delivered > 0 &&
+    if (s->opt.duration_s > 0.0 && s->hs.processed > 0 &&
         t - s->proc.first_delivered_t >= s->opt.duration_s) {
         s->proc.ended = true;
         return false;
@@ -392,11 +392,11 @@ bool lep_priv_session_process(lep_session *s, const lep_sample *smp, double t, d
     row->t_mono = t;
     row->t_utc = t_utc;
     fill_row(s, smp, y, off, row);
-    row->flags = flags | lep_priv_load_limits(s, row->si, t, s->hs.h.delivered);
-    if (s->hs.h.delivered == 0)
+    row->flags = flags | lep_priv_load_limits(s, row->si, t, s->hs.processed);
+    if (s->hs.processed == 0)
         s->proc.first_delivered_t = t;
-    s->hs.h.delivered++;
-    if (s->opt.count > 0 && s->hs.h.delivered >= s->opt.count)
+    s->hs.processed++;
+    if (s->opt.count > 0 && s->hs.processed >= s->opt.count)
         s->proc.ended = true;
     return true;
 }

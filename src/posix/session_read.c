@@ -33,13 +33,26 @@ static uint64_t events_pushed(lep_session *s)
     return n;
 }
 
+/* Rows into the caller's batch: counted, and their events free to go. */
+static void deliver_rows(lep_session *s, lep_session_batch *b, double *first)
+{
+    size_t n = b->n;
+    lep_priv_rows_deliver(&s->rows, b, first);
+    if (b->n == n)
+        return;
+    pthread_mutex_lock(&s->mu);
+    s->hs.h.delivered += b->n - n;
+    lep_priv_events_returned(&s->events, s->hs.h.delivered);
+    pthread_mutex_unlock(&s->mu);
+}
+
 /* Deliver what is pending, and say whether the call is over: its outcome,
  * or READ_AGAIN. */
 static int delivered(lep_session *s, read_call *c, double *now)
 {
     lep_session_batch *b = c->b;
     for (;;) {
-        lep_priv_rows_deliver(&s->rows, b, &c->first);
+        deliver_rows(s, b, &c->first);
         if (!(s->proc.ended && s->rows.len == s->rows.held))
             break;
         s->rows.held = 0; /* nothing comes after the end to judge it by */

@@ -26,7 +26,7 @@ void lep_priv_reconnect_lost(lep_session *s, int error, double now)
     lep_client_stats st;
     lep_client_get_stats(&s->client, &st);
     pthread_mutex_lock(&s->mu);
-    lep_priv_event_init(&ev, LEP_EV_DISCONNECTED, s->hs.h.delivered, now);
+    lep_priv_event_init(&ev, LEP_EV_DISCONNECTED, s->hs.processed, now);
     ev.error = error;
     ev.gap_from = s->tm.last_sample_t;
     lep_priv_events_push(&s->events, &ev);

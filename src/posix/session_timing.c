@@ -63,7 +63,7 @@ uint8_t lep_priv_timing_sample(lep_session *s, const lep_sample *smp, double t)
     uint8_t flags = 0;
     if (tm->gap_next) {
         double est = (t - tm->gap_from) * s->nominal_hz - 1.0;
-        gap_event(s, LEP_EV_RECONNECTED, s->hs.h.delivered, tm->gap_from, t,
+        gap_event(s, LEP_EV_RECONNECTED, s->hs.processed, tm->gap_from, t,
                   clip_u32(floor(est + 0.5)), tm->gap_error);
         flags = LEP_SF_GAP;
         tm->gap_next = false;
@@ -76,7 +76,7 @@ uint8_t lep_priv_timing_sample(lep_session *s, const lep_sample *smp, double t)
             d += 65536u * (uint32_t)floor((est - (double)d) / 65536.0 + 0.5);
         lost = d > 0 ? d - 1u : 0u;
         if (lost > 0) {
-            gap_event(s, LEP_EV_GAP, s->hs.h.delivered, tm->last_sample_t, t, lost, 0);
+            gap_event(s, LEP_EV_GAP, s->hs.processed, tm->last_sample_t, t, lost, 0);
             flags = LEP_SF_GAP;
         }
     }
@@ -91,8 +91,10 @@ uint8_t lep_priv_timing_sample(lep_session *s, const lep_sample *smp, double t)
  * samples arrive; a hole makes it rise and stay. So a read that leaves the
  * stream late by more than gap_periods is only a suspect: its rows are held
  * back until the next read, which confirms the hole (still late: LEP_EV_GAP,
- * the first held row flagged) or refutes it (caught up, or catching up as a
- * reader behind the stream does: rows released as they are). The anchor follows a sensor running fast (lateness below 0) at
+ * the first held row flagged) or refutes it (caught up: rows released as
+ * they are, also when the next read brought more than was due since: the
+ * reads lag, the samples were waiting in the kernel). A hole hidden in such
+ * a lag is found once the reads catch up, at the rows of that read. The anchor follows a sensor running fast (lateness below 0) at
  * once, and one running slow by the smallest lateness of each second. */
 void lep_priv_timing_read(lep_session *s, size_t n, double t_read, double before_t, double first_t,
                           size_t rows_before)
@@ -119,10 +121,13 @@ void lep_priv_timing_read(lep_session *s, size_t n, double t_read, double before
         late = 0.0;
     }
     if (rows->held > 0) {
-        /* Still late, and not catching up: a reader behind the stream takes
-         * in one read far more than arrived meanwhile, and its lateness falls
-         * by about that much (the samples were waiting in the kernel). */
-        if (late > thr && late > tm->suspect_late - 0.5 * (double)n * s->period_s) {
+        /* Still late: a hole, unless the reads lag (a caller busy
+         * elsewhere): then the suspected read took a tty buffer's worth and
+         * this one again more than was due since; the samples were waiting
+         * in the kernel, and lateness says nothing about the sensor. */
+        double due = (t_read - tm->suspect_read_t) / s->period_s + SESSION_BURST;
+        bool lag = tm->suspect_n >= SESSION_LAG_READ && (double)n > due;
+        if (late > thr && !lag) {
             /* the held rows are the ones just before this read's */
             lep_priv_rows_back(rows, rows->len - rows_before + rows->held - 1u)->flags |=
                 LEP_SF_GAP;
@@ -137,8 +142,9 @@ void lep_priv_timing_read(lep_session *s, size_t n, double t_read, double before
         rows->held = rows->len - rows_before;
         tm->suspect_from = before_t;
         tm->suspect_to = first_t;
-        tm->suspect_index = s->hs.h.delivered - rows->held;
-        tm->suspect_late = late;
+        tm->suspect_index = s->hs.processed - rows->held;
+        tm->suspect_read_t = t_read;
+        tm->suspect_n = n;
         return;
     }
     if (late < tm->window_min)

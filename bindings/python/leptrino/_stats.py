@@ -156,7 +156,7 @@ class Health:
     recent_hz: float  # over the last second or so (the run so far in its first second)
     shortfall: bool  # measured_hz below 98 % of nominal over at least 1 s
     received: int  # samples received (tare samples included)
-    delivered: int  # samples delivered (after decimation)
+    delivered: int  # samples returned by lep_session_read (after decimation)
     lost: int  # samples estimated lost in gaps
     gaps: int
     errors: int  # framing, BCC, invalid messages, timeouts (all connections)

@@ -270,7 +270,9 @@ def test_ctrl_c_during_record_keeps_the_samples(backend: str) -> None:
 
 
 def test_disconnect_while_streaming(backend: str) -> None:
-    sim = leptrino.Simulator(hangup_after_s=0.5, backend=backend)
+    # the hang-up counts from the virtual sensor's start: late enough that
+    # opening (start-up recovery, identity) is over on a loaded machine
+    sim = leptrino.Simulator(hangup_after_s=1.5, backend=backend)
     with sim as port, leptrino.Sensor(port, backend=backend) as s:
         with pytest.raises(leptrino.DisconnectedError):
             with s.stream() as st:
@@ -329,7 +331,9 @@ def test_simulator_options(backend: str) -> None:
     with sim as port, leptrino.Sensor(port, backend=backend) as s:
         rec = s.record(count=600)
         assert rec.missing() > 0  # dropped messages leave gaps in the sequence
-        assert rec.missing() <= sim.stats.samples_dropped
+        # dropped on purpose, or skipped by a virtual sensor running late on a loaded machine
+        st = sim.stats
+        assert rec.missing() <= st.samples_dropped + st.samples_skipped + st.samples_blocked
         assert rec.overload.any() and (np.abs(rec.raw) == 32000).any()
         assert s.stats.bytes_discarded > 0  # the garbage was counted, not delivered
 
