@@ -419,7 +419,8 @@ static void test_a_stall_on_a_port_is_found_from_arrival_times(void)
  * sensor on time): the kernel holds the samples, and the reads that catch up
  * take more than one buffer of them. Nothing is lost and no hole is
  * reported: a suspected hole is refuted when the reads catch up, and the rows
- * held meanwhile are all delivered. */
+ * held meanwhile are all delivered. (A virtual sensor starved on a loaded
+ * machine skips samples: those are real holes, and may be reported.) */
 static void test_a_reader_behind_by_several_buffers_loses_nothing(void)
 {
     lep_sim *sim = NULL;
@@ -428,14 +429,14 @@ static void test_a_reader_behind_by_several_buffers_loses_nothing(void)
     st_batch b;
     lep_session_health h;
     lep_sim_stats st;
-    lep_session_event ev;
-    size_t holes;
-    uint64_t lost;
+    size_t i, false_gaps = 0;
+    uint64_t lost = 0;
 
     lep_session_options_init(&o);
-    /* a hole is 50 ms here: the virtual sensor's own lateness on a loaded
-     * machine stays below it; the reader's 1.5 s is far beyond */
-    o.gap_periods = 60.0;
+    /* a hole is 0.3 s here: the virtual sensor's own lateness on a loaded
+     * machine (or under valgrind) stays below it; the reader's 1.5 s is far
+     * beyond */
+    o.gap_periods = 360.0;
     s = open_on_port(&sim, NULL, &o);
     st_batch_init(&b, 4000);
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
@@ -445,19 +446,21 @@ static void test_a_reader_behind_by_several_buffers_loses_nothing(void)
         nanosleep(&busy, NULL);
     }
     TEST_ASSERT_EQUAL_INT(LEP_OK, read_until(s, &b, 3000));
-    lost = missing(&b, &holes);
+    for (i = 1; i < b.b.n; i++) {
+        uint16_t d = (uint16_t)(b.seq[i] - b.seq[i - 1]);
+        lost += d - 1u;
+        false_gaps += d == 1u && (b.flags[i] & LEP_SF_GAP) != 0u;
+    }
     lep_session_get_health(s, &h);
-    printf("reader 1.5 s behind: %zu samples read, %llu missing in %zu holes, "
-           "%llu gaps reported\n",
-           b.b.n, (unsigned long long)lost, holes, (unsigned long long)h.gaps);
     lep_sim_get_stats(sim, &st);
-    TEST_ASSERT_EQUAL_UINT64_MESSAGE(0, st.samples_skipped + st.samples_blocked,
-                                     "the virtual sensor did not send every sample");
-    TEST_ASSERT_EQUAL_UINT64(0, lost);
-    TEST_ASSERT_EQUAL_UINT64(0, h.gaps);
+    printf("reader 1.5 s behind: %zu samples read, %llu missing (the virtual sensor skipped "
+           "%llu), %llu gaps reported, %zu where none was\n",
+           b.b.n, (unsigned long long)lost,
+           (unsigned long long)(st.samples_skipped + st.samples_blocked),
+           (unsigned long long)h.gaps, false_gaps);
+    TEST_ASSERT_EQUAL_UINT64(st.samples_skipped + st.samples_blocked, lost);
+    TEST_ASSERT_EQUAL_size_t(0, false_gaps);
     TEST_ASSERT_EQUAL_UINT64(b.b.n, h.delivered);
-    while (lep_session_next_event(s, &ev))
-        TEST_ASSERT_TRUE(ev.type != LEP_EV_GAP);
     lep_session_close(s);
     lep_sim_stop(sim);
     st_batch_free(&b);
