@@ -12,11 +12,19 @@
 //       a reliable writer of std_msgs/msg/Empty on TOPIC (rt/NAME/tare):
 //       waits (at most SECONDS) for a reader, writes one sample, waits for
 //       its acknowledgement.
+//   fastdds_peer raw DOMAIN SECONDS TOPIC TYPE HEX...
+//       a reliable writer of TOPIC whose type is named TYPE and has no
+//       definition: each HEX argument is one sample's serialized bytes
+//       (encapsulation header included), written verbatim, as a middleware
+//       sends them (rmw_fastrtps' service request: no request header); waits
+//       for a reader, writes them in order, waits for their acknowledgement.
 // Exit status 0 when done, 1 on a timeout or an error (said on stderr).
 #include <chrono>
 #include <cinttypes>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <functional>
 #include <memory>
 #include <string>
 #include <thread>
@@ -30,6 +38,7 @@
 #include <fastdds/dds/subscriber/SampleInfo.hpp>
 #include <fastdds/dds/subscriber/Subscriber.hpp>
 #include <fastdds/dds/topic/Topic.hpp>
+#include <fastdds/dds/topic/TopicDataType.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
 #include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
 #include <fastrtps/utils/IPLocator.h>
@@ -162,6 +171,103 @@ int run_pub(DomainParticipant *p, double seconds, const std::string &name)
     return 0;
 }
 
+using Bytes = std::vector<unsigned char>;
+
+// A type known by its name only: a sample is its serialized bytes.
+class RawType : public TopicDataType
+{
+public:
+    explicit RawType(const std::string &name)
+    {
+        setName(name.c_str());
+        m_typeSize = 4096;
+        m_isGetKeyDefined = false;
+    }
+    bool serialize(void *data, eprosima::fastrtps::rtps::SerializedPayload_t *payload) override
+    {
+        const auto *b = static_cast<const Bytes *>(data);
+        if (b->size() > payload->max_size)
+            return false;
+        std::memcpy(payload->data, b->data(), b->size());
+        payload->length = static_cast<uint32_t>(b->size());
+        return true;
+    }
+    bool deserialize(eprosima::fastrtps::rtps::SerializedPayload_t *, void *) override
+    {
+        return false;  // never read
+    }
+    std::function<uint32_t()> getSerializedSizeProvider(void *data) override
+    {
+        const auto n = static_cast<uint32_t>(static_cast<const Bytes *>(data)->size());
+        return [n]() { return n; };
+    }
+    void *createData() override { return new Bytes(); }
+    void deleteData(void *data) override { delete static_cast<Bytes *>(data); }
+    bool getKey(void *, eprosima::fastrtps::rtps::InstanceHandle_t *, bool) override
+    {
+        return false;
+    }
+};
+
+bool parse_hex(const char *text, Bytes &out)
+{
+    const size_t n = std::strlen(text);
+    if (n % 2 != 0)
+        return false;
+    out.clear();
+    for (size_t i = 0; i < n; i += 2) {
+        char byte[3] = {text[i], text[i + 1], 0};
+        char *end = nullptr;
+        const unsigned long v = std::strtoul(byte, &end, 16);
+        if (end != byte + 2)
+            return false;
+        out.push_back(static_cast<unsigned char>(v));
+    }
+    return true;
+}
+
+int run_raw(DomainParticipant *p, double seconds, const std::string &name,
+            const std::string &type_name, const std::vector<std::string> &hex)
+{
+    std::vector<Bytes> samples(hex.size());
+    for (size_t i = 0; i < hex.size(); i++) {
+        if (!parse_hex(hex[i].c_str(), samples[i])) {
+            std::fprintf(stderr, "fastdds_peer: not hex: %s\n", hex[i].c_str());
+            return 2;
+        }
+    }
+    TypeSupport type(new RawType(type_name));
+    type.register_type(p);
+    Publisher *pub = p->create_publisher(PUBLISHER_QOS_DEFAULT);
+    Topic *t = p->create_topic(name, type_name, TOPIC_QOS_DEFAULT);
+    DataWriterQos wq = DATAWRITER_QOS_DEFAULT;
+    wq.reliability().kind = RELIABLE_RELIABILITY_QOS;
+    wq.history().kind = KEEP_ALL_HISTORY_QOS;
+    DataWriter *w = t ? pub->create_datawriter(t, wq) : nullptr;
+    if (w == nullptr) {
+        std::fprintf(stderr, "fastdds_peer: cannot write %s\n", name.c_str());
+        return 1;
+    }
+    const auto t0 = Clock::now();
+    PublicationMatchedStatus st;
+    while (w->get_publication_matched_status(st) == ReturnCode_t::RETCODE_OK &&
+           st.current_count == 0) {
+        if (seconds_since(t0) > seconds) {
+            std::fprintf(stderr, "fastdds_peer: no reader of %s\n", name.c_str());
+            return 1;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    for (auto &b : samples) {
+        if (!w->write(&b)) {
+            std::fprintf(stderr, "fastdds_peer: write failed on %s\n", name.c_str());
+            return 1;
+        }
+    }
+    eprosima::fastrtps::Duration_t wait(5, 0);
+    return w->wait_for_acknowledgments(wait) == ReturnCode_t::RETCODE_OK ? 0 : 1;
+}
+
 }  // namespace
 
 int main(int argc, char **argv)
@@ -169,7 +275,8 @@ int main(int argc, char **argv)
     if (argc < 5) {
         std::fprintf(stderr,
                      "usage: fastdds_peer sub DOMAIN SECONDS COUNT TOPIC...\n"
-                     "       fastdds_peer pub DOMAIN SECONDS TOPIC\n");
+                     "       fastdds_peer pub DOMAIN SECONDS TOPIC\n"
+                     "       fastdds_peer raw DOMAIN SECONDS TOPIC TYPE HEX...\n");
         return 2;
     }
     const std::string mode = argv[1];
@@ -186,6 +293,8 @@ int main(int argc, char **argv)
                      std::vector<std::string>(argv + 5, argv + argc));
     } else if (mode == "pub") {
         rc = run_pub(p, seconds, argv[4]);
+    } else if (mode == "raw" && argc >= 7) {
+        rc = run_raw(p, seconds, argv[4], argv[5], std::vector<std::string>(argv + 6, argv + argc));
     } else {
         std::fprintf(stderr, "fastdds_peer: unknown mode %s\n", mode.c_str());
         rc = 2;

@@ -18,8 +18,10 @@ The conventions (docs/bridge.md, "DDS", cites the sources):
   (rmw_dds_common/msg/ParticipantEntitiesInfo; the Gid is 16 bytes from Iron
   on, 24 in Humble: --ros-distro);
 - tare/untare: a `NAME/tare` and a `NAME/untare` topic (std_msgs/msg/Empty)
-  that any DDS middleware can publish to; ROS 2 services are not served on
-  DDS (docs/bridge.md says why).
+  that any DDS middleware can publish to, and the same names as
+  std_srvs/srv/Trigger services in rmw_cyclonedds' mapping (TriggerService:
+  rq/NAMERequest, rr/NAMEReply, a 16-byte request header echoed in the
+  reply); rmw_fastrtps' services cannot be served (docs/bridge.md says why).
 """
 
 # no "from __future__ import annotations": the IDL classes below are made
@@ -138,6 +140,22 @@ class _Types:
         class Empty(IdlStruct, typename="std_msgs::msg::dds_::Empty_"):
             structure_needs_at_least_one_member: t.uint8
 
+        # rmw_cyclonedds' service payloads: its request header (the client's
+        # writer instance handle, the request's sequence number) then the
+        # message; the bridge reads and writes them raw (TriggerService)
+        @dc
+        class TriggerRequest(IdlStruct, typename="std_srvs::srv::dds_::Trigger_Request_"):
+            client_guid: t.uint64
+            sequence_number: t.int64
+            structure_needs_at_least_one_member: t.uint8
+
+        @dc
+        class TriggerResponse(IdlStruct, typename="std_srvs::srv::dds_::Trigger_Response_"):
+            client_guid: t.uint64
+            sequence_number: t.int64
+            success: bool
+            message: str
+
         @dc
         class Gid(IdlStruct, typename="rmw_dds_common::msg::dds_::Gid_"):
             data: t.array[t.uint8, gid_len]
@@ -161,6 +179,7 @@ class _Types:
         self.DiagnosticStatus, self.DiagnosticArray = DiagnosticStatus, DiagnosticArray
         self.Empty, self.Gid, self.NodeEntitiesInfo = Empty, Gid, NodeEntitiesInfo
         self.ParticipantEntitiesInfo = ParticipantEntitiesInfo
+        self.TriggerRequest, self.TriggerResponse = TriggerRequest, TriggerResponse
         self.by_ros = {
             "geometry_msgs/msg/WrenchStamped": WrenchStamped,
             "diagnostic_msgs/msg/DiagnosticArray": DiagnosticArray,
@@ -231,6 +250,7 @@ class DdsParticipant:
         self._lock = threading.Lock()
         self._readers: List[Any] = []
         self._commands = _CommandRunner()
+        self._services = 0  # TriggerServices made (their ids)
         from cyclonedds.pub import DataWriter
         from cyclonedds.topic import Topic
 
@@ -245,12 +265,13 @@ class DdsParticipant:
         P = self.Policy
         return self.Qos(P.DataRepresentation(use_cdrv0_representation=True))
 
-    def endpoint_qos(self, typehash: str, reliable: bool) -> Any:
+    def endpoint_qos(self, typehash: str, reliable: bool, user_data: str = "") -> Any:
+        """user_data: more "key=value;" pairs put before the type hash."""
         P = self.Policy
         rel = P.Reliability.Reliable(100_000_000) if reliable else P.Reliability.BestEffort
         return self.Qos(rel, P.Durability.Volatile, P.History.KeepLast(10),
                         P.DataRepresentation(use_cdrv0_representation=True),
-                        P.Userdata(f"typehash={typehash};".encode()))
+                        P.Userdata(f"{user_data}typehash={typehash};".encode()))
 
     def gid(self, guid16: bytes) -> Any:
         return self.types.Gid(data=list(guid16) + [0] * (self.gid_len - 16))
@@ -286,6 +307,30 @@ class DdsParticipant:
         self._readers.append((topic, reader))
         with self._lock:
             self._nodes.setdefault(node, ([], []))[0].append(reader.guid.bytes)
+
+    def service(self, node: Tuple[str, str], fq_name: str,
+                action: Callable[[], Tuple[bool, str]],
+                on_rejected: Callable[[], None]) -> "TriggerService":
+        """A std_srvs/srv/Trigger service in rmw_cyclonedds' mapping
+        (TriggerService); action runs off Cyclone's thread, one request at
+        a time; on_rejected is called for each malformed request."""
+        svc = TriggerService(self, fq_name, action, on_rejected, self._next_service_id())
+        self._readers.append(svc)
+        with self._lock:
+            readers, writers = self._nodes.setdefault(node, ([], []))
+            readers.append(svc.reader.guid.bytes)
+            writers.append(svc.writer.guid.bytes)
+        return svc
+
+    def _next_service_id(self) -> str:
+        """A client/service id as rmw_cyclonedds makes one: the participant's
+        GUID prefix (12 bytes) then a counter (4 bytes, big-endian), in hex
+        bytes joined by dots (the pair's USER_DATA `serviceid=`)."""
+        with self._lock:
+            self._services += 1
+            n = self._services
+        raw = self.participant.guid.bytes[:12] + n.to_bytes(4, "big")
+        return ".".join(f"{b:x}" for b in raw)
 
     def announce(self) -> None:
         """Publish the nodes on ros_discovery_info (after every endpoint is made)."""
@@ -349,3 +394,200 @@ class _CommandRunner:
             self._stop = True
             self._cv.notify()
         self._thread.join(2.0)
+
+
+#: Bytes of rmw_cyclonedds' request header: the client's writer instance
+#: handle (uint64) and the request's sequence number (int64), right after the
+#: 4-byte encapsulation header (serdata.hpp cdds_request_header_t).
+REQUEST_HEADER_SIZE = 16
+
+
+def parse_user_data(data: bytes) -> Dict[str, str]:
+    """USER_DATA "key=value;key=value;" (as rmw_dds_common and rmw_cyclonedds
+    write it) -> {key: value}; anything else is skipped."""
+    out: Dict[str, str] = {}
+    for item in data.decode("utf-8", "replace").split(";"):
+        key, sep, value = item.partition("=")
+        if sep and key:
+            out[key] = value
+    return out
+
+
+def parse_trigger_request(payload: bytes) -> Tuple[int, int]:
+    """An rmw_cyclonedds std_srvs/srv/Trigger request -> (client guid, sequence
+    number). ValueError for anything else: not CDR, no room for the header
+    (a request without it, as rmw_fastrtps sends), a wrong length."""
+    import struct
+
+    if len(payload) < 4 or payload[0] != 0 or payload[1] not in (0, 1):
+        raise ValueError("not a CDR payload (bad encapsulation header)")
+    body = len(payload) - 4
+    # the header, Trigger_Request's one byte, at most 3 bytes of padding
+    if not REQUEST_HEADER_SIZE + 1 <= body <= REQUEST_HEADER_SIZE + 4:
+        raise ValueError(f"{body} bytes after the encapsulation header, expected "
+                         f"{REQUEST_HEADER_SIZE + 1} (a request header and the request)")
+    guid, seq = struct.unpack_from("<Qq" if payload[1] == 1 else ">Qq", payload, 4)
+    return guid, seq
+
+
+def encode_trigger_reply(guid: int, seq: int, success: bool, message: str) -> bytes:
+    """The reply: rmw_cyclonedds' header (the request's guid and sequence
+    number) then std_srvs/srv/Trigger_Response, CDR little-endian. The header
+    is 16 bytes, so the response's fields keep their alignment."""
+    import struct
+
+    from . import cdr
+
+    body = cdr.encode_trigger_response(success, message)
+    return pad4(body[:4] + struct.pack("<Qq", guid, seq) + body[4:])
+
+
+class _RateLimitedLog:
+    """One warning per period at most; the others are counted and said with
+    the next one."""
+
+    def __init__(self, period_s: float = 5.0) -> None:
+        self.period_s = period_s
+        self._next = 0.0
+        self._suppressed = 0
+        self._lock = threading.Lock()
+
+    def warning(self, fmt: str, *args: Any) -> None:
+        import time
+
+        now = time.monotonic()
+        with self._lock:
+            if now < self._next:
+                self._suppressed += 1
+                return
+            suppressed, self._suppressed = self._suppressed, 0
+            self._next = now + self.period_s
+        more = f" ({suppressed} more since the last report)" if suppressed else ""
+        log.warning(fmt + more, *args)
+
+
+class TriggerService:
+    """A std_srvs/srv/Trigger service as rmw_cyclonedds maps it (see
+    docs/bridge.md): a reader of `rq<name>Request` and a writer of
+    `rr<name>Reply`, RELIABLE, VOLATILE, KEEP_LAST(10) (ROS 2's services
+    profile), USER_DATA `serviceid=<id>;typehash=<Trigger's>;` on both.
+
+    Each request is taken raw and checked (parse_trigger_request); a bad one
+    is dropped, counted (on_rejected) and logged at most every 5 s. A good
+    one runs action in the participant's command thread; the reply carries the
+    request's header, and is written once the client's reply reader (the
+    reader with the request writer's `clientid`) is matched, or after 1 s.
+
+    A request shorter than the request type (no header: rmw_fastrtps') never
+    reaches the bridge: Cyclone drops it while deserializing, with a line of
+    its own. So a matched request writer without a `clientid` (rmw_fastrtps'
+    clients have none) is counted in headerless_clients and logged, pointing
+    to the command topic."""
+
+    MATCH_WAIT_S = 1.0
+
+    def __init__(self, dds: DdsParticipant, fq_name: str,
+                 action: Callable[[], Tuple[bool, str]], on_rejected: Callable[[], None],
+                 service_id: str) -> None:
+        from cyclonedds._clayer import ddspy_take, ddspy_write
+        from cyclonedds.core import InstanceState, Listener, SampleState, ViewState
+        from cyclonedds.pub import DataWriter
+        from cyclonedds.sub import DataReader
+        from cyclonedds.topic import Topic
+
+        from .typehash import rihs01
+
+        self.name = fq_name
+        self._action = action
+        self._on_rejected = on_rejected
+        self._runner = dds._commands
+        self._Userdata = dds.Policy.Userdata
+        self._take = ddspy_take
+        self._write = ddspy_write
+        self._mask = SampleState.Any | ViewState.Any | InstanceState.Any
+        self._log = _RateLimitedLog()
+        self._client_log = _RateLimitedLog()
+        self.rejected = 0
+        self.headerless_clients = 0
+        qos = dds.endpoint_qos(rihs01("std_srvs/srv/Trigger"), reliable=True,
+                               user_data=f"serviceid={service_id};")
+        self.request_topic = Topic(dds.participant, f"rq{fq_name}Request",
+                                   dds.types.TriggerRequest, qos=dds.topic_qos())
+        self.reply_topic = Topic(dds.participant, f"rr{fq_name}Reply",
+                                 dds.types.TriggerResponse, qos=dds.topic_qos())
+        self.writer = DataWriter(dds.participant, self.reply_topic, qos=qos)
+        self.reader = DataReader(dds.participant, self.request_topic, qos=qos,
+                                 listener=Listener(on_data_available=self._on_data,
+                                                   on_subscription_matched=self._on_match))
+
+    def _on_match(self, _reader: Any, status: Any) -> None:
+        if status.current_count_change <= 0:
+            return
+        try:
+            ep = self.reader.get_matched_publication_data(status.last_publication_handle)
+        except Exception:  # gone already
+            return
+        if ep is None or "clientid" in parse_user_data(self._user_data(ep)):
+            return
+        self.headerless_clients += 1
+        self._client_log.warning(
+            "%s: a client without rmw_cyclonedds' request header (rmw_fastrtps?) matched; "
+            "its requests cannot be answered: it can publish std_msgs/msg/Empty on the "
+            "topic %s instead", self.name, self.name)
+
+    def _on_data(self, _reader: Any) -> None:
+        got = self._take(self.reader._ref, self._mask, 16)
+        if isinstance(got, int):  # a DDS error code
+            log.debug("%s: take: %d", self.name, got)
+            return
+        for payload, info in got:
+            if not info.valid_data:
+                continue  # a writer went away
+            try:
+                guid, seq = parse_trigger_request(bytes(payload))
+            except ValueError as e:
+                self.rejected += 1
+                self._on_rejected()
+                self._log.warning("%s: request ignored: %s", self.name, e)
+                continue
+            handle = info.publication_handle
+            self._runner.submit(self.name, lambda g=guid, s=seq, h=handle: self._serve(g, s, h))
+
+    def _serve(self, guid: int, seq: int, writer_handle: int) -> str:
+        ok, message = self._action()
+        import time
+
+        end = time.monotonic() + self.MATCH_WAIT_S
+        while not self._client_reader_matched(writer_handle) and time.monotonic() < end:
+            time.sleep(0.01)
+        rc = self._write(self.writer._ref, encode_trigger_reply(guid, seq, ok, message))
+        if rc < 0:
+            return f"reply to request {seq} not written ({rc}): {message}"
+        return message
+
+    def _client_reader_matched(self, writer_handle: int) -> bool:
+        """Whether the reply writer has matched the requesting client's reply
+        reader (by its USER_DATA clientid, as rmw_cyclonedds checks); a
+        client without a clientid is taken as matched."""
+        try:
+            ep = self.reader.get_matched_publication_data(writer_handle)
+        except Exception:  # the client's writer is gone
+            return True
+        clientid = parse_user_data(self._user_data(ep)).get("clientid") if ep else None
+        if clientid is None:
+            return True
+        try:
+            for h in self.writer.get_matched_subscriptions():
+                sub = self.writer.get_matched_subscription_data(h)
+                if sub is not None and parse_user_data(
+                        self._user_data(sub)).get("clientid") == clientid:
+                    return True
+        except Exception:
+            return True
+        return False
+
+    def _user_data(self, ep: Any) -> bytes:
+        try:
+            return bytes(ep.qos[self._Userdata].data)
+        except Exception:  # no USER_DATA
+            return b""

@@ -151,6 +151,7 @@ class Counters:
     last_error: str = ""
     events: Dict[str, int] = field(default_factory=dict)
     tare_requests: int = 0
+    rejected_requests: int = 0  # malformed service requests (DDS, Zenoh) ignored
     last_sample_mono: float = 0.0
 
 
@@ -172,6 +173,7 @@ class SensorNode:
         self._lock = threading.Lock()  # tare/untare from service threads
         self._tokens: List[Any] = []
         self._queryables: List[Any] = []
+        self._dds_services: List[Any] = []  # dds.TriggerService
         self.wrench: Optional[Topic] = None
         self.wrench_raw: Optional[Topic] = None
         self.diagnostics: Optional[Topic] = None
@@ -221,8 +223,10 @@ class SensorNode:
                 t.outputs.append(fox.channel(t.name, t.entity.ros_type))
         calls = {"tare": self.tare, "untare": self.untare}
         for svc, ent in self.services.items():
-            if dds is not None:  # a command topic of the service's name
+            if dds is not None:  # a command topic and an rmw_cyclonedds service
                 dds.command(node, ent.name, calls[svc])
+                self._dds_services.append(
+                    dds.service(node, ent.name, calls[svc], self._rejected_request))
             if fox is not None:
                 fox.service(ent.name, calls[svc])
         if session is not None:
@@ -369,6 +373,10 @@ class SensorNode:
         ]
         values += [(f"tare_offset_{a}", f"{v:g}") for a, v in
                    zip(("fx", "fy", "fz", "mx", "my", "mz"), offsets)]
+        values.append(("rejected_requests", str(c.rejected_requests)))
+        if self._dds_services:  # clients whose requests DDS drops (dds.TriggerService)
+            values.append(("dds_headerless_clients",
+                           str(sum(s.headerless_clients for s in self._dds_services))))
         values += [("model", info.model), ("serial", info.serial),
                    ("firmware", info.firmware), ("port", self.sensor.port)]
         return (level, f"leptrino: {self.spec.name}", msg, info.serial or self.spec.name,
@@ -410,6 +418,9 @@ class SensorNode:
                 return False, f"untare failed: {e}"
             return True, "tare removed"
 
+    def _rejected_request(self) -> None:
+        self.counters.rejected_requests += 1
+
     def _service_handler(self, which: str) -> Callable[[Any], None]:
         def handle(query: Any) -> None:
             try:
@@ -421,6 +432,7 @@ class SensorNode:
                     cdr.check_encapsulation(bytes(payload.to_bytes()))
             except ValueError as e:
                 log.warning("%s/%s: request refused: %s", self.spec.name, which, e)
+                self._rejected_request()
                 query.reply_err(f"malformed request: {e}".encode())
                 return
             ok, message = self.tare() if which == "tare" else self.untare()
