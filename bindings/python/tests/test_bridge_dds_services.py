@@ -38,6 +38,8 @@ from test_bridge_dds import (LOOPBACK, DiagnosticArray_, ParticipantEntitiesInfo
                              WrenchStamped_, reader_qos, start_bridge, stop)
 from test_bridge_fastdds import peer  # noqa: E402,F401 (the Fast DDS peer, a fixture)
 
+from leptrino.bridge import dds  # noqa: E402
+
 TRIGGER_HASH = "RIHS01_eeff2cd6fa5ad9d27cdf4dec64818317839b62f212a91e6b5304b634b2062c5f"
 
 
@@ -75,6 +77,28 @@ def participant(domain: int) -> Any:
 def user_data(ep: Any) -> Dict[str, str]:
     text = bytes(ep.qos[Policy.Userdata].data).decode()
     return dict(kv.split("=", 1) for kv in text.split(";") if kv)
+
+
+def test_request_header_both_byte_orders() -> None:
+    """What parse_trigger_request reads is what a client serializes, and the
+    reply decodes with the client's own type, header and all."""
+    req = TriggerRequest_(client_guid=0x1122334455667788, sequence_number=-5,
+                          structure_needs_at_least_one_member=0)
+    le = req.serialize()  # Cyclone's Python serializer: little-endian, padded
+    assert le[:2] == b"\x00\x01"
+    assert dds.parse_trigger_request(le) == (0x1122334455667788, -5)
+    be = (b"\x00\x00\x00\x00" + (0x1122334455667788).to_bytes(8, "big")
+          + (-5).to_bytes(8, "big", signed=True) + b"\x00")
+    assert dds.parse_trigger_request(be) == (0x1122334455667788, -5)
+    for bad in (b"", b"\x00\x01\x00\x00\x00", le[:20], le + bytes(4), b"\x01\x01" + le[2:],
+                b"\x00\x02" + le[2:]):
+        with pytest.raises(ValueError):
+            dds.parse_trigger_request(bad)
+    reply = dds.encode_trigger_reply(2**64 - 1, 2**62, True, "tared: \u00e9")
+    assert len(reply) % 4 == 0
+    got = TriggerResponse_.deserialize(reply)
+    assert (got.client_guid, got.sequence_number, got.success, got.message) == (
+        2**64 - 1, 2**62, True, "tared: \u00e9")
 
 
 class Client:

@@ -29,9 +29,13 @@ The conventions (docs/bridge.md, "DDS", cites the sources):
 
 import logging
 import os
+import struct
 import threading
+import time
 from dataclasses import dataclass
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
+
+from . import cdr
 
 log = logging.getLogger("leptrino.bridge")
 
@@ -417,8 +421,6 @@ def parse_trigger_request(payload: bytes) -> Tuple[int, int]:
     """An rmw_cyclonedds std_srvs/srv/Trigger request -> (client guid, sequence
     number). ValueError for anything else: not CDR, no room for the header
     (a request without it, as rmw_fastrtps sends), a wrong length."""
-    import struct
-
     if len(payload) < 4 or payload[0] != 0 or payload[1] not in (0, 1):
         raise ValueError("not a CDR payload (bad encapsulation header)")
     body = len(payload) - 4
@@ -434,10 +436,6 @@ def encode_trigger_reply(guid: int, seq: int, success: bool, message: str) -> by
     """The reply: rmw_cyclonedds' header (the request's guid and sequence
     number) then std_srvs/srv/Trigger_Response, CDR little-endian. The header
     is 16 bytes, so the response's fields keep their alignment."""
-    import struct
-
-    from . import cdr
-
     body = cdr.encode_trigger_response(success, message)
     return pad4(body[:4] + struct.pack("<Qq", guid, seq) + body[4:])
 
@@ -453,8 +451,6 @@ class _RateLimitedLog:
         self._lock = threading.Lock()
 
     def warning(self, fmt: str, *args: Any) -> None:
-        import time
-
         now = time.monotonic()
         with self._lock:
             if now < self._next:
@@ -555,8 +551,6 @@ class TriggerService:
 
     def _serve(self, guid: int, seq: int, writer_handle: int) -> str:
         ok, message = self._action()
-        import time
-
         end = time.monotonic() + self.MATCH_WAIT_S
         while not self._client_reader_matched(writer_handle) and time.monotonic() < end:
             time.sleep(0.01)
