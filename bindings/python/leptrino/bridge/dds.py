@@ -532,10 +532,16 @@ class TriggerService:
             "topic %s instead", self.name, self.name)
 
     def _on_data(self, _reader: Any) -> None:
-        got = self._take(self.reader._ref, self._mask, 16)
-        if isinstance(got, int):  # a DDS error code
-            log.debug("%s: take: %d", self.name, got)
-            return
+        while True:  # until the reader is empty (16 at a time)
+            got = self._take(self.reader._ref, self._mask, 16)
+            if isinstance(got, int):  # a DDS error code
+                log.debug("%s: take: %d", self.name, got)
+                return
+            if not got:
+                return
+            self._handle(got)
+
+    def _handle(self, got: Sequence[Tuple[bytes, Any]]) -> None:
         for payload, info in got:
             if not info.valid_data:
                 continue  # a writer went away
