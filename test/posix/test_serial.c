@@ -248,7 +248,7 @@ static void read_under_timer_signals(int flags)
 {
     uint8_t buf[16];
     lep_io io;
-    struct sigaction sa, old;
+    struct sigaction sa;
     struct itimerval it, off;
     double t;
     make_pty();
@@ -257,7 +257,7 @@ static void read_under_timer_signals(int flags)
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_alarm;
     sa.sa_flags = flags;
-    TEST_ASSERT_EQUAL_INT(0, sigaction(SIGALRM, &sa, &old));
+    TEST_ASSERT_EQUAL_INT(0, sigaction(SIGALRM, &sa, NULL));
     memset(&it, 0, sizeof it);
     memset(&off, 0, sizeof off);
     it.it_value.tv_usec = 20000;
@@ -267,7 +267,11 @@ static void read_under_timer_signals(int flags)
     TEST_ASSERT_EQUAL_INT(0, io.read(io.user, buf, sizeof buf, 300));
     t = lep_monotonic_seconds() - t;
     (void)setitimer(ITIMER_REAL, &off, NULL);
-    (void)sigaction(SIGALRM, &old, NULL);
+    /* a tick generated before the timer stopped may still be delivered
+     * (valgrind delivers signals late): ignore it rather than let the
+     * default action end the test */
+    sa.sa_handler = SIG_IGN;
+    (void)sigaction(SIGALRM, &sa, NULL);
     TEST_ASSERT_TRUE(t >= 0.3);
     TEST_ASSERT_TRUE(t < 3.0);
     /* and bytes sent now are read at once */
