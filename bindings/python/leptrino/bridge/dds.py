@@ -19,7 +19,10 @@ The conventions (docs/bridge.md, "DDS", cites the sources):
   on, 24 in Humble: --ros-distro);
 - tare/untare: a `NAME/tare` and a `NAME/untare` topic (std_msgs/msg/Empty)
   that any DDS middleware can publish to; ROS 2 services are not served on
-  DDS (docs/bridge.md says why).
+  DDS (docs/bridge.md says why);
+- inputs (`NAME/gravity`, geometry_msgs/msg/Vector3Stamped): a reader whose
+  samples are taken as the bytes received and checked by the bridge
+  (subscription()), never trusted to deserialize.
 """
 
 # no "from __future__ import annotations": the IDL classes below are made
@@ -115,6 +118,11 @@ class _Types:
             wrench: Wrench
 
         @dc
+        class Vector3Stamped(IdlStruct, typename="geometry_msgs::msg::dds_::Vector3Stamped_"):
+            header: Header
+            vector: Vector3
+
+        @dc
         class KeyValue(IdlStruct, typename="diagnostic_msgs::msg::dds_::KeyValue_"):
             key: str
             value: str
@@ -165,6 +173,7 @@ class _Types:
             "geometry_msgs/msg/WrenchStamped": WrenchStamped,
             "diagnostic_msgs/msg/DiagnosticArray": DiagnosticArray,
             "std_msgs/msg/Empty": Empty,
+            "geometry_msgs/msg/Vector3Stamped": Vector3Stamped,
         }
 
 
@@ -282,6 +291,39 @@ class DdsParticipant:
                       qos=self.topic_qos())
         reader = DataReader(self.participant, topic,
                             qos=self.endpoint_qos(rihs01("std_msgs/msg/Empty"), reliable=False),
+                            listener=Listener(on_data_available=on_data))
+        self._readers.append((topic, reader))
+        with self._lock:
+            self._nodes.setdefault(node, ([], []))[0].append(reader.guid.bytes)
+
+    def subscription(self, node: Tuple[str, str], fq_name: str, ros_type: str,
+                     on_payload: Callable[[bytes], Any]) -> None:
+        """A ROS 2 subscription on DDS: each sample received is handed to
+        on_payload as its serialized bytes (encapsulation header first), in
+        Cyclone's listener thread; on_payload checks it (it must not raise).
+        Best effort, so that reliable and best-effort publishers both match."""
+        from cyclonedds._clayer import ddspy_take
+        from cyclonedds.core import InstanceState, Listener, SampleState, ViewState
+        from cyclonedds.sub import DataReader
+        from cyclonedds.topic import Topic
+
+        from .typehash import rihs01
+
+        mask = SampleState.Any | ViewState.Any | InstanceState.Any
+
+        def on_data(reader: Any) -> None:
+            taken = ddspy_take(reader._ref, mask, 16)
+            if isinstance(taken, int):  # an error code
+                log.debug("dds take %s: %d", fq_name, taken)
+                return
+            for data, info in taken:
+                if info.valid_data:
+                    on_payload(bytes(data))
+
+        topic = Topic(self.participant, topic_name(fq_name), self.types.by_ros[ros_type],
+                      qos=self.topic_qos())
+        reader = DataReader(self.participant, topic,
+                            qos=self.endpoint_qos(rihs01(ros_type), reliable=False),
                             listener=Listener(on_data_available=on_data))
         self._readers.append((topic, reader))
         with self._lock:
