@@ -214,7 +214,7 @@ def test_cyclone_reader_gets_every_sample(participant: Any, domain: int, ramp: s
     assert set(nodes) == {"left", "right"} and nodes["left"].node_namespace == "/"
     writer_gids = {bytes(g.data) for g in nodes["left"].writer_gid_seq}
     assert ep.key.bytes in writer_gids and len(writer_gids) == 3
-    assert len(nodes["left"].reader_gid_seq) == 2  # the tare and untare topics
+    assert len(nodes["left"].reader_gid_seq) == 3  # the tare, untare and gravity topics
     assert bytes(infos[-1].gid.data) == ep.participant_key.bytes
 
     for name, frame in (("left", "left_ft"), ("right", "right")):
@@ -335,5 +335,6 @@ def test_humble_node_announcement(domain: int) -> None:
     (node,) = got[-1].node_entities_info_seq
     assert (node.node_namespace, node.node_name) == ("/lab", "h")
     gids = [bytes(g.data) for g in [got[-1].gid, *node.writer_gid_seq, *node.reader_gid_seq]]
-    assert len(gids) == 6 and all(len(g) == 24 and g[16:] == bytes(8) for g in gids)
-    assert len(set(gids)) == 6
+    # participant, 3 writers, 3 readers (tare, untare, gravity)
+    assert len(gids) == 7 and all(len(g) == 24 and g[16:] == bytes(8) for g in gids)
+    assert len(set(gids)) == 7
