@@ -31,6 +31,7 @@ import pytest
 zenoh = pytest.importorskip("zenoh")  # the "bridge" extra
 pytest.importorskip("mcap")
 
+import leptrino  # noqa: E402
 from leptrino.bridge import Bridge, NodeOptions, SensorSpec, ZenohOptions  # noqa: E402
 from leptrino.bridge import cdr  # noqa: E402
 from leptrino.bridge import rmw_zenoh as rz  # noqa: E402
@@ -43,9 +44,9 @@ TILT = math.radians(30.0)
 G_NEW = (G0 * math.sin(TILT), 0.0, -G0 * math.cos(TILT))
 #: geometry_msgs/msg/Vector3Stamped's type hash in ROS 2 Jazzy (as rosbags lists it)
 VEC3_HASH = "RIHS01_d4829622288cbb443886e7ea94ea5671a3b1be6bab4ad04224432a65f7d7887a"
-#: one count of the virtual sensor's model (PFS055YA501U6: 500 N, 4 N m over 10000 counts),
-#: with room for the rounding of the tool's weight to counts
-TOL = np.array([0.05, 0.05, 0.05, 0.0004, 0.0004, 0.0004]) * 1.5
+#: one count of the virtual sensor's model (rated / 10000): the tool's weight is rounded
+#: to counts by the sensor (at most half a count off)
+TOL = np.array(leptrino.Simulator.model_rated("PFS055YA501U6"), dtype=float) / 10000.0
 
 _GOOD = cdr.encode_vector3_stamped(1, 0, "a", (0.0, 0.0, -G0))
 
