@@ -277,7 +277,12 @@ class SensorNode:
         ent, receive = self.gravity_entity, self.gravity.receive
         if session is not None:
             def on_sample(sample: Any) -> None:
-                receive(bytes(sample.payload.to_bytes()), "zenoh")
+                try:
+                    payload = bytes(sample.payload.to_bytes())
+                except Exception as e:  # nothing a peer sends may reach zenoh's thread
+                    receive(b"", "zenoh", f"unreadable payload: {e}")
+                    return
+                receive(payload, "zenoh")
             self._subscribers.append(session.declare_subscriber(ent.key(), on_sample))
         if dds is not None:
             dds.subscription(node, ent.name, VECTOR3_STAMPED,
