@@ -294,13 +294,14 @@ static void test_limits_with_overload_episodes(void)
     TEST_ASSERT_EQUAL_size_t(overloads, exceeded);
     TEST_ASSERT_EQUAL_size_t(runs, exceeded);
     TEST_ASSERT_TRUE(cleared == exceeded || cleared + 1 == exceeded);
-    /* The health counts every episode begun, as queued (none dropped here). */
+    /* The health counts every episode begun as it is queued: those taken so
+     * far, and any of rows processed but not yet returned (none dropped). */
     lep_session_get_health(s, &h);
     for (i = 0, queued = 0; i < nev; i++)
         queued += ev[i].type == LEP_EV_LIMIT_EXCEEDED;
     TEST_ASSERT_EQUAL_UINT64(0, h.events_dropped);
-    TEST_ASSERT_EQUAL_UINT64(queued, h.limit_episodes);
-    TEST_ASSERT_TRUE(h.limit_episodes >= exceeded);
+    TEST_ASSERT_TRUE(h.limit_episodes >= queued);
+    TEST_ASSERT_TRUE(queued >= exceeded);
     /* No limits: no flags, no events, from the first sample processed after. */
     lep_session_get_health(s, &h);
     TEST_ASSERT_EQUAL_UINT64(1500, h.delivered);
@@ -317,7 +318,8 @@ static void test_limits_with_overload_episodes(void)
     TEST_ASSERT_TRUE(checked >= 1800 - 16384 / 25); /* one port read (16 KiB) may stay queued */
     for (i = 0; i < nev; i++)
         TEST_ASSERT_TRUE(ev[i].type != LEP_EV_LIMIT_EXCEEDED || ev[i].sample < processed);
-    /* none begun without limits: only events of samples processed before */
+    /* none begun without limits: the events taken since are those of rows
+     * processed before, and every one is now taken */
     for (i = 0; i < nev; i++)
         queued += ev[i].type == LEP_EV_LIMIT_EXCEEDED;
     lep_session_get_health(s, &h);
