@@ -158,8 +158,9 @@ typedef struct lep_session_health {
     uint64_t delivered; /* samples returned by lep_session_read (after decimation) */
     uint64_t lost;      /* samples estimated lost in gaps */
     uint64_t gaps;
-    uint64_t errors;    /* framing, BCC, invalid messages, timeouts (all connections) */
-    uint64_t overloads; /* overload episodes begun */
+    uint64_t errors;         /* framing, BCC, invalid messages, timeouts (all connections) */
+    uint64_t overloads;      /* overload episodes begun */
+    uint64_t limit_episodes; /* limit episodes begun (LEP_EV_LIMIT_EXCEEDED queued) */
     uint64_t disconnects;
     uint64_t reconnects;
     uint64_t events_dropped; /* events pushed out of the full queue (1024) before
@@ -322,6 +323,13 @@ LEP_API int lep_session_set_gravity(lep_session *s, const double gravity[3]);
  * sample with every axis back within 95 % of its limit. limit NULL, or 0 for
  * an axis: no limit. LEP_E_ARG for NULL s, negative or non-finite limits. */
 LEP_API int lep_session_set_limits(lep_session *s, const double limit[LEP_AXES]);
+
+/* Limits as text, the `--limit` syntax of the leptrino tool and the bridge:
+ * AXIS=VALUE pairs separated by commas, AXIS one of fx fy fz mx my mz, VALUE
+ * a finite number > 0 (N, N m), e.g. "fz=50,mz=2". Fills limit[] (axes not
+ * named set to 0: none; an axis named twice keeps the last). LEP_E_ARG for
+ * NULL or malformed text (limit then untouched). Re-entrant, no allocation. */
+LEP_API int lep_limits_parse(const char *text, double limit[LEP_AXES]);
 
 /* Change the latency budget (0..10000 ms, as latency_ms at open); it applies
  * from the next lep_session_read. Call it from the thread that reads (not

@@ -4,7 +4,9 @@
  * session_proc.c; calls session_events.c. */
 #define _POSIX_C_SOURCE 200809L
 
+#include <errno.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "errmsg.h"
@@ -98,8 +100,38 @@ uint8_t lep_priv_load_limits(lep_session *s, const double si[LEP_AXES], double t
         ev.axes = axes;
         memcpy(ev.wrench, si, sizeof ev.wrench);
         lep_priv_events_push(&s->events, &ev);
+        if (l->beyond)
+            s->hs.h.limit_episodes++;
     }
     return axes != 0u ? LEP_SF_LIMIT : 0u;
+}
+
+int lep_limits_parse(const char *text, double limit[LEP_AXES])
+{
+    double v[LEP_AXES] = { 0 };
+    const char *p = text;
+    if (text == NULL || limit == NULL)
+        return LEP_E_ARG;
+    for (;;) {
+        char *end;
+        int k, axis = -1;
+        for (k = 0; k < LEP_AXES; k++)
+            if (strncmp(p, axis_name[k], 2) == 0 && p[2] == '=')
+                axis = k;
+        if (axis < 0)
+            return LEP_E_ARG;
+        errno = 0;
+        v[axis] = strtod(p + 3, &end);
+        if (end == p + 3 || errno == ERANGE || !isfinite(v[axis]) || !(v[axis] > 0.0))
+            return LEP_E_ARG;
+        if (*end == '\0')
+            break;
+        if (*end != ',')
+            return LEP_E_ARG;
+        p = end + 1;
+    }
+    memcpy(limit, v, sizeof v);
+    return LEP_OK;
 }
 
 /* ---- the any-thread setters ---- */

@@ -115,6 +115,10 @@ BAD = [
     ["watch", "--sim", "--sim"],
     ["watch", "--sim", "--tare", "0"],
     ["watch", "--sim", "--lowpass", "abc"],
+    ["watch", "--sim", "--payload", "-1,0,0,0"],
+    ["watch", "--sim", "--payload", "1,0,0"],
+    ["watch", "--sim", "--gravity", "0,nan,-9.8"],
+    ["watch", "--sim", "--limit", "fz=5"],  # stream's option only
     ["watch", "--sim"],
     ["info", "--sim", "--sim"],
     ["stream", "--sim", "--bogus"],

@@ -7,6 +7,7 @@ sets LEPTRINO_REQUIRE_TMUX=1, which turns the skip into a failure."""
 
 from __future__ import annotations
 
+import math
 import os
 import re
 import shlex
@@ -165,6 +166,38 @@ def test_watch_tare_untare_resize_quit(marker: str) -> None:
             assert "leptrino: watch:" in f.read()
     finally:
         t.close()
+
+
+def test_watch_payload_and_gravity(marker: str) -> None:
+    """A tool of 1.5 kg on the virtual sensor (its own gravity: z up, no other
+    load): with --payload its weight is gone from the view; with --gravity
+    tilted 30 degrees about y the view shows w(g_sim) - w(g), computed here."""
+    tool = (1.5, 0.02, -0.01, 0.06)
+    sim = ["--sim", "--sim-constant", "--sim-amplitude", "0",
+           "--sim-payload", ",".join(map(str, tool))]
+    g = (9.80665 * math.sin(math.radians(30)), 0.0, -9.80665 * math.cos(math.radians(30)))
+
+    def weight(gv: tuple[float, float, float]) -> list[float]:
+        f = [tool[0] * x for x in gv]
+        c = tool[1:]
+        return f + [c[1] * f[2] - c[2] * f[1], c[2] * f[0] - c[0] * f[2],
+                    c[0] * f[1] - c[1] * f[0]]
+
+    want_flat = [0.0] * 6
+    want_tilt = [a - b for a, b in zip(weight((0.0, 0.0, -9.80665)), weight(g))]
+    for extra, want in (([], want_flat), (["--gravity", ",".join(map(str, g))], want_tilt)):
+        t = Tmux(shell_command(["watch", *sim, "--payload", ",".join(map(str, tool)), *extra],
+                               marker))
+        try:
+            screen = t.wait_for(lambda s: has_all_axes(s) and "payload 1.5 kg" in s)
+            got = axis_values(screen)
+            for axis, w in zip(AXES, want):
+                assert abs(got[axis] - w) < 0.08, (axis, got[axis], w, screen)
+            assert "payload 1.5 kg at 0.02 -0.01 0.06 m" in screen
+            t.keys("q")
+            assert f"{marker} exit=0 tty=restored" in t.wait_for(lambda s: marker in s)
+        finally:
+            t.close()
 
 
 def test_watch_sigterm_restores_the_terminal(marker: str) -> None:

@@ -232,7 +232,7 @@ static void test_limits_with_overload_episodes(void)
     lep_session_event ev[64];
     lep_session_health h;
     size_t nev, i, exceeded = 0, cleared = 0, overloads = 0, runs = 0, first = 0, checked = 0;
-    uint64_t processed;
+    uint64_t processed, queued;
     st_batch x;
     st_batch_init(&x, 1800);
     sim_options(&o, g, "0.002");
@@ -294,6 +294,14 @@ static void test_limits_with_overload_episodes(void)
     TEST_ASSERT_EQUAL_size_t(overloads, exceeded);
     TEST_ASSERT_EQUAL_size_t(runs, exceeded);
     TEST_ASSERT_TRUE(cleared == exceeded || cleared + 1 == exceeded);
+    /* The health counts every episode begun as it is queued: those taken so
+     * far, and any of rows processed but not yet returned (none dropped). */
+    lep_session_get_health(s, &h);
+    for (i = 0, queued = 0; i < nev; i++)
+        queued += ev[i].type == LEP_EV_LIMIT_EXCEEDED;
+    TEST_ASSERT_EQUAL_UINT64(0, h.events_dropped);
+    TEST_ASSERT_TRUE(h.limit_episodes >= queued);
+    TEST_ASSERT_TRUE(queued >= exceeded);
     /* No limits: no flags, no events, from the first sample processed after. */
     lep_session_get_health(s, &h);
     TEST_ASSERT_EQUAL_UINT64(1500, h.delivered);
@@ -310,8 +318,40 @@ static void test_limits_with_overload_episodes(void)
     TEST_ASSERT_TRUE(checked >= 1800 - 16384 / 25); /* one port read (16 KiB) may stay queued */
     for (i = 0; i < nev; i++)
         TEST_ASSERT_TRUE(ev[i].type != LEP_EV_LIMIT_EXCEEDED || ev[i].sample < processed);
+    /* none begun without limits: the events taken since are those of rows
+     * processed before, and every one is now taken */
+    for (i = 0; i < nev; i++)
+        queued += ev[i].type == LEP_EV_LIMIT_EXCEEDED;
+    lep_session_get_health(s, &h);
+    TEST_ASSERT_EQUAL_UINT64(queued, h.limit_episodes);
     lep_session_close(s);
     st_batch_free(&x);
+}
+
+/* The --limit text: what is accepted, and refusals that leave the limits as
+ * they were. */
+static void test_limits_parse(void)
+{
+    static const char *const bad[] = { "",          "fz",     "fz=",      "fz=0",  "fz=-1",
+                                       "fz=nan",    "fz=inf", "fz=1e999", "fq=3",  "fz=5,",
+                                       "fz=5;mz=2", "fz=5 ",  "Fz=5",     ",fz=5", "fz=5,,mz=2" };
+    double lim[6] = { 1, 2, 3, 4, 5, 6 };
+    size_t i;
+    int k;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_limits_parse("fz=50,mz=2", lim));
+    for (k = 0; k < 6; k++)
+        TEST_ASSERT_EQUAL_DOUBLE(k == 2 ? 50.0 : k == 5 ? 2.0 : 0.0, lim[k]);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_limits_parse("fx=1.5,fy=2e1,fz=3,mx=4,my=5,mz=6,fx=7", lim));
+    TEST_ASSERT_EQUAL_DOUBLE(7.0, lim[0]);
+    TEST_ASSERT_EQUAL_DOUBLE(20.0, lim[1]);
+    TEST_ASSERT_EQUAL_DOUBLE(6.0, lim[5]);
+    for (i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_E_ARG, lep_limits_parse(bad[i], lim), bad[i]);
+        TEST_ASSERT_EQUAL_DOUBLE(7.0, lim[0]);
+        TEST_ASSERT_EQUAL_DOUBLE(6.0, lim[5]);
+    }
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_limits_parse(NULL, lim));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_limits_parse("fz=1", NULL));
 }
 
 static void test_metadata_and_refusals(void)
@@ -373,6 +413,7 @@ int main(void)
     RUN_TEST(test_identified_then_compensated_at_a_fifth);
     RUN_TEST(test_tare_with_a_payload_keeps_the_tool);
     RUN_TEST(test_limits_with_overload_episodes);
+    RUN_TEST(test_limits_parse);
     RUN_TEST(test_metadata_and_refusals);
     return UNITY_END();
 }

@@ -3,6 +3,7 @@
  * Files depend one way (test/checks/depgraph.py): main.c dispatches to one
  * cmd_*.c per command; the commands call the shared helpers below them,
  * never main.c. help.c prints the help's common end, args.c parses options,
+ * load_opts.c the options about the tool on the sensor and the limits,
  * sensors.c turns PORT / --sim / --sim-* into sessions (leptrino/session.h:
  * the one place that starts a sensor up) and reports their errors,
  * term.c and signals.c deal with the terminal and signals, status.c draws
@@ -93,6 +94,13 @@ void cli_args_error(cli_args *a, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)))
 #endif
     ;
+
+/* ---- load_opts.c: --payload, --gravity, --limit ---- */
+/* The current option is one of them (--limit only when limits): parsed into
+ * so (errors reported, a->failed set); false when it is none of them. */
+bool cli_load_option(cli_args *a, lep_session_options *so, bool limits);
+/* Their help lines. */
+void cli_load_help(FILE *f, bool limits);
 
 /* ---- sensors.c: PORT... / --sim... into sessions ---- */
 typedef struct cli_sensor {

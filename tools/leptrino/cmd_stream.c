@@ -42,7 +42,6 @@ typedef struct sensor_run {
     bool own_writer;
     bool done;            /* reached duration/count */
     int failed;           /* LEP_E_* that ended it, 0 while fine */
-    uint64_t limits;      /* limit episodes begun */
     bool limit_stop;      /* a limit was exceeded with --stop-on-limit */
     unsigned tare_events; /* tares done, offsets set and un-tares during the run */
 } sensor_run;
@@ -105,19 +104,9 @@ static void help(void)
           "      --data-timeout S     no data for S seconds is an error (default 2)\n"
           "\n",
           stdout);
-    fputs("Payload and limits:\n"
-          "      --payload M,CX,CY,CZ a tool on the sensor: mass kg, centre of mass m\n"
-          "                           (sensor frame; from `leptrino payload`): its\n"
-          "                           gravity wrench is removed from the SI values (raw\n"
-          "                           and zeroed counts stay as measured); a tare then\n"
-          "                           removes the bias only\n"
-          "      --gravity GX,GY,GZ   gravity in the sensor frame, m/s^2 (default\n"
-          "                           0,0,-9.80665: the z axis up)\n"
-          "      --limit AXIS=V,...   limits on the SI values (after compensation, in the\n"
-          "                           output frame), N and N m, e.g. fz=50,mz=2: samples\n"
-          "                           beyond are flagged 16, '# limit exceeded' and\n"
-          "                           '# limit cleared' lines mark each episode\n"
-          "      --stop-on-limit      stop at the first sample beyond a limit (it is\n"
+    fputs("Payload and limits:\n", stdout);
+    cli_load_help(stdout, true);
+    fputs("      --stop-on-limit      stop at the first sample beyond a limit (it is\n"
           "                           written), exit code 9\n"
           "  -h, --help               show this help\n"
           "\n",
@@ -167,31 +156,6 @@ static bool parse_columns(const char *v, unsigned *out)
             return false;
     }
     return *out != 0;
-}
-
-/* "fz=50,mz=2" into limit[6] (N, N m); false when malformed. */
-static bool parse_limits(const char *v, double limit[LEP_AXES])
-{
-    static const char *const names[LEP_AXES] = { "fx", "fy", "fz", "mx", "my", "mz" };
-    const char *p = v;
-    for (;;) {
-        char *end;
-        int k, axis = -1;
-        for (k = 0; k < LEP_AXES; k++)
-            if (strncmp(p, names[k], 2) == 0 && p[2] == '=')
-                axis = k;
-        if (axis < 0)
-            return false;
-        errno = 0;
-        limit[axis] = strtod(p + 3, &end);
-        if (end == p + 3 || errno == ERANGE || !isfinite(limit[axis]) || !(limit[axis] > 0.0))
-            return false;
-        if (*end == '\0')
-            return true;
-        if (*end != ',')
-            return false;
-        p = end + 1;
-    }
 }
 
 static int parse(int argc, char **argv, stream_opts *o)
@@ -281,23 +245,8 @@ static int parse(int argc, char **argv, stream_opts *o)
             o->so.data_timeout_ms = (int)(cli_args_double(&a, 0.0, 3600.0, true) * 1000.0);
             if (o->so.data_timeout_ms < 1 && !a.failed)
                 o->so.data_timeout_ms = 1;
-        } else if (cli_args_is(&a, NULL, "--payload")) {
-            double p[4];
-            if (cli_args_doubles(&a, p, 4)) {
-                if (p[0] < 0.0)
-                    cli_args_error(&a, "option --payload: the mass %g kg is negative", p[0]);
-                o->so.payload.mass_kg = p[0];
-                memcpy(o->so.payload.com_m, p + 1, sizeof o->so.payload.com_m);
-            }
-        } else if (cli_args_is(&a, NULL, "--gravity")) {
-            (void)cli_args_doubles(&a, o->so.gravity, 3);
-        } else if (cli_args_is(&a, NULL, "--limit")) {
-            v = cli_args_value(&a);
-            if (v != NULL && !parse_limits(v, o->so.limit))
-                cli_args_error(&a,
-                               "option --limit: '%s' is not AXIS=VALUE,... with AXIS one of "
-                               "fx, fy, fz, mx, my, mz and VALUE > 0 (N, N m)",
-                               v);
+        } else if (cli_load_option(&a, &o->so, true)) {
+            /* --payload, --gravity, --limit */
         } else if (cli_args_is(&a, NULL, "--stop-on-limit")) {
             cli_args_flag(&a);
             o->stop_on_limit = true;
@@ -475,8 +424,6 @@ static void emit(stream_state *st, sensor_run *r, const lep_session_batch *batch
             more = more && !r->limit_stop;
         }
         for (k = 0; k < nev; ++k) {
-            if (ev[k].type == LEP_EV_LIMIT_EXCEEDED)
-                r->limits++;
             /* without reconnect, the next read says the stream is over */
             if (ev[k].type == LEP_EV_DISCONNECTED && st->o.so.reconnect) {
                 if (ev[k].error == LEP_E_TIMEOUT)
@@ -649,9 +596,9 @@ static void summary(stream_state *st)
                     "leptrino: stream: %s: %llu events dropped (the session's event queue was "
                     "full): the output lacks them\n",
                     r->sensor->name, (unsigned long long)h.events_dropped);
-        if (r->limits > 0)
+        if (h.limit_episodes > 0)
             fprintf(stderr, "leptrino: stream: %s: %llu limit episode%s\n", r->sensor->name,
-                    (unsigned long long)r->limits, r->limits == 1 ? "" : "s");
+                    (unsigned long long)h.limit_episodes, h.limit_episodes == 1 ? "" : "s");
         if (h.shortfall)
             fprintf(stderr,
                     "leptrino: stream: %s: RATE SHORTFALL: %.1f Hz is %.1f %% below the "

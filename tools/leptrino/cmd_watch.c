@@ -19,6 +19,7 @@ typedef struct watch_opts {
     double lowpass;
     bool reconnect;
     double data_timeout;
+    lep_session_options load; /* --payload, --gravity */
 } watch_opts;
 
 static void help(void)
@@ -41,8 +42,10 @@ static void help(void)
           "      --tare N             samples a tare averages (default 100)\n"
           "      --lowpass HZ         host low-pass filter cut-off in Hz (default off)\n"
           "      --reconnect          when the port goes away, reopen it and go on\n"
-          "      --data-timeout S     no data for S seconds is an error (default 2)\n"
-          "  -h, --help               show this help\n"
+          "      --data-timeout S     no data for S seconds is an error (default 2)\n",
+          stdout);
+    cli_load_help(stdout, false);
+    fputs("  -h, --help               show this help\n"
           "\n",
           stdout);
     cli_print_help_end(stdout, 1);
@@ -56,6 +59,7 @@ static int parse(int argc, char **argv, watch_opts *o)
     cli_port_opts_init(&o->po, false);
     o->tare_n = 100;
     o->data_timeout = 2.0;
+    lep_session_options_init(&o->load);
     while (cli_args_next(&a)) {
         if (cli_args_help(&a)) {
             help();
@@ -69,6 +73,8 @@ static int parse(int argc, char **argv, watch_opts *o)
             o->reconnect = true;
         } else if (cli_args_is(&a, NULL, "--data-timeout")) {
             o->data_timeout = cli_args_double(&a, 0.0, 3600.0, true);
+        } else if (cli_load_option(&a, &o->load, false)) {
+            /* --payload, --gravity */
         } else if (!cli_port_option(&o->po, &a)) {
             cli_args_unknown(&a);
         }
@@ -140,6 +146,8 @@ int cli_cmd_watch(int argc, char **argv)
     so.lowpass_hz = o.lowpass;
     so.reconnect = o.reconnect;
     so.data_timeout_ms = (int)(o.data_timeout * 1000.0);
+    so.payload = o.load.payload;
+    memcpy(so.gravity, o.load.gravity, sizeof so.gravity);
     cli_signals_install();
     code = cli_sensors_open(&o.po, &so, "watch");
     if (code != CLI_OK)

@@ -7,7 +7,7 @@
  *   six rows: axis, value, unit, a bar centred on zero against the rated
  *             range ('<' or '>' at the end when beyond it), percent
  *   status bits and overloaded axes, rate against nominal, counters,
- *   tare state, the last event, the keys */
+ *   tare state (and the payload compensated, if any), the last event, the keys */
 #define _POSIX_C_SOURCE 200809L
 
 #include <ctype.h>
@@ -191,7 +191,15 @@ void cli_watch_draw(int fd, const cli_watch_view *v, int cols, int rows)
          (unsigned long long)h->received, (unsigned long long)h->errors,
          (unsigned long long)h->gaps, (unsigned long long)h->lost, (unsigned long long)h->overloads,
          (unsigned long long)h->reconnects);
-    line(&s, "tare      %s", v->taring ? "averaging..." : m->tared ? "on" : "off");
+    if (m->payload.mass_kg > 0.0)
+        line(&s, "tare      %-12s payload %g kg at %g %g %g m, gravity %g %g %g m/s^2",
+             v->taring  ? "averaging..."
+             : m->tared ? "on"
+                        : "off",
+             m->payload.mass_kg, m->payload.com_m[0], m->payload.com_m[1], m->payload.com_m[2],
+             m->gravity[0], m->gravity[1], m->gravity[2]);
+    else
+        line(&s, "tare      %s", v->taring ? "averaging..." : m->tared ? "on" : "off");
     line(&s, "last      %s", v->message);
     line(&s, "%s", "");
     line(&s, "keys      t tare   u untare   q quit");

@@ -516,6 +516,7 @@ typedef struct lep_session_health
   uint64_t gaps;
   uint64_t errors;
   uint64_t overloads;
+  uint64_t limit_episodes;
   uint64_t disconnects;
   uint64_t reconnects;
   uint64_t events_dropped;
@@ -566,6 +567,7 @@ int lep_session_set_rotation(lep_session *s, const double rotation[9], const dou
 int lep_session_set_payload(lep_session *s, const lep_payload *p);
 int lep_session_set_gravity(lep_session *s, const double gravity[3]);
 int lep_session_set_limits(lep_session *s, const double limit[6]);
+int lep_limits_parse(const char *text, double limit[6]);
 int lep_session_set_latency(lep_session *s, int latency_ms);
 int lep_session_latency(const lep_session *s);
 void lep_session_get_health(lep_session *s, lep_session_health *out);
@@ -752,6 +754,7 @@ FUNCTIONS = (
     'lep_session_set_payload',
     'lep_session_set_gravity',
     'lep_session_set_limits',
+    'lep_limits_parse',
     'lep_session_set_latency',
     'lep_session_latency',
     'lep_session_get_health',

@@ -161,6 +161,7 @@ class Health:
     gaps: int
     errors: int  # framing, BCC, invalid messages, timeouts (all connections)
     overloads: int  # overload episodes begun
+    limit_episodes: int  # limit episodes begun (LEP_EV_LIMIT_EXCEEDED queued)
     disconnects: int
     reconnects: int
     events_dropped: int  # events pushed out of the full queue (1024) before lep_session_next_event
@@ -182,6 +183,7 @@ class Health:
             gaps=int(c.gaps),
             errors=int(c.errors),
             overloads=int(c.overloads),
+            limit_episodes=int(c.limit_episodes),
             disconnects=int(c.disconnects),
             reconnects=int(c.reconnects),
             events_dropped=int(c.events_dropped),

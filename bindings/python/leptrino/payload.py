@@ -136,3 +136,19 @@ def read_pose(path: str, backend: Optional[str] = None) -> Tuple[Vec6, int]:
             raise OSError(msg)
         raise ValueError(msg)
     return tuple(float(mean[i]) for i in range(6)), int(be.value(n))  # type: ignore[return-value]
+
+
+def parse_limits(text: str, backend: Optional[str] = None) -> Vec6:
+    """Limits from the `--limit` text ("fz=50,mz=2": AXIS=VALUE pairs, AXIS
+    one of fx fy fz mx my mz, VALUE > 0 in N or N·m) as six numbers (fx..mz,
+    0 = none) for Sensor.set_limits: the library's parser
+    (lep_limits_parse), the one `leptrino stream --limit` uses. ValueError
+    when malformed."""
+    if not isinstance(text, str):
+        raise TypeError(f"limits: {text!r} is not text")
+    be = get_backend(backend)
+    out = be.doubles(K.LEP_AXES)
+    if "\x00" in text or be.lib.lep_limits_parse(text.encode(), out) < 0:
+        raise ValueError(f"limits {text!r}: expected AXIS=VALUE,... with AXIS one of fx, fy, "
+                         "fz, mx, my, mz and VALUE > 0 (N, N·m)")
+    return tuple(float(out[i]) for i in range(K.LEP_AXES))  # type: ignore[return-value]

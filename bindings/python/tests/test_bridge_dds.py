@@ -213,10 +213,10 @@ def test_cyclone_reader_gets_every_sample(participant: Any, domain: int, ramp: s
     nodes = {n.node_name: n for n in infos[-1].node_entities_info_seq}
     assert set(nodes) == {"left", "right"} and nodes["left"].node_namespace == "/"
     writer_gids = {bytes(g.data) for g in nodes["left"].writer_gid_seq}
-    # 3 topics and the 2 services' reply writers; the tare and untare topics'
-    # readers and the services' request readers
+    # 3 topics and the 2 services' reply writers; the tare, untare and
+    # gravity topics' readers and the services' request readers
     assert ep.key.bytes in writer_gids and len(writer_gids) == 5
-    assert len(nodes["left"].reader_gid_seq) == 4
+    assert len(nodes["left"].reader_gid_seq) == 5
     assert bytes(infos[-1].gid.data) == ep.participant_key.bytes
 
     for name, frame in (("left", "left_ft"), ("right", "right")):
@@ -337,5 +337,6 @@ def test_humble_node_announcement(domain: int) -> None:
     (node,) = got[-1].node_entities_info_seq
     assert (node.node_namespace, node.node_name) == ("/lab", "h")
     gids = [bytes(g.data) for g in [got[-1].gid, *node.writer_gid_seq, *node.reader_gid_seq]]
-    assert len(gids) == 10 and all(len(g) == 24 and g[16:] == bytes(8) for g in gids)
-    assert len(set(gids)) == 10
+    # participant, 5 writers, 5 readers
+    assert len(gids) == 11 and all(len(g) == 24 and g[16:] == bytes(8) for g in gids)
+    assert len(set(gids)) == 11

@@ -7,7 +7,8 @@ NUL, then the bytes and the NUL; a sequence is a uint32 count and the
 elements. This is what rmw_zenoh (like the DDS middlewares) puts on the wire
 and what an MCAP "cdr" channel holds. The per-sample message,
 WrenchStamped, is serialized in C (lep_ros_wrench_cdr, wrench_batch.py);
-here are the rare ones (diagnostics, service answers).
+here are the rare ones (diagnostics, service answers) and the one message
+the bridge receives, Vector3Stamped (the gravity input), decoded strictly.
 """
 
 from __future__ import annotations
@@ -119,3 +120,46 @@ def check_encapsulation(payload: bytes) -> None:
     """ValueError unless payload starts with a CDR (little- or big-endian) header."""
     if len(payload) < 4 or payload[0] != 0 or payload[1] not in (0, 1):
         raise ValueError("not a CDR payload (bad encapsulation header)")
+
+
+Vector3StampedFields = Tuple[int, int, str, Tuple[float, float, float]]
+
+
+def encode_vector3_stamped(sec: int, nanosec: int, frame_id: str,
+                           vector: Sequence[float]) -> bytes:
+    """geometry_msgs/msg/Vector3Stamped."""
+    w = CdrWriter()
+    w.header(sec, nanosec, frame_id)
+    for v in vector:
+        w.float64(float(v))
+    return w.getvalue()
+
+
+def decode_vector3_stamped(payload: bytes) -> Vector3StampedFields:
+    """(sec, nanosec, frame_id, (x, y, z)) of a geometry_msgs/msg/Vector3Stamped
+    in CDR (little- or big-endian). ValueError, saying what is wrong, for
+    anything else: a bad encapsulation header, a length that is not the
+    message's (up to 3 bytes of padding after it are allowed, as DDS pads a
+    sample to 4 bytes), a string that is not NUL-terminated UTF-8."""
+    check_encapsulation(payload)
+    e = "<" if payload[1] == 1 else ">"
+    body = memoryview(payload)[4:]
+    if len(body) < 12:
+        raise ValueError(f"{len(payload)} bytes: too short for a Vector3Stamped")
+    sec, nanosec, n = struct.unpack_from(e + "iII", body, 0)
+    if n < 1 or 12 + n > len(body):
+        raise ValueError(f"frame_id length {n} does not fit in {len(payload)} bytes")
+    raw = bytes(body[12:12 + n])
+    if raw[-1] != 0 or b"\x00" in raw[:-1]:
+        raise ValueError("frame_id is not a NUL-terminated string")
+    try:
+        frame_id = raw[:-1].decode("utf-8")
+    except UnicodeDecodeError:
+        raise ValueError("frame_id is not UTF-8") from None
+    at = 12 + n
+    at += -at % 8
+    end = at + 24
+    if not end <= len(body) < end + 4:
+        raise ValueError(f"{len(payload)} bytes, not the {4 + end} of this Vector3Stamped")
+    x, y, z = struct.unpack_from(e + "ddd", body, at)
+    return sec, nanosec, frame_id, (x, y, z)

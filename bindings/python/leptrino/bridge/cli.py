@@ -4,6 +4,7 @@
     leptrino-bridge --sensor left=/dev/ttyACM0 --connect tcp/192.0.2.10:7447
     leptrino-bridge --sim a --mcap out.mcap --duration 10 # no network at all
     leptrino-bridge --sim a --dds --foxglove              # ROS 2 on DDS, Foxglove live
+    leptrino-bridge --sensor a=/dev/ttyACM0 --payload a=1.2,0,0,0.05 --limit fz=50,mz=2
 
 Exit status: 0 after a clean stop (Ctrl-C, SIGTERM, --duration), 2 for a bad
 argument or a sensor/file that cannot be opened.
@@ -17,7 +18,7 @@ import math
 import os
 import signal
 import sys
-from typing import Any, Dict, List, Optional, Sequence
+from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 from . import rmw_zenoh as rz
 from .node import NodeOptions, SensorSpec
@@ -35,16 +36,30 @@ def _parse_sensor(text: str) -> SensorSpec:
         raise argparse.ArgumentTypeError(str(e)) from None
 
 
+def _is_number(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
+
+
 def _parse_sim(text: str) -> SensorSpec:
     """NAME or NAME,option=value,... (the virtual sensor's options, as
-    leptrino-sim names them, dashes or underscores)."""
+    leptrino-sim names them, dashes or underscores). A value of several
+    numbers keeps its commas: a,payload=1.2,0,0,0.05,gravity=0,0,-9.8."""
     name, *opts = text.split(",")
     sim: Dict[str, Any] = {}
+    last = ""
     for o in opts:
         k, sep, v = o.partition("=")
+        if not sep and last and isinstance(sim[last], str) and _is_number(k):
+            sim[last] += "," + k  # the next number of the previous option's value
+            continue
         if not k:
             raise argparse.ArgumentTypeError(f"{text!r}: empty option")
-        sim[k.strip().replace("-", "_")] = v if sep else True
+        last = k.strip().replace("-", "_")
+        sim[last] = v if sep else True
     try:
         return SensorSpec(name, sim=sim)
     except ValueError as e:
@@ -75,6 +90,51 @@ def _parse_rpy(text: str) -> List[float]:
     return [math.radians(x) for x in v]
 
 
+def _numbers(text: str, n: int, what: str) -> List[float]:
+    """n comma-separated finite numbers (as `leptrino stream`'s options take them)."""
+    try:
+        v = [float(x) for x in text.split(",")]
+    except ValueError:
+        v = []
+    if len(v) != n or not all(math.isfinite(x) for x in v):
+        raise argparse.ArgumentTypeError(f"{text!r}: expected {what}, {n} comma-separated "
+                                         "numbers")
+    return v
+
+
+def _per_sensor(text: str) -> Tuple[Optional[str], str]:
+    """"NAME=VALUES" -> (NAME, VALUES); "VALUES" (every sensor) -> (None, VALUES)."""
+    name, sep, rest = text.partition("=")
+    return (name, rest) if sep else (None, text)
+
+
+def _parse_payload(text: str) -> Tuple[Optional[str], List[float]]:
+    name, rest = _per_sensor(text)
+    v = _numbers(rest, 4, "[NAME=]M,CX,CY,CZ (kg, m)")
+    if v[0] < 0:
+        raise argparse.ArgumentTypeError(f"{text!r}: the mass {v[0]:g} kg is negative")
+    return name, v
+
+
+def _parse_gravity(text: str) -> Tuple[Optional[str], List[float]]:
+    name, rest = _per_sensor(text)
+    v = _numbers(rest, 3, "[NAME=]GX,GY,GZ (m/s²)")
+    if not any(v):
+        raise argparse.ArgumentTypeError(f"{text!r}: gravity cannot be a zero vector")
+    return name, v
+
+
+def _parse_limit(text: str) -> Tuple[float, ...]:
+    from ..payload import parse_limits  # the library's parser, as `leptrino stream` uses
+
+    try:
+        return parse_limits(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"{text!r}: expected AXIS=VALUE,... with AXIS one of fx, fy, fz, mx, my, mz and "
+            "VALUE > 0 (N, N m)") from None
+
+
 def _positive(text: str) -> float:
     try:
         v = float(text)
@@ -101,8 +161,11 @@ def build_parser() -> argparse.ArgumentParser:
         formatter_class=argparse.RawDescriptionHelpFormatter,
         epilog="Topics per sensor NAME: <ns>/NAME/wrench, <ns>/NAME/wrench_raw "
                "(geometry_msgs/msg/WrenchStamped), <ns>/NAME/diagnostics "
-               "(diagnostic_msgs/msg/DiagnosticArray, 1 Hz); services <ns>/NAME/tare and "
-               "<ns>/NAME/untare (std_srvs/srv/Trigger). See docs/bridge.md.")
+               "(diagnostic_msgs/msg/DiagnosticArray, 1 Hz, and at once when a --limit "
+               "episode begins or ends); services <ns>/NAME/tare and <ns>/NAME/untare "
+               "(std_srvs/srv/Trigger); input <ns>/NAME/gravity "
+               "(geometry_msgs/msg/Vector3Stamped, m/s² in the sensor frame) on every "
+               "transport. See docs/bridge.md.")
     s = p.add_argument_group("sensors")
     s.add_argument("--sensor", action="append", type=_parse_sensor, default=[],
                    metavar="NAME=PORT", help="a sensor on a serial port (repeatable)")
@@ -121,6 +184,19 @@ def build_parser() -> argparse.ArgumentParser:
                    help="express `wrench` in a frame rotated by roll, pitch, yaw (degrees)")
     s.add_argument("--latency", type=float, default=0.002, metavar="S",
                    help="how long the session may hold samples back (default 0.002)")
+    s.add_argument("--payload", action="append", type=_parse_payload, default=[],
+                   metavar="[NAME=]M,CX,CY,CZ",
+                   help="a tool on sensor NAME (without NAME=: on every sensor): mass kg, "
+                        "centre of mass m in the sensor frame; its weight is removed from "
+                        "`wrench` (not from `wrench_raw`) at the gravity of --gravity and of "
+                        "the NAME/gravity topic (repeatable)")
+    s.add_argument("--gravity", action="append", type=_parse_gravity, default=[],
+                   metavar="[NAME=]GX,GY,GZ",
+                   help="initial gravity in sensor NAME's frame (without NAME=: every "
+                        "sensor's), m/s² (default 0,0,-9.80665: the z axis up; repeatable)")
+    s.add_argument("--limit", type=_parse_limit, default=None, metavar="AXIS=V,...",
+                   help="limits on `wrench` (compensated), N and N m, for every sensor, e.g. "
+                        "fz=50,mz=2: an episode beyond one is a WARN in diagnostics")
     z = p.add_argument_group("zenoh")
     z.add_argument("--connect", action="append", default=[], metavar="ENDPOINT",
                    help="connect to this endpoint, e.g. tcp/127.0.0.1:7447 (repeatable; "
@@ -178,6 +254,13 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         if not sep or name not in by_name or not frame:
             p.error(f"--frame-id {f!r}: expected NAME=FRAME for a sensor given")
         by_name[name].frame_id = frame
+    for option, given in (("payload", a.payload), ("gravity", a.gravity)):
+        # every sensor's first, then the named ones', whatever their order
+        for name, v in sorted(given, key=lambda nv: nv[0] is not None):
+            if name is not None and name not in by_name:
+                p.error(f"--{option} {name}=...: no sensor named {name!r}")
+            for spec in ([by_name[name]] if name is not None else specs):
+                setattr(spec, option, v)
     domain = a.domain
     if domain is None:
         env = os.environ.get("ROS_DOMAIN_ID", "0") or "0"
@@ -220,7 +303,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
             p.error(str(e))
     opts = NodeOptions(domain=domain, namespace=namespace, tare_samples=a.retare or 100,
                        tare_at_start=a.tare, lowpass_hz=a.lowpass, rotation=a.rotate,
-                       latency_s=a.latency)
+                       latency_s=a.latency, limits=a.limit)
 
     for wanted, module, package in ((a.dds, "cyclonedds", "cyclonedds"),
                                     (a.foxglove is not None, "foxglove", "foxglove-sdk")):

@@ -21,7 +21,10 @@ The conventions (docs/bridge.md, "DDS", cites the sources):
   that any DDS middleware can publish to, and the same names as
   std_srvs/srv/Trigger services in rmw_cyclonedds' mapping (TriggerService:
   rq/NAMERequest, rr/NAMEReply, a 16-byte request header echoed in the
-  reply); rmw_fastrtps' services cannot be served (docs/bridge.md says why).
+  reply); rmw_fastrtps' services cannot be served (docs/bridge.md says why);
+- inputs (`NAME/gravity`, geometry_msgs/msg/Vector3Stamped): a reader whose
+  samples are taken as the bytes received and checked by the bridge
+  (subscription()), never trusted to deserialize.
 """
 
 # no "from __future__ import annotations": the IDL classes below are made
@@ -121,6 +124,11 @@ class _Types:
             wrench: Wrench
 
         @dc
+        class Vector3Stamped(IdlStruct, typename="geometry_msgs::msg::dds_::Vector3Stamped_"):
+            header: Header
+            vector: Vector3
+
+        @dc
         class KeyValue(IdlStruct, typename="diagnostic_msgs::msg::dds_::KeyValue_"):
             key: str
             value: str
@@ -188,6 +196,7 @@ class _Types:
             "geometry_msgs/msg/WrenchStamped": WrenchStamped,
             "diagnostic_msgs/msg/DiagnosticArray": DiagnosticArray,
             "std_msgs/msg/Empty": Empty,
+            "geometry_msgs/msg/Vector3Stamped": Vector3Stamped,
         }
 
 
@@ -335,6 +344,39 @@ class DdsParticipant:
             n = self._services
         raw = self.participant.guid.bytes[:12] + n.to_bytes(4, "big")
         return ".".join(f"{b:x}" for b in raw)
+
+    def subscription(self, node: Tuple[str, str], fq_name: str, ros_type: str,
+                     on_payload: Callable[[bytes], Any]) -> None:
+        """A ROS 2 subscription on DDS: each sample received is handed to
+        on_payload as its serialized bytes (encapsulation header first), in
+        Cyclone's listener thread; on_payload checks it (it must not raise).
+        Best effort, so that reliable and best-effort publishers both match."""
+        from cyclonedds._clayer import ddspy_take
+        from cyclonedds.core import InstanceState, Listener, SampleState, ViewState
+        from cyclonedds.sub import DataReader
+        from cyclonedds.topic import Topic
+
+        from .typehash import rihs01
+
+        mask = SampleState.Any | ViewState.Any | InstanceState.Any
+
+        def on_data(reader: Any) -> None:
+            taken = ddspy_take(reader._ref, mask, 16)
+            if isinstance(taken, int):  # an error code
+                log.debug("dds take %s: %d", fq_name, taken)
+                return
+            for data, info in taken:
+                if info.valid_data:
+                    on_payload(bytes(data))
+
+        topic = Topic(self.participant, topic_name(fq_name), self.types.by_ros[ros_type],
+                      qos=self.topic_qos())
+        reader = DataReader(self.participant, topic,
+                            qos=self.endpoint_qos(rihs01(ros_type), reliable=False),
+                            listener=Listener(on_data_available=on_data))
+        self._readers.append((topic, reader))
+        with self._lock:
+            self._nodes.setdefault(node, ([], []))[0].append(reader.guid.bytes)
 
     def announce(self) -> None:
         """Publish the nodes on ros_discovery_info (after every endpoint is made)."""

@@ -1,7 +1,9 @@
 """Foxglove live: the bridge's topics on a Foxglove WebSocket server
 (the PyPI `foxglove-sdk`, the "bridge" extra), with the schemas and
-payloads of its MCAP file (ros2msg schemas, CDR messages), and the tare and
-untare services as Foxglove services (std_srvs/srv/Trigger in CDR).
+payloads of its MCAP file (ros2msg schemas, CDR messages), the tare and
+untare services as Foxglove services (std_srvs/srv/Trigger in CDR), and
+inputs (`NAME/gravity`) as topics a client may publish to (client advertise
+and message data, CDR; the bridge checks every message).
 
 Foxglove (app or web) connects with "Open connection" -> Foxglove WebSocket
 -> ws://HOST:PORT; docs/bridge.md tells how from another host and where the
@@ -11,7 +13,8 @@ layout is.
 from __future__ import annotations
 
 import logging
-from typing import Any, Callable, List, Optional, Sequence, Tuple
+import threading
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
 from . import cdr
 from .mcap_out import ros2msg_schema
@@ -72,10 +75,12 @@ class FoxgloveServer:
         self.ctx = foxglove.Context()
         self.host = host
         self._services: List[Any] = []
+        self._inputs = _ClientInputs()
         try:
             self._server: Any = foxglove.start_server(
                 name="leptrino-bridge", host=host, port=port, context=self.ctx,
-                capabilities=[Capability.Services], supported_encodings=["cdr"])
+                capabilities=[Capability.Services, Capability.ClientPublish],
+                supported_encodings=["cdr"], server_listener=self._inputs)
         except Exception as e:  # the SDK's error for a port in use, a bad host
             raise OSError(f"--foxglove {host}:{port}: {e}") from None
 
@@ -101,6 +106,15 @@ class FoxgloveServer:
                 data=TRIGGER_RESPONSE_MSG.encode())))
         self._services.append(Service(name=name, schema=schema, handler=handler))
 
+    def client_topic(self, topic: str, ros_type: str,
+                     on_payload: Callable[[bytes, str], Any]) -> None:
+        """A topic clients may publish to (ros2msg schema ros_type, CDR):
+        each message's bytes go to on_payload(data, "") in the server's
+        thread (it must not raise); on a client channel of this topic with
+        another encoding or schema, on_payload(data, why) so that the
+        message is refused and counted like any bad one."""
+        self._inputs.add(topic, ros_type, on_payload)
+
     def add_services(self) -> None:
         """Offer the services made by service() (after every node declared them)."""
         if self._services:
@@ -119,3 +133,52 @@ class FoxgloveServer:
             self._server = None
 
 
+
+
+class _ClientInputs:
+    """The server's listener for what clients publish: channels advertised
+    on a known topic are mapped to its handler; messages of any other
+    channel are ignored (one log line per channel)."""
+
+    def __init__(self) -> None:
+        self._lock = threading.Lock()
+        self._topics: Dict[str, Tuple[str, Callable[[bytes, str], Any]]] = {}
+        self._channels: Dict[Tuple[int, int], Tuple[str, Callable[[bytes, str], Any], str]] = {}
+
+    def add(self, topic: str, ros_type: str, on_payload: Callable[[bytes, str], Any]) -> None:
+        with self._lock:
+            self._topics[topic] = (ros_type, on_payload)
+
+    def on_client_advertise(self, client: Any, channel: Any) -> None:
+        with self._lock:
+            known = self._topics.get(channel.topic)
+        if known is None:
+            log.warning("foxglove: client %s advertised %s: not an input of the bridge "
+                        "(its messages are ignored)", client.id, channel.topic)
+            return
+        ros_type, handler = known
+        wrong = ""
+        if channel.encoding != "cdr":
+            wrong = f"encoding {channel.encoding!r}, not cdr"
+        elif channel.schema_name and channel.schema_name != ros_type:
+            wrong = f"schema {channel.schema_name!r}, not {ros_type}"
+        with self._lock:
+            self._channels[(client.id, channel.id)] = (channel.topic, handler, wrong)
+
+    def on_client_unadvertise(self, client: Any, client_channel_id: int) -> None:
+        with self._lock:
+            self._channels.pop((client.id, client_channel_id), None)
+
+    def on_message_data(self, client: Any, client_channel_id: int, data: bytes) -> None:
+        with self._lock:
+            ch = self._channels.get((client.id, client_channel_id))
+        if ch is None:
+            return
+        _topic, handler, wrong = ch
+        handler(bytes(data), wrong)
+
+    def on_subscribe(self, client: Any, channel: Any) -> None:
+        return None
+
+    def on_unsubscribe(self, client: Any, channel: Any) -> None:
+        return None

@@ -10,11 +10,15 @@ publishers in rmw_zenoh's layout, an MCAP file, DDS writers, Foxglove
 channels. The bridge calls publish_diagnostics() once a second, and the
 tare/untare services and command topics call tare()/untare() from the
 transports' threads (the session allows that beside the reading thread).
+A tool's weight is removed by the session (SensorSpec.payload, gravity from
+the `gravity` input: gravity_in.py); limit episodes (NodeOptions.limits)
+show in the diagnostics, published at once when one begins or ends.
 """
 
 from __future__ import annotations
 
 import logging
+import math
 import threading
 import time
 from dataclasses import dataclass, field
@@ -25,6 +29,7 @@ from ..errors import LeptrinoError
 from ..sensor import Sensor
 from . import cdr
 from . import rmw_zenoh as rz
+from .gravity_in import VECTOR3_STAMPED, GravityInput
 from .mcap_out import McapRecorder
 from .typehash import rihs01
 from .wrench_batch import WrenchBatch
@@ -48,6 +53,8 @@ class SensorSpec:
     port: Optional[str] = None
     sim: Optional[Dict[str, Any]] = None
     frame_id: str = ""
+    payload: Optional[Sequence[float]] = None  # mass kg, centre of mass m (sensor frame)
+    gravity: Sequence[float] = (0.0, 0.0, -9.80665)  # initial gravity, m/s², sensor frame
 
     def __post_init__(self) -> None:
         rz.check_name(self.name, "sensor name")
@@ -68,9 +75,18 @@ class NodeOptions:
     lowpass_hz: float = 0.0
     rotation: Optional[Sequence[float]] = None  # roll, pitch, yaw (rad)
     latency_s: float = 0.002  # how long the session may hold samples back
+    limits: Optional[Sequence[float]] = None  # fx..mz, N and N·m, 0 = none (set_limits)
     qos_depth: int = 10
     timeout_s: float = 0.5
     data_timeout_s: float = 1.0
+
+
+AXES = ("fx", "fy", "fz", "mx", "my", "mz")
+
+
+def axis_names(bits: int) -> str:
+    """"fz,mz" for the axes whose bits are set; "" for none."""
+    return ",".join(a for i, a in enumerate(AXES) if bits >> i & 1)
 
 
 class Output(Protocol):
@@ -153,6 +169,8 @@ class Counters:
     tare_requests: int = 0
     rejected_requests: int = 0  # malformed service requests (DDS, Zenoh) ignored
     last_sample_mono: float = 0.0
+    limit_axes: int = 0  # bit i: axis i beyond its limit in the current episode
+    last_limit_axes: int = 0  # the axes of the last episode begun
 
 
 class SensorNode:
@@ -183,9 +201,25 @@ class SensorNode:
             latency=opts.latency_s, data_timeout=opts.data_timeout_s)
         try:
             self._batch = WrenchBatch(self.sensor._be, self.sensor.rated, spec.frame_id)
+            self.gravity = self._set_load()
         except ValueError:
             self.sensor.close()
             raise
+        self._diag_lock = threading.Lock()  # diagnostics from two threads
+        self._subscribers: List[Any] = []
+
+    def _set_load(self) -> GravityInput:
+        """Payload, initial gravity and limits into the session (ValueError
+        for values it refuses); the gravity input that changes gravity later."""
+        spec, s = self.spec, self.sensor
+        g = tuple(float(x) for x in spec.gravity)
+        if len(g) != 3 or not all(map(math.isfinite, g)) or g == (0.0, 0.0, 0.0):
+            raise ValueError(f"sensor {spec.name}: gravity {spec.gravity}: three finite "
+                             "numbers, not all zero, expected")
+        s.set_gravity(g)
+        s.set_payload(spec.payload)
+        s.set_limits(self.opts.limits)
+        return GravityInput(spec.name, s.set_gravity, g)  # type: ignore[arg-type]
 
     def declare(self, node_id: int, next_entity_id: Callable[[], int], session: Any = None,
                 mcap: Optional[McapRecorder] = None, dds: Any = None, fox: Any = None) -> None:
@@ -215,7 +249,9 @@ class SensorNode:
             "tare": entity(rz.SERVICE, "tare", TRIGGER),
             "untare": entity(rz.SERVICE, "untare", TRIGGER),
         }
+        self.gravity_entity = entity(rz.SUBSCRIPTION, "gravity", VECTOR3_STAMPED)
         node = (ns, spec.name)
+        self._declare_gravity(session, dds, fox, node)
         for t in self.wrench, self.wrench_raw, self.diagnostics:
             if dds is not None:
                 t.outputs.append(dds.writer(node, t.name, t.entity.ros_type))
@@ -234,8 +270,30 @@ class SensorNode:
                 self._queryables.append(session.declare_queryable(
                     ent.key(), self._service_handler(svc), complete=True))
             for ent in [self.node_entity, self.wrench.entity, self.wrench_raw.entity,
-                        self.diagnostics.entity, *self.services.values()]:
+                        self.diagnostics.entity, *self.services.values(),
+                        self.gravity_entity]:
                 self._tokens.append(session.liveliness().declare_token(ent.token()))
+
+    def _declare_gravity(self, session: Any, dds: Any, fox: Any, node: Tuple[str, str]) -> None:
+        """The `gravity` input on each transport: a Zenoh subscriber on the
+        topic's key (its liveliness token is declared with the others), a
+        DDS reader, a Foxglove client-publish topic; all feed self.gravity."""
+        ent, receive = self.gravity_entity, self.gravity.receive
+        if session is not None:
+            def on_sample(sample: Any) -> None:
+                try:
+                    payload = bytes(sample.payload.to_bytes())
+                except Exception as e:  # nothing a peer sends may reach zenoh's thread
+                    receive(b"", "zenoh", f"unreadable payload: {e}")
+                    return
+                receive(payload, "zenoh")
+            self._subscribers.append(session.declare_subscriber(ent.key(), on_sample))
+        if dds is not None:
+            dds.subscription(node, ent.name, VECTOR3_STAMPED,
+                             lambda p: receive(p, "dds"))
+        if fox is not None:
+            fox.client_topic(ent.name, VECTOR3_STAMPED,
+                             lambda p, wrong: receive(p, "foxglove", wrong))
 
     # -- life cycle ----------------------------------------------------------
     def start(self) -> None:
@@ -262,6 +320,12 @@ class SensorNode:
             except Exception:
                 pass
         self._queryables = []
+        for sub in self._subscribers:
+            try:
+                sub.undeclare()
+            except Exception:
+                pass
+        self._subscribers = []
         for t in self.wrench, self.wrench_raw, self.diagnostics:
             if t is not None:
                 t.close()
@@ -340,6 +404,20 @@ class SensorNode:
             self.counters.events[ev.type] = self.counters.events.get(ev.type, 0) + 1
             if ev.type in ("disconnected", "reconnected"):
                 log.warning("%s: %s", self.spec.name, ev.type)
+            elif ev.type in ("limit_exceeded", "limit_cleared"):
+                self._limit_event(ev)
+
+    def _limit_event(self, ev: Any) -> None:
+        """A limit episode begins or ends: the diagnostics say it at once
+        (stamped with the event's time), so that a short episode is seen
+        and recorded (MCAP) even between two periodic diagnostics."""
+        c = self.counters
+        if ev.type == "limit_exceeded":
+            c.limit_axes = c.last_limit_axes = int(ev.axes)
+            log.info("%s: beyond limit: %s", self.spec.name, axis_names(ev.axes))
+        else:
+            c.limit_axes = 0
+        self.publish_diagnostics(int(ev.t_utc * 1e9))
 
     # -- diagnostics -----------------------------------------------------------
     def diagnostic_status(self) -> cdr.DiagStatus:
@@ -351,6 +429,8 @@ class SensorNode:
         silent = c.last_sample_mono == 0.0 or now - c.last_sample_mono > 1.0
         if silent:
             level, msg = cdr.ERROR, "no data (disconnected or stalled)"
+        elif c.limit_axes:
+            level, msg = cdr.WARN, f"beyond limit: {axis_names(c.limit_axes)}"
         elif h.shortfall:
             level, msg = cdr.WARN, "rate below nominal"
         else:
@@ -377,18 +457,36 @@ class SensorNode:
         if self._dds_services:  # clients whose requests DDS drops (dds.TriggerService)
             values.append(("dds_headerless_clients",
                            str(sum(s.headerless_clients for s in self._dds_services))))
+        values += self._load_values(h)
         values += [("model", info.model), ("serial", info.serial),
                    ("firmware", info.firmware), ("port", self.sensor.port)]
         return (level, f"leptrino: {self.spec.name}", msg, info.serial or self.spec.name,
                 values)
 
-    def publish_diagnostics(self) -> None:
-        ns = time.time_ns()
+    def _load_values(self, h: Any) -> List[Tuple[str, str]]:
+        """Payload, gravity input and limits, for the diagnostics."""
+        c, p = self.counters, self.spec.payload
+        limits = [float(v) for v in (self.opts.limits or [0.0] * K.LEP_AXES)]
+        return [
+            ("payload", "none" if not p else
+             f"{float(p[0]):g} kg at {float(p[1]):g} {float(p[2]):g} {float(p[3]):g} m"),
+            *self.gravity.values(),
+            ("limits", ",".join(f"{a}={v:g}" for a, v in zip(AXES, limits) if v > 0) or "none"),
+            ("beyond_limit", axis_names(c.limit_axes)),
+            ("limit_episodes", str(h.limit_episodes)),
+            ("last_limit_axes", axis_names(c.last_limit_axes)),
+        ]
+
+    def publish_diagnostics(self, stamp_ns: Optional[int] = None) -> None:
+        """One DiagnosticArray (stamped now, or at stamp_ns); from the
+        bridge's 1 Hz thread and from the reading thread at a limit event."""
+        ns = time.time_ns() if stamp_ns is None else stamp_ns
         sec, nsec = divmod(ns, 1_000_000_000)
-        payload = cdr.encode_diagnostic_array(sec, nsec, self.spec.frame_id,
-                                              [self.diagnostic_status()])
-        if self.diagnostics is not None:
-            self.diagnostics.send(payload, ns)
+        with self._diag_lock:
+            payload = cdr.encode_diagnostic_array(sec, nsec, self.spec.frame_id,
+                                                  [self.diagnostic_status()])
+            if self.diagnostics is not None:
+                self.diagnostics.send(payload, ns)
 
     # -- services ------------------------------------------------------------
     def tare(self) -> Tuple[bool, str]:

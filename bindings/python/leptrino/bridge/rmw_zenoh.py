@@ -8,7 +8,7 @@ Servers"). See docs/bridge.md for the citations.
 - data key:  <domain>/<fully qualified name without the leading />/<dds type>/<RIHS01 hash>
 - liveliness token of a node:
     @ros2_lv/<domain>/<zid>/<node id>/<node id>/NN/<enclave>/<namespace>/<node>
-  of a publisher (MP) or service server (SS):
+  of a publisher (MP), subscription (MS) or service server (SS):
     @ros2_lv/<domain>/<zid>/<node id>/<entity id>/<kind>/<enclave>/<namespace>/<node>/
         <mangled name>/<dds type>/<hash>/<qos>
   where a mangled name has each "/" replaced by "%" and "%" stands for empty.
@@ -33,6 +33,7 @@ ATTACHMENT = struct.Struct("<qqB16s")
 ATTACHMENT_SIZE = ATTACHMENT.size  # 33
 
 NODE, PUBLISHER, SERVICE = "NN", "MP", "SS"
+SUBSCRIPTION = "MS"
 
 _NAME_RE = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 
@@ -93,7 +94,7 @@ class Entity:
     zid: str  # the Zenoh session id as text
     node_id: int
     entity_id: int
-    kind: str  # NN, MP or SS
+    kind: str  # NN, MP, MS or SS
     namespace: str  # normalized, "/" when none
     node: str
     name: str = ""  # fully qualified topic or service name

@@ -39,6 +39,7 @@ MESSAGES: Dict[str, str] = {
     "geometry_msgs/msg/Vector3": "float64 x\nfloat64 y\nfloat64 z\n",
     "geometry_msgs/msg/Wrench": "Vector3 force\nVector3 torque\n",
     "geometry_msgs/msg/WrenchStamped": "std_msgs/Header header\nWrench wrench\n",
+    "geometry_msgs/msg/Vector3Stamped": "std_msgs/Header header\nVector3 vector\n",
     "diagnostic_msgs/msg/KeyValue": "string key\nstring value\n",
     "diagnostic_msgs/msg/DiagnosticStatus": (
         "byte OK=0\nbyte WARN=1\nbyte ERROR=2\nbyte STALE=3\n"
