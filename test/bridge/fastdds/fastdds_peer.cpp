@@ -141,6 +141,26 @@ int run_sub(DomainParticipant *p, double seconds, size_t count, std::vector<std:
     return 0;
 }
 
+// Wait (at most `seconds`) until the writer has matched a reader, then a
+// little more: the writer may match first, and a volatile reader that has not
+// yet discovered the writer drops what it sends (its acknowledgement then
+// only says it does not want it). Discovery on loopback takes milliseconds.
+bool wait_for_reader(DataWriter *w, double seconds, const std::string &name)
+{
+    const auto t0 = Clock::now();
+    PublicationMatchedStatus st;
+    while (w->get_publication_matched_status(st) == ReturnCode_t::RETCODE_OK &&
+           st.current_count == 0) {
+        if (seconds_since(t0) > seconds) {
+            std::fprintf(stderr, "fastdds_peer: no reader of %s\n", name.c_str());
+            return false;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    return true;
+}
+
 int run_pub(DomainParticipant *p, double seconds, const std::string &name)
 {
     TypeSupport type(new std_msgs::msg::dds_::Empty_PubSubType());
@@ -154,16 +174,8 @@ int run_pub(DomainParticipant *p, double seconds, const std::string &name)
         std::fprintf(stderr, "fastdds_peer: cannot write %s\n", name.c_str());
         return 1;
     }
-    const auto t0 = Clock::now();
-    PublicationMatchedStatus st;
-    while (w->get_publication_matched_status(st) == ReturnCode_t::RETCODE_OK &&
-           st.current_count == 0) {
-        if (seconds_since(t0) > seconds) {
-            std::fprintf(stderr, "fastdds_peer: no reader of %s\n", name.c_str());
-            return 1;
-        }
-        std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
+    if (!wait_for_reader(w, seconds, name))
+        return 1;
     std_msgs::msg::dds_::Empty_ e;
     w->write(&e);
     eprosima::fastrtps::Duration_t wait(5, 0);
@@ -248,16 +260,8 @@ int run_raw(DomainParticipant *p, double seconds, const std::string &name,
         std::fprintf(stderr, "fastdds_peer: cannot write %s\n", name.c_str());
         return 1;
     }
-    const auto t0 = Clock::now();
-    PublicationMatchedStatus st;
-    while (w->get_publication_matched_status(st) == ReturnCode_t::RETCODE_OK &&
-           st.current_count == 0) {
-        if (seconds_since(t0) > seconds) {
-            std::fprintf(stderr, "fastdds_peer: no reader of %s\n", name.c_str());
-            return 1;
-        }
-        std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
+    if (!wait_for_reader(w, seconds, name))
+        return 1;
     for (auto &b : samples) {
         if (!w->write(&b)) {
             std::fprintf(stderr, "fastdds_peer: write failed on %s\n", name.c_str());
