@@ -8,7 +8,9 @@ pty); the bridge runs as its own process (`python -m leptrino.bridge
 --sensor NAME=PTY ...`) connected to a Zenoh router this process opens on
 127.0.0.1, and a subscriber here receives every message. Measured:
 
-- CPU of the bridge process per sensor (user + system time / wall time);
+- CPU of the bridge process per sensor (user + system time / wall time),
+  and by thread: the Python threads (reading, serializing, publishing)
+  against zenoh's own runtime threads (tx sends, rx receives, ...);
 - latency from a sample's arrival (its header stamp: the session's UTC time
   of the sample) to the subscriber's receipt, p50 and p99;
 - the largest number of sensors bridged without loss: every sensor's
@@ -43,6 +45,25 @@ def _cpu_seconds(pid: int) -> float:
     with open(f"/proc/{pid}/stat") as f:
         fields = f.read().rsplit(")", 1)[1].split()
     return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def _thread_cpu(pid: int) -> Dict[str, float]:
+    """CPU seconds of a process's threads by name: "python" for the
+    interpreter's threads (the reading threads, the sessions' reads and the
+    serialization in them), zenoh's runtime threads by their own names with
+    the number dropped ("tx", "rx", "net", "acc", ...)."""
+    out: Dict[str, float] = {}
+    for tid in os.listdir(f"/proc/{pid}/task"):
+        try:
+            with open(f"/proc/{pid}/task/{tid}/stat") as f:
+                text = f.read()
+        except OSError:  # the thread ended meanwhile
+            continue
+        name = text[text.index("(") + 1:text.rindex(")")].split("-")[0]
+        fields = text.rsplit(")", 1)[1].split()
+        out[name] = out.get(name, 0.0) + (int(fields[11]) + int(fields[12])) / os.sysconf(
+            "SC_CLK_TCK")
+    return out
 
 
 def _stamp_ns(payload: bytes) -> int:
@@ -220,9 +241,11 @@ def run(n: int, seconds: float, zenoh_mod: Any, extra: Optional[List[str]] = Non
         with sink.lock:
             sink.latency_ns.clear()
         c0, t0 = _cpu_seconds(child.pid), time.monotonic()
+        th0 = _thread_cpu(child.pid)
         r0 = sum(_cpu_seconds(r.pid) for r in refs)
         time.sleep(seconds)
         c1, t1 = _cpu_seconds(child.pid), time.monotonic()
+        th1 = _thread_cpu(child.pid)
         r1 = sum(_cpu_seconds(r.pid) for r in refs)
         dead = [r.args for r in refs + [child] if r.poll() is not None]
         if dead:
@@ -275,7 +298,9 @@ def run(n: int, seconds: float, zenoh_mod: Any, extra: Optional[List[str]] = Non
     def pct(p: float) -> float:
         return lat[min(len(lat) - 1, int(p * len(lat)))] / 1e6 if lat else float("nan")
 
-    return {"sensors": n, "cpu_total": cpu, "cpu_per_sensor": cpu / n,
+    threads = {k: (v - th0.get(k, 0.0)) / (t1 - t0) for k, v in th1.items()
+               if v - th0.get(k, 0.0) > 0}
+    return {"sensors": n, "cpu_total": cpu, "cpu_per_sensor": cpu / n, "threads": threads,
             "stream_cpu_per_sensor": ref_cpu / n,
             "ratio": cpu / ref_cpu if ref_cpu > 0 else float("inf"),
             "dds_messages": sum(dds_counts.values()), "foxglove_messages": fox_count,
@@ -319,7 +344,9 @@ def main(argv: Optional[List[str]] = None) -> int:
               f"{r['ratio']:.2f}), latency p50 "
               f"{r['latency_p50_ms']:.2f} ms p99 {r['latency_p99_ms']:.2f} ms, "
               f"{r['messages']} messages, lost {r['lost']}, gaps {r['gaps']}, "
-              f"contiguous {r['contiguous']}, rates {[round(x) for x in r['rates']]}"
+              f"contiguous {r['contiguous']}, rates {[round(x) for x in r['rates']]}, "
+              f"threads (% of a core) "
+              f"{', '.join(f'{k} {100 * v:.1f}' for k, v in sorted(r['threads'].items()))}"
               + (f", DDS reader {r['dds_messages']}, Foxglove client {r['foxglove_messages']}"
                  if a.all else "") +
               f" -> {'no loss' if r['no_loss'] else 'LOSS'}", flush=True)

@@ -134,10 +134,10 @@ class Topic:
         self.seq = seq + len(payloads)
         now = time.time_ns()
         if self.pub is not None:
-            put, pack, gid = self.pub.put, rz.ATTACHMENT.pack, self.gid
+            put, pack, gid, glen = self.pub.put, rz.ATTACHMENT.pack, self.gid, rz.GID_SIZE
             for p in payloads:
                 seq += 1
-                put(p, attachment=pack(seq, now, rz.GID_SIZE, gid))
+                put(p, attachment=pack(seq, now, glen, gid))
         if self.mcap is not None:
             self.mcap.write_batch(self.cid, payloads, stamps, now)
         for out in self.outputs:
@@ -355,6 +355,7 @@ class SensorNode:
         lib = sensor._be.lib
         wb = self._batch
         c_batch = wb.arrays.c
+        t_mono = wb.t_mono
         wrench, wrench_raw, c = self.wrench, self.wrench_raw, self.counters
         assert wrench is not None and wrench_raw is not None
         base = sensor._delivered
@@ -381,7 +382,7 @@ class SensorNode:
                 wrench.send_batch(w, stamps)
                 wrench_raw.send_batch(r, stamps)
                 c.samples += n
-                c.last_sample_mono = float(wb.arrays.t_mono[n - 1])
+                c.last_sample_mono = t_mono[n - 1]
                 silent_since = now
                 continue
             if rc == K.LEP_E_END:
