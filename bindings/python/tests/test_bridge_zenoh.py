@@ -281,10 +281,7 @@ def test_one_sensor_unplugged_while_the_other_publishes(router: str, client: Any
             resumed = bool(gaps) and tb[-1] - gaps[0][1] > 1.0
         node_b = bridge.nodes[1]
         health_b = node_b.sensor.health
-        back_to_shared = not node_b._solo  # its own thread handed it back with data
-        readers = {t.name for t in threading.enumerate() if t.name.startswith("bridge-")}
     assert resumed, "b did not come back after its hang-up"
-    assert back_to_shared and "bridge-b" not in readers and "bridge-reader" in readers
     assert health_b.reconnects >= 1 and health_b.disconnects >= 1
     gap_from, gap_to = gaps[0]
     # a kept publishing through b's absence, without a gap or a lost message
@@ -301,38 +298,19 @@ def test_one_sensor_unplugged_while_the_other_publishes(router: str, client: Any
                for d in diag) or health_b.reconnects >= 1
 
 
-def test_one_reading_thread_for_all_sensors(router: str, client: Any) -> None:
-    """With a latency budget one thread reads every sensor; with none (a
-    control loop's setting) each sensor has a thread waiting on its port."""
-    rx = Received(client, "0/**")
-    for latency, want in ((0.002, {"bridge-reader"}), (0.0, {"bridge-a", "bridge-b", "bridge-c"})):
-        specs = [SensorSpec(n, sim={}) for n in ("a", "b", "c")]
-        with make_bridge(router, specs, latency_s=latency) as bridge:
-            bridge.start()
-            for n in ("a", "b", "c"):
-                assert len(rx.wait_for(wrench_key(n), 600, 10.0)) >= 600, (latency, n)
-            readers = {t.name for t in threading.enumerate()
-                       if t.name.startswith("bridge-") and t.name != "bridge-diagnostics"}
-            assert readers == want, latency
-            assert all(node.alive for node in bridge.nodes)
-        for n in ("a", "b", "c"):
-            check_sequence(rx.get(wrench_key(n)))
-        rx.by_key.clear()
-
-
 def test_a_stalled_sensor_does_not_delay_the_others(router: str, client: Any) -> None:
     """b stalls (its port stays, nothing comes: the session declares the
     stream lost and its reconnection attempts wait on a sensor that does not
-    answer): the shared reader hands b to a thread of its own, and a goes on
-    publishing without a pause."""
+    answer); a goes on publishing without a pause or a lost message. (A
+    reader shared by the sensors that did not hand b to a thread of its own
+    failed here: docs/bridge.md, "One reading thread for all sensors".)"""
     rx = Received(client, "0/**")
     specs = [SensorSpec("a", sim={}),
              SensorSpec("b", sim={"stall_after": 1.0, "stall": 3000})]
     with make_bridge(router, specs, data_timeout_s=0.3) as bridge:
         bridge.start()
         time.sleep(4.5)
-        node_b = bridge.nodes[1]
-        errors_b = node_b.counters.read_errors
+        errors_b = bridge.nodes[1].counters.read_errors
     tb = [t for _, _, t in rx.get(wrench_key("b"))]
     b_gaps = [(x, y) for x, y in zip(tb, tb[1:]) if y - x > 0.5]
     assert b_gaps, "b did not stall"

@@ -1,5 +1,4 @@
-"""The bridge: a Zenoh session and/or an MCAP file, one SensorNode per
-sensor, and one reading thread for them all (reading.py)."""
+"""The bridge: a Zenoh session and/or an MCAP file, and one SensorNode per sensor."""
 
 from __future__ import annotations
 
@@ -14,7 +13,6 @@ from typing import TYPE_CHECKING, Any, List, Optional, Tuple
 
 from .mcap_out import FileExistsRefused, McapRecorder
 from .node import NodeOptions, SensorNode, SensorSpec
-from .reading import SharedReader
 
 if TYPE_CHECKING:
     from .dds import DdsOptions, DdsParticipant
@@ -89,7 +87,6 @@ class Bridge:
         self.nodes: List[SensorNode] = []
         self._stop = threading.Event()
         self._diag: Optional[threading.Thread] = None
-        self._reader: Optional[SharedReader] = None
         if mcap_path is not None and not force and os.path.lexists(mcap_path):
             raise FileExistsRefused(f"{mcap_path}: already exists; not overwritten (choose another "
                                     "name, or --overwrite)")
@@ -140,14 +137,8 @@ class Bridge:
         return str(self.session.zid()) if self.session is not None else ""
 
     def start(self) -> None:
-        """Start the streams, read by one thread for all sensors (with a
-        latency budget; with none, each sensor's thread waits on its port),
-        and the diagnostics."""
-        if self.opts.latency_s > 0:
-            self._reader = SharedReader(self.opts.latency_s)
-            self._reader.start()
         for n in self.nodes:
-            n.start(self._reader)
+            n.start()
         self._diag = threading.Thread(target=self._diagnostics, name="bridge-diagnostics",
                                       daemon=True)
         self._diag.start()
@@ -176,9 +167,6 @@ class Bridge:
         if self._diag is not None:
             self._diag.join(3.0)
             self._diag = None
-        if self._reader is not None:
-            self._reader.stop()
-            self._reader = None
         for n in self.nodes:
             n.stop()
         for n in self.nodes:

@@ -2,9 +2,7 @@
 
 A SensorNode opens a leptrino.Sensor (the library's session does the tare,
 the low-pass, the rotation, the reconnects, the health and the timestamps)
-and reads the session in batches (read_pass(): from the bridge's one
-reading thread for all sensors, reading.py, or from a thread of its own),
-turning each batch,
+and runs one thread that reads the session in batches and turns each batch,
 in one C call (wrench_batch.py), into two geometry_msgs/WrenchStamped
 messages per sample (`wrench`: the session's processed values;
 `wrench_raw`: the raw counts in N and N·m), handed to the outputs: Zenoh
@@ -12,8 +10,6 @@ publishers in rmw_zenoh's layout, an MCAP file, DDS writers, Foxglove
 channels. The bridge calls publish_diagnostics() once a second, and the
 tare/untare services and command topics call tare()/untare() from the
 transports' threads (the session allows that beside the reading thread).
-The session's driving calls are for one thread at a time: a node is read
-either by the shared reader or by its own thread, never both at once.
 A tool's weight is removed by the session (SensorSpec.payload, gravity from
 the `gravity` input: gravity_in.py); limit episodes (NodeOptions.limits)
 show in the diagnostics, published at once when one begins or ends.
@@ -26,8 +22,7 @@ import math
 import threading
 import time
 from dataclasses import dataclass, field
-from typing import (TYPE_CHECKING, Any, Callable, Dict, List, Optional, Protocol, Sequence,
-                    Tuple)
+from typing import Any, Callable, Dict, List, Optional, Protocol, Sequence, Tuple
 
 from .. import _constants as K
 from ..errors import LeptrinoError
@@ -39,17 +34,9 @@ from .mcap_out import McapRecorder
 from .typehash import rihs01
 from .wrench_batch import WrenchBatch
 
-if TYPE_CHECKING:
-    from .reading import SharedReader
-
 log = logging.getLogger("leptrino.bridge")
 
 WRENCH = "geometry_msgs/msg/WrenchStamped"
-#: read_pass()'s answer when the stream ended or the sensor was closed.
-READ_ENDED = -1
-#: A sensor silent this long (s) in the shared reader is read by a thread of
-#: its own until its data flows again (see SensorNode.in_trouble).
-SILENT_HANDOFF_S = 0.05
 #: How often the reading thread takes the session's events while data flows
 #: (they feed the counters and the log; the session queues them meanwhile).
 EVENTS_PERIOD_S = 0.1
@@ -220,16 +207,6 @@ class SensorNode:
             raise
         self._diag_lock = threading.Lock()  # diagnostics from two threads
         self._subscribers: List[Any] = []
-        # the reading's state (read_pass), kept across the hand-overs
-        # between the shared reader and a thread of the node's own
-        self._reader: Optional["SharedReader"] = None
-        self._solo = False  # a thread of its own reads the session now
-        self._ended = False  # the stream ended, or the reading failed
-        self._failing = False
-        self._down = False  # a disconnect seen, no data since
-        self._pause = False  # the last read failed at once: wait before the next
-        self._base = 0
-        self._silent_since = self._next_events = 0.0
 
     def _set_load(self) -> GravityInput:
         """Payload, initial gravity and limits into the session (ValueError
@@ -319,29 +296,17 @@ class SensorNode:
                              lambda p, wrong: receive(p, "foxglove", wrong))
 
     # -- life cycle ----------------------------------------------------------
-    def start(self, reader: Optional["SharedReader"] = None) -> None:
-        """Start the stream (after declare()) and its reading: by reader, the
-        bridge's one reading thread for all sensors (reading.py), or by a
-        thread of this node's own (reader None)."""
+    def start(self) -> None:
+        """Start the stream and the reading thread (after declare())."""
         if self.wrench is None:
             raise RuntimeError("declare() first")
         self.sensor.start()
-        self._base = self.sensor._delivered
-        self._silent_since = self._next_events = time.monotonic()
-        if reader is None:
-            self._start_thread(until_data=False)
-        else:
-            self._reader = reader
-            reader.add(self)
-
-    def _start_thread(self, until_data: bool) -> None:
-        self._thread = threading.Thread(target=self._run, args=(until_data,),
-                                        name=f"bridge-{self.spec.name}", daemon=True)
+        self._thread = threading.Thread(target=self._run, name=f"bridge-{self.spec.name}",
+                                        daemon=True)
         self._thread.start()
 
     def stop(self, timeout: float = 5.0) -> None:
-        """Ask the reading to end and wait for this node's thread (up to
-        timeout s; the shared reader is stopped by its owner)."""
+        """Ask the thread to end and wait for it (up to timeout s)."""
         self._stop.set()
         if self._thread is not None:
             self._thread.join(timeout)
@@ -379,114 +344,67 @@ class SensorNode:
 
     @property
     def alive(self) -> bool:
-        """The stream is being read (by the shared reader or a thread of its own)."""
-        if self._ended:
-            return False
-        if self._solo:
-            return True
-        if self._reader is not None:
-            return self._reader.alive
         return self._thread is not None and self._thread.is_alive()
 
     # -- data ----------------------------------------------------------------
-    def read_pass(self, timeout_ms: int) -> int:
-        """One read of the session (lep_session_read, waiting at most
-        timeout_ms; 0: take what it has), serialized in one C call and
-        published topic by topic (no Python object per sample but the
-        payloads the transports take). The number of samples; 0 for none
-        (self.in_trouble says whether the session is reconnecting or
-        failing); READ_ENDED when the stream ended or the sensor was closed.
-        For one thread at a time (the session's driving calls)."""
+    def _run(self) -> None:
+        """Read the session in batches; each batch is serialized in one C
+        call and published topic by topic (no Python object per sample
+        but the payloads the transports take)."""
         sensor = self.sensor
         lib = sensor._be.lib
         wb = self._batch
         c_batch = wb.arrays.c
-        c_batch.n = 0
-        try:
-            rc = int(lib.lep_session_read(sensor._live(), c_batch, timeout_ms))
-        except LeptrinoError:  # closed under us
-            return READ_ENDED
-        n = int(c_batch.n)
-        sensor._delivered += n
-        now = time.monotonic()
-        if not n or now >= self._next_events:  # the events feed counters and logs only
-            self._take_events(sensor._drain_events(self._base))
-            self._next_events = now + EVENTS_PERIOD_S
-        c = self.counters
-        if n:
-            if self._failing:
-                log.warning("%s: data again", self.spec.name)
-                self._failing = False
-            self._down = False
-            wrench, wrench_raw = self.wrench, self.wrench_raw
-            assert wrench is not None and wrench_raw is not None
-            w, r, stamps = wb.encode()
-            wrench.send_batch(w, stamps)
-            wrench_raw.send_batch(r, stamps)
-            c.samples += n
-            c.last_sample_mono = wb.t_mono[n - 1]
-            self._silent_since = now
-            return n
-        self._pause = False
-        if rc == K.LEP_E_END:
-            return READ_ENDED
-        # nothing yet (with timeout 0 also: events only, the samples held back)
-        quiet = rc == K.LEP_E_TIMEOUT or (rc == K.LEP_OK and not self._down)
-        if quiet and now - self._silent_since < self.opts.data_timeout_s:
-            return 0
-        # The session reconnects inside its reads; until it is back each
-        # read fails or times out. Count it, say it once, go on.
-        c.read_errors += 1
-        c.last_error = (sensor._be.text(lib.lep_strerror(rc)) if rc != K.LEP_E_TIMEOUT
-                        else "no data")
-        if not self._failing:
-            log.warning("%s: %s (the session keeps trying)", self.spec.name, c.last_error)
-            self._failing = True
-        self._pause = rc < 0 and rc != K.LEP_E_TIMEOUT
-        return 0
-
-    @property
-    def in_trouble(self) -> bool:
-        """The stream is down, failing, or has been silent for
-        SILENT_HANDOFF_S: the session may block in a reconnection attempt
-        (open, re-sync), so the shared reader hands it to a thread of its own."""
-        return (self._down or self._failing
-                or time.monotonic() - self._silent_since > SILENT_HANDOFF_S)
-
-    def read_alone(self) -> None:
-        """For the shared reader, when in_trouble: read on in a thread of
-        this node's own until data flows again, then hand back (the shared
-        reader skips the node meanwhile)."""
-        self._solo = True
-        self._start_thread(until_data=True)
-
-    def _run(self, until_data: bool) -> None:
-        """Read with the call's timeout (the session sleeps out the latency
-        budget itself); until_data: only until samples come, then back to
-        the shared reader."""
+        t_mono = wb.t_mono
+        wrench, wrench_raw, c = self.wrench, self.wrench_raw, self.counters
+        assert wrench is not None and wrench_raw is not None
+        base = sensor._delivered
         timeout_ms = max(1, int(self.opts.timeout_s * 1000))
-        try:
-            while not self._stop.is_set():
-                n = self.read_pass(timeout_ms)
-                if n == READ_ENDED:
-                    self._ended = True
-                    break
-                if n and until_data:
-                    break
-                if self._pause:
-                    self._stop.wait(0.05)
-        except Exception:
-            self._ended = True
-            log.exception("%s: reading stopped", self.spec.name)
-        finally:
-            self._solo = False  # last: the session is free for the shared reader
+        failing = False
+        silent_since = next_events = time.monotonic()
+        while not self._stop.is_set():
+            c_batch.n = 0
+            try:
+                rc = int(lib.lep_session_read(sensor._live(), c_batch, timeout_ms))
+            except LeptrinoError:  # closed under us
+                break
+            n = int(c_batch.n)
+            sensor._delivered += n
+            now = time.monotonic()
+            if not n or now >= next_events:  # the events feed counters and logs only
+                self._take_events(sensor._drain_events(base))
+                next_events = now + EVENTS_PERIOD_S
+            if n:
+                if failing:
+                    log.warning("%s: data again", self.spec.name)
+                    failing = False
+                w, r, stamps = wb.encode()
+                wrench.send_batch(w, stamps)
+                wrench_raw.send_batch(r, stamps)
+                c.samples += n
+                c.last_sample_mono = t_mono[n - 1]
+                silent_since = now
+                continue
+            if rc == K.LEP_E_END:
+                break
+            if rc == K.LEP_E_TIMEOUT and now - silent_since < self.opts.data_timeout_s:
+                continue
+            # The session reconnects inside its reads; until it is back each
+            # read fails or times out. Count it, say it once, go on.
+            c.read_errors += 1
+            c.last_error = (sensor._be.text(lib.lep_strerror(rc)) if rc != K.LEP_E_TIMEOUT
+                            else "no data")
+            if not failing:
+                log.warning("%s: %s (the session keeps trying)", self.spec.name, c.last_error)
+                failing = True
+            if rc < 0 and rc != K.LEP_E_TIMEOUT:
+                self._stop.wait(0.05)
 
     def _take_events(self, evs: Sequence[Any]) -> None:
         for ev in evs:
             self.counters.events[ev.type] = self.counters.events.get(ev.type, 0) + 1
             if ev.type in ("disconnected", "reconnected"):
                 log.warning("%s: %s", self.spec.name, ev.type)
-                self._down = ev.type == "disconnected" or self._down
             elif ev.type in ("limit_exceeded", "limit_cleared"):
                 self._limit_event(ev)
 
