@@ -298,6 +298,29 @@ def test_one_sensor_unplugged_while_the_other_publishes(router: str, client: Any
                for d in diag) or health_b.reconnects >= 1
 
 
+def test_a_stalled_sensor_does_not_delay_the_others(router: str, client: Any) -> None:
+    """b stalls (its port stays, nothing comes: the session declares the
+    stream lost and its reconnection attempts wait on a sensor that does not
+    answer); a goes on publishing without a pause or a lost message. (A
+    reader shared by the sensors that did not hand b to a thread of its own
+    failed here: docs/bridge.md, "One reading thread for all sensors".)"""
+    rx = Received(client, "0/**")
+    specs = [SensorSpec("a", sim={}),
+             SensorSpec("b", sim={"stall_after": 1.0, "stall": 3000})]
+    with make_bridge(router, specs, data_timeout_s=0.3) as bridge:
+        bridge.start()
+        time.sleep(4.5)
+        errors_b = bridge.nodes[1].counters.read_errors
+    tb = [t for _, _, t in rx.get(wrench_key("b"))]
+    b_gaps = [(x, y) for x, y in zip(tb, tb[1:]) if y - x > 0.5]
+    assert b_gaps, "b did not stall"
+    assert errors_b >= 1  # its stream was lost and the session tried again
+    a_msgs = rx.get(wrench_key("a"))
+    check_sequence(a_msgs)
+    ta = [t for _, _, t in a_msgs if b_gaps[0][0] <= t <= b_gaps[0][1]]
+    assert ta and max(y - x for x, y in zip(ta, ta[1:])) < 0.2, "a paused during b's stall"
+
+
 def test_bad_arguments_are_refused(router: str) -> None:
     with pytest.raises(ValueError, match="differ"):
         Bridge([SensorSpec("a", sim={}), SensorSpec("a", sim={})], None,
