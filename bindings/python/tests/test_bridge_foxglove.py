@@ -21,6 +21,7 @@ import time
 from typing import Any, Dict, List, Tuple
 
 import pytest
+from bridge_net import free_port
 from conftest import RAMP_ROWS
 
 websockets = pytest.importorskip("websockets")  # the "test" extra
@@ -30,12 +31,6 @@ import leptrino  # noqa: E402
 
 ROWS = RAMP_ROWS  # the replayed ramp's length (conftest.ramp)
 SUBPROTOCOL = "foxglove.sdk.v1"
-
-
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return int(s.getsockname()[1])
 
 
 

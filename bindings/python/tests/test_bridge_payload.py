@@ -16,7 +16,6 @@ numpy, independently of the library. Every wait is bounded."""
 import json
 import math
 import os
-import socket
 import struct
 import subprocess
 import sys
@@ -35,6 +34,7 @@ import leptrino  # noqa: E402
 from leptrino.bridge import Bridge, NodeOptions, SensorSpec, ZenohOptions  # noqa: E402
 from leptrino.bridge import cdr  # noqa: E402
 from leptrino.bridge import rmw_zenoh as rz  # noqa: E402
+from bridge_net import free_port, open_zenoh  # noqa: E402
 
 G0 = 9.80665
 TOOL = (1.5, 0.02, -0.01, 0.06)  # kg, m
@@ -67,21 +67,6 @@ def weight(g: Tuple[float, float, float]) -> np.ndarray:
     """The tool's gravity wrench at g: (m g, c x m g)."""
     f = TOOL[0] * np.asarray(g)
     return np.concatenate([f, np.cross(np.asarray(TOOL[1:]), f)])
-
-
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return int(s.getsockname()[1])
-
-
-def open_zenoh(mode: str, **eps: List[str]) -> Any:
-    conf = zenoh.Config()
-    conf.insert_json5("mode", json.dumps(mode))
-    for k, v in eps.items():
-        conf.insert_json5(f"{k}/endpoints", json.dumps(v))
-    conf.insert_json5("scouting/multicast/enabled", "false")
-    return zenoh.open(conf)
 
 
 def wait(pred: Callable[[], bool], timeout: float, what: str) -> None:

@@ -6,7 +6,6 @@ Every wait is bounded; nothing leaves the loopback interface."""
 
 from __future__ import annotations
 
-import socket
 import threading
 import time
 from collections import defaultdict
@@ -14,6 +13,7 @@ from pathlib import Path
 from typing import Any, Dict, Iterator, List, Tuple
 
 import pytest
+from bridge_net import free_port, open_zenoh
 from conftest import RAMP_ROWS
 import zenoh  # the "bridge" extra (make test and .ci/checks/60-bridge.sh install it)
 
@@ -31,23 +31,6 @@ ROWS = RAMP_ROWS  # the replayed ramp's length (conftest.ramp)
 def wrench_key(sensor: str, topic: str = "wrench", ns: str = "") -> str:
     pre = f"{ns}/" if ns else ""
     return f"0/{pre}{sensor}/{topic}/geometry_msgs::msg::dds_::WrenchStamped_/{WRENCH_HASH}"
-
-
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return int(s.getsockname()[1])
-
-
-def open_zenoh(mode: str, **eps: List[str]) -> Any:
-    import json
-
-    conf = zenoh.Config()
-    conf.insert_json5("mode", json.dumps(mode))
-    for k, v in eps.items():
-        conf.insert_json5(f"{k}/endpoints", json.dumps(v))
-    conf.insert_json5("scouting/multicast/enabled", "false")
-    return zenoh.open(conf)
 
 
 @pytest.fixture
