@@ -60,10 +60,9 @@
  * worth at most) and the next read's. */
 #define SESSION_ROWS (2u * SESSION_PENDING)
 /* A reader that lags (a caller busy elsewhere) finds samples waiting in the
- * kernel: a read brings a tty buffer's worth (4 KiB: 146 frames or more),
- * and the next one again more than was due since, beyond the burst of a USB
- * adapter (a 16 ms latency timer holds 20 samples at 1.2 kHz). */
-#define SESSION_LAG_READ 128u
+ * kernel: the read after a suspected one brings more than was due since,
+ * beyond the burst of a USB adapter (a 16 ms latency timer holds 20 samples
+ * at 1.2 kHz). */
 #define SESSION_BURST 32.0
 /* How soon a read judges a suspected hole when a latency budget would wait longer. */
 #define SESSION_CONFIRM_S 0.02
@@ -191,7 +190,6 @@ typedef struct session_timing {
     double suspect_from, suspect_to;
     uint64_t suspect_index;
     double suspect_read_t; /* when the suspected read returned */
-    size_t suspect_n;      /* samples it brought */
     /* UTC - monotonic offset the samples are stamped with: held between
      * batches so UTC intervals equal monotonic ones, and moved only when the
      * wall clock steps by more than SESSION_UTC_STEP_S. */

@@ -122,11 +122,13 @@ void lep_priv_timing_read(lep_session *s, size_t n, double t_read, double before
     }
     if (rows->held > 0) {
         /* Still late: a hole, unless the reads lag (a caller busy
-         * elsewhere): then the suspected read took a tty buffer's worth and
-         * this one again more than was due since; the samples were waiting
-         * in the kernel, and lateness says nothing about the sensor. */
+         * elsewhere): then this read brought more than was due since the
+         * suspected one; the samples were waiting in the kernel, and
+         * lateness says nothing about the sensor. (How much the suspected
+         * read took says nothing: the tty layer hands a backlog over in
+         * pieces of up to 4 KiB, and a read may find a piece half made.) */
         double due = (t_read - tm->suspect_read_t) / s->period_s + SESSION_BURST;
-        bool lag = tm->suspect_n >= SESSION_LAG_READ && (double)n > due;
+        bool lag = (double)n > due;
         if (late > thr && !lag) {
             /* the held rows are the ones just before this read's */
             lep_priv_rows_back(rows, rows->len - rows_before + rows->held - 1u)->flags |=
@@ -144,7 +146,6 @@ void lep_priv_timing_read(lep_session *s, size_t n, double t_read, double before
         tm->suspect_to = first_t;
         tm->suspect_index = s->hs.processed - rows->held;
         tm->suspect_read_t = t_read;
-        tm->suspect_n = n;
         return;
     }
     if (late < tm->window_min)

@@ -415,12 +415,17 @@ static void test_a_stall_on_a_port_is_found_from_arrival_times(void)
     st_batch_free(&b);
 }
 
-/* A reader that falls behind (a caller busy for 1.5 s between reads, the
+/* A reader that falls behind (a caller busy for 0.55 s between reads, the
  * sensor on time): the kernel holds the samples, and the reads that catch up
- * take more than one buffer of them. Nothing is lost and no hole is
- * reported: a suspected hole is refuted when the reads catch up, and the rows
- * held meanwhile are all delivered. (A virtual sensor starved on a loaded
- * machine skips samples: those are real holes, and may be reported.) */
+ * take them a tty buffer (4 KiB, about 146 samples) at a time. Nothing is
+ * lost and no hole is reported: the suspected holes are refuted by the reads
+ * that bring more than was due, and the rows held meanwhile are all
+ * delivered. The backlog (660 samples, 18 kB) stays within what a pty holds
+ * (about 20 kB), as a real port's kernel buffer holds it: beyond that the
+ * virtual sensor queues the rest itself and sends it when its thread next
+ * runs, which a loaded machine may delay, a silence no real port has. (A
+ * virtual sensor starved on a loaded machine skips samples: those are real
+ * holes, and may be reported.) */
 static void test_a_reader_behind_by_several_buffers_loses_nothing(void)
 {
     lep_sim *sim = NULL;
@@ -433,19 +438,20 @@ static void test_a_reader_behind_by_several_buffers_loses_nothing(void)
     uint64_t lost = 0;
 
     lep_session_options_init(&o);
-    /* a hole is 0.3 s here: the virtual sensor's own lateness on a loaded
-     * machine (or under valgrind) stays below it; the reader's 1.5 s is far
-     * beyond */
-    o.gap_periods = 360.0;
+    /* a hole is 0.2 s here: the reader's 0.55 s leaves the stream late by
+     * more after each of the first two reads (without the lag rule, the
+     * second confirms a gap); the virtual sensor's own lateness on a loaded
+     * machine (or under valgrind) stays below it */
+    o.gap_periods = 240.0;
     s = open_on_port(&sim, NULL, &o);
     st_batch_init(&b, 4000);
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
     TEST_ASSERT_EQUAL_INT(LEP_OK, read_until(s, &b, 100));
     {
-        struct timespec busy = { 1, 500000000L }; /* 1800 samples, 50 kB: three reads of 16 KiB */
+        struct timespec busy = { 0, 550000000L };
         nanosleep(&busy, NULL);
     }
-    TEST_ASSERT_EQUAL_INT(LEP_OK, read_until(s, &b, 3000));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, read_until(s, &b, 2000));
     for (i = 1; i < b.b.n; i++) {
         uint16_t d = (uint16_t)(b.seq[i] - b.seq[i - 1]);
         lost += d - 1u;
@@ -453,12 +459,14 @@ static void test_a_reader_behind_by_several_buffers_loses_nothing(void)
     }
     lep_session_get_health(s, &h);
     lep_sim_get_stats(sim, &st);
-    printf("reader 1.5 s behind: %zu samples read, %llu missing (the virtual sensor skipped "
+    printf("reader 0.55 s behind: %zu samples read, %llu missing (the virtual sensor skipped "
            "%llu), %llu gaps reported, %zu where none was\n",
            b.b.n, (unsigned long long)lost,
            (unsigned long long)(st.samples_skipped + st.samples_blocked),
            (unsigned long long)h.gaps, false_gaps);
-    TEST_ASSERT_EQUAL_UINT64(st.samples_skipped + st.samples_blocked, lost);
+    /* the sensor's counts, taken after the last row, may include samples it
+     * skipped since: missing ones are at most those */
+    TEST_ASSERT_TRUE(lost <= st.samples_skipped + st.samples_blocked);
     TEST_ASSERT_EQUAL_size_t(0, false_gaps);
     TEST_ASSERT_EQUAL_UINT64(b.b.n, h.delivered);
     lep_session_close(s);
