@@ -190,6 +190,7 @@ typedef struct session_timing {
     double suspect_from, suspect_to;
     uint64_t suspect_index;
     double suspect_read_t; /* when the suspected read returned */
+    double suspect_late;   /* how late it left the stream, s */
     /* UTC - monotonic offset the samples are stamped with: held between
      * batches so UTC intervals equal monotonic ones, and moved only when the
      * wall clock steps by more than SESSION_UTC_STEP_S. */

@@ -85,6 +85,21 @@ uint8_t lep_priv_timing_sample(lep_session *s, const lep_sample *smp, double t)
     return flags;
 }
 
+/* The rows of the read just made (those after rows_before) are held back as
+ * a suspected hole: the silence before its first sample. */
+static void suspect(lep_session *s, double late, double t_read, double before_t, double first_t,
+                    size_t rows_before)
+{
+    session_timing *tm = &s->tm;
+    session_rows *rows = &s->rows;
+    rows->held = rows->len - rows_before;
+    tm->suspect_from = before_t;
+    tm->suspect_to = first_t;
+    tm->suspect_index = s->hs.processed - rows->held;
+    tm->suspect_read_t = t_read;
+    tm->suspect_late = late;
+}
+
 /* Lateness of the stream after a read: how far the samples received since
  * the anchor fall behind one per nominal period. Transit jitter (USB
  * packets, a sender running late) makes it rise and fall back when the late
@@ -93,9 +108,13 @@ uint8_t lep_priv_timing_sample(lep_session *s, const lep_sample *smp, double t)
  * back until the next read, which confirms the hole (still late: LEP_EV_GAP,
  * the first held row flagged) or refutes it (caught up: rows released as
  * they are, also when the next read brought more than was due since: the
- * reads lag, the samples were waiting in the kernel). A hole hidden in such
- * a lag is found once the reads catch up, at the rows of that read. The anchor follows a sensor running fast (lateness below 0) at
- * once, and one running slow by the smallest lateness of each second. */
+ * reads lag, the samples were waiting in the kernel). A next read that
+ * comes after a silence of its own (the stream later by more than
+ * gap_periods than the suspected read left it) confirms the suspected hole
+ * at the size it had, and is suspected in turn. A hole hidden in a lag is
+ * found once the reads catch up, at the rows of that read. The anchor
+ * follows a sensor running fast (lateness below 0) at once, and one running
+ * slow by the smallest lateness of each second. */
 void lep_priv_timing_read(lep_session *s, size_t n, double t_read, double before_t, double first_t,
                           size_t rows_before)
 {
@@ -130,22 +149,25 @@ void lep_priv_timing_read(lep_session *s, size_t n, double t_read, double before
         double due = (t_read - tm->suspect_read_t) / s->period_s + SESSION_BURST;
         bool lag = (double)n > due;
         if (late > thr && !lag) {
+            double again = late - tm->suspect_late; /* a silence since the suspected read */
+            double hole = again > thr ? tm->suspect_late : late;
             /* the held rows are the ones just before this read's */
             lep_priv_rows_back(rows, rows->len - rows_before + rows->held - 1u)->flags |=
                 LEP_SF_GAP;
             gap_event(s, LEP_EV_GAP, tm->suspect_index, tm->suspect_from, tm->suspect_to,
-                      clip_u32(floor(late / s->period_s + 0.5)), 0);
-            tm->anchor_t = t_read;
+                      clip_u32(floor(hole / s->period_s + 0.5)), 0);
+            /* the anchor leaves the stream as late as it is beyond the hole */
+            late -= hole;
+            tm->anchor_t = t_read - late;
             tm->anchor_k = tm->k;
-            late = 0.0;
+            if (again > thr && rows->len > rows_before) {
+                suspect(s, late, t_read, before_t, first_t, rows_before);
+                return;
+            }
         }
         rows->held = 0;
     } else if (late > thr && rows->len > rows_before) {
-        rows->held = rows->len - rows_before;
-        tm->suspect_from = before_t;
-        tm->suspect_to = first_t;
-        tm->suspect_index = s->hs.processed - rows->held;
-        tm->suspect_read_t = t_read;
+        suspect(s, late, t_read, before_t, first_t, rows_before);
         return;
     }
     if (late < tm->window_min)
