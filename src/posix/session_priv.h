@@ -191,6 +191,8 @@ typedef struct session_timing {
     uint64_t suspect_index;
     double suspect_read_t; /* when the suspected read returned */
     double suspect_late;   /* how late it left the stream, s */
+    bool suspect_silent;   /* the port was seen empty for more than gap_periods before it */
+    double empty_t;        /* when a port read last found nothing */
     /* UTC - monotonic offset the samples are stamped with: held between
      * batches so UTC intervals equal monotonic ones, and moved only when the
      * wall clock steps by more than SESSION_UTC_STEP_S. */

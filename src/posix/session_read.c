@@ -110,6 +110,7 @@ static int read_port(lep_session *s, read_call *c, double now)
     }
     if (rc == 0) {
         s->tm.last_read_t = now;
+        s->tm.empty_t = now;
         if (now >= data_deadline)
             lep_priv_reconnect_lost(s, LEP_E_TIMEOUT, now);
         else if (now >= c->deadline)

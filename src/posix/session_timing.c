@@ -98,6 +98,7 @@ static void suspect(lep_session *s, double late, double t_read, double before_t,
     tm->suspect_index = s->hs.processed - rows->held;
     tm->suspect_read_t = t_read;
     tm->suspect_late = late;
+    tm->suspect_silent = tm->empty_t - before_t > s->opt.gap_periods * s->period_s;
 }
 
 /* Lateness of the stream after a read: how far the samples received since
@@ -145,9 +146,12 @@ void lep_priv_timing_read(lep_session *s, size_t n, double t_read, double before
          * suspected one; the samples were waiting in the kernel, and
          * lateness says nothing about the sensor. (How much the suspected
          * read took says nothing: the tty layer hands a backlog over in
-         * pieces of up to 4 KiB, and a read may find a piece half made.) */
+         * pieces of up to 4 KiB, and a read may find a piece half made.)
+         * A silence the session saw (a read found the port empty after the
+         * last sample, later than gap_periods) is no lag: a burst after it
+         * is a sender catching up, and the hole stays. */
         double due = (t_read - tm->suspect_read_t) / s->period_s + SESSION_BURST;
-        bool lag = (double)n > due;
+        bool lag = !tm->suspect_silent && (double)n > due;
         if (late > thr && !lag) {
             double again = late - tm->suspect_late; /* a silence since the suspected read */
             double hole = again > thr ? tm->suspect_late : late;
