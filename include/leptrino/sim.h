@@ -219,6 +219,13 @@ LEP_API void lep_sim_hangup(lep_sim *s);
 /* Stall for ms milliseconds from now: nothing sent, input buffered. */
 LEP_API void lep_sim_stall(lep_sim *s, int ms);
 
+/* Hold the output for ms milliseconds from now (0: release now): samples are
+ * made at their times and queued, then written together when the hold ends,
+ * as from a sender or a USB adapter running late. Input is read and answered
+ * meanwhile (the answers wait in the same queue). Samples beyond the queue's
+ * room are not made (counted as samples_blocked). */
+LEP_API void lep_sim_hold(lep_sim *s, int ms);
+
 LEP_API void lep_sim_get_stats(lep_sim *s, lep_sim_stats *out);
 
 /* ---- Write trace (for benchmarks; added after the first release) ----

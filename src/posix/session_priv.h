@@ -62,8 +62,10 @@
 /* A reader that lags (a caller busy elsewhere) finds samples waiting in the
  * kernel: the read after a suspected one brings more than was due since,
  * beyond the burst of a USB adapter (a 16 ms latency timer holds 20 samples
- * at 1.2 kHz). */
+ * at 1.2 kHz). After a silence the session saw, the suspected read must
+ * also have taken most of a tty buffer (4 KiB: 146 frames). */
 #define SESSION_BURST 32.0
+#define SESSION_LAG_READ 128u
 /* How soon a read judges a suspected hole when a latency budget would wait longer. */
 #define SESSION_CONFIRM_S 0.02
 /* How often a vanished port is looked for while reconnecting. */
@@ -190,6 +192,7 @@ typedef struct session_timing {
     double suspect_from, suspect_to;
     uint64_t suspect_index;
     double suspect_read_t; /* when the suspected read returned */
+    size_t suspect_n;      /* samples it brought */
     double suspect_late;   /* how late it left the stream, s */
     bool suspect_silent;   /* the port was seen empty for more than gap_periods before it */
     double empty_t;        /* when a port read last found nothing */

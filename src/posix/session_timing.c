@@ -87,8 +87,8 @@ uint8_t lep_priv_timing_sample(lep_session *s, const lep_sample *smp, double t)
 
 /* The rows of the read just made (those after rows_before) are held back as
  * a suspected hole: the silence before its first sample. */
-static void suspect(lep_session *s, double late, double t_read, double before_t, double first_t,
-                    size_t rows_before)
+static void suspect(lep_session *s, size_t n, double late, double t_read, double before_t,
+                    double first_t, size_t rows_before)
 {
     session_timing *tm = &s->tm;
     session_rows *rows = &s->rows;
@@ -97,6 +97,7 @@ static void suspect(lep_session *s, double late, double t_read, double before_t,
     tm->suspect_to = first_t;
     tm->suspect_index = s->hs.processed - rows->held;
     tm->suspect_read_t = t_read;
+    tm->suspect_n = n;
     tm->suspect_late = late;
     tm->suspect_silent = tm->empty_t - before_t > s->opt.gap_periods * s->period_s;
 }
@@ -144,14 +145,15 @@ void lep_priv_timing_read(lep_session *s, size_t n, double t_read, double before
         /* Still late: a hole, unless the reads lag (a caller busy
          * elsewhere): then this read brought more than was due since the
          * suspected one; the samples were waiting in the kernel, and
-         * lateness says nothing about the sensor. (How much the suspected
-         * read took says nothing: the tty layer hands a backlog over in
-         * pieces of up to 4 KiB, and a read may find a piece half made.)
-         * A silence the session saw (a read found the port empty after the
-         * last sample, later than gap_periods) is no lag: a burst after it
-         * is a sender catching up, and the hole stays. */
+         * lateness says nothing about the sensor. How much the suspected
+         * read took says little: the tty layer hands a backlog over in
+         * pieces of up to 4 KiB, and a read may find a piece half made. But
+         * after a silence the session saw (a read found the port empty
+         * later than gap_periods after the last sample), a burst may be a
+         * sender catching up after a hole: then the suspected read must
+         * have taken most of a piece, as a backlog's reads do. */
         double due = (t_read - tm->suspect_read_t) / s->period_s + SESSION_BURST;
-        bool lag = !tm->suspect_silent && (double)n > due;
+        bool lag = (double)n > due && (!tm->suspect_silent || tm->suspect_n >= SESSION_LAG_READ);
         if (late > thr && !lag) {
             double again = late - tm->suspect_late; /* a silence since the suspected read */
             double hole = again > thr ? tm->suspect_late : late;
@@ -165,13 +167,13 @@ void lep_priv_timing_read(lep_session *s, size_t n, double t_read, double before
             tm->anchor_t = t_read - late;
             tm->anchor_k = tm->k;
             if (again > thr && rows->len > rows_before) {
-                suspect(s, late, t_read, before_t, first_t, rows_before);
+                suspect(s, n, late, t_read, before_t, first_t, rows_before);
                 return;
             }
         }
         rows->held = 0;
     } else if (late > thr && rows->len > rows_before) {
-        suspect(s, late, t_read, before_t, first_t, rows_before);
+        suspect(s, n, late, t_read, before_t, first_t, rows_before);
         return;
     }
     if (late < tm->window_min)

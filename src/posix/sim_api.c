@@ -46,6 +46,7 @@ int lep_sim_start(const lep_sim_options *o, lep_sim **out, char *err, size_t err
     s->lock_fd = -1;
     s->wake[0] = s->wake[1] = -1;
     s->req_stall_ms = -1;
+    s->req_hold_ms = -1;
     s->opt = *o;
     s->link = s->opt.link;
     s->period_ns = NS_PER_S / o->rate_hz;
@@ -125,7 +126,7 @@ const char *lep_sim_pty_path(const lep_sim *s)
     return s ? s->pty : "";
 }
 
-static void request(lep_sim *s, bool *flag, int stall_ms)
+static void request(lep_sim *s, bool *flag, int *ms_field, int ms)
 {
     static const uint8_t one = 1;
     if (s == NULL)
@@ -133,8 +134,8 @@ static void request(lep_sim *s, bool *flag, int stall_ms)
     pthread_mutex_lock(&s->lock);
     if (flag != NULL)
         *flag = true;
-    if (stall_ms >= 0)
-        s->req_stall_ms = stall_ms;
+    if (ms_field != NULL)
+        *ms_field = ms;
     pthread_mutex_unlock(&s->lock);
     if (s->wake[1] >= 0)
         (void)!write(s->wake[1], &one, 1);
@@ -143,19 +144,25 @@ static void request(lep_sim *s, bool *flag, int stall_ms)
 void lep_sim_power_cycle(lep_sim *s)
 {
     if (s != NULL)
-        request(s, &s->req_power_cycle, -1);
+        request(s, &s->req_power_cycle, NULL, 0);
 }
 
 void lep_sim_hangup(lep_sim *s)
 {
     if (s != NULL)
-        request(s, &s->req_hangup, -1);
+        request(s, &s->req_hangup, NULL, 0);
 }
 
 void lep_sim_stall(lep_sim *s, int ms)
 {
     if (s != NULL)
-        request(s, NULL, ms < 0 ? 0 : ms);
+        request(s, NULL, &s->req_stall_ms, ms < 0 ? 0 : ms);
+}
+
+void lep_sim_hold(lep_sim *s, int ms)
+{
+    if (s != NULL)
+        request(s, NULL, &s->req_hold_ms, ms < 0 ? 0 : ms);
 }
 
 int lep_sim_trace_writes(lep_sim *s, const char *path, char *err, size_t errlen)
@@ -185,7 +192,7 @@ int lep_sim_trace_writes(lep_sim *s, const char *path, char *err, size_t errlen)
     pthread_mutex_lock(&s->lock);
     s->req_trace = t;
     pthread_mutex_unlock(&s->lock);
-    request(s, NULL, -1);
+    request(s, NULL, NULL, 0);
     return LEP_OK;
 }
 
@@ -207,7 +214,7 @@ void lep_sim_stop(lep_sim *s)
     if (s == NULL)
         return;
     if (s->thread_started) {
-        request(s, &s->req_stop, -1);
+        request(s, &s->req_stop, NULL, 0);
         pthread_join(s->thread, NULL);
     }
     lep_priv_sim_trace_close(s->trace);

@@ -50,6 +50,7 @@ struct lep_sim {
     pthread_mutex_t lock;
     bool req_stop, req_power_cycle, req_hangup;
     int req_stall_ms;         /* -1: none */
+    int req_hold_ms;          /* -1: none */
     lep_sim_trace *req_trace; /* lep_sim_trace_writes: handed to the serving thread */
     bool trace_requested;     /* lep_sim_trace_writes was called (once only) */
     lep_sim_stats stats;
@@ -92,6 +93,7 @@ struct lep_sim {
     size_t out_len;
     /* sim_serve.c */
     int64_t stall_until, stall_at, hangup_at, reopen_at; /* 0: none */
+    int64_t hold_until; /* output held (made and queued, not written) until then; 0: none */
     bool hung;
     lep_sim_trace *trace;     /* write trace, or NULL (sim_trace.c) */
     bool trace_was_streaming; /* to mark the end of a stream in the trace */

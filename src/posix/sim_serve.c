@@ -103,7 +103,7 @@ static bool requests_pending(lep_sim *s)
     bool any;
     pthread_mutex_lock(&s->lock);
     any = s->req_stop || s->req_power_cycle || s->req_hangup || s->req_stall_ms >= 0 ||
-          (s->req_trace != NULL && s->trace == NULL);
+          s->req_hold_ms >= 0 || (s->req_trace != NULL && s->trace == NULL);
     pthread_mutex_unlock(&s->lock);
     return any;
 }
@@ -121,13 +121,16 @@ void *lep_priv_sim_serve(void *arg)
         nfds_t n = 1;
         int64_t now = lep_priv_monotonic_ns(), until = 0;
         bool stalled = s->stall_until != 0 && now < s->stall_until;
+        bool held = s->hold_until != 0 && now < s->hold_until;
         bool stop, cycle, hangup, quiet, idle;
-        int stall_ms;
+        int stall_ms, hold_ms;
 
         if (s->stall_until != 0 && !stalled) {
             s->stall_until = 0;
             lep_priv_sim_skip_due(s, now);
         }
+        if (s->hold_until != 0 && !held)
+            s->hold_until = 0;
         if (s->stall_at != 0 && now >= s->stall_at) {
             s->stall_at = 0;
             s->stall_until = now + (int64_t)s->opt.stall_ms * 1000000;
@@ -147,7 +150,7 @@ void *lep_priv_sim_serve(void *arg)
             lep_priv_sim_trace_mark(s->trace, LEP_SIM_TRACE_END, now);
         s->trace_was_streaming = s->streaming;
         lep_priv_sim_publish(s); /* counters first: a host that got an answer sees them */
-        if (!s->hung && !stalled)
+        if (!s->hung && !stalled && !held)
             lep_priv_sim_flush_out(s);
 
         p[0].fd = s->wake[0];
@@ -155,7 +158,7 @@ void *lep_priv_sim_serve(void *arg)
         p[0].revents = 0;
         if (!s->hung && !stalled) {
             p[1].fd = s->master;
-            p[1].events = (short)(POLLIN | (s->out_len > 0 ? POLLOUT : 0));
+            p[1].events = (short)(POLLIN | (s->out_len > 0 && !held ? POLLOUT : 0));
             p[1].revents = 0;
             n = 2;
             /* The next sample's deadline, unless the queue is full (nobody
@@ -169,6 +172,8 @@ void *lep_priv_sim_serve(void *arg)
         }
         if (stalled)
             until = earliest(until, s->stall_until);
+        if (held)
+            until = earliest(until, s->hold_until);
         until = earliest(until, s->stall_at);
         until = earliest(until, s->hangup_at);
         if (s->hung)
@@ -190,7 +195,7 @@ void *lep_priv_sim_serve(void *arg)
         }
 
         stop = cycle = hangup = false;
-        stall_ms = -1;
+        stall_ms = hold_ms = -1;
         if (p[0].revents & POLLIN) {
             idle = false;
             /* a request: callers set it under the lock, then write the pipe */
@@ -202,12 +207,13 @@ void *lep_priv_sim_serve(void *arg)
             cycle = s->req_power_cycle;
             hangup = s->req_hangup;
             stall_ms = s->req_stall_ms;
+            hold_ms = s->req_hold_ms;
             if (s->req_trace != NULL && s->trace == NULL) {
                 s->trace = s->req_trace;
                 s->req_trace = NULL;
             }
             s->req_power_cycle = s->req_hangup = false;
-            s->req_stall_ms = -1;
+            s->req_stall_ms = s->req_hold_ms = -1;
             pthread_mutex_unlock(&s->lock);
         }
         if (stop)
@@ -219,6 +225,8 @@ void *lep_priv_sim_serve(void *arg)
         }
         if (hangup && !s->hung)
             hang_up(s, now);
+        if (hold_ms >= 0)
+            s->hold_until = hold_ms > 0 ? now + (int64_t)hold_ms * 1000000 : 0;
         if (stall_ms >= 0) {
             if (s->stall_until != 0 && stall_ms == 0)
                 lep_priv_sim_skip_due(s, now);

@@ -1,7 +1,8 @@
 /* The session when things go wrong, against the virtual sensor: a stall
  * shorter than the data timeout, dropped samples counted exactly, another
  * reader stealing bytes from the port, a hang-up with and without
- * reconnection, a data timeout, overload episodes. */
+ * reconnection, a data timeout, overload episodes; holes found from arrival
+ * times on a port, a reader that lags and a sender running late. */
 #define _POSIX_C_SOURCE 200809L
 
 #include <fcntl.h>
@@ -25,6 +26,14 @@ void setUp(void)
 
 void tearDown(void)
 {
+}
+
+/* CLOCK_MONOTONIC, seconds. */
+static double now_s(void)
+{
+    struct timespec ts;
+    (void)clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
 }
 
 /* Read until b holds want samples; returns the last return code. */
@@ -474,6 +483,61 @@ static void test_a_reader_behind_by_several_buffers_loses_nothing(void)
     st_batch_free(&b);
 }
 
+/* A sender running late (the virtual sensor holds its output 200 ms, then
+ * sends it together, as an adapter or a busy host would): the stream falls
+ * behind and catches up, which is not a hole. Nothing is lost and no gap is
+ * reported, though the session saw the port silent for longer than a hole
+ * (100 ms here) and the catch-up may take more than one read. */
+static void test_a_sender_running_late_is_not_a_hole(void)
+{
+    lep_sim *sim = NULL;
+    lep_session_options o;
+    lep_session *s = NULL;
+    st_batch b;
+    lep_session_health h;
+    lep_sim_stats st;
+    size_t i, n0, flagged = 0;
+    uint64_t lost = 0;
+    double t0, silent;
+    int rc;
+
+    lep_session_options_init(&o);
+    o.gap_periods = 120.0;
+    s = open_on_port(&sim, NULL, &o);
+    st_batch_init(&b, 4000);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, read_until(s, &b, 200));
+    lep_sim_hold(sim, 200);
+    {
+        struct timespec taken = { 0, 5000000L }; /* the sensor takes the request */
+        nanosleep(&taken, NULL);
+    }
+    do /* what was written before the hold */
+        rc = lep_session_read(s, &b.b, 0);
+    while (rc == LEP_OK && b.b.n < b.b.cap);
+    TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, rc);
+    n0 = b.b.n;
+    t0 = now_s();
+    TEST_ASSERT_EQUAL_INT(LEP_OK, read_until(s, &b, n0 + 1));
+    silent = now_s() - t0;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, read_until(s, &b, 1200));
+    for (i = 1; i < b.b.n; i++) {
+        lost += (uint16_t)(b.seq[i] - b.seq[i - 1]) - 1u;
+        flagged += (b.flags[i] & LEP_SF_GAP) != 0u;
+    }
+    lep_session_get_health(s, &h);
+    lep_sim_get_stats(sim, &st);
+    printf("sender 200 ms late: silent %.0f ms, %zu samples read, %llu missing, %llu gaps\n",
+           silent * 1e3, b.b.n, (unsigned long long)lost, (unsigned long long)h.gaps);
+    TEST_ASSERT_TRUE_MESSAGE(silent > 0.15, "the hold did not hold the output");
+    TEST_ASSERT_TRUE(lost <= st.samples_skipped + st.samples_blocked);
+    TEST_ASSERT_EQUAL_UINT64(0, h.gaps);
+    TEST_ASSERT_EQUAL_size_t(0, flagged);
+    lep_session_close(s);
+    lep_sim_stop(sim);
+    st_batch_free(&b);
+}
+
 /* The port comes back with another sensor (another serial number): the
  * session does not take its data as the same recording. */
 static void test_another_sensor_after_a_reconnect_is_refused(void)
@@ -520,6 +584,7 @@ int main(void)
     RUN_TEST(test_a_stall_on_a_port_is_found_from_arrival_times);
     RUN_TEST(test_another_reader_on_a_port_is_reported);
     RUN_TEST(test_a_reader_behind_by_several_buffers_loses_nothing);
+    RUN_TEST(test_a_sender_running_late_is_not_a_hole);
     RUN_TEST(test_another_sensor_after_a_reconnect_is_refused);
     return UNITY_END();
 }

@@ -427,6 +427,7 @@ const char *lep_sim_pty_path(const lep_sim *s);
 void lep_sim_power_cycle(lep_sim *s);
 void lep_sim_hangup(lep_sim *s);
 void lep_sim_stall(lep_sim *s, int ms);
+void lep_sim_hold(lep_sim *s, int ms);
 void lep_sim_get_stats(lep_sim *s, lep_sim_stats *out);
 typedef struct lep_sim_trace_record
 {
@@ -732,6 +733,7 @@ FUNCTIONS = (
     'lep_sim_power_cycle',
     'lep_sim_hangup',
     'lep_sim_stall',
+    'lep_sim_hold',
     'lep_sim_get_stats',
     'lep_sim_trace_writes',
     'lep_sim_stop',

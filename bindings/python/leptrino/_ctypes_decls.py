@@ -639,6 +639,7 @@ FUNCTIONS: Dict[str, Tuple[Any, List[Any]]] = {
     'lep_sim_power_cycle': (None, [POINTER(lep_sim)]),
     'lep_sim_hangup': (None, [POINTER(lep_sim)]),
     'lep_sim_stall': (None, [POINTER(lep_sim), c_int]),
+    'lep_sim_hold': (None, [POINTER(lep_sim), c_int]),
     'lep_sim_get_stats': (None, [POINTER(lep_sim), POINTER(lep_sim_stats)]),
     'lep_sim_trace_writes': (c_int, [POINTER(lep_sim), c_char_p, POINTER(c_char), c_size_t]),
     'lep_sim_stop': (None, [POINTER(lep_sim)]),

@@ -186,6 +186,15 @@ class Simulator:
         ms = A.number("stall", "seconds", seconds, 0.0, 86400.0) * 1000
         self._be.lib.lep_sim_stall(self._live(), int(ms))
 
+    def hold(self, seconds: float) -> None:
+        """Hold the output for this long, from now: samples are made at their
+        times and sent together when the hold ends (a sender running late).
+        ``hold(0)`` releases them now."""
+        from . import _args as A
+
+        ms = A.number("hold", "seconds", seconds, 0.0, 86400.0) * 1000
+        self._be.lib.lep_sim_hold(self._live(), int(ms))
+
     @property
     def stats(self) -> SimStats:
         st = self._be.new("lep_sim_stats")

@@ -104,6 +104,30 @@ def test_stream_context_manager(backend: str) -> None:
         s.read()  # handshake works again after the stream
 
 
+def test_a_sender_running_late_delays_the_samples_and_loses_none(backend: str) -> None:
+    sim = leptrino.Simulator(backend=backend)
+    # a hole is 100 ms here: the hold's 200 ms is beyond it, a loaded machine's jitter is not
+    with sim as port, leptrino.Sensor(port, gap_periods=120, backend=backend) as s:
+        with s.stream() as samples:
+            got = [next(samples) for _ in range(100)]
+            sim.hold(0.2)
+            time.sleep(0.005)  # the sensor takes the request; what it wrote before may come
+            t0 = time.monotonic()
+            waited = 0.0
+            while len(got) < 600:
+                got.append(next(samples))
+                waited = max(waited, time.monotonic() - t0)
+                t0 = time.monotonic()
+        seqs = [x.seq for x in got]
+        missing = sum((b - a - 1) % 65536 for a, b in zip(seqs, seqs[1:]))
+        st = sim.stats
+        assert missing <= st.samples_skipped + st.samples_blocked
+        assert waited > 0.15  # one sample waited for the hold
+        assert s.health.gaps == 0  # late, not lost
+        with pytest.raises(ValueError, match="out of range"):
+            sim.hold(-1)
+
+
 def test_stream_iterator_stops_the_stream_when_exhausted(backend: str) -> None:
     with leptrino.Simulator(backend=backend) as port, \
             leptrino.Sensor(port, backend=backend) as s:
