@@ -338,6 +338,8 @@ void lep_priv_proc_start(lep_session *s);
 /* The stream stopped: a tare in progress ends without a result. [mu] held. */
 void lep_priv_proc_stop(session_proc *p);
 void lep_priv_lowpass_design(session_lowpass *lp, double cutoff_hz, double fs);
+/* The next sample sets the low-pass state again (a new stream, a reconnect). */
+void lep_priv_lowpass_restart(session_lowpass *lp);
 
 /* ---- session_load.c ([mu] held for the lep_priv_ ones) ---- */
 /* Check the payload, gravity and limits of options o (one line in err). */
@@ -354,7 +356,6 @@ void lep_priv_load_counts(const session_load *l, const lep_rated *rated, double 
  * LEP_SF_LIMIT flag or 0, and the episode's events (before delivered sample
  * number `sample`, at t). */
 uint8_t lep_priv_load_limits(lep_session *s, const double si[LEP_AXES], double t, uint64_t sample);
-void lep_priv_lowpass_restart(session_lowpass *lp);
 
 /* ---- session_health.c ([mu] held for all) ---- */
 void lep_priv_health_start(session_health_state *hs, double nominal_hz,
