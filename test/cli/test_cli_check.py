@@ -4,9 +4,13 @@
 from __future__ import annotations
 
 import json
+import signal
+import subprocess
+import time
 from pathlib import Path
 
-from conftest import Csv, run
+import pytest
+from conftest import Csv, cli_path, run
 
 CHECK_CODES = {"status": 10, "errors": 11, "loss": 12, "rate": 13, "overload": 14, "noise": 15}
 
@@ -59,6 +63,21 @@ def test_check_status_bits(tmp_path: Path) -> None:
     replay.write_text("0,0,0,0,0,0,1\n")
     code, j, err = _check("--sim-replay", str(replay))
     assert code == 10 and "ROM calibration data error" in err
+
+
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["SIGINT", "SIGTERM"])
+def test_check_interrupted_is_no_pass(sig: signal.Signals) -> None:
+    # a script's `leptrino check PORT && ...` (or `timeout 5 leptrino check`) must not take
+    # an interrupted check for a pass
+    proc = subprocess.Popen([cli_path(), "check", "--sim", "--duration", "30"],
+                            stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+    time.sleep(1.0)
+    proc.send_signal(sig)
+    out, err = proc.communicate(timeout=20)
+    assert proc.returncode == 1, (proc.returncode, out, err)
+    assert "interrupted before the end of --duration: no verdict" in err, err
+    assert "PASS" not in out
 
 
 def test_check_usage() -> None:

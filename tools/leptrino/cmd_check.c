@@ -29,6 +29,8 @@ static void help(void)
           "               signal (a steady load or a slow drift does not count; samples\n"
           "               around a gap or an overload are left out). Check with no load\n"
           "               changing on the sensor.\n"
+          "A check ended by Ctrl-C or SIGTERM before --duration is over has no\n"
+          "verdict: exit 1.\n"
           "\n"
           "Options:\n"
           "  -d, --duration S         stream for S seconds (default 3)\n"
@@ -345,7 +347,14 @@ int cli_cmd_check(int argc, char **argv)
         return code < 0 ? CLI_OK : code;
     cli_signals_install();
     code = measure(&o, &po, &d);
-    if (code != CLI_OK || cli_stop_requested()) {
+    if (code == CLI_OK && cli_stop_requested()) {
+        /* an interrupted check has no verdict: never the exit code of a pass */
+        fprintf(stderr,
+                "leptrino: check: %s: interrupted before the end of --duration: no verdict\n",
+                po.sensor[0].name);
+        code = CLI_FAIL;
+    }
+    if (code != CLI_OK) {
         cli_sensors_close(&po);
         return code;
     }
