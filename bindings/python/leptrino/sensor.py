@@ -30,6 +30,7 @@ from . import _args as A
 from ._backend import get_backend
 from ._guard import Guard
 from .errors import LeptrinoError, error_for
+from .payload import Payload
 from .values import (
     EVENT_NAMES,
     ClientStats,
@@ -90,8 +91,8 @@ def product_info_from(be: Any, c: Any) -> ProductInfo:
     )
 
 
-def _ms(seconds: float, what: str) -> int:
-    return int(math.ceil(A.number("Sensor", what, seconds, 0.0, 3600.0) * 1000))
+def _ms(seconds: float, what: str, lo_exclusive: bool = False) -> int:
+    return int(math.ceil(A.number("Sensor", what, seconds, 0.0, 3600.0, lo_exclusive) * 1000))
 
 
 class Sensor:
@@ -184,7 +185,8 @@ class Sensor:
         o.lowpass_hz = float(lowpass)
         o.decimate = int(decimate)
         o.reconnect = bool(reconnect)
-        o.data_timeout_ms = max(1, _ms(data_timeout, "data_timeout"))
+        # above 0, as `leptrino --data-timeout` (0 would take every pause for a lost stream)
+        o.data_timeout_ms = max(1, _ms(data_timeout, "data_timeout", lo_exclusive=True))
         self._data_timeout_s = o.data_timeout_ms / 1000  # named by a lost stream's message
         o.gap_periods = float(gap_periods)
         o.nominal_hz = float(nominal_hz)
@@ -567,13 +569,17 @@ class Sensor:
         counts stay as measured): a leptrino.Payload (its mass and centre of
         mass), (mass kg, cx, cy, cz m, sensor frame), or None for none. A tare
         taken while a payload is set removes the bias only. ValueError for a
-        negative mass or non-finite values. Takes effect from the next sample."""
+        negative mass, non-finite values or not four numbers, TypeError for
+        the wrong kind (leptrino/_args.py). Takes effect from the next sample."""
         be = self._be
         c = be.new("lep_payload")
         if payload is not None:
-            v = [float(x) for x in payload]
-            if len(v) != 4:
-                raise ValueError(f"payload: expected (mass, cx, cy, cz), got {len(v)} numbers")
+            if isinstance(payload, Payload):
+                payload = tuple(payload)
+            v = A.numbers_of("set_payload", "payload", payload, (4,),
+                             "(mass kg, cx, cy, cz m)")
+            if v[0] < 0:
+                raise ValueError(f"set_payload: payload: the mass {v[0]:g} kg is negative")
             c.mass_kg = v[0]
             for i in range(3):
                 c.com_m[i] = v[1 + i]
@@ -584,14 +590,12 @@ class Sensor:
     def set_gravity(self, gravity: Sequence[float]) -> None:
         """Gravity in the sensor frame, m/s² ((0, 0, -9.80665) when the z axis
         points up); call it as often as the robot moves. ValueError when not
-        three finite numbers."""
+        three finite numbers, TypeError for the wrong kind."""
         be = self._be
-        a = np.asarray(gravity, dtype=np.float64)
-        if a.shape != (3,):
-            raise ValueError(f"gravity is (gx, gy, gz) in m/s², got shape {a.shape}")
+        a = A.numbers_of("set_gravity", "gravity", gravity, (3,), "(gx, gy, gz) in m/s²")
         g = be.doubles(3)
         for i in range(3):
-            g[i] = float(a[i])
+            g[i] = a[i]
         if be.lib.lep_session_set_gravity(self._live(), g) < 0:
             raise ValueError(f"gravity {gravity!r}: three finite numbers expected")
 
@@ -601,21 +605,22 @@ class Sensor:
         set_limits(fz=50, mz=2), a dict of the same, six numbers (fx..mz, 0 =
         none), or None to remove them. Beyond a limit a sample is flagged
         (LEP_SF_LIMIT) and limit_exceeded / limit_cleared events come with the
-        data. ValueError for a negative or non-finite limit or an unknown axis."""
+        data. ValueError for a negative or non-finite limit or an unknown axis,
+        TypeError for a limit that is not a number."""
         names = ("fx", "fy", "fz", "mx", "my", "mz")
         v = [0.0] * K.LEP_AXES
         given: Dict[str, float] = dict(axes)
         if isinstance(limits, Mapping):
             given.update(limits)
         elif limits is not None:
-            seq = [float(x) for x in limits]
-            if len(seq) != K.LEP_AXES:
-                raise ValueError(f"limits: expected 6 numbers (fx..mz), got {len(seq)}")
-            v = seq
+            v = A.numbers_of("set_limits", "limits", limits, (K.LEP_AXES,),
+                             "six limits (fx .. mz, N and N·m, 0: none)")
         for name, value in given.items():
             if name not in names:
-                raise ValueError(f"limits: unknown axis {name!r} (one of {', '.join(names)})")
-            v[names.index(name)] = float(value)
+                raise ValueError(f"set_limits: unknown axis {name!r} (one of {', '.join(names)})")
+            v[names.index(name)] = A.number("set_limits", name, value, 0.0, math.inf)
+        for name, value in zip(names, v):
+            A.number("set_limits", name, value, 0.0, math.inf)  # six numbers: each >= 0
         be = self._be
         c = be.doubles(K.LEP_AXES)
         for i in range(K.LEP_AXES):

@@ -73,6 +73,50 @@ def test_every_method(sensor: Any) -> None:
         assert before[k] == after[k], k  # nothing reached the session
 
 
+def test_payload_gravity_limits(sensor: Any) -> None:
+    # the methods of payload compensation and limits follow the same policy and words
+    cases = [
+        (ValueError, "set_payload: payload: 3 is not (mass kg, cx, cy, cz m)",
+         lambda: sensor.set_payload(3)),
+        (TypeError, "set_payload: payload", lambda: sensor.set_payload("1,0,0,0")),
+        (TypeError, "set_payload: payload", lambda: sensor.set_payload((1, 0, 0, "a"))),
+        (ValueError, "set_payload: payload", lambda: sensor.set_payload((1, 0, 0))),
+        (ValueError, "not finite", lambda: sensor.set_payload((1, 0, 0, math.nan))),
+        (ValueError, "set_payload: payload: the mass -1 kg is negative",
+         lambda: sensor.set_payload((-1, 0, 0, 0))),
+        (ValueError, "set_payload: payload: the mass -2 kg is negative",
+         lambda: sensor.set_payload(leptrino.Payload(-2.0, (0.0, 0.0, 0.0)))),
+        (ValueError, "set_gravity: gravity: (0, 0) is not (gx, gy, gz) in m/s²",
+         lambda: sensor.set_gravity((0, 0))),
+        (TypeError, "set_gravity: gravity", lambda: sensor.set_gravity("down")),
+        (TypeError, "set_gravity: gravity", lambda: sensor.set_gravity((0, 0, None))),
+        (ValueError, "not finite", lambda: sensor.set_gravity((0, 0, math.inf))),
+        (TypeError, "set_limits: fz: 'a' is not a number", lambda: sensor.set_limits(fz="a")),
+        (TypeError, "set_limits: fz: True is not a number", lambda: sensor.set_limits(fz=True)),
+        (ValueError, "set_limits: fz: -1 is out of range", lambda: sensor.set_limits(fz=-1)),
+        (ValueError, "set_limits: mz: nan is not a number",
+         lambda: sensor.set_limits({"mz": math.nan})),
+        (ValueError, "set_limits: unknown axis 'q'", lambda: sensor.set_limits(q=1)),
+        (ValueError, "set_limits: limits", lambda: sensor.set_limits((1, 2))),
+        (TypeError, "set_limits: limits", lambda: sensor.set_limits("fz=50")),
+        (ValueError, "set_limits: fx: -5.0 is out of range",
+         lambda: sensor.set_limits((-5, 0, 0, 0, 0, 0))),
+    ]
+    sensor.set_payload((0.5, 0.0, 0.0, 0.1))
+    sensor.set_gravity((0.0, 9.80665, 0.0))
+    sensor.set_limits(fz=50)
+    before = sensor.metadata
+    for exc, words, fn in cases:
+        _raises(exc, words, fn)
+    after = sensor.metadata
+    for k in ("payload", "gravity", "limit"):
+        assert before[k] == after[k], k  # nothing reached the session
+    sensor.set_payload(leptrino.Payload(0.25, (0.0, 0.01, 0.0)))  # good values still go in
+    sensor.set_limits((0, 0, 20, 0, 0, 1))
+    assert sensor.metadata["payload"] == {"mass_kg": 0.25, "com_m": [0, 0.01, 0]}
+    assert sensor.metadata["limit"] == [0, 0, 20, 0, 0, 1]
+
+
 def test_constructor(sim: Any, backend: str) -> None:
     bad = [
         (ValueError, "timeout", dict(timeout=0)),
@@ -84,6 +128,7 @@ def test_constructor(sim: Any, backend: str) -> None:
         (TypeError, "reconnect", dict(reconnect="yes")),
         (ValueError, "latency", dict(latency=-1)),
         (ValueError, "data_timeout", dict(data_timeout=math.inf)),
+        (ValueError, "data_timeout: 0 is out of range (above 0", dict(data_timeout=0)),
         (ValueError, "gap_periods", dict(gap_periods=0.5)),
         (ValueError, "rotation is not a rotation matrix", dict(rotation=np.diag([1, 1, 2]))),
         (ValueError, "shift", dict(shift=(0, 0))),
