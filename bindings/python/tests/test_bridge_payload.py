@@ -345,6 +345,26 @@ def test_cli_payload_and_limit_episodes(tmp_path: Path) -> None:
     assert diags[-1].level == 0 or last["beyond_limit"]
 
 
+def test_limit_from_the_first_sample_is_not_no_data(tmp_path: Path) -> None:
+    """A sensor beyond its limit from the first sample on (the virtual sensor's
+    default sine starts near fz = -99 N): the diagnostics said at once for
+    that episode are WARN naming the axis, with the samples counted, never
+    ERROR "no data" while data flow."""
+    mcap = tmp_path / "first.mcap"
+    r = subprocess.run(
+        [sys.executable, "-m", "leptrino.bridge", "--sim", "a", "--limit", "fz=50",
+         "--mcap", str(mcap), "--duration", "1.5"],
+        capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0, r.stderr
+    diags = [m.status[0] for _, m in read_mcap(mcap)["/a/diagnostics"]]
+    first = diags[0]
+    values = {kv.key: kv.value for kv in first.values}
+    assert (first.level, first.message) == (1, "beyond limit: fz"), (first.level, first.message,
+                                                                      values)
+    assert int(values["published"]) > 0, values
+    assert all(d.level != 2 for d in diags), [(d.level, d.message) for d in diags]
+
+
 def test_cli_refuses_bad_payload_gravity_and_limit() -> None:
     for args, words in ((["--payload", "a=-1,0,0,0"], "negative"),
                         (["--payload", "1,2,3"], "4 comma-separated"),

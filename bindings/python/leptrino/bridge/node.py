@@ -371,9 +371,6 @@ class SensorNode:
             n = int(c_batch.n)
             sensor._delivered += n
             now = time.monotonic()
-            if not n or now >= next_events:  # the events feed counters and logs only
-                self._take_events(sensor._drain_events(base))
-                next_events = now + EVENTS_PERIOD_S
             if n:
                 if failing:
                     log.warning("%s: data again", self.spec.name)
@@ -384,6 +381,12 @@ class SensorNode:
                 c.samples += n
                 c.last_sample_mono = t_mono[n - 1]
                 silent_since = now
+            # after the batch is counted: a limit event's diagnostics (published at once)
+            # must see the samples that came with it, not "no data"
+            if not n or now >= next_events:  # the events feed counters and logs only
+                self._take_events(sensor._drain_events(base))
+                next_events = now + EVENTS_PERIOD_S
+            if n:
                 continue
             if rc == K.LEP_E_END:
                 break
