@@ -150,7 +150,7 @@ typedef struct lep_session_event {
 /* Health, since lep_session_start. */
 typedef struct lep_session_health {
     double elapsed_s;   /* from the first sample to the last */
-    double nominal_hz;  /* 1200, or the sensor's output-rate field */
+    double nominal_hz;  /* as lep_session_options.nominal_hz says */
     double measured_hz; /* (samples received - 1) / elapsed (decimation not applied) */
     double recent_hz;   /* over the last second or so (the run so far in its first second) */
     bool shortfall;     /* measured_hz below 98 % of nominal over at least 1 s */

@@ -151,7 +151,7 @@ class Health:
     """
 
     elapsed_s: float  # from the first sample to the last
-    nominal_hz: float  # 1200, or the sensor's output-rate field
+    nominal_hz: float  # as lep_session_options.nominal_hz says
     measured_hz: float  # (samples received - 1) / elapsed (decimation not applied)
     recent_hz: float  # over the last second or so (the run so far in its first second)
     shortfall: bool  # measured_hz below 98 % of nominal over at least 1 s
