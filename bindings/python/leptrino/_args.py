@@ -46,8 +46,9 @@ def optional_flag(where: str, name: str, v: Any) -> Optional[bool]:
     return None if v is None else flag(where, name, v)
 
 
-def numbers_of(where: str, name: str, v: Any, shape: Sequence[int], what: str) -> List[float]:
-    """An array of finite numbers of this shape, flattened (row-major)."""
+def array_of(where: str, name: str, v: Any, what: str) -> Any:
+    """An array of numbers, any shape, as float64 (TypeError for strings,
+    bools, None or anything else that is not numbers)."""
     if isinstance(v, (str, bytes)):
         raise TypeError(f"{where}: {name}: {v!r} is not {what}")
     try:
@@ -56,9 +57,14 @@ def numbers_of(where: str, name: str, v: Any, shape: Sequence[int], what: str) -
         raise TypeError(f"{where}: {name}: {v!r} is not {what}") from None
     if a.dtype == np.bool_ or not np.issubdtype(a.dtype, np.number):
         raise TypeError(f"{where}: {name}: {v!r} is not {what}")
+    return a.astype(np.float64)
+
+
+def numbers_of(where: str, name: str, v: Any, shape: Sequence[int], what: str) -> List[float]:
+    """An array of finite numbers of this shape, flattened (row-major)."""
+    a = array_of(where, name, v, what)
     if a.shape != tuple(shape):
         raise ValueError(f"{where}: {name}: {v!r} is not {what}")
-    a = a.astype(np.float64)
     if not np.all(np.isfinite(a)):
         raise ValueError(f"{where}: {name}: {v!r} is not {what} (not finite)")
     return [float(x) for x in a.reshape(-1)]

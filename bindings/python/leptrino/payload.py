@@ -13,6 +13,7 @@ from typing import Any, Iterator, Optional, Sequence, Tuple
 
 import numpy as np
 
+from . import _args as A
 from . import _constants as K
 from ._backend import get_backend
 
@@ -66,7 +67,7 @@ class Payload:
 
 
 def _vector(v: Any, n: int, what: str) -> Any:
-    a = np.asarray(v, dtype=np.float64)
+    a = A.array_of("Payload", what, v, f"{n} numbers")
     if a.shape != (n,):
         raise ValueError(f"{what}: expected {n} numbers, got shape {a.shape}")
     return a
@@ -87,13 +88,16 @@ def identify_payload(gravity: Any, wrenches: Any, backend: Optional[str] = None)
     gravity: N×3 (m/s², sensor frame, one row per pose); wrenches: N×6, the
     mean wrench measured at each pose (fx, fy, fz in N, mx, my, mz in N·m, not
     tared). Linear least squares in C (lep_payload_identify; Kubus, Kröger and
-    Wahl, 2008). Raises ValueError with the library's message for arrays of
-    the wrong shape, NaN or infinite values, or poses that do not determine
+    Wahl, 2008). TypeError for values that are not numbers (strings, bools,
+    None); ValueError with the library's message for arrays of the wrong shape, NaN or infinite values, or poses that do not determine
     the payload (fewer than 3, gravity in too few distinct directions, a mass
     found not positive): a degenerate set is refused, never answered."""
     be = get_backend(backend)
-    g = np.ascontiguousarray(gravity, dtype=np.float64)
-    w = np.ascontiguousarray(wrenches, dtype=np.float64)
+    # the kind first (leptrino/_args.py: strings, bools, None are TypeError), then the shape
+    g = np.ascontiguousarray(A.array_of("identify_payload", "gravity", gravity,
+                                        "an N×3 array of numbers (m/s²)"))
+    w = np.ascontiguousarray(A.array_of("identify_payload", "wrenches", wrenches,
+                                        "an N×6 array of numbers (N, N·m)"))
     if g.ndim != 2 or g.shape[1] != 3:
         raise ValueError(f"gravity: expected an N×3 array, got shape {g.shape}")
     if w.ndim != 2 or w.shape[1] != 6:

@@ -117,6 +117,27 @@ def test_payload_gravity_limits(sensor: Any) -> None:
     assert sensor.metadata["limit"] == [0, 0, 20, 0, 0, 1]
 
 
+def test_identify_payload_kinds(backend: str) -> None:
+    g = np.array([[0, 0, -9.8], [4.9, 0, -8.5], [0, 4.9, -8.5]])
+    w = np.zeros((3, 6))
+    cases = [
+        (TypeError, "identify_payload: gravity: 'abc' is not an N×3 array of numbers",
+         lambda: leptrino.identify_payload("abc", w, backend=backend)),
+        (TypeError, "identify_payload: gravity", lambda: leptrino.identify_payload(
+            [[None, 0, -9.8]] * 3, w, backend=backend)),
+        (TypeError, "identify_payload: gravity", lambda: leptrino.identify_payload(
+            True, w, backend=backend)),
+        (TypeError, "identify_payload: wrenches", lambda: leptrino.identify_payload(
+            g, [["x"] * 6] * 3, backend=backend)),
+        (ValueError, "gravity: expected an N×3 array", lambda: leptrino.identify_payload(
+            g[:, :2], w, backend=backend)),
+        (TypeError, "Payload: gravity: 'down' is not 3 numbers",
+         lambda: leptrino.Payload(1.0, (0.0, 0.0, 0.0)).wrench("down", backend=backend)),
+    ]
+    for exc, words, fn in cases:
+        _raises(exc, words, fn)
+
+
 def test_constructor(sim: Any, backend: str) -> None:
     bad = [
         (ValueError, "timeout", dict(timeout=0)),
