@@ -163,6 +163,7 @@ class Sensor:
         rot = None if rotation is None else self._matrix(rotation, degrees, "Sensor")
         sh = None if shift is None else self._vec3(shift, "Sensor")
         self._timeout_ms = max(1, _ms(timeout, "timeout"))
+        self._retries = int(retries)  # named by a lost stream's message
         o = be.new("lep_session_options")
         lib.lep_session_options_init(o)
         keep: List[Any] = []
@@ -318,9 +319,14 @@ class Sensor:
     def _lost_words(self, what: str, rc: int) -> str:
         """The message of a read that failed; a lost stream names the option."""
         if rc == K.LEP_E_LOST:
+            # the stop that follows (record() makes it, a stream() at its close) waits for a
+            # sensor that went quiet: say how long and what changes it, as `leptrino` does
+            tries = self._retries + 1
             return (f"{self.port}: {what}: no data for {self._data_timeout_s:g} s "
                     "(data_timeout=): the stream is lost (reconnect=True waits for the sensor "
-                    "to come back)")
+                    f"to come back); stopping the sensor's stream waits up to "
+                    f"{tries * self._timeout_ms / 1000:g} s for an answer "
+                    f"(timeout= {self._timeout_ms / 1000:g} s a try, {tries} tries: retries=)")
         return f"{self.port}: {what}"
 
     def _drain_events(self, base: int = 0) -> List[SessionEvent]:

@@ -343,6 +343,10 @@ def test_data_timeout_ends_the_stream(backend: str) -> None:
         assert lost and lost[0].error == K.LEP_E_TIMEOUT
         # the session says the stream is lost (LEP_E_LOST), not "nothing yet"
         assert info.value.error == K.LEP_E_LOST
+        # no silent wait: the message names the stop's wait and what changes it
+        assert "no data for 0.5 s (data_timeout=)" in str(info.value)
+        assert ("stopping the sensor's stream waits up to 2 s for an answer "
+                "(timeout= 0.5 s a try, 4 tries: retries=)") in str(info.value), str(info.value)
 
 
 def test_a_lost_stream_ends_the_iterator_with_the_sessions_code(backend: str) -> None:
