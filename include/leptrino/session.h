@@ -327,8 +327,8 @@ LEP_API int lep_session_set_limits(lep_session *s, const double limit[LEP_AXES])
 /* Limits as text, the `--limit` syntax of the leptrino tool and the bridge:
  * AXIS=VALUE pairs separated by commas, AXIS one of fx fy fz mx my mz, VALUE
  * a finite number > 0 (N, N m), e.g. "fz=50,mz=2". Fills limit[] (axes not
- * named set to 0: none; an axis named twice keeps the last). LEP_E_ARG for
- * NULL or malformed text (limit then untouched). Re-entrant, no allocation. */
+ * named set to 0: none). LEP_E_ARG for NULL or malformed text, or an axis
+ * named twice (limit then untouched). Re-entrant, no allocation. */
 LEP_API int lep_limits_parse(const char *text, double limit[LEP_AXES]);
 
 /* Change the latency budget (0..10000 ms, as latency_ms at open); it applies

@@ -118,7 +118,7 @@ int lep_limits_parse(const char *text, double limit[LEP_AXES])
         for (k = 0; k < LEP_AXES; k++)
             if (strncmp(p, axis_name[k], 2) == 0 && p[2] == '=')
                 axis = k;
-        if (axis < 0)
+        if (axis < 0 || v[axis] > 0.0) /* unknown, or named twice: which would the user mean? */
             return LEP_E_ARG;
         errno = 0;
         v[axis] = strtod(p + 3, &end);

@@ -127,5 +127,17 @@ def test_stream_limits_and_stop_on_limit(tmp_path: Path) -> None:
     assert all(not int(row["flags"]) & 16 for row in rec.rows[:-1])
     r = run(["stream", "--sim", "--limit", "fz=0"])
     assert r.returncode == 2
+
+
+def test_repeated_limits_add_up_and_an_axis_twice_is_refused(tmp_path: Path) -> None:
+    out = tmp_path / "m.csv"
+    r = run(["stream", "--sim", "--duration", "0.05", "--limit", "fz=50", "--limit", "mz=1",
+             "-o", str(out)])
+    assert r.returncode == 0, r.stderr
+    assert Csv(out.read_text()).metadata[0]["limit"] == [0, 0, 50, 0, 0, 1]  # neither lost
+    for args in (["--limit", "fz=50", "--limit", "fz=60"], ["--limit", "fz=50,fz=60"]):
+        r = run(["stream", "--sim", "--duration", "0.05", *args])
+        assert r.returncode == 2, args
+        assert "fz=" in r.stderr and "--limit" in r.stderr
     r = run(["stream", "--sim", "--payload", "-1,0,0,0"])
     assert r.returncode == 2 and "negative" in r.stderr

@@ -20,12 +20,22 @@ bool cli_load_option(cli_args *a, lep_session_options *so, bool limits)
     } else if (cli_args_is(a, NULL, "--gravity")) {
         (void)cli_args_doubles(a, so->gravity, 3);
     } else if (limits && cli_args_is(a, NULL, "--limit")) {
+        double lim[LEP_AXES];
+        int k;
         v = cli_args_value(a);
-        if (v != NULL && lep_limits_parse(v, so->limit) != LEP_OK)
+        if (v != NULL && lep_limits_parse(v, lim) != LEP_OK) {
             cli_args_error(a,
                            "option --limit: '%s' is not AXIS=VALUE,... with AXIS one of "
-                           "fx, fy, fz, mx, my, mz and VALUE > 0 (N, N m)",
+                           "fx, fy, fz, mx, my, mz (each once) and VALUE > 0 (N, N m)",
                            v);
+        } else if (v != NULL) { /* a repeated --limit adds its axes */
+            for (k = 0; k < LEP_AXES; k++)
+                if (lim[k] > 0.0 && so->limit[k] > 0.0)
+                    cli_args_error(
+                        a, "option --limit: '%s' limits an axis an earlier --limit limits", v);
+                else if (lim[k] > 0.0)
+                    so->limit[k] = lim[k];
+        }
     } else {
         return false;
     }
@@ -46,6 +56,8 @@ void cli_load_help(FILE *f, bool limits)
         fputs("      --limit AXIS=V,...   limits on the SI values (after compensation, in the\n"
               "                           output frame), N and N m, e.g. fz=50,mz=2: samples\n"
               "                           beyond are flagged 16, '# limit exceeded' and\n"
-              "                           '# limit cleared' lines mark each episode\n",
+              "                           '# limit cleared' lines mark each episode\n"
+              "                           (repeatable: the axes add up; an axis limited\n"
+              "                           twice is refused)\n",
               f);
 }

@@ -147,7 +147,7 @@ def parse_limits(text: str, backend: Optional[str] = None) -> Vec6:
     one of fx fy fz mx my mz, VALUE > 0 in N or N·m) as six numbers (fx..mz,
     0 = none) for Sensor.set_limits: the library's parser
     (lep_limits_parse), the one `leptrino stream --limit` uses. ValueError
-    when malformed."""
+    when malformed or when an axis is named twice."""
     if not isinstance(text, str):
         raise TypeError(f"limits: {text!r} is not text")
     be = get_backend(backend)

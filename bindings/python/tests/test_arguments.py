@@ -173,6 +173,19 @@ def test_bridge_rotate_is_degrees_to_the_sensor() -> None:
     assert cli._parse_rpy("0,0,90") == pytest.approx([0, 0, math.pi / 2])
 
 
+def test_bridge_limits_add_up_and_an_axis_twice_is_refused(capsys: Any) -> None:
+    from leptrino.bridge import cli
+
+    p = cli.build_parser()
+    assert cli._limits(p, []) is None
+    assert cli._limits(p, ["fz=50", "mz=1"]) == (0, 0, 50, 0, 0, 1)  # neither lost
+    for texts in (["fz=50", "fz=60"], ["fz=50,fz=60"], ["fz=0"]):
+        with pytest.raises(SystemExit) as e:
+            cli._limits(p, texts)
+        assert e.value.code == 2
+        assert "--limit" in capsys.readouterr().err
+
+
 def test_recordings_and_simulator(sensor: Any, sim: Any, tmp_path: Any) -> None:
     rec = sensor.record(count=5)
     cases = [

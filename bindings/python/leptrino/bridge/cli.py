@@ -124,15 +124,19 @@ def _parse_gravity(text: str) -> Tuple[Optional[str], List[float]]:
     return name, v
 
 
-def _parse_limit(text: str) -> Tuple[float, ...]:
-    from ..payload import parse_limits  # the library's parser, as `leptrino stream` uses
+def _limits(p: argparse.ArgumentParser, texts: List[str]) -> Optional[Tuple[float, ...]]:
+    """The --limit options as one text, for the library's parser (the one
+    `leptrino stream` uses): the axes of repeated options add up, and an axis
+    named twice is refused rather than one of its values dropped."""
+    from ..payload import parse_limits
 
+    if not texts:
+        return None
     try:
-        return parse_limits(text)
+        return parse_limits(",".join(texts))
     except ValueError:
-        raise argparse.ArgumentTypeError(
-            f"{text!r}: expected AXIS=VALUE,... with AXIS one of fx, fy, fz, mx, my, mz and "
-            "VALUE > 0 (N, N m)") from None
+        p.error(f"--limit {' --limit '.join(texts)}: expected AXIS=VALUE,... with AXIS one of "
+                "fx, fy, fz, mx, my, mz, each limited once, and VALUE > 0 (N, N m)")
 
 
 def _positive(text: str) -> float:
@@ -194,9 +198,10 @@ def build_parser() -> argparse.ArgumentParser:
                    metavar="[NAME=]GX,GY,GZ",
                    help="initial gravity in sensor NAME's frame (without NAME=: every "
                         "sensor's), m/s² (default 0,0,-9.80665: the z axis up; repeatable)")
-    s.add_argument("--limit", type=_parse_limit, default=None, metavar="AXIS=V,...",
+    s.add_argument("--limit", action="append", default=[], metavar="AXIS=V,...",
                    help="limits on `wrench` (compensated), N and N m, for every sensor, e.g. "
-                        "fz=50,mz=2: an episode beyond one is a WARN in diagnostics")
+                        "fz=50,mz=2: an episode beyond one is a WARN in diagnostics "
+                        "(repeatable: the axes add up; an axis limited twice is refused)")
     z = p.add_argument_group("zenoh")
     z.add_argument("--connect", action="append", default=[], metavar="ENDPOINT",
                    help="connect to this endpoint, e.g. tcp/127.0.0.1:7447 (repeatable; "
@@ -303,7 +308,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
             p.error(str(e))
     opts = NodeOptions(domain=domain, namespace=namespace, tare_samples=a.retare or 100,
                        tare_at_start=a.tare, lowpass_hz=a.lowpass, rotation=a.rotate,
-                       latency_s=a.latency, limits=a.limit)
+                       latency_s=a.latency, limits=_limits(p, a.limit))
 
     for wanted, module, package in ((a.dds, "cyclonedds", "cyclonedds"),
                                     (a.foxglove is not None, "foxglove", "foxglove-sdk")):
