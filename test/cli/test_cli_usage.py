@@ -170,3 +170,14 @@ def test_bad_arguments_exit_2_with_one_line(args: list[str]) -> None:
     lines = r.stderr.splitlines()
     assert len(lines) == 1, r.stderr
     assert lines[0].startswith("leptrino: ")
+
+
+@pytest.mark.parametrize("args,words", [
+    (["check", "--sim", "--sim"], "--sim given twice"),
+    (["check", "/dev/ttyUSB9", "--sim"], "either PORT or --sim"),
+    (["check", "--sim", "/dev/ttyUSB9"], "either PORT or --sim"),
+    (["check", "/dev/ttyUSB9", "/dev/ttyUSB8"], "unexpected argument '/dev/ttyUSB8'"),
+])
+def test_one_sensor_commands_say_what_was_given_twice(args: list[str], words: str) -> None:
+    r = run(args, timeout=20)
+    assert r.returncode == 2 and words in r.stderr, r.stderr

@@ -35,6 +35,8 @@ static cli_sensor *add_sensor(cli_port_opts *po, cli_args *a)
     if (po->n > 0 && !po->several) {
         if (a->positional && po->sensor[0].port != NULL)
             cli_args_error(a, "unexpected argument '%s' (one PORT or --sim)", a->cur);
+        else if (!a->positional && po->sensor[0].port == NULL)
+            cli_args_error(a, "--sim given twice (this command takes one sensor)");
         else
             cli_args_error(a, "give either PORT or --sim, not both");
         return NULL;

@@ -33,7 +33,6 @@ pytest.importorskip("mcap")
 import leptrino  # noqa: E402
 from leptrino.bridge import Bridge, NodeOptions, SensorSpec, ZenohOptions  # noqa: E402
 from leptrino.bridge import cdr  # noqa: E402
-from leptrino.bridge import rmw_zenoh as rz  # noqa: E402
 from bridge_net import free_port, open_zenoh  # noqa: E402
 
 G0 = 9.80665
