@@ -25,27 +25,86 @@ log = logging.getLogger("leptrino.bridge")
 class ZenohOptions:
     """How the Zenoh session is opened. Multicast scouting stays off unless
     scout; with no endpoints a peer connects to a router on
-    tcp/127.0.0.1:7447, as rmw_zenoh's sessions do."""
+    tcp/127.0.0.1:7447, as rmw_zenoh's sessions do. mode None: peer.
 
-    mode: str = "peer"
+    config_file: a Zenoh configuration file (JSON5, as zenoh documents it:
+    TLS, authentication, access control...) read first. The bridge's defaults
+    then fill in only what it leaves out (mode peer, scouting off, no
+    listening, and the router on tcp/127.0.0.1:7447 when it sets no endpoint
+    at all); mode, connect, listen and scout, when given, apply on top, and
+    one that contradicts a value the file sets is a ValueError."""
+
+    mode: Optional[str] = None
     connect: List[str] = field(default_factory=list)
     listen: List[str] = field(default_factory=list)
     scout: bool = False
+    config_file: Optional[str] = None
 
     def config(self) -> Any:
         import zenoh
 
-        if self.mode not in ("peer", "client"):
+        if self.mode not in (None, "peer", "client"):
             raise ValueError(f"mode {self.mode!r}: peer or client")
+        if self.config_file is not None:
+            return self._from_file(zenoh)
+        mode = self.mode or "peer"
         conf = zenoh.Config()
-        conf.insert_json5("mode", json.dumps(self.mode))
+        conf.insert_json5("mode", json.dumps(mode))
         connect = self.connect or (["tcp/127.0.0.1:7447"] if not self.scout else [])
         conf.insert_json5("connect/endpoints", json.dumps(connect))
-        if self.mode == "peer":
+        if mode == "peer":
             conf.insert_json5("listen/endpoints", json.dumps(self.listen))
         elif self.listen:
             raise ValueError("--listen needs --mode peer (a client does not listen)")
         conf.insert_json5("scouting/multicast/enabled", json.dumps(bool(self.scout)))
+        return conf
+
+    def _from_file(self, zenoh: Any) -> Any:
+        path = str(self.config_file)
+        if not os.path.isfile(path):
+            raise ValueError(f"--zenoh-config {path}: no such file")
+        try:
+            conf = zenoh.Config.from_file(path)
+        except Exception as e:  # zenoh.ZError: JSON5 syntax, unknown key, bad value
+            raise ValueError(f"--zenoh-config {path}: {str(e).strip()}") from None
+        default = zenoh.Config()
+
+        def set_by_file(key: str) -> Any:
+            """The file's value of key, or None where it leaves Zenoh's default."""
+            v = json.loads(conf.get_json(key))
+            return None if v == json.loads(default.get_json(key)) or v == [] else v
+
+        def conflict(flag: str, key: str, value: Any) -> ValueError:
+            return ValueError(f"{flag} contradicts {key} = {json.dumps(value)} in --zenoh-config "
+                              f"{path}: set it in one place")
+
+        f_mode = set_by_file("mode")
+        if self.mode is not None and f_mode is not None and f_mode != self.mode:
+            raise conflict(f"--mode {self.mode}", "mode", f_mode)
+        mode = self.mode or f_mode or "peer"
+        if mode not in ("peer", "client"):
+            raise ValueError(f"--zenoh-config {path}: mode {mode!r}: the bridge is a peer or a "
+                             "client")
+        conf.insert_json5("mode", json.dumps(mode))
+        f_scout = set_by_file("scouting/multicast/enabled")
+        if self.scout and f_scout is False:
+            raise conflict("--scout", "scouting.multicast.enabled", f_scout)
+        conf.insert_json5("scouting/multicast/enabled",
+                          json.dumps(bool(self.scout or f_scout)))
+        f_eps = {}
+        for kind, given in (("connect", self.connect), ("listen", self.listen)):
+            f_eps[kind] = set_by_file(f"{kind}/endpoints")
+            if given and f_eps[kind] is not None and f_eps[kind] != given:
+                raise conflict(f"--{kind} {' '.join(given)}", f"{kind}.endpoints", f_eps[kind])
+        if self.listen and mode == "client":
+            raise ValueError("--listen needs --mode peer (a client does not listen)")
+        if self.connect:
+            conf.insert_json5("connect/endpoints", json.dumps(self.connect))
+        elif f_eps["connect"] is None and f_eps["listen"] is None and not self.listen \
+                and not self.scout and not f_scout:
+            conf.insert_json5("connect/endpoints", json.dumps(["tcp/127.0.0.1:7447"]))
+        if f_eps["listen"] is None and mode == "peer":
+            conf.insert_json5("listen/endpoints", json.dumps(self.listen))
         return conf
 
 

@@ -208,8 +208,13 @@ def build_parser() -> argparse.ArgumentParser:
                         "default: a router on tcp/127.0.0.1:7447)")
     z.add_argument("--listen", action="append", default=[], metavar="ENDPOINT",
                    help="listen on this endpoint (peer mode; repeatable)")
-    z.add_argument("--mode", choices=("peer", "client"), default="peer")
+    z.add_argument("--mode", choices=("peer", "client"), default=None,
+                   help="Zenoh mode (default peer)")
     z.add_argument("--scout", action="store_true", help="enable multicast scouting (off)")
+    z.add_argument("--zenoh-config", metavar="FILE", default=None,
+                   help="a Zenoh configuration file (JSON5: TLS, user/password, access "
+                        "control...); the options above apply on top, and one that "
+                        "contradicts a value the file sets is an error")
     z.add_argument("--zenoh", action="store_true",
                    help="Zenoh with its defaults beside --dds/--foxglove/--mcap")
     z.add_argument("--no-zenoh", action="store_true",
@@ -276,15 +281,21 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         namespace = rz.normalize_namespace(a.namespace)
     except ValueError as e:
         p.error(str(e))
-    wants_net = bool(a.zenoh or a.connect or a.listen or a.scout)
+    wants_net = bool(a.zenoh or a.connect or a.listen or a.scout or a.zenoh_config)
     if a.no_zenoh and wants_net:
-        p.error("--no-zenoh with --zenoh/--connect/--listen/--scout")
+        p.error("--no-zenoh with --zenoh/--connect/--listen/--scout/--zenoh-config")
     others = a.mcap is not None or a.dds or a.foxglove is not None
     zopts = None
     if not a.no_zenoh and (wants_net or not others):
         from .bridge import ZenohOptions
 
-        zopts = ZenohOptions(mode=a.mode, connect=a.connect, listen=a.listen, scout=a.scout)
+        zopts = ZenohOptions(mode=a.mode, connect=a.connect, listen=a.listen, scout=a.scout,
+                             config_file=a.zenoh_config)
+        if a.zenoh_config is not None:
+            try:
+                zopts.config()
+            except ValueError as e:
+                p.error(str(e))
     if not others and zopts is None:
         p.error("--no-zenoh needs --mcap FILE, --dds or --foxglove")
     dds_opts = None
@@ -347,6 +358,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
             reached = bool(bridge.reachable())
             if not reached:
                 where = ", ".join(zopts.connect) if zopts and zopts.connect else (
+                    f"--zenoh-config {zopts.config_file}" if zopts and zopts.config_file else
                     "tcp/127.0.0.1:7447" if zopts and not zopts.scout else "scouting")
                 print(f"{PROG}: warning: no Zenoh router or peer reachable ({where}): nobody "
                       "can receive the topics until one is (start `ros2 run rmw_zenoh_cpp "
