@@ -28,8 +28,13 @@ from conftest import subprocess_env
 import zenoh  # the "bridge" extra (make test and .ci/checks/60-bridge.sh install it)
 
 from leptrino.bridge import Bridge, NodeOptions, SensorSpec, ZenohOptions
+from leptrino.bridge import cdr
+from leptrino.bridge import rmw_zenoh as rz
 
 WRENCH = "0/a/wrench/geometry_msgs::msg::dds_::WrenchStamped_/**"
+TARE = ("0/a/tare/std_srvs::srv::dds_::Trigger_/"
+        "RIHS01_eeff2cd6fa5ad9d27cdf4dec64818317839b62f212a91e6b5304b634b2062c5f")
+ACL_EXAMPLE = Path(__file__).resolve().parents[3] / "docs" / "zenoh-acl-example.json5"
 
 needs_openssl = pytest.mark.skipif(shutil.which("openssl") is None,
                                    reason="the openssl command is not installed (it makes "
@@ -86,7 +91,8 @@ def bridge_config(d: Path, port: int, mtls: bool) -> Path:
     return p
 
 
-def open_client(port: int, ca: Optional[Path], cert: Optional[str] = None) -> Any:
+def open_client(port: int, ca: Optional[Path], cert: Optional[str] = None,
+                user: Optional[str] = None) -> Any:
     """A Zenoh client connecting to the bridge over TLS (raises zenoh.ZError
     when the connection is refused: a client tries once and gives up)."""
     conf = zenoh.Config()
@@ -101,6 +107,9 @@ def open_client(port: int, ca: Optional[Path], cert: Optional[str] = None) -> An
         tls.update(enable_mtls=True, connect_certificate=str(d / f"{cert}.pem"),
                    connect_private_key=str(d / f"{cert}.key"))
     conf.insert_json5("transport/link/tls", json.dumps(tls))
+    if user is not None:
+        conf.insert_json5("transport/auth/usrpwd",
+                          json.dumps({"user": user, "password": f"{user}-pw"}))
     return zenoh.open(conf)
 
 
@@ -173,7 +182,7 @@ def test_the_command_line_over_tls(pki: Path) -> None:
     port = free_port()
     conf = bridge_config(pki, port, mtls=False)
     proc = subprocess.Popen([sys.executable, "-m", "leptrino.bridge", "--sim", "a",
-                             "--zenoh-config", str(conf), "--duration", "20"],
+                             "--zenoh-config", str(conf), "--duration", "4"],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                             env=subprocess_env())
     try:
@@ -190,8 +199,10 @@ def test_the_command_line_over_tls(pki: Path) -> None:
         finally:
             s.close()
     finally:
-        proc.terminate()
-        _, err = proc.communicate(timeout=20)
+        try:
+            _, err = proc.communicate(timeout=20)  # it stops by itself after --duration
+        finally:
+            proc.kill()
     assert proc.returncode == 0, err
 
 
@@ -235,3 +246,43 @@ def test_flags_agreeing_with_the_file_and_the_bridge_defaults(tmp_path: Path) ->
         for key in ("mode", "connect/endpoints", "listen/endpoints",
                     "scouting/multicast/enabled"):
             assert json.loads(got.get_json(key)) == json.loads(plain.get_json(key)), key
+
+
+def _tare(session: Any, timeout: float) -> List[Any]:
+    return list(session.get(TARE, payload=cdr.encode_trigger_request(),
+                            attachment=rz.attachment(1, time.time_ns(), bytes(16)),
+                            target=zenoh.QueryTarget.ALL_COMPLETE, timeout=timeout))
+
+
+def test_the_docs_acl_example_lets_only_the_operator_tare(pki: Path, tmp_path: Path) -> None:
+    """docs/zenoh-acl-example.json5's access control and user/password
+    login, over TLS: the viewer receives the wrench but its tare gets no
+    reply, the operator's is served, an unknown user cannot connect."""
+    example = zenoh.Config.from_file(str(ACL_EXAMPLE))
+    assert json.loads(example.get_json("transport/auth/usrpwd/dictionary_file"))
+    users = tmp_path / "users.txt"
+    users.write_text("operator:operator-pw\nviewer:viewer-pw\n")
+    port = free_port()
+    conf = json.loads(bridge_config(pki, port, mtls=False).read_text().split("\n", 1)[1])
+    conf["transport"]["auth"] = {"usrpwd": {"dictionary_file": str(users)}}
+    conf["access_control"] = json.loads(example.get_json("access_control"))
+    path = tmp_path / "bridge.json5"
+    path.write_text(json.dumps(conf))
+    with Bridge([SensorSpec("a", sim={})], NodeOptions(),
+                ZenohOptions(config_file=str(path))) as b:
+        b.start()
+        with pytest.raises(zenoh.ZError):
+            open_client(port, pki / "ca.pem", user="intruder").close()
+        viewer = open_client(port, pki / "ca.pem", user="viewer")
+        operator = open_client(port, pki / "ca.pem", user="operator")
+        try:
+            assert Count(viewer).wait(600, 10.0) >= 600
+            t0 = time.monotonic()
+            assert [r for r in _tare(viewer, 2.0) if r.ok is not None] == []
+            assert time.monotonic() - t0 < 5.0
+            replies = [r.ok for r in _tare(operator, 10.0) if r.ok is not None]
+            assert len(replies) == 1
+            assert bytes(replies[0].payload.to_bytes())[4] == 1  # Trigger_Response.success
+        finally:
+            viewer.close()
+            operator.close()
