@@ -1,0 +1,126 @@
+"""The bridge's network inputs under a flood of garbage, on a real Zenoh
+network on 127.0.0.1: malformed tare/untare requests (no attachment, a
+short one, a payload that is not CDR, an empty one, 64 KiB of noise) and
+malformed gravity messages, thousands a second for two seconds, at one
+sensor of two. Each is refused and counted, none changes a sensor, and both
+sensors' wrenches keep their 1.2 kHz meanwhile. Bounded: about 6 s."""
+
+from __future__ import annotations
+
+import os
+import threading
+import time
+from typing import Any, Iterator, List
+
+import pytest
+from bridge_net import free_port, open_zenoh
+import zenoh  # the "bridge" extra
+
+from leptrino.bridge import Bridge, NodeOptions, SensorSpec, ZenohOptions
+from leptrino.bridge import rmw_zenoh as rz
+
+FLOOD_S = 2.0
+
+
+@pytest.fixture
+def router() -> Iterator[str]:
+    ep = f"tcp/127.0.0.1:{free_port()}"
+    r = open_zenoh("router", listen=[ep])
+    try:
+        yield ep
+    finally:
+        r.close()
+
+
+def garbage_requests() -> List[Any]:
+    """(payload, attachment) pairs a service must refuse."""
+    good_att = rz.attachment(1, time.time_ns(), bytes(16))
+    noise = os.urandom(65536)
+    return [(b"\x00\x01\x00\x00\x00", None),          # no attachment
+            (b"\x00\x01\x00\x00\x00", good_att[:5]),  # a short attachment
+            (b"\xff\xff\xff\xff", good_att),          # not CDR
+            (noise, good_att),                        # 64 KiB of noise
+            (b"", b"")]                               # nothing at all
+
+
+def test_a_flood_of_garbage_is_refused_and_the_streams_keep_their_rate(router: str) -> None:
+    specs = [SensorSpec("a", sim={"constant": True, "amplitude": 0.2}),
+             SensorSpec("b", sim={"constant": True, "amplitude": 0.2})]
+    client = open_zenoh("client", connect=[router])
+    arrivals: dict[str, List[float]] = {"a": [], "b": []}
+    lock = threading.Lock()
+
+    def on_wrench(sample: Any) -> None:
+        name = str(sample.key_expr).split("/")[1]
+        with lock:
+            arrivals[name].append(time.monotonic())
+
+    try:
+        with Bridge(specs, NodeOptions(), ZenohOptions(mode="peer", connect=[router])) as bridge:
+            keys = {n.spec.name: n for n in bridge.nodes}
+            sub = client.declare_subscriber("0/*/wrench/**", on_wrench)
+            bridge.start()
+            time.sleep(1.0)  # streams up, subscriptions matched
+            a = keys["a"]
+            tare_key = a.services["tare"].key()
+            untare_key = a.services["untare"].key()
+            gravity_pub = client.declare_publisher(a.gravity_entity.key())
+            requests = garbage_requests()
+            gravity = [b"", b"\x00\x01\x00\x00", os.urandom(4096), b"\x00\x01\x00\x00" + bytes(60)]
+            replies: List[bool] = []
+
+            def on_reply(reply: Any) -> None:
+                replies.append(reply.ok is not None)
+
+            sent = {"requests": 0, "gravity": 0}
+
+            def flood_requests() -> None:
+                n = 0
+                while time.monotonic() - t0 < FLOOD_S:
+                    payload, att = requests[n % len(requests)]
+                    key = tare_key if n % 2 == 0 else untare_key
+                    kw = {"attachment": att} if att is not None else {}
+                    client.get(key, handler=on_reply, payload=payload, timeout=2.0, **kw)
+                    n += 1
+                sent["requests"] = n
+
+            def flood_gravity() -> None:
+                n = 0
+                while time.monotonic() - t0 < FLOOD_S:
+                    gravity_pub.put(gravity[n % len(gravity)])
+                    n += 1
+                    if n % 100 == 0:
+                        time.sleep(0.001)  # thousands a second, not an unbounded burst
+                sent["gravity"] = n
+
+            t0 = time.monotonic()
+            senders = [threading.Thread(target=f) for f in (flood_requests, flood_gravity)]
+            for th in senders:
+                th.start()
+            for th in senders:
+                th.join(FLOOD_S + 5.0)
+            t1 = time.monotonic()
+            time.sleep(1.0)  # replies and counters settle
+            rate_window = (t0 + 0.2, t1)  # the flood's own span, after its start
+            with lock:
+                rates = {n: sum(1 for t in ts if rate_window[0] <= t < rate_window[1])
+                         / (rate_window[1] - rate_window[0]) for n, ts in arrivals.items()}
+            ca, cb = a.counters, keys["b"].counters
+            gref = a.gravity.refused
+            tared = list(a.sensor.tare_offsets)
+            sub.undeclare()
+    finally:
+        client.close()
+    nq, ng = sent["requests"], sent["gravity"]
+    print(f"flood: {nq} requests and {ng} gravity messages in {t1 - t0:.2f} s "
+          f"({(nq + ng) / (t1 - t0):.0f}/s); refused: {ca.rejected_requests} requests, "
+          f"{gref} gravity; replies {len(replies)} (ok {sum(replies)}); "
+          f"wrench rate a {rates['a']:.0f} Hz, b {rates['b']:.0f} Hz")
+    assert (nq + ng) / (t1 - t0) > 1000 and nq / (t1 - t0) > 200, "not a flood"
+    assert ca.rejected_requests > 0.9 * nq and ca.rejected_requests <= nq
+    assert not any(replies), "a malformed request was answered as a success"
+    assert ca.tare_requests == 0 and all(v == 0 for v in tared)  # nothing tared
+    assert 0.9 * ng < gref <= ng  # every gravity message refused
+    assert cb.rejected_requests == 0
+    for name, hz in rates.items():
+        assert hz > 0.9 * 1200, f"{name}: {hz:.0f} Hz during the flood"
