@@ -39,6 +39,7 @@ from dataclasses import dataclass
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
 from . import cdr
+from .ratelog import RateLimitedLog
 
 log = logging.getLogger("leptrino.bridge")
 
@@ -482,28 +483,6 @@ def encode_trigger_reply(guid: int, seq: int, success: bool, message: str) -> by
     return pad4(body[:4] + struct.pack("<Qq", guid, seq) + body[4:])
 
 
-class _RateLimitedLog:
-    """One warning per period at most; the others are counted and said with
-    the next one."""
-
-    def __init__(self, period_s: float = 5.0) -> None:
-        self.period_s = period_s
-        self._next = 0.0
-        self._suppressed = 0
-        self._lock = threading.Lock()
-
-    def warning(self, fmt: str, *args: Any) -> None:
-        now = time.monotonic()
-        with self._lock:
-            if now < self._next:
-                self._suppressed += 1
-                return
-            suppressed, self._suppressed = self._suppressed, 0
-            self._next = now + self.period_s
-        more = f" ({suppressed} more since the last report)" if suppressed else ""
-        log.warning(fmt + more, *args)
-
-
 class TriggerService:
     """A std_srvs/srv/Trigger service as rmw_cyclonedds maps it (see
     docs/bridge.md): a reader of `rq<name>Request` and a writer of
@@ -543,8 +522,8 @@ class TriggerService:
         self._take = ddspy_take
         self._write = ddspy_write
         self._mask = SampleState.Any | ViewState.Any | InstanceState.Any
-        self._log = _RateLimitedLog()
-        self._client_log = _RateLimitedLog()
+        self._log = RateLimitedLog()
+        self._client_log = RateLimitedLog()
         self.rejected = 0
         self.headerless_clients = 0
         qos = dds.endpoint_qos(rihs01("std_srvs/srv/Trigger"), reliable=True,

@@ -7,25 +7,20 @@ Every message is checked before it can change anything: a payload that is
 not a Vector3Stamped in CDR (bad header, wrong length, bad string), a
 vector with a NaN or an infinity, or a zero vector is refused: gravity
 stays as it was, a counter goes up, and one log line says why (at most one
-every LOG_PERIOD_S per sensor, with how many were refused in between).
+every ratelog.PERIOD_S per sensor, with how many were refused in between).
 Thread-safe: the transports call receive() from their own threads.
 """
 
 from __future__ import annotations
 
-import logging
 import math
 import threading
-import time
 from typing import Any, Dict, List, Tuple
 
 from . import cdr
-
-log = logging.getLogger("leptrino.bridge")
+from .ratelog import RateLimitedLog
 
 VECTOR3_STAMPED = "geometry_msgs/msg/Vector3Stamped"
-#: At most one log line about refused gravity messages per sensor this often.
-LOG_PERIOD_S = 5.0
 
 
 def check_gravity(payload: bytes) -> Tuple[float, float, float]:
@@ -52,8 +47,7 @@ class GravityInput:
         self.refused = 0
         self.by_transport: Dict[str, int] = {}
         self.last_refusal = ""
-        self._next_log = 0.0
-        self._unlogged = 0
+        self._log = RateLimitedLog()
 
     def receive(self, payload: bytes, transport: str, refuse: str = "") -> bool:
         """One message from transport ("zenoh", "dds", "foxglove"): True when
@@ -75,17 +69,10 @@ class GravityInput:
             return False
 
     def _refuse(self, why: str) -> None:
-        now = time.monotonic()
         with self._lock:
             self.refused += 1
             self.last_refusal = why
-            if now < self._next_log:
-                self._unlogged += 1
-                return
-            more, self._unlogged = self._unlogged, 0
-            self._next_log = now + LOG_PERIOD_S
-        log.warning("%s/gravity: message refused, gravity unchanged: %s%s", self.name, why,
-                    f" ({more} more refused since the last such line)" if more else "")
+        self._log.warning("%s/gravity: message refused, gravity unchanged: %s", self.name, why)
 
     def values(self) -> List[Tuple[str, str]]:
         """Its diagnostics key/values."""

@@ -31,6 +31,7 @@ from . import cdr
 from . import rmw_zenoh as rz
 from .gravity_in import VECTOR3_STAMPED, GravityInput
 from .mcap_out import McapRecorder
+from .ratelog import RateLimitedLog
 from .typehash import rihs01
 from .wrench_batch import WrenchBatch
 
@@ -186,6 +187,7 @@ class SensorNode:
         self.spec = spec
         self.opts = opts
         self.counters = Counters()
+        self._refusal_log = RateLimitedLog()  # malformed requests: one line per 5 s at most
         self._stop = threading.Event()
         self._thread: Optional[threading.Thread] = None
         self._lock = threading.Lock()  # tare/untare from service threads
@@ -521,7 +523,7 @@ class SensorNode:
             return True, "tare removed"
 
     def _rejected_request(self) -> None:
-        self.counters.rejected_requests += 1
+        self.counters.rejected_requests += 1  # (the caller logs, rate-limited)
 
     def _service_handler(self, which: str) -> Callable[[Any], None]:
         def handle(query: Any) -> None:
@@ -533,7 +535,7 @@ class SensorNode:
                 if payload is not None:
                     cdr.check_encapsulation(bytes(payload.to_bytes()))
             except ValueError as e:
-                log.warning("%s/%s: request refused: %s", self.spec.name, which, e)
+                self._refusal_log.warning("%s/%s: request refused: %s", self.spec.name, which, e)
                 self._rejected_request()
                 query.reply_err(f"malformed request: {e}".encode())
                 return
