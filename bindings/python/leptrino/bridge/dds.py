@@ -322,11 +322,12 @@ class DdsParticipant:
             self._nodes.setdefault(node, ([], []))[0].append(reader.guid.bytes)
 
     def service(self, node: Tuple[str, str], fq_name: str,
-                action: Callable[[], Tuple[bool, str]],
+                action: Callable[[str], Tuple[bool, str]],
                 on_rejected: Callable[[], None]) -> "TriggerService":
         """A std_srvs/srv/Trigger service in rmw_cyclonedds' mapping
-        (TriggerService); action runs off Cyclone's thread, one request at
-        a time; on_rejected is called for each malformed request."""
+        (TriggerService); action(requester) runs off Cyclone's thread, one
+        request at a time (requester: "dds client <guid>", the request
+        header's client GUID); on_rejected is called for each malformed request."""
         svc = TriggerService(self, fq_name, action, on_rejected, self._next_service_id())
         self._readers.append(svc)
         with self._lock:
@@ -525,7 +526,7 @@ class TriggerService:
     MATCH_WAIT_S = 1.0
 
     def __init__(self, dds: DdsParticipant, fq_name: str,
-                 action: Callable[[], Tuple[bool, str]], on_rejected: Callable[[], None],
+                 action: Callable[[str], Tuple[bool, str]], on_rejected: Callable[[], None],
                  service_id: str) -> None:
         from cyclonedds._clayer import ddspy_take, ddspy_write
         from cyclonedds.core import InstanceState, Listener, SampleState, ViewState
@@ -598,7 +599,7 @@ class TriggerService:
             self._runner.submit(self.name, lambda g=guid, s=seq, h=handle: self._serve(g, s, h))
 
     def _serve(self, guid: int, seq: int, writer_handle: int) -> str:
-        ok, message = self._action()
+        ok, message = self._action(f"dds client {guid:016x}")
         end = time.monotonic() + self.MATCH_WAIT_S
         while not self._client_reader_matched(writer_handle) and time.monotonic() < end:
             time.sleep(0.01)

@@ -87,13 +87,15 @@ class FoxgloveServer:
     def channel(self, topic: str, ros_type: str) -> FoxgloveChannel:
         return FoxgloveChannel(self.ctx, topic, ros_type)
 
-    def service(self, name: str, call: Callable[[], Tuple[bool, str]]) -> None:
-        """A std_srvs/srv/Trigger service: call() runs in the server's
-        thread; its answer goes back as Trigger_Response in CDR."""
+    def service(self, name: str, call: Callable[[str], Tuple[bool, str]]) -> None:
+        """A std_srvs/srv/Trigger service: call(requester) runs in the
+        server's thread (requester: "foxglove client <id>", the id the
+        server gave the connection); its answer goes back as
+        Trigger_Response in CDR."""
         from foxglove import MessageSchema, Schema, Service, ServiceSchema
 
         def handler(request: Any) -> bytes:
-            ok, message = call()
+            ok, message = call(f"foxglove client {request.client_id}")
             return cdr.encode_trigger_response(ok, message)
 
         schema = ServiceSchema(
