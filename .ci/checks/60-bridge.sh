@@ -29,7 +29,7 @@ LEPTRINO_FASTDDS_PEER="$PWD/build/fastdds-peer/fastdds_peer" PYTHONDONTWRITEBYTE
   bindings/python/tests/test_bridge_mcap.py bindings/python/tests/test_bridge_dds.py \
   bindings/python/tests/test_bridge_fastdds.py bindings/python/tests/test_bridge_foxglove.py \
   bindings/python/tests/test_bridge_dds_services.py \
-  bindings/python/tests/test_bridge_payload.py
+  bindings/python/tests/test_bridge_payload.py bindings/python/tests/test_bridge_readonly.py
 "$(dirname "$py")/leptrino-bridge" --help >/dev/null   # the console script is installed
 (cd /tmp && timeout 300 "$py" -m leptrino.bridge.bench --quick)
 echo "60-bridge: done in $((SECONDS - t0)) s"

@@ -220,12 +220,15 @@ def test_foxglove_tare_service(read_only: bool) -> None:
     assert len(size) >= 300  # the stream went on
     if read_only:
         assert got["services"] == {}
+        caps = got["info"]["capabilities"]
+        assert "services" not in caps and "clientPublish" not in caps, caps
         assert got["response"] is None or got["response"][0] == "error"
         assert min(size) > 1.0  # not tared
         assert "read-only" in err
         assert "tare by" not in err
     else:
         assert set(got["services"]) == {"/a/tare", "/a/untare"}
+        assert {"services", "clientPublish"} <= set(got["info"]["capabilities"])
         assert max(size) < 1e-6
         lines = [ln for ln in err.splitlines() if "a: tare by foxglove client " in ln]
         assert len(lines) == 1 and ": done" in lines[0], err

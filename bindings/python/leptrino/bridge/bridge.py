@@ -104,7 +104,7 @@ class Bridge:
             if foxglove is not None:  # the port is taken now: a failure leaves no file
                 from .foxglove_out import FoxgloveServer
 
-                self.foxglove = FoxgloveServer(*foxglove)
+                self.foxglove = FoxgloveServer(*foxglove, inputs=not self.opts.read_only)
             if dds_opts is not None:
                 from .dds import DdsParticipant
 
