@@ -160,10 +160,19 @@ def test_dds_service_and_command_topic(participant: Any, domain: int) -> None:
         kv = diagnostics(drd)
         assert kv["read_only"] == "false"
         assert kv["last_request"].startswith(f"tare by dds client {svc.guid:016x} at "), kv
+        end = time.monotonic() + 10  # the command topic: its writer's GUID
+        while time.monotonic() < end and not cmd.get_publication_matched_status().current_count:
+            time.sleep(0.05)
+        cmd.write(Empty_(structure_needs_at_least_one_member=0))
+        end = time.monotonic() + 10
+        while time.monotonic() < end and kv["tare_requests"] != "2":
+            kv = diagnostics(drd)
+        assert kv["last_request"].startswith(f"tare by dds writer {cmd.guid} at "), kv
     finally:
         err = stop(proc)
     assert proc.returncode == 0, err
     assert f"tare by dds client {svc.guid:016x}" in err  # said without --verbose
+    assert f"tare by dds writer {cmd.guid}" in err
 
 
 async def fox_session(port: int, read_only: bool) -> Dict[str, Any]:

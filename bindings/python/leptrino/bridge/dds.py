@@ -295,10 +295,13 @@ class DdsParticipant:
             self._nodes.setdefault(node, ([], []))[1].append(w.gid)
         return w
 
-    def command(self, node: Tuple[str, str], fq_name: str, action: Callable[[], Any]) -> None:
-        """A `std_msgs/msg/Empty` topic: each sample received runs action
-        (in a thread of its own: a tare waits for its samples). The reader is
-        best effort, so that reliable and best-effort publishers both match."""
+    def command(self, node: Tuple[str, str], fq_name: str,
+                action: Callable[[str], Any]) -> None:
+        """A `std_msgs/msg/Empty` topic: each sample received runs
+        action(requester) (in a thread of its own: a tare waits for its
+        samples); requester: "dds writer <GUID>", the sample's writer as
+        discovery gives it. The reader is best effort, so that reliable and
+        best-effort publishers both match."""
         from cyclonedds.core import Listener
         from cyclonedds.sub import DataReader
         from cyclonedds.topic import Topic
@@ -310,7 +313,8 @@ class DdsParticipant:
         def on_data(reader: Any) -> None:
             for s in reader.take(16):
                 if isinstance(s, self.types.Empty):
-                    runner.submit(fq_name, action)
+                    who = f"dds writer {_writer_guid(reader, s)}"
+                    runner.submit(fq_name, lambda w=who: action(w))
 
         topic = Topic(self.participant, topic_name(fq_name), self.types.Empty,
                       qos=self.topic_qos())
@@ -403,6 +407,16 @@ class DdsParticipant:
         self._info_writer = None  # type: ignore[assignment]
         self.participant = None  # type: ignore[assignment]
         self._domain = None
+
+
+def _writer_guid(reader: Any, sample: Any) -> str:
+    """The GUID of the writer of a sample taken from reader ("unknown" when
+    the writer is gone already)."""
+    try:
+        ep = reader.get_matched_publication_data(sample.sample_info.publication_handle)
+        return str(ep.key) if ep is not None else "unknown"
+    except Exception:
+        return "unknown"
 
 
 class _CommandRunner:

@@ -272,8 +272,7 @@ class SensorNode:
         calls = {"tare": self.tare, "untare": self.untare}
         for svc, ent in self.services.items():
             if dds is not None:  # a command topic and an rmw_cyclonedds service
-                dds.command(node, ent.name, lambda c=calls[svc]: c(  # type: ignore[misc]
-                    "dds command topic (no requester identity)"))
+                dds.command(node, ent.name, calls[svc])
                 self._dds_services.append(
                     dds.service(node, ent.name, calls[svc], self._rejected_request))
             if fox is not None:
