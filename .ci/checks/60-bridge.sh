@@ -31,7 +31,8 @@ LEPTRINO_FASTDDS_PEER="$PWD/build/fastdds-peer/fastdds_peer" PYTHONDONTWRITEBYTE
   bindings/python/tests/test_bridge_dds_services.py \
   bindings/python/tests/test_bridge_payload.py \
   bindings/python/tests/test_bridge_zenoh_tls.py \
-  bindings/python/tests/test_bridge_input_flood.py
+  bindings/python/tests/test_bridge_input_flood.py \
+  bindings/python/tests/test_bridge_readonly.py
 "$(dirname "$py")/leptrino-bridge" --help >/dev/null   # the console script is installed
 (cd /tmp && timeout 300 "$py" -m leptrino.bridge.bench --quick)
 echo "60-bridge: done in $((SECONDS - t0)) s"

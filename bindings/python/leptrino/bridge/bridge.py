@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, List, Optional, Tuple
 
 from .mcap_out import FileExistsRefused, McapRecorder
-from .node import NodeOptions, SensorNode, SensorSpec
+from .node import AUDIT_LOGGER, NodeOptions, SensorNode, SensorSpec
 
 if TYPE_CHECKING:
     from .dds import DdsOptions, DdsParticipant
@@ -150,6 +150,10 @@ class Bridge:
             raise FileExistsRefused(f"{mcap_path}: already exists; not overwritten (choose another "
                                     "name, or --overwrite)")
         ids = itertools.count(100)
+        if self.opts.read_only:
+            logging.getLogger(AUDIT_LOGGER).info(
+                "read-only: no tare/untare service, command topic or gravity input is "
+                "declared on any transport")
         try:
             # the sensors first: a sensor that cannot be opened leaves no file
             for spec in sensors:
@@ -159,7 +163,7 @@ class Bridge:
             if foxglove is not None:  # the port is taken now: a failure leaves no file
                 from .foxglove_out import FoxgloveServer
 
-                self.foxglove = FoxgloveServer(*foxglove)
+                self.foxglove = FoxgloveServer(*foxglove, inputs=not self.opts.read_only)
             if dds_opts is not None:
                 from .dds import DdsParticipant
 

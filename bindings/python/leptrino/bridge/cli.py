@@ -21,7 +21,7 @@ import sys
 from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 from . import rmw_zenoh as rz
-from .node import NodeOptions, SensorSpec
+from .node import AUDIT_LOGGER, NodeOptions, SensorSpec
 
 PROG = "leptrino-bridge"
 
@@ -182,6 +182,9 @@ def build_parser() -> argparse.ArgumentParser:
                    help="zero on the mean of the first N samples after the start")
     s.add_argument("--retare", type=_count, default=100, metavar="N",
                    help="samples the tare service averages (default 100)")
+    s.add_argument("--read-only", action="store_true",
+                   help="publish only: no tare/untare service or command topic and no gravity "
+                        "input on any transport (nobody on the network can change a sensor)")
     s.add_argument("--lowpass", type=float, default=0.0, metavar="HZ",
                    help="the session's low-pass cut-off on `wrench` (0: off)")
     s.add_argument("--rotate", type=_parse_rpy, default=None, metavar="R,P,Y",
@@ -255,6 +258,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     a = p.parse_args(argv)
     logging.basicConfig(level=logging.INFO if a.verbose else logging.WARNING,
                         format=f"{PROG}: %(message)s")
+    # who changed a sensor, and read-only: said even without --verbose
+    logging.getLogger(AUDIT_LOGGER).setLevel(logging.INFO)
     specs: List[SensorSpec] = list(a.sensor) + list(a.sim)
     if not specs:
         p.error("no sensors: give --sensor NAME=PORT or --sim NAME")
@@ -319,7 +324,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
             p.error(str(e))
     opts = NodeOptions(domain=domain, namespace=namespace, tare_samples=a.retare or 100,
                        tare_at_start=a.tare, lowpass_hz=a.lowpass, rotation=a.rotate,
-                       latency_s=a.latency, limits=_limits(p, a.limit))
+                       latency_s=a.latency, limits=_limits(p, a.limit),
+                       read_only=a.read_only)
 
     for wanted, module, package in ((a.dds, "cyclonedds", "cyclonedds"),
                                     (a.foxglove is not None, "foxglove", "foxglove-sdk")):

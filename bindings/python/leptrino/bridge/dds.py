@@ -296,10 +296,13 @@ class DdsParticipant:
             self._nodes.setdefault(node, ([], []))[1].append(w.gid)
         return w
 
-    def command(self, node: Tuple[str, str], fq_name: str, action: Callable[[], Any]) -> None:
-        """A `std_msgs/msg/Empty` topic: each sample received runs action
-        (in a thread of its own: a tare waits for its samples). The reader is
-        best effort, so that reliable and best-effort publishers both match."""
+    def command(self, node: Tuple[str, str], fq_name: str,
+                action: Callable[[str], Any]) -> None:
+        """A `std_msgs/msg/Empty` topic: each sample received runs
+        action(requester) (in a thread of its own: a tare waits for its
+        samples); requester: "dds writer <GUID>", the sample's writer as
+        discovery gives it. The reader is best effort, so that reliable and
+        best-effort publishers both match."""
         from cyclonedds.core import Listener
         from cyclonedds.sub import DataReader
         from cyclonedds.topic import Topic
@@ -311,7 +314,8 @@ class DdsParticipant:
         def on_data(reader: Any) -> None:
             for s in reader.take(16):
                 if isinstance(s, self.types.Empty):
-                    runner.submit(fq_name, action)
+                    who = f"dds writer {_writer_guid(reader, s)}"
+                    runner.submit(fq_name, lambda w=who: action(w))
 
         topic = Topic(self.participant, topic_name(fq_name), self.types.Empty,
                       qos=self.topic_qos())
@@ -323,11 +327,12 @@ class DdsParticipant:
             self._nodes.setdefault(node, ([], []))[0].append(reader.guid.bytes)
 
     def service(self, node: Tuple[str, str], fq_name: str,
-                action: Callable[[], Tuple[bool, str]],
+                action: Callable[[str], Tuple[bool, str]],
                 on_rejected: Callable[[], None]) -> "TriggerService":
         """A std_srvs/srv/Trigger service in rmw_cyclonedds' mapping
-        (TriggerService); action runs off Cyclone's thread, one request at
-        a time; on_rejected is called for each malformed request."""
+        (TriggerService); action(requester) runs off Cyclone's thread, one
+        request at a time (requester: "dds client <guid>", the request
+        header's client GUID); on_rejected is called for each malformed request."""
         svc = TriggerService(self, fq_name, action, on_rejected, self._next_service_id())
         self._readers.append(svc)
         with self._lock:
@@ -403,6 +408,16 @@ class DdsParticipant:
         self._info_writer = None  # type: ignore[assignment]
         self.participant = None  # type: ignore[assignment]
         self._domain = None
+
+
+def _writer_guid(reader: Any, sample: Any) -> str:
+    """The GUID of the writer of a sample taken from reader ("unknown" when
+    the writer is gone already)."""
+    try:
+        ep = reader.get_matched_publication_data(sample.sample_info.publication_handle)
+        return str(ep.key) if ep is not None else "unknown"
+    except Exception:
+        return "unknown"
 
 
 class _CommandRunner:
@@ -504,7 +519,7 @@ class TriggerService:
     MATCH_WAIT_S = 1.0
 
     def __init__(self, dds: DdsParticipant, fq_name: str,
-                 action: Callable[[], Tuple[bool, str]], on_rejected: Callable[[], None],
+                 action: Callable[[str], Tuple[bool, str]], on_rejected: Callable[[], None],
                  service_id: str) -> None:
         from cyclonedds._clayer import ddspy_take, ddspy_write
         from cyclonedds.core import InstanceState, Listener, SampleState, ViewState
@@ -577,7 +592,7 @@ class TriggerService:
             self._runner.submit(self.name, lambda g=guid, s=seq, h=handle: self._serve(g, s, h))
 
     def _serve(self, guid: int, seq: int, writer_handle: int) -> str:
-        ok, message = self._action()
+        ok, message = self._action(f"dds client {guid:016x}")
         end = time.monotonic() + self.MATCH_WAIT_S
         while not self._client_reader_matched(writer_handle) and time.monotonic() < end:
             time.sleep(0.01)

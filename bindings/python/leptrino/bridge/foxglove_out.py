@@ -66,9 +66,10 @@ class FoxgloveServer:
     """A Foxglove WebSocket server on host:port with its own context (so
     that nothing else logged in the process leaks into it). Listens from
     construction (OSError when it cannot); channels are advertised as they
-    are made, the services by add_services()."""
+    are made, the services by add_services(). inputs False (read-only):
+    the server offers neither services nor client publishing."""
 
-    def __init__(self, host: str, port: int) -> None:
+    def __init__(self, host: str, port: int, inputs: bool = True) -> None:
         import foxglove
         from foxglove import Capability
 
@@ -79,7 +80,8 @@ class FoxgloveServer:
         try:
             self._server: Any = foxglove.start_server(
                 name="leptrino-bridge", host=host, port=port, context=self.ctx,
-                capabilities=[Capability.Services, Capability.ClientPublish],
+                capabilities=([Capability.Services, Capability.ClientPublish] if inputs
+                              else []),
                 supported_encodings=["cdr"], server_listener=self._inputs)
         except Exception as e:  # the SDK's error for a port in use, a bad host
             raise OSError(f"--foxglove {host}:{port}: {e}") from None
@@ -87,13 +89,15 @@ class FoxgloveServer:
     def channel(self, topic: str, ros_type: str) -> FoxgloveChannel:
         return FoxgloveChannel(self.ctx, topic, ros_type)
 
-    def service(self, name: str, call: Callable[[], Tuple[bool, str]]) -> None:
-        """A std_srvs/srv/Trigger service: call() runs in the server's
-        thread; its answer goes back as Trigger_Response in CDR."""
+    def service(self, name: str, call: Callable[[str], Tuple[bool, str]]) -> None:
+        """A std_srvs/srv/Trigger service: call(requester) runs in the
+        server's thread (requester: "foxglove client <id>", the id the
+        server gave the connection); its answer goes back as
+        Trigger_Response in CDR."""
         from foxglove import MessageSchema, Schema, Service, ServiceSchema
 
         def handler(request: Any) -> bytes:
-            ok, message = call()
+            ok, message = call(f"foxglove client {request.client_id}")
             return cdr.encode_trigger_response(ok, message)
 
         schema = ServiceSchema(

@@ -36,6 +36,10 @@ from .typehash import rihs01
 from .wrench_batch import WrenchBatch
 
 log = logging.getLogger("leptrino.bridge")
+#: The log of what changes a sensor from the network (tare/untare: what, who,
+#: when) and of read-only mode, at INFO; the command line shows it always.
+AUDIT_LOGGER = "leptrino.bridge.requests"
+audit = logging.getLogger(AUDIT_LOGGER)
 
 WRENCH = "geometry_msgs/msg/WrenchStamped"
 #: How often the reading thread takes the session's events while data flows
@@ -80,6 +84,9 @@ class NodeOptions:
     qos_depth: int = 10
     timeout_s: float = 0.5
     data_timeout_s: float = 1.0
+    #: serve and subscribe to nothing that changes a sensor (no tare/untare
+    #: service or command topic, no gravity input) on any transport
+    read_only: bool = False
 
 
 AXES = ("fx", "fy", "fz", "mx", "my", "mz")
@@ -172,6 +179,7 @@ class Counters:
     last_sample_mono: float = 0.0
     limit_axes: int = 0  # bit i: axis i beyond its limit in the current episode
     last_limit_axes: int = 0  # the axes of the last episode begun
+    last_request: str = ""  # the last tare/untare from the network: what, who, when, result
 
 
 class SensorNode:
@@ -247,13 +255,17 @@ class SensorNode:
         self.wrench_raw = Topic(entity(rz.PUBLISHER, "wrench_raw", WRENCH), session, mcap, d)
         self.diagnostics = Topic(entity(rz.PUBLISHER, "diagnostics", DIAGNOSTICS),
                                  session, mcap, d)
-        self.services = {
+        node = (ns, spec.name)
+        # read-only: no service, command topic or input is declared at all
+        self.services = {} if opts.read_only else {
             "tare": entity(rz.SERVICE, "tare", TRIGGER),
             "untare": entity(rz.SERVICE, "untare", TRIGGER),
         }
-        self.gravity_entity = entity(rz.SUBSCRIPTION, "gravity", VECTOR3_STAMPED)
-        node = (ns, spec.name)
-        self._declare_gravity(session, dds, fox, node)
+        inputs: List[rz.Entity] = []
+        if not opts.read_only:
+            self.gravity_entity = entity(rz.SUBSCRIPTION, "gravity", VECTOR3_STAMPED)
+            inputs.append(self.gravity_entity)
+            self._declare_gravity(session, dds, fox, node)
         for t in self.wrench, self.wrench_raw, self.diagnostics:
             if dds is not None:
                 t.outputs.append(dds.writer(node, t.name, t.entity.ros_type))
@@ -272,8 +284,7 @@ class SensorNode:
                 self._queryables.append(session.declare_queryable(
                     ent.key(), self._service_handler(svc), complete=True))
             for ent in [self.node_entity, self.wrench.entity, self.wrench_raw.entity,
-                        self.diagnostics.entity, *self.services.values(),
-                        self.gravity_entity]:
+                        self.diagnostics.entity, *self.services.values(), *inputs]:
                 self._tokens.append(session.liveliness().declare_token(ent.token()))
 
     def _declare_gravity(self, session: Any, dds: Any, fox: Any, node: Tuple[str, str]) -> None:
@@ -456,6 +467,9 @@ class SensorNode:
             ("disconnects", str(h.disconnects)),
             ("reconnects", str(h.reconnects)),
             ("tared", "true" if any(offsets) else "false"),
+            ("read_only", "true" if self.opts.read_only else "false"),
+            ("tare_requests", str(c.tare_requests)),
+            ("last_request", c.last_request),
         ]
         values += [(f"tare_offset_{a}", f"{v:g}") for a, v in
                    zip(("fx", "fy", "fz", "mx", "my", "mz"), offsets)]
@@ -495,32 +509,60 @@ class SensorNode:
                 self.diagnostics.send(payload, ns)
 
     # -- services ------------------------------------------------------------
-    def tare(self) -> Tuple[bool, str]:
+    def tare(self, requester: str = "") -> Tuple[bool, str]:
         """Tare over opts.tare_samples samples of the running stream; waits
-        (at most 3 s) for the average and returns (success, message)."""
+        (at most 3 s) for the average and returns (success, message).
+        requester: who asked, from the transport (see _record_request)."""
+        t_ns = time.time_ns()
         with self._lock:
             self.counters.tare_requests += 1
-            if not self.alive:
-                return False, "the sensor is not streaming"
-            try:
-                self.sensor.tare(self.opts.tare_samples, wait=False)
-            except (LeptrinoError, ValueError) as e:
-                return False, f"tare failed: {e}"
-            end = time.monotonic() + 3.0
-            while self.sensor.taring and time.monotonic() < end:
-                time.sleep(0.005)
-            if self.sensor.taring:
-                return False, "tare started but no samples came within 3 s"
-            offs = ", ".join(f"{v:g}" for v in self.sensor.tare_offsets)
-            return True, f"tared over {self.opts.tare_samples} samples; offsets (counts): {offs}"
+            result = self._tare_locked()
+        self._record_request("tare", requester, t_ns, result)
+        return result
 
-    def untare(self) -> Tuple[bool, str]:
+    def _tare_locked(self) -> Tuple[bool, str]:
+        if not self.alive:
+            return False, "the sensor is not streaming"
+        try:
+            self.sensor.tare(self.opts.tare_samples, wait=False)
+        except (LeptrinoError, ValueError) as e:
+            return False, f"tare failed: {e}"
+        end = time.monotonic() + 3.0
+        while self.sensor.taring and time.monotonic() < end:
+            time.sleep(0.005)
+        if self.sensor.taring:
+            return False, "tare started but no samples came within 3 s"
+        offs = ", ".join(f"{v:g}" for v in self.sensor.tare_offsets)
+        return True, f"tared over {self.opts.tare_samples} samples; offsets (counts): {offs}"
+
+    def untare(self, requester: str = "") -> Tuple[bool, str]:
+        t_ns = time.time_ns()
         with self._lock:
             try:
                 self.sensor.untare()
+                result = True, "tare removed"
             except LeptrinoError as e:
-                return False, f"untare failed: {e}"
-            return True, "tare removed"
+                result = False, f"untare failed: {e}"
+        self._record_request("untare", requester, t_ns, result)
+        return result
+
+    def _record_request(self, what: str, requester: str, t_ns: int,
+                        result: Tuple[bool, str]) -> None:
+        """A tare/untare from the network (requester given): logged (INFO)
+        with its time and requester, kept in the diagnostics' last_request,
+        and the diagnostics published at once (stamped then), so that the
+        MCAP file and every transport have it as an event."""
+        if not requester:
+            return
+        when = time.strftime("%Y-%m-%dT%H:%M:%S", time.gmtime(t_ns // 1_000_000_000))
+        when += f".{t_ns // 1_000_000 % 1000:03d}Z"
+        text = f"{what} by {requester} at {when}: {'done' if result[0] else 'failed'}"
+        self.counters.last_request = text
+        audit.info("%s: %s (%s)", self.spec.name, text, result[1])
+        try:
+            self.publish_diagnostics(t_ns)
+        except Exception as e:  # the outputs may be closing
+            log.warning("%s: diagnostics: %s", self.spec.name, e)
 
     def _rejected_request(self) -> None:
         self.counters.rejected_requests += 1  # (the caller logs, rate-limited)
@@ -539,7 +581,12 @@ class SensorNode:
                 self._rejected_request()
                 query.reply_err(f"malformed request: {e}".encode())
                 return
-            ok, message = self.tare() if which == "tare" else self.untare()
+            who = f"zenoh client {client_gid.hex()}"
+            src = getattr(query, "source_info", None)
+            sid = getattr(src, "source_id", None) if src is not None else None
+            if sid is not None:
+                who += f" (source {sid.zid}/{sid.eid})"
+            ok, message = self.tare(who) if which == "tare" else self.untare(who)
             query.reply(query.key_expr, cdr.encode_trigger_response(ok, message),
                         attachment=rz.attachment(seq, time.time_ns(), client_gid))
         return handle
