@@ -2,7 +2,8 @@
 network on 127.0.0.1: malformed tare/untare requests (no attachment, a
 short one, a payload that is not CDR, an empty one, 64 KiB of noise) and
 malformed gravity messages, thousands a second for two seconds, at one
-sensor of two. Each is refused and counted, none changes a sensor, the log says so in a
+sensor of two, and valid tare requests at the other faster than a tare
+takes. Each is refused and counted, none changes a sensor, the log says so in a
 few lines, not thousands, and both sensors' wrenches keep their 1.2 kHz
 meanwhile. Bounded: about 6 s."""
 
@@ -18,6 +19,7 @@ from bridge_net import free_port, open_zenoh
 import zenoh  # the "bridge" extra
 
 from leptrino.bridge import Bridge, NodeOptions, SensorSpec, ZenohOptions
+from leptrino.bridge import cdr
 from leptrino.bridge import rmw_zenoh as rz
 
 FLOOD_S = 2.0
@@ -74,7 +76,13 @@ def test_a_flood_of_garbage_is_refused_and_the_streams_keep_their_rate(router: s
             def on_reply(reply: Any) -> None:
                 replies.append(reply.ok is not None)
 
-            sent = {"requests": 0, "gravity": 0}
+            sent = {"requests": 0, "gravity": 0, "valid": 0}
+            b_tare = keys["b"].services["tare"].key()
+            answers: List[bool] = []  # valid tares at b: their Trigger success flags
+
+            def on_answer(reply: Any) -> None:
+                if reply.ok is not None:  # Trigger_Response in CDR: bool success after the header
+                    answers.append(bytes(reply.ok.payload.to_bytes())[4] != 0)
 
             def flood_requests() -> None:
                 n = 0
@@ -95,19 +103,34 @@ def test_a_flood_of_garbage_is_refused_and_the_streams_keep_their_rate(router: s
                         time.sleep(0.001)  # thousands a second, not an unbounded burst
                 sent["gravity"] = n
 
+            def flood_valid_tares() -> None:
+                n = 0
+                while time.monotonic() - t0 < FLOOD_S:
+                    client.get(b_tare, handler=on_answer, payload=cdr.encode_trigger_request(),
+                               attachment=rz.attachment(n, time.time_ns(), bytes(range(16))),
+                               timeout=5.0)
+                    n += 1
+                    time.sleep(0.005)
+                sent["valid"] = n
+
             t0 = time.monotonic()
-            senders = [threading.Thread(target=f) for f in (flood_requests, flood_gravity)]
+            senders = [threading.Thread(target=f)
+                       for f in (flood_requests, flood_gravity, flood_valid_tares)]
             for th in senders:
                 th.start()
             for th in senders:
                 th.join(FLOOD_S + 5.0)
             t1 = time.monotonic()
-            time.sleep(1.0)  # replies and counters settle
+            end = t1 + 2.0  # replies and counters settle (a tare takes 100 samples)
+            while time.monotonic() < end and len(answers) < sent["valid"]:
+                time.sleep(0.05)
+            time.sleep(0.2)
             rate_window = (t0 + 0.2, t1)  # the flood's own span, after its start
             with lock:
                 rates = {n: sum(1 for t in ts if rate_window[0] <= t < rate_window[1])
                          / (rate_window[1] - rate_window[0]) for n, ts in arrivals.items()}
             ca, cb = a.counters, keys["b"].counters
+            n_answers = len(answers)
             gref = a.gravity.refused
             tared = list(a.sensor.tare_offsets)
             sub.undeclare()
@@ -117,13 +140,20 @@ def test_a_flood_of_garbage_is_refused_and_the_streams_keep_their_rate(router: s
     print(f"flood: {nq} requests and {ng} gravity messages in {t1 - t0:.2f} s "
           f"({(nq + ng) / (t1 - t0):.0f}/s); refused: {ca.rejected_requests} requests, "
           f"{gref} gravity; replies {len(replies)} (ok {sum(replies)}); "
-          f"wrench rate a {rates['a']:.0f} Hz, b {rates['b']:.0f} Hz")
+          f"wrench rate a {rates['a']:.0f} Hz, b {rates['b']:.0f} Hz; valid tares at b "
+          f"{sent['valid']}: answered {n_answers} ({sum(answers)} tared, {cb.tare_busy} busy)")
     assert (nq + ng) / (t1 - t0) > 1000 and nq / (t1 - t0) > 200, "not a flood"
     assert ca.rejected_requests > 0.9 * nq and ca.rejected_requests <= nq
     assert not any(replies), "a malformed request was answered as a success"
     assert ca.tare_requests == 0 and all(v == 0 for v in tared)  # nothing tared
     assert 0.9 * ng < gref <= ng  # every gravity message refused
     assert cb.rejected_requests == 0
+    # valid tares faster than one can be served: each served or refused as busy at once,
+    # none left queued (the bridge's counts); the client got the answers (here one in a few
+    # hundred goes missing in zenoh under this load, before the bridge: hence the slack)
+    assert cb.tare_busy + cb.tare_requests == sent["valid"]
+    assert 1 <= cb.tare_requests < sent["valid"] / 2
+    assert n_answers >= sent["valid"] - 2 and sum(answers) <= cb.tare_requests
     # and the log is not flooded: one line per input kind and 5 s (bridge/ratelog.py)
     refused_lines = [r for r in caplog.records if "refused" in r.getMessage()]
     assert 1 <= len(refused_lines) <= 4, [r.getMessage() for r in refused_lines]

@@ -39,6 +39,7 @@ from dataclasses import dataclass
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
 from . import cdr
+from .commands import CommandRunner
 from .ratelog import RateLimitedLog
 
 log = logging.getLogger("leptrino.bridge")
@@ -263,7 +264,7 @@ class DdsParticipant:
         self._nodes: Dict[Tuple[str, str], Tuple[List[bytes], List[bytes]]] = {}
         self._lock = threading.Lock()
         self._readers: List[Any] = []
-        self._commands = _CommandRunner()
+        self._commands = CommandRunner("bridge-dds-commands", 16)  # a flood is cut
         self._services = 0  # TriggerServices made (their ids)
         from cyclonedds.pub import DataWriter
         from cyclonedds.topic import Topic
@@ -418,44 +419,6 @@ def _writer_guid(reader: Any, sample: Any) -> str:
         return str(ep.key) if ep is not None else "unknown"
     except Exception:
         return "unknown"
-
-
-class _CommandRunner:
-    """Runs tare/untare commands one at a time off Cyclone's listener thread."""
-
-    def __init__(self) -> None:
-        self._cv = threading.Condition()
-        self._queue: List[Tuple[str, Callable[[], Any]]] = []
-        self._stop = False
-        self._thread = threading.Thread(target=self._run, name="bridge-dds-commands",
-                                        daemon=True)
-        self._thread.start()
-
-    def submit(self, name: str, action: Callable[[], Any]) -> None:
-        with self._cv:
-            if len(self._queue) < 16:  # a flood of commands is cut, not queued forever
-                self._queue.append((name, action))
-                self._cv.notify()
-
-    def _run(self) -> None:
-        while True:
-            with self._cv:
-                while not self._queue and not self._stop:
-                    self._cv.wait()
-                if self._stop:
-                    return
-                name, action = self._queue.pop(0)
-            try:
-                result = action()
-                log.info("%s: %s", name, result)
-            except Exception as e:  # a command must not end the thread
-                log.warning("%s: %s", name, e)
-
-    def stop(self) -> None:
-        with self._cv:
-            self._stop = True
-            self._cv.notify()
-        self._thread.join(2.0)
 
 
 #: Bytes of rmw_cyclonedds' request header: the client's writer instance

@@ -30,6 +30,7 @@ from ..sensor import Sensor
 from . import cdr
 from . import rmw_zenoh as rz
 from .gravity_in import VECTOR3_STAMPED, GravityInput
+from .commands import CommandRunner
 from .mcap_out import McapRecorder
 from .ratelog import RateLimitedLog
 from .typehash import rihs01
@@ -166,6 +167,10 @@ class Topic:
         self.outputs = []
 
 
+#: The answer to a tare or untare that comes while another is being served.
+BUSY = "busy: another tare or untare is being served; ask again"
+
+
 @dataclass
 class Counters:
     """What the node itself saw (the session's health has the sensor's side)."""
@@ -175,6 +180,7 @@ class Counters:
     last_error: str = ""
     events: Dict[str, int] = field(default_factory=dict)
     tare_requests: int = 0
+    tare_busy: int = 0  # tare/untare requests refused: another was being served
     rejected_requests: int = 0  # malformed service requests (DDS, Zenoh) ignored
     last_sample_mono: float = 0.0
     limit_axes: int = 0  # bit i: axis i beyond its limit in the current episode
@@ -201,6 +207,7 @@ class SensorNode:
         self._lock = threading.Lock()  # tare/untare from service threads
         self._tokens: List[Any] = []
         self._queryables: List[Any] = []
+        self._zenoh_requests: Optional[CommandRunner] = None  # the Zenoh services' thread
         self._dds_services: List[Any] = []  # dds.TriggerService
         self.wrench: Optional[Topic] = None
         self.wrench_raw: Optional[Topic] = None
@@ -280,6 +287,8 @@ class SensorNode:
             if fox is not None:
                 fox.service(ent.name, calls[svc])
         if session is not None:
+            if self.services:  # one request served, one waiting; the others: busy at once
+                self._zenoh_requests = CommandRunner(f"bridge-{self.spec.name}-zenoh-requests", 1)
             for svc, ent in self.services.items():
                 self._queryables.append(session.declare_queryable(
                     ent.key(), self._service_handler(svc), complete=True))
@@ -333,6 +342,9 @@ class SensorNode:
             except Exception:
                 pass
         self._queryables = []
+        if self._zenoh_requests is not None:
+            self._zenoh_requests.stop()
+            self._zenoh_requests = None
         for sub in self._subscribers:
             try:
                 sub.undeclare()
@@ -469,6 +481,7 @@ class SensorNode:
             ("tared", "true" if any(offsets) else "false"),
             ("read_only", "true" if self.opts.read_only else "false"),
             ("tare_requests", str(c.tare_requests)),
+            ("tare_busy", str(c.tare_busy)),
             ("last_request", c.last_request),
         ]
         values += [(f"tare_offset_{a}", f"{v:g}") for a, v in
@@ -511,12 +524,17 @@ class SensorNode:
     # -- services ------------------------------------------------------------
     def tare(self, requester: str = "") -> Tuple[bool, str]:
         """Tare over opts.tare_samples samples of the running stream; waits
-        (at most 3 s) for the average and returns (success, message).
+        (at most 3 s) for the average and returns (success, message); at once
+        (False, "busy: ...") while another tare or untare is being served.
         requester: who asked, from the transport (see _record_request)."""
         t_ns = time.time_ns()
-        with self._lock:
+        if not self._serve_one("tare", requester):
+            return False, BUSY
+        try:
             self.counters.tare_requests += 1
             result = self._tare_locked()
+        finally:
+            self._lock.release()
         self._record_request("tare", requester, t_ns, result)
         return result
 
@@ -528,23 +546,42 @@ class SensorNode:
         except (LeptrinoError, ValueError) as e:
             return False, f"tare failed: {e}"
         end = time.monotonic() + 3.0
-        while self.sensor.taring and time.monotonic() < end:
-            time.sleep(0.005)
-        if self.sensor.taring:
-            return False, "tare started but no samples came within 3 s"
-        offs = ", ".join(f"{v:g}" for v in self.sensor.tare_offsets)
+        try:
+            while self.sensor.taring and time.monotonic() < end:
+                time.sleep(0.005)
+            if self.sensor.taring:
+                return False, "tare started but no samples came within 3 s"
+            offs = ", ".join(f"{v:g}" for v in self.sensor.tare_offsets)
+        except LeptrinoError as e:  # the bridge is closing the sensor meanwhile
+            return False, f"tare not finished: {e}"
         return True, f"tared over {self.opts.tare_samples} samples; offsets (counts): {offs}"
 
     def untare(self, requester: str = "") -> Tuple[bool, str]:
+        """Remove the tare; (False, "busy: ...") while a tare is being served."""
         t_ns = time.time_ns()
-        with self._lock:
-            try:
-                self.sensor.untare()
-                result = True, "tare removed"
-            except LeptrinoError as e:
-                result = False, f"untare failed: {e}"
+        if not self._serve_one("untare", requester):
+            return False, BUSY
+        try:
+            self.sensor.untare()
+            result = True, "tare removed"
+        except LeptrinoError as e:
+            result = False, f"untare failed: {e}"
+        finally:
+            self._lock.release()
         self._record_request("untare", requester, t_ns, result)
         return result
+
+    def _serve_one(self, what: str, requester: str) -> bool:
+        """Take the node's lock for a tare or untare, or refuse at once: one is
+        served at a time and the others answered, not queued, so a flood of
+        requests cannot hold every transport's threads 3 s each. A refusal is
+        counted (tare_busy) and logged at most every 5 s, not recorded."""
+        if self._lock.acquire(blocking=False):
+            return True
+        self.counters.tare_busy += 1
+        self._refusal_log.warning("%s/%s by %s refused: busy with another", self.spec.name, what,
+                                  requester or "the bridge")
+        return False
 
     def _record_request(self, what: str, requester: str, t_ns: int,
                         result: Tuple[bool, str]) -> None:
@@ -586,7 +623,17 @@ class SensorNode:
             sid = getattr(src, "source_id", None) if src is not None else None
             if sid is not None:
                 who += f" (source {sid.zid}/{sid.eid})"
-            ok, message = self.tare(who) if which == "tare" else self.untare(who)
-            query.reply(query.key_expr, cdr.encode_trigger_response(ok, message),
+
+            def serve(q: Any = query) -> None:  # in the runner's thread; q kept till then
+                ok, message = self.tare(who) if which == "tare" else self.untare(who)
+                q.reply(q.key_expr, cdr.encode_trigger_response(ok, message),
                         attachment=rz.attachment(seq, time.time_ns(), client_gid))
+
+            runner = self._zenoh_requests
+            if runner is None or not runner.submit(f"{self.spec.name}/{which}", serve):
+                self.counters.tare_busy += 1
+                self._refusal_log.warning("%s/%s by %s refused: busy with another",
+                                          self.spec.name, which, who)
+                query.reply(query.key_expr, cdr.encode_trigger_response(False, BUSY),
+                            attachment=rz.attachment(seq, time.time_ns(), client_gid))
         return handle
