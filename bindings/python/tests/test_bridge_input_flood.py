@@ -149,11 +149,10 @@ def test_a_flood_of_garbage_is_refused_and_the_streams_keep_their_rate(router: s
     assert 0.9 * ng < gref <= ng  # every gravity message refused
     assert cb.rejected_requests == 0
     # valid tares faster than one can be served: each served or refused as busy at once,
-    # none left queued (the bridge's counts); the client got the answers (here one in a few
-    # hundred goes missing in zenoh under this load, before the bridge: hence the slack)
+    # none left queued, and every requester answered
     assert cb.tare_busy + cb.tare_requests == sent["valid"]
     assert 1 <= cb.tare_requests < sent["valid"] / 2
-    assert n_answers >= sent["valid"] - 2 and sum(answers) <= cb.tare_requests
+    assert n_answers == sent["valid"] and sum(answers) == cb.tare_requests
     # and the log is not flooded: one line per input kind and 5 s (bridge/ratelog.py)
     refused_lines = [r for r in caplog.records if "refused" in r.getMessage()]
     assert 1 <= len(refused_lines) <= 4, [r.getMessage() for r in refused_lines]

@@ -48,6 +48,7 @@ class CommandRunner:
                     log.info("%s: %s", name, result)
             except Exception as e:  # an action must not end the thread
                 log.warning("%s: %s", name, e)
+            del action  # what it holds (a Zenoh query) is released now, not at the next one
 
     def stop(self, timeout: float = 2.0) -> None:
         """No more actions; the one running may finish (up to timeout s)."""

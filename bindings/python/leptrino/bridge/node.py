@@ -625,9 +625,12 @@ class SensorNode:
                 who += f" (source {sid.zid}/{sid.eid})"
 
             def serve(q: Any = query) -> None:  # in the runner's thread; q kept till then
-                ok, message = self.tare(who) if which == "tare" else self.untare(who)
-                q.reply(q.key_expr, cdr.encode_trigger_response(ok, message),
-                        attachment=rz.attachment(seq, time.time_ns(), client_gid))
+                try:
+                    ok, message = self.tare(who) if which == "tare" else self.untare(who)
+                    q.reply(q.key_expr, cdr.encode_trigger_response(ok, message),
+                            attachment=rz.attachment(seq, time.time_ns(), client_gid))
+                finally:
+                    q.drop()  # the query is complete: the requester stops waiting now
 
             runner = self._zenoh_requests
             if runner is None or not runner.submit(f"{self.spec.name}/{which}", serve):
