@@ -112,6 +112,7 @@ async def session(port: int) -> Dict[str, Any]:
         t_tare = time.time()
         await c.pump(lambda: len(c.by_sub.get(2, [])) >= before + 600, 10.0)
         out["untare"] = await c.call("/a/untare", req, 42)
+        out["garbage"] = await c.call("/a/tare", b"\xff\xff\xff\xff", 43)  # not CDR: refused
         t_untare = time.time()
         n = len(c.by_sub.get(2, []))
         await c.pump(lambda: len(c.by_sub.get(2, [])) >= n + 600, 10.0)
@@ -189,6 +190,9 @@ def test_foxglove_client_subscribes_decodes_and_tares(ramp: str) -> None:
         assert enc == "cdr", payload
         r = ts.deserialize_cdr(payload, "std_srvs/msg/Trigger_Response")
         assert r.success and word in r.message, r.message
+    # a request that is not CDR: a service call failure, and no tare (the wrench after the
+    # untare, below, keeps its offset)
+    assert got["garbage"][0] == "error" and b"malformed request" in got["garbage"][1]
     t_tare, t_untare = got["t"]
     a = [(t, ts.deserialize_cdr(p, W)) for _, p, t in got["msgs"]["/a/wrench"]]
     size = [(t, abs(m.wrench.force.x) + abs(m.wrench.torque.z)) for t, m in a]

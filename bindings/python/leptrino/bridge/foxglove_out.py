@@ -18,6 +18,7 @@ from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
 from . import cdr
 from .mcap_out import ros2msg_schema
+from .ratelog import RateLimitedLog
 
 log = logging.getLogger("leptrino.bridge")
 
@@ -73,6 +74,7 @@ class FoxgloveServer:
         import foxglove
         from foxglove import Capability
 
+        self._refusals = RateLimitedLog()
         self.ctx = foxglove.Context()
         self.host = host
         self._services: List[Any] = []
@@ -89,15 +91,25 @@ class FoxgloveServer:
     def channel(self, topic: str, ros_type: str) -> FoxgloveChannel:
         return FoxgloveChannel(self.ctx, topic, ros_type)
 
-    def service(self, name: str, call: Callable[[str], Tuple[bool, str]]) -> None:
+    def service(self, name: str, call: Callable[[str], Tuple[bool, str]],
+                rejected: Callable[[], None]) -> None:
         """A std_srvs/srv/Trigger service: call(requester) runs in the
         server's thread (requester: "foxglove client <id>", the id the
         server gave the connection); its answer goes back as
-        Trigger_Response in CDR."""
+        Trigger_Response in CDR. A request that is not CDR is refused (the
+        client gets a service call failure), counted by rejected() and
+        logged at most every 5 s, and calls nothing."""
         from foxglove import MessageSchema, Schema, Service, ServiceSchema
 
         def handler(request: Any) -> bytes:
-            ok, message = call(f"foxglove client {request.client_id}")
+            who = f"foxglove client {request.client_id}"
+            try:
+                cdr.check_encapsulation(bytes(request.payload))
+            except ValueError as e:
+                rejected()
+                self._refusals.warning("%s: request by %s refused: %s", name, who, e)
+                raise ValueError(f"malformed request: {e}") from None
+            ok, message = call(who)
             return cdr.encode_trigger_response(ok, message)
 
         schema = ServiceSchema(

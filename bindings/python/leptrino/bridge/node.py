@@ -285,7 +285,7 @@ class SensorNode:
                 self._dds_services.append(
                     dds.service(node, ent.name, calls[svc], self._rejected_request))
             if fox is not None:
-                fox.service(ent.name, calls[svc])
+                fox.service(ent.name, calls[svc], self._rejected_request)
         if session is not None:
             if self.services:  # one request served, one waiting; the others: busy at once
                 self._zenoh_requests = CommandRunner(f"bridge-{self.spec.name}-zenoh-requests", 1)
