@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import asyncio
 import json
-import socket
 import struct
 import subprocess
 import sys
@@ -21,7 +20,7 @@ import time
 from typing import Any, Dict, List, Tuple
 
 import pytest
-from bridge_net import free_port
+from bridge_net import free_port, wait_for_port
 from conftest import RAMP_ROWS
 
 websockets = pytest.importorskip("websockets")  # the "test" extra
@@ -128,13 +127,7 @@ def test_foxglove_client_subscribes_decodes_and_tares(ramp: str) -> None:
          "--sim", "a,constant,amplitude=0.2", "--sim", f"r,replay={ramp}", "--retare", "50"],
         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
-        end = time.monotonic() + 15
-        while time.monotonic() < end:  # the server is up when its port answers
-            try:
-                socket.create_connection(("127.0.0.1", port), timeout=0.5).close()
-                break
-            except OSError:
-                time.sleep(0.1)
+        wait_for_port(port)  # the server is up when its port answers
         got = asyncio.run(asyncio.wait_for(session(port), 90))
     finally:
         proc.terminate()

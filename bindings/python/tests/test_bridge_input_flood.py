@@ -12,27 +12,15 @@ from __future__ import annotations
 import os
 import threading
 import time
-from typing import Any, Iterator, List
+from typing import Any, List
 
-import pytest
-from bridge_net import free_port, open_zenoh
-import zenoh  # the "bridge" extra
+from bridge_net import open_zenoh, router  # noqa: F401 (router: a fixture)
 
 from leptrino.bridge import Bridge, NodeOptions, SensorSpec, ZenohOptions
 from leptrino.bridge import cdr
 from leptrino.bridge import rmw_zenoh as rz
 
 FLOOD_S = 2.0
-
-
-@pytest.fixture
-def router() -> Iterator[str]:
-    ep = f"tcp/127.0.0.1:{free_port()}"
-    r = open_zenoh("router", listen=[ep])
-    try:
-        yield ep
-    finally:
-        r.close()
 
 
 def garbage_requests() -> List[Any]:

@@ -22,7 +22,7 @@ import sys
 import time
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Callable, Dict, Iterator, List, Tuple
+from typing import Any, Callable, Dict, List, Tuple
 
 import numpy as np
 import pytest
@@ -33,7 +33,7 @@ pytest.importorskip("mcap")
 import leptrino  # noqa: E402
 from leptrino.bridge import Bridge, NodeOptions, SensorSpec, ZenohOptions  # noqa: E402
 from leptrino.bridge import cdr  # noqa: E402
-from bridge_net import free_port, open_zenoh  # noqa: E402
+from bridge_net import free_port, open_zenoh, router  # noqa: E402, F401 (router: a fixture)
 
 G0 = 9.80665
 TOOL = (1.5, 0.02, -0.01, 0.06)  # kg, m
@@ -207,16 +207,6 @@ class FoxgloveSender:
 
     def close(self) -> None:
         self._stack.close()
-
-
-@pytest.fixture
-def router() -> Iterator[str]:
-    ep = f"tcp/127.0.0.1:{free_port()}"
-    r = open_zenoh("router", listen=[ep])
-    try:
-        yield ep
-    finally:
-        r.close()
 
 
 def run_transport(transport: str, tmp_path: Path, router: str) -> None:

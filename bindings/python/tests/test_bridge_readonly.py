@@ -13,7 +13,6 @@ MCAP file) name the requester. Everything on 127.0.0.1, every wait bounded.
 import asyncio
 import json
 import logging
-import socket
 import struct
 import subprocess
 import sys
@@ -29,7 +28,7 @@ pytest.importorskip("foxglove")
 websockets = pytest.importorskip("websockets")  # the "test" extra
 
 import zenoh  # noqa: E402
-from bridge_net import free_port  # noqa: E402
+from bridge_net import free_port, wait_for_port  # noqa: E402
 from cyclonedds.pub import DataWriter  # noqa: E402
 from cyclonedds.sub import DataReader  # noqa: E402
 from cyclonedds.topic import Topic  # noqa: E402
@@ -211,13 +210,7 @@ def test_foxglove_tare_service(read_only: bool) -> None:
          "--sim", CONSTANT, "--retare", "50", *(["--read-only"] if read_only else [])],
         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
-        end = time.monotonic() + 15
-        while time.monotonic() < end:  # the server is up when its port answers
-            try:
-                socket.create_connection(("127.0.0.1", port), timeout=0.5).close()
-                break
-            except OSError:
-                time.sleep(0.1)
+        wait_for_port(port)  # the server is up when its port answers
         got = asyncio.run(asyncio.wait_for(fox_session(port, read_only), 60))
     finally:
         err = stop(proc)

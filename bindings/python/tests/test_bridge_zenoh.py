@@ -13,7 +13,7 @@ from pathlib import Path
 from typing import Any, Dict, Iterator, List, Tuple
 
 import pytest
-from bridge_net import free_port, open_zenoh
+from bridge_net import free_port, open_zenoh, router  # noqa: F401 (a fixture)
 from conftest import RAMP_ROWS
 import zenoh  # the "bridge" extra (make test and .ci/checks/60-bridge.sh install it)
 
@@ -31,16 +31,6 @@ ROWS = RAMP_ROWS  # the replayed ramp's length (conftest.ramp)
 def wrench_key(sensor: str, topic: str = "wrench", ns: str = "") -> str:
     pre = f"{ns}/" if ns else ""
     return f"0/{pre}{sensor}/{topic}/geometry_msgs::msg::dds_::WrenchStamped_/{WRENCH_HASH}"
-
-
-@pytest.fixture
-def router() -> Iterator[str]:
-    ep = f"tcp/127.0.0.1:{free_port()}"
-    r = open_zenoh("router", listen=[ep])
-    try:
-        yield ep
-    finally:
-        r.close()
 
 
 @pytest.fixture
