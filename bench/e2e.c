@@ -39,6 +39,7 @@
 #include "leptrino/serial.h"
 #include "leptrino/session.h"
 #include "leptrino/sim.h"
+#include "struct_api.h"
 
 #define LAT_MAX 200000u
 
@@ -305,7 +306,7 @@ static void stream_run(const char *port, int mode, double seconds, size_t count,
         lep_session_options_init(&o);
         o.port = port;
         o.latency_ms = budget_of(mode);
-        r->rc = lep_session_open(&o, &ss, err, sizeof err);
+        r->rc = lep_session_open_so(&o, &ss, err, sizeof err);
     }
     r->t_start = now_ns();
     if (r->rc == LEP_OK) {
@@ -337,7 +338,7 @@ static void stream_run(const char *port, int mode, double seconds, size_t count,
             memset(&b, 0, sizeof(b));
             b.cap = sizeof(seq) / sizeof(seq[0]);
             b.seq = seq;
-            r->rc = lep_session_read(ss, &b, 1000);
+            r->rc = lep_session_read_batch(ss, &b, 1000);
             n = b.n;
         }
         t_recv = now_ns();

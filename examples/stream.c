@@ -33,7 +33,7 @@ int main(int argc, char **argv)
     if (strcmp(path, "--sim") == 0) {
         lep_sim_options opt;
         lep_sim_options_init(&opt);
-        if ((rc = lep_sim_start(&opt, &sim, err, sizeof(err))) != LEP_OK) {
+        if ((rc = lep_sim_start_so(&opt, &sim, err, sizeof(err))) != LEP_OK) {
             fprintf(stderr, "example_stream: %s\n", err);
             return 1;
         }

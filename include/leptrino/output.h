@@ -4,9 +4,10 @@
  *
  * A writer owns a file descriptor (a path it opened, or one it was given,
  * e.g. 1 for standard output) and a buffer; it uses no FILE*, so FFI callers
- * pass paths, fds and lep_session_batch structs only. Rows come from
- * lep_session_batch arrays; several sensors can share one file (a sensor
- * column) on one time base.
+ * pass paths, fds, numbers and flat arrays only. Rows come from the arrays
+ * lep_session_read fills, events from the arrays lep_session_next_event
+ * fills; several sensors can share one file (a sensor column) on one time
+ * base.
  *
  * The bytes (docs/session.md has the reference):
  *  - CSV: one `# leptrino-metadata: {json}` comment line per sensor, then a
@@ -29,7 +30,6 @@
 #ifndef LEPTRINO_OUTPUT_H
 #define LEPTRINO_OUTPUT_H
 
-#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -40,15 +40,17 @@
 extern "C" {
 #endif
 
-/* Column bits (lep_output_options.columns). */
-#define LEP_COL_RAW 0x01u    /* fx_counts..mz_counts */
-#define LEP_COL_ZEROED 0x02u /* fx_zeroed_counts..mz_zeroed_counts */
-#define LEP_COL_SI 0x04u     /* fx_N..mz_Nm */
-#define LEP_COL_STATUS 0x08u /* status */
-#define LEP_COL_FLAGS 0x10u  /* flags (LEP_SF_*) */
-#define LEP_COL_SEQ 0x20u    /* seq (the reserved bytes) */
-#define LEP_COL_SENSOR 0x40u /* sensor (the name given to lep_output_add_*) */
-#define LEP_COL_DEFAULT (LEP_COL_SI | LEP_COL_STATUS)
+/* Column bits (the columns argument of lep_output_open). */
+enum lep_output_column {
+    LEP_COL_RAW = 0x01,    /* fx_counts..mz_counts */
+    LEP_COL_ZEROED = 0x02, /* fx_zeroed_counts..mz_zeroed_counts */
+    LEP_COL_SI = 0x04,     /* fx_N..mz_Nm */
+    LEP_COL_STATUS = 0x08, /* status */
+    LEP_COL_FLAGS = 0x10,  /* flags (LEP_SF_*) */
+    LEP_COL_SEQ = 0x20,    /* seq (the reserved bytes) */
+    LEP_COL_SENSOR = 0x40, /* sensor (the name given to lep_output_add_*) */
+    LEP_COL_DEFAULT = 0x0C /* LEP_COL_SI | LEP_COL_STATUS */
+};
 
 enum lep_output_format { LEP_OUTPUT_CSV = 0, LEP_OUTPUT_JSONL = 1 };
 
@@ -58,29 +60,22 @@ enum lep_output_time {
     LEP_TIME_UTC = 2   /* t_utc_s: seconds since 1970-01-01 UTC */
 };
 
-typedef struct lep_output_options {
-    int format;       /* enum lep_output_format, default CSV */
-    int time;         /* enum lep_output_time, default REL */
-    unsigned columns; /* LEP_COL_* bits, default LEP_COL_DEFAULT; the time column is always there */
-    double t0_mono;   /* origin of t_s; 0 (default): start_mono of the first sensor added */
-    bool overwrite;   /* lep_output_open may replace an existing file (default false) */
-} lep_output_options;
-
 typedef struct lep_output lep_output;
 
-/* Defaults as documented on each field. */
-LEP_API void lep_output_options_init(lep_output_options *o);
-
-/* Create path for writing. An existing file is refused (LEP_E_ARG, "PATH:
- * already exists ...", the file untouched) unless o->overwrite. NULL or "-"
- * is standard output. Other failures: LEP_E_NOT_FOUND (no such directory),
- * LEP_E_PERMISSION, LEP_E_IO; err gets a one-line message naming the path. */
-LEP_API int lep_output_open(const char *path, const lep_output_options *o, lep_output **out,
-                            char *err, size_t errlen);
+/* Create path for writing: format (enum lep_output_format), time (enum
+ * lep_output_time), columns (LEP_COL_* bits; the time column is always
+ * there), t0_mono (the origin of t_s; 0: start_mono of the first sensor
+ * added). An existing file is refused (LEP_E_ARG, "PATH: already exists
+ * ...", the file untouched) unless overwrite is 1. NULL or "-" is standard
+ * output. Other failures: LEP_E_ARG for a bad format, time or columns,
+ * LEP_E_NOT_FOUND (no such directory), LEP_E_PERMISSION, LEP_E_IO; err gets
+ * a one-line message naming the path. */
+LEP_API int lep_output_open(const char *path, int format, int time, int columns, double t0_mono,
+                            int overwrite, lep_output **out, char *err, size_t errlen);
 
 /* Write to fd (not closed by lep_output_close). LEP_E_ARG for fd < 0. */
-LEP_API int lep_output_open_fd(int fd, const lep_output_options *o, lep_output **out, char *err,
-                               size_t errlen);
+LEP_API int lep_output_open_fd(int fd, int format, int time, int columns, double t0_mono,
+                               lep_output **out, char *err, size_t errlen);
 
 /* Add a sensor before the first write; returns its index (>= 0) for
  * lep_output_write, or LEP_E_ARG / LEP_E_STATE (after the first write).
@@ -93,21 +88,27 @@ LEP_API int lep_output_add_session(lep_output *w, lep_session *s, const char *na
 LEP_API int lep_output_add_sensor(lep_output *w, const char *name, const char *metadata_json,
                                   double start_mono);
 
-/* Write rows b[from..b->n) of sensor `sensor`, and the events ev[0..nev)
- * where they belong: an event whose .sample is k comes just before that
+/* Write n rows of sensor `sensor` from the arrays of lep_session_read (the
+ * same layout; t_mono is needed, t_utc for LEP_TIME_UTC, and the arrays of
+ * the chosen columns: LEP_E_ARG otherwise), and nev events from `events`:
+ * nev rows of ev_fields doubles each, as lep_session_next_event fills them
+ * (ev_fields >= LEP_EVF_TARE + 6; the caller's LEP_EVF_COUNT), written where
+ * they belong: an event whose sample field is k comes just before that
  * sensor's row k (rows are numbered per sensor from 0 as they are written),
  * events beyond the last row after it. Writes the header first if not yet
- * done. The batch needs t_mono, and t_utc for LEP_TIME_UTC, and the arrays of
- * the chosen columns (LEP_E_ARG otherwise). When the bytes reach the fd: the
- * header (metadata lines) before any row; into a pipe, a terminal or any fd
- * that is not a regular file, at the end of every call; into a regular file,
- * at the end of the call that finds the oldest unwritten row 100 ms old or
- * more (and when the buffer fills, at lep_output_flush and at close): a
- * writer that calls lep_output_flush when its source goes quiet loses at
- * most the last 100 ms to a crash. LEP_E_IO when a write failed
- * (lep_output_errno says why; later calls fail the same way). */
-LEP_API int lep_output_write(lep_output *w, int sensor, const lep_session_batch *b, size_t from,
-                             const lep_session_event *ev, size_t nev);
+ * done. When the bytes reach the fd: the header (metadata lines) before any
+ * row; into a pipe, a terminal or any fd that is not a regular file, at the
+ * end of every call; into a regular file, at the end of the call that finds
+ * the oldest unwritten row 100 ms old or more (and when the buffer fills, at
+ * lep_output_flush and at close): a writer that calls lep_output_flush when
+ * its source goes quiet loses at most the last 100 ms to a crash. LEP_E_IO
+ * when a write failed (lep_output_errno says why; later calls fail the same
+ * way). */
+LEP_API int lep_output_write(lep_output *w, int sensor, size_t n, const double *t_mono,
+                             const double *t_utc, const double *si, const int16_t *raw,
+                             const double *zeroed, const uint8_t *status, const uint8_t *flags,
+                             const uint16_t *seq, const double *events, size_t nev,
+                             size_t ev_fields);
 
 /* Write buffered bytes now (nothing to do, no system call, when none are). */
 LEP_API int lep_output_flush(lep_output *w);

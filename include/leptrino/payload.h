@@ -30,59 +30,60 @@
 extern "C" {
 #endif
 
-/* Standard gravity, m/s^2 (the default gravity vector is (0, 0, -this)). */
-#define LEP_STANDARD_GRAVITY 9.80665
+enum lep_payload_constants {
+    /* Fewest poses an identification takes. */
+    LEP_PAYLOAD_MIN_POSES = 3
+};
 
-/* Fewest poses an identification takes. */
-#define LEP_PAYLOAD_MIN_POSES 3u
+/* Standard gravity, 9.80665 m/s^2 (the default gravity vector is (0, 0, -this)). */
+LEP_API double lep_standard_gravity(void);
 
-/* Smallest spread of the gravity vectors an identification accepts (see
- * lep_payload_fit.spread): 0.02 is an RMS tilt of about 1.1 degrees in the
- * direction the poses cover least. */
-#define LEP_PAYLOAD_MIN_SPREAD 0.02
+/* Smallest spread of the gravity vectors an identification accepts
+ * (LEP_FIT_SPREAD): 0.02, an RMS tilt of about 1.1 degrees in the direction
+ * the poses cover least. */
+LEP_API double lep_payload_min_spread(void);
 
-/* A payload: what compensation needs. */
-typedef struct lep_payload {
-    double mass_kg;  /* >= 0 */
-    double com_m[3]; /* centre of mass, sensor frame, metres */
-} lep_payload;
+/* A payload is 4 doubles: mass kg (>= 0), then the centre of mass x, y, z
+ * in metres, sensor frame (the option "payload" takes the same four). */
 
-/* What an identification found. */
-typedef struct lep_payload_fit {
-    lep_payload payload;
-    double force_bias_N[3];    /* F_b */
-    double torque_bias_Nm[3];  /* M_b */
-    double residual[LEP_AXES]; /* per axis, RMS over the poses of measured - model (N, N m):
-                                  the noise of the means plus whatever the model misses */
-    double spread;             /* how well the gravity vectors cover the directions the
-                                  centre of mass needs: sqrt(l_min / (n mean|g|^2)), l_min the
-                                  smallest eigenvalue of sum(|d|^2 I - d d^T), d = g - mean g.
-                                  0 when the vectors lie on one line; 1/sqrt(2)..1 for poses
-                                  spread evenly over the sphere */
-    size_t poses;
-} lep_payload_fit;
+/* The gravity wrench of payload[4] at gravity[3] (sensor frame): wrench[6] =
+ * (m g, c x m g), N and N m. LEP_E_ARG for NULL, non-finite values or a
+ * negative mass (wrench then untouched). */
+LEP_API int lep_payload_wrench(const double payload[4], const double gravity[3], double wrench[6]);
 
-/* The gravity wrench of payload p at gravity g (sensor frame): wrench = (m g,
- * c x m g), N and N m. LEP_E_ARG for NULL, non-finite values or a negative
- * mass (wrench then untouched). */
-LEP_API int lep_payload_wrench(const lep_payload *p, const double gravity[3],
-                               double wrench[LEP_AXES]);
+/* What an identification found, as indices into the array
+ * lep_payload_identify fills. */
+enum lep_fit_field {
+    LEP_FIT_PAYLOAD = 0,        /* 4 fields: mass kg, centre of mass x y z m */
+    LEP_FIT_FORCE_BIAS_N = 4,   /* 3 fields: F_b */
+    LEP_FIT_TORQUE_BIAS_NM = 7, /* 3 fields: M_b */
+    LEP_FIT_RESIDUAL = 10,      /* 6 fields: per axis, RMS over the poses of measured - model
+                                   (N, N m): the noise of the means plus what the model misses */
+    LEP_FIT_SPREAD = 16,        /* how well the gravity vectors cover the directions the centre
+                                   of mass needs: sqrt(l_min / (n mean|g|^2)), l_min the smallest
+                                   eigenvalue of sum(|d|^2 I - d d^T), d = g - mean g. 0 when
+                                   the vectors lie on one line; 1/sqrt(2)..1 for poses spread
+                                   evenly over the sphere */
+    LEP_FIT_POSES = 17,         /* poses used */
+    LEP_FIT_COUNT = 18
+};
 
 /* Identify a payload and the sensor's biases from n static poses: gravity
  * [n*3] (row i: g at pose i, m/s^2, sensor frame) and wrench [n*6] (row i:
  * the mean wrench measured there, N and N m, not tared). On success fills
- * *out and returns LEP_OK. Refused, with one line in err (when not NULL) and
- * *out untouched:
+ * the first min(nfit, LEP_FIT_COUNT) fields of fit and returns LEP_OK.
+ * Refused, with one line in err (when not NULL) and fit untouched:
  *   LEP_E_ARG    NULL pointer, or a value that is NaN or infinite (the line
  *                names the pose and the value);
  *   LEP_E_VALUE  the poses do not determine the payload: fewer than
  *                LEP_PAYLOAD_MIN_POSES, gravity vectors that spread less than
- *                LEP_PAYLOAD_MIN_SPREAD (too few distinct directions: all on
- *                one line, or nearly the same), or a mass found not positive
- *                (no payload, or gravity given with the wrong sign or frame).
+ *                lep_payload_min_spread() (too few distinct directions: all
+ *                on one line, or nearly the same), or a mass found not
+ *                positive (no payload, or gravity given with the wrong sign
+ *                or frame).
  * Never answers from a degenerate set: the conditioning is checked, not just n. */
 LEP_API int lep_payload_identify(const double *gravity, const double *wrench, size_t n,
-                                 lep_payload_fit *out, char *err, size_t errlen);
+                                 double *fit, size_t nfit, char *err, size_t errlen);
 
 /* The mean wrench of one pose, from a CSV recording made by the leptrino tool
  * (`leptrino stream`, leptrino/output.h): in the sensor frame, N and N m, as
@@ -95,7 +96,7 @@ LEP_API int lep_payload_identify(const double *gravity, const double *wrench, si
  * CSV recording (no metadata line, JSON lines), several sensors, a tare or
  * payload that changed during the recording, no force/torque columns, an
  * overloaded sample, no rows, a malformed line. Blocks on file I/O only. */
-LEP_API int lep_payload_pose_read(const char *path, double mean[LEP_AXES], uint64_t *samples,
+LEP_API int lep_payload_pose_read(const char *path, double mean[6], uint64_t *samples,
                                   char *err, size_t errlen);
 
 #ifdef __cplusplus

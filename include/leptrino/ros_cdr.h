@@ -1,6 +1,6 @@
 /* ROS 2 messages of a session's samples, serialized (OS layer).
  *
- * lep_ros_wrench_cdr turns a range of a lep_session_batch into
+ * lep_ros_wrench_cdr turns samples, as lep_session_read fills them, into
  * geometry_msgs/msg/WrenchStamped messages in CDR, the bytes every ROS 2
  * transport carries (rmw_zenoh's payload, a DDS serialized sample, an MCAP
  * "cdr" message, a Foxglove "cdr" message): one call per batch, so that a
@@ -25,38 +25,38 @@
 
 #include "export.h"
 #include "message.h"
-#include "session.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
 /* Longest frame_id accepted, in bytes (without the NUL). */
-#define LEP_ROS_FRAME_ID_MAX 255u
+enum lep_ros_constants { LEP_ROS_FRAME_ID_MAX = 255 };
 
 /* Bytes of one WrenchStamped message whose frame_id is frame_id_len bytes
  * long (0 when frame_id_len > LEP_ROS_FRAME_ID_MAX). */
 LEP_API size_t lep_ros_wrench_size(size_t frame_id_len);
 
-/* Serialize samples [from, from + n) of b, message after message, into
- * wrench (the session's output b->si: N, N m) and wrench_raw (the raw counts
- * b->raw in N and N m by lep_sample_to_si with rated), each of cap bytes and
- * each may be NULL to skip it. Each message's stamp is b->t_utc rounded to
- * the nanosecond, held at *last_ns when it would go back (the session's
- * double can step back by a rounding step); *last_ns is then the last
- * stamp written. stamp_ns (NULL to skip) receives the n stamps (ns since the
- * epoch), the same for both topics. frame_id: a NUL-terminated UTF-8 string
- * of at most LEP_ROS_FRAME_ID_MAX bytes.
+/* Serialize n samples, message after message, into wrench (the session's
+ * output si[n*6]: N, N m) and wrench_raw (the raw counts raw[n*6] in N and
+ * N m through rated[6]), each of cap bytes and each may be NULL to skip it.
+ * Each message's stamp is t_utc[i] rounded to the nanosecond, held at
+ * *last_ns when it would go back (the session's double can step back by a
+ * rounding step); *last_ns is then the last stamp written. stamp_ns (NULL to
+ * skip) receives the n stamps (ns since the epoch), the same for both
+ * topics. frame_id: a NUL-terminated UTF-8 string of at most
+ * LEP_ROS_FRAME_ID_MAX bytes.
  *
  * All or nothing: on an error nothing is written and *last_ns is unchanged.
- * LEP_E_ARG: b, frame_id or last_ns NULL; from + n > b->n; b->t_utc NULL;
- * wrench given and b->si NULL; wrench_raw given and b->raw or rated NULL;
- * frame_id too long. LEP_E_BUFFER: cap < n * lep_ros_wrench_size().
- * LEP_E_VALUE: a t_utc that is not finite or whose seconds do not fit
- * builtin_interfaces/Time (int32, from 1970). n = 0 writes nothing, LEP_OK. */
-LEP_API int lep_ros_wrench_cdr(const lep_session_batch *b, size_t from, size_t n,
-                               const lep_rated *rated, const char *frame_id, int64_t *last_ns,
-                               uint8_t *wrench, uint8_t *wrench_raw, size_t cap, int64_t *stamp_ns);
+ * LEP_E_ARG: t_utc, frame_id or last_ns NULL; wrench given and si NULL;
+ * wrench_raw given and raw or rated NULL; frame_id too long. LEP_E_BUFFER:
+ * cap < n * lep_ros_wrench_size(). LEP_E_VALUE: a t_utc that is not finite
+ * or whose seconds do not fit builtin_interfaces/Time (int32, from 1970). n =
+ * 0 writes nothing, LEP_OK. */
+LEP_API int lep_ros_wrench_cdr(size_t n, const double *t_utc, const double *si,
+                               const int16_t *raw, const double rated[6], const char *frame_id,
+                               int64_t *last_ns, uint8_t *wrench, uint8_t *wrench_raw, size_t cap,
+                               int64_t *stamp_ns);
 
 #ifdef __cplusplus
 }

@@ -6,7 +6,6 @@
 #ifndef LEPTRINO_SERIAL_H
 #define LEPTRINO_SERIAL_H
 
-#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -17,17 +16,21 @@
 extern "C" {
 #endif
 
-#define LEP_BAUD 460800
+enum lep_serial_constants {
+    LEP_BAUD = 460800 /* the sensor's line rate, 8N1 */
+};
 
 /* An open port. Allocated by lep_serial_open, freed by lep_serial_close. */
 typedef struct lep_serial lep_serial;
 
-/* What lep_serial_open could apply for latency (never a failure if not). */
-typedef struct lep_serial_info {
-    bool low_latency;    /* ASYNC_LOW_LATENCY flag set on the port */
-    int ftdi_latency_ms; /* FTDI latency timer now in force, or -1 if not FTDI/unknown */
-    bool ftdi_lowered;   /* the timer was lowered by this open */
-} lep_serial_info;
+/* What lep_serial_open could apply for latency (never a failure if not),
+ * as indices into the array lep_serial_get_info fills. */
+enum lep_serial_info_field {
+    LEP_SERIAL_LOW_LATENCY = 0,     /* 1 when the ASYNC_LOW_LATENCY flag was set on the port */
+    LEP_SERIAL_FTDI_LATENCY_MS = 1, /* FTDI latency timer now in force, -1 not FTDI/unknown */
+    LEP_SERIAL_FTDI_LOWERED = 2,    /* 1 when the timer was lowered by this open */
+    LEP_SERIAL_INFO_COUNT = 3
+};
 
 /* Open path. On failure returns LEP_E_NOT_FOUND, LEP_E_PERMISSION,
  * LEP_E_NOT_TTY, LEP_E_BUSY or LEP_E_IO and, when err is not NULL, writes a
@@ -44,7 +47,8 @@ LEP_API void lep_serial_get_io(lep_serial *s, lep_io *io);
  * (lep_client_set_rx); one client per port. */
 LEP_API int lep_serial_client_init(lep_client *c, lep_serial *s);
 
-LEP_API void lep_serial_get_info(const lep_serial *s, lep_serial_info *info);
+/* The first min(n, LEP_SERIAL_INFO_COUNT) fields into out. LEP_E_ARG for NULL. */
+LEP_API int lep_serial_get_info(const lep_serial *s, int *out, size_t n);
 LEP_API const char *lep_serial_path(const lep_serial *s);
 /* The file descriptor, for callers that poll several ports. */
 LEP_API int lep_serial_fd(const lep_serial *s);
@@ -54,18 +58,28 @@ LEP_API uint32_t lep_monotonic_ms(void);
 /* Seconds of the same monotonic clock, with sub-microsecond resolution. */
 LEP_API double lep_monotonic_seconds(void);
 
-/* A serial port found on this machine. */
-typedef struct lep_port_info {
-    char path[256];        /* /dev/ttyACM0 */
-    char by_id[256];       /* /dev/serial/by-id/... or empty */
-    char description[128]; /* USB product/manufacturer when known */
-    uint16_t vid;          /* USB vendor id, 0 if unknown */
-    uint16_t pid;          /* USB product id, 0 if unknown */
-    bool likely_sensor;    /* STM VCP 0483:5740 or FTDI 0403:6001 */
-} lep_port_info;
+/* The serial ports found on this machine: a snapshot taken by
+ * lep_port_list_new, read by index (0 .. lep_port_list_count - 1), freed by
+ * lep_port_list_free. The strings belong to the list (valid until it is
+ * freed); an index past the end gives "" or 0. Not thread-safe per list. */
+typedef struct lep_port_list lep_port_list;
 
-/* List serial ports into out[0..max); *n gets how many exist (may exceed max). */
-LEP_API int lep_serial_list(lep_port_info *out, size_t max, size_t *n);
+/* Scan now. LEP_OK, LEP_E_ARG (NULL out), LEP_E_IO (out of memory). A
+ * machine without serial ports gives an empty list, not an error. */
+LEP_API int lep_port_list_new(lep_port_list **out);
+LEP_API void lep_port_list_free(lep_port_list *l);
+LEP_API size_t lep_port_list_count(const lep_port_list *l);
+/* The device path (/dev/ttyACM0). */
+LEP_API const char *lep_port_list_path(const lep_port_list *l, size_t i);
+/* A stable path (/dev/serial/by-id/...), or "". */
+LEP_API const char *lep_port_list_by_id(const lep_port_list *l, size_t i);
+/* The USB product/manufacturer when known, or "". */
+LEP_API const char *lep_port_list_description(const lep_port_list *l, size_t i);
+/* USB vendor and product ids, 0 when unknown. */
+LEP_API int lep_port_list_vid(const lep_port_list *l, size_t i);
+LEP_API int lep_port_list_pid(const lep_port_list *l, size_t i);
+/* 1 for a port that is likely a sensor: STM VCP 0483:5740 or FTDI 0403:6001. */
+LEP_API int lep_port_list_likely_sensor(const lep_port_list *l, size_t i);
 
 #ifdef __cplusplus
 }

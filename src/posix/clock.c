@@ -9,6 +9,7 @@
 #include <time.h>
 
 #include "leptrino/serial.h"
+#include "struct_api.h"
 #include "posix_clock.h"
 
 int64_t lep_priv_monotonic_ns(void)

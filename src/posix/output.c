@@ -19,6 +19,7 @@
 #include "leptrino/error.h"
 #include "leptrino/output.h"
 #include "leptrino/serial.h"
+#include "struct_api.h"
 
 #define OUT_BUF 65536u
 /* Longest time a row written to a regular file waits in the buffer (docs/session.md:
@@ -158,7 +159,7 @@ static int new_writer(int fd, bool own, const lep_output_options *o, lep_output 
     return LEP_OK;
 }
 
-int lep_output_open_fd(int fd, const lep_output_options *o, lep_output **out, char *err,
+int lep_output_open_fd_opts(int fd, const lep_output_options *o, lep_output **out, char *err,
                        size_t errlen)
 {
     if (out != NULL)
@@ -170,7 +171,7 @@ int lep_output_open_fd(int fd, const lep_output_options *o, lep_output **out, ch
     return new_writer(fd, false, o, out, err, errlen);
 }
 
-int lep_output_open(const char *path, const lep_output_options *o, lep_output **out, char *err,
+int lep_output_open_opts(const char *path, const lep_output_options *o, lep_output **out, char *err,
                     size_t errlen)
 {
     int fd, flags, rc;
@@ -318,7 +319,7 @@ static void write_header(lep_output *w)
         const char *js = s->meta;
         char local[OUT_META];
         if (s->session != NULL) {
-            lep_session_metadata m;
+            lep_session_meta m;
             size_t len = 0;
             lep_session_get_metadata(s->session, &m);
             s->start_mono = m.start_mono;
@@ -521,7 +522,7 @@ static void write_event(lep_output *w, const out_sensor *s, const lep_session_ev
     }
 }
 
-int lep_output_write(lep_output *w, int sensor, const lep_session_batch *b, size_t from,
+int lep_output_write_batch(lep_output *w, int sensor, const lep_session_batch *b, size_t from,
                      const lep_session_event *ev, size_t nev)
 {
     unsigned c;

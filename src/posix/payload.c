@@ -6,6 +6,7 @@
 #include "errmsg.h"
 #include "leptrino/error.h"
 #include "leptrino/payload.h"
+#include "struct_api.h"
 
 static void cross(const double a[3], const double b[3], double out[3])
 {
@@ -31,7 +32,7 @@ static int finite_all(const double *v, size_t n)
     return 1;
 }
 
-int lep_payload_wrench(const lep_payload *p, const double gravity[3], double wrench[LEP_AXES])
+int lep_payload_wrench_p(const lep_payload *p, const double gravity[3], double wrench[LEP_AXES])
 {
     double f[3], m[3];
     int k;
@@ -127,7 +128,7 @@ static int find_non_finite(const double *gravity, const double *wrench, size_t n
     return 0;
 }
 
-int lep_payload_identify(const double *gravity, const double *wrench, size_t n,
+int lep_payload_identify_fit(const double *gravity, const double *wrench, size_t n,
                          lep_payload_fit *out, char *err, size_t errlen)
 {
     double gm[3] = { 0 }, fm[3] = { 0 }, mm[3] = { 0 };
@@ -246,7 +247,7 @@ int lep_payload_identify(const double *gravity, const double *wrench, size_t n,
             fit.residual[k] = 0.0;
         for (i = 0; i < n; i++) {
             double model[LEP_AXES];
-            (void)lep_payload_wrench(&fit.payload, &gravity[i * 3], model);
+            (void)lep_payload_wrench_p(&fit.payload, &gravity[i * 3], model);
             for (k = 0; k < LEP_AXES; k++) {
                 double r = wrench[i * LEP_AXES + (size_t)k] - model[k] - bias[k];
                 fit.residual[k] += r * r;

@@ -17,6 +17,7 @@
 #include "errmsg.h"
 #include "leptrino/error.h"
 #include "leptrino/payload.h"
+#include "struct_api.h"
 
 #define META_PREFIX "# leptrino-metadata: "
 #define MAX_COLS 64

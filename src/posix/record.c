@@ -5,6 +5,7 @@
 
 #include "leptrino/error.h"
 #include "leptrino/serial.h"
+#include "struct_api.h"
 
 /* Samples taken from the client per lep_client_next_samples call. */
 #define LEP_RECORD_CHUNK 64u
@@ -32,7 +33,7 @@ static void record_store(lep_record_batch *b, const lep_rated *rated, const lep_
     b->n = i + 1u;
 }
 
-int lep_record_fill(lep_client *c, const lep_rated *rated, lep_record_batch *b, double until_s,
+int lep_record_fill_batch(lep_client *c, const lep_rated *rated, lep_record_batch *b, double until_s,
                     int timeout_ms)
 {
     lep_sample chunk[LEP_RECORD_CHUNK];

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "leptrino/error.h"
+#include "struct_api.h"
 
 #define NS_PER_S 1000000000LL
 /* The stamp's seconds are an int32 (builtin_interfaces/Time). */
@@ -67,7 +68,7 @@ static void write_one(uint8_t *p, const uint8_t *head, size_t hlen, const double
         p = put_f64(p, v[k]);
 }
 
-int lep_ros_wrench_cdr(const lep_session_batch *b, size_t from, size_t n, const lep_rated *rated,
+int lep_ros_wrench_cdr_batch(const lep_session_batch *b, size_t from, size_t n, const lep_rated *rated,
                        const char *frame_id, int64_t *last_ns, uint8_t *wrench, uint8_t *wrench_raw,
                        size_t cap, int64_t *stamp_ns)
 {

@@ -28,6 +28,7 @@
 #include "errmsg.h"
 #include "leptrino/error.h"
 #include "leptrino/serial.h"
+#include "struct_api.h"
 #include "fd_write.h"
 #include "posix_clock.h"
 
@@ -430,7 +431,7 @@ int lep_serial_client_init(lep_client *c, lep_serial *s)
     return rc == LEP_OK ? lep_client_set_rx(c, &s->rx) : rc;
 }
 
-void lep_serial_get_info(const lep_serial *s, lep_serial_info *info)
+void lep_serial_get_latency_info(const lep_serial *s, lep_serial_info *info)
 {
     if (info == NULL)
         return;

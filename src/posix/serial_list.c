@@ -15,6 +15,7 @@
 
 #include "leptrino/error.h"
 #include "leptrino/serial.h"
+#include "struct_api.h"
 #include "serial_list.h"
 
 static void copy_str(char *dst, size_t cap, const char *src)

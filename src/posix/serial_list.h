@@ -5,6 +5,7 @@
 #include <stddef.h>
 
 #include "leptrino/serial.h"
+#include "struct_api.h"
 
 typedef struct lep_serial_roots {
     const char *sys_class_tty; /* /sys/class/tty */

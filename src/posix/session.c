@@ -15,6 +15,7 @@
 
 #include "errmsg.h"
 #include "leptrino/error.h"
+#include "options_priv.h"
 #include "session_priv.h"
 
 void lep_session_options_init(lep_session_options *o)
@@ -52,6 +53,11 @@ static int check_options(const lep_session_options *o, char *err, size_t errlen)
         lep_priv_set_err(err, errlen, "session: port path longer than 255 bytes");
         return LEP_E_ARG;
     }
+    return lep_priv_session_options_check(o, err, errlen);
+}
+
+int lep_priv_session_options_check(const lep_session_options *o, char *err, size_t errlen)
+{
     if (o->timeout_ms <= 0 || o->data_timeout_ms <= 0 || o->sync_quiet_ms < 0) {
         lep_priv_set_err(err, errlen,
                          "session: timeout_ms and data_timeout_ms must be > 0, sync_quiet_ms >= 0");
@@ -133,7 +139,7 @@ static int read_identity(lep_session *s, char *err, size_t errlen)
     return LEP_OK;
 }
 
-int lep_session_open(const lep_session_options *o, lep_session **out, char *err, size_t errlen)
+int lep_session_open_so(const lep_session_options *o, lep_session **out, char *err, size_t errlen)
 {
     lep_session *s;
     int rc;
@@ -179,7 +185,7 @@ int lep_session_open(const lep_session_options *o, lep_session **out, char *err,
                      (long)getpid(), (unsigned long)(uintptr_t)s);
             snprintf(so.link, sizeof so.link, "%s", s->link_buf);
         }
-        rc = lep_sim_start(&so, &s->sim, err, errlen);
+        rc = lep_sim_start_so(&so, &s->sim, err, errlen);
         if (rc != LEP_OK) {
             s->sim = NULL;
             lep_session_close(s);
@@ -364,7 +370,7 @@ int lep_session_fd(const lep_session *s)
     return s != NULL && s->conn == CONN_UP ? lep_serial_fd(s->serial) : -1;
 }
 
-bool lep_session_streaming(const lep_session *s)
+int lep_session_streaming(const lep_session *s)
 {
-    return s != NULL && s->streaming;
+    return s != NULL && s->streaming ? 1 : 0;
 }

@@ -1,7 +1,7 @@
 /* Host session, the event queue: events wait here until
  * lep_session_next_event takes them, and until the rows before their sample
  * are returned (a read may process more rows than its batch takes); a full
- * queue drops its oldest and counts it (lep_session_health.events_dropped). */
+ * queue drops its oldest and counts it (lep_session_health_info.events_dropped). */
 #include <stdint.h>
 #include <string.h>
 
@@ -59,7 +59,7 @@ bool lep_priv_events_pop(session_events *q, lep_session_event *ev)
     return true;
 }
 
-bool lep_session_next_event(lep_session *s, lep_session_event *ev)
+bool lep_session_pop_event(lep_session *s, lep_session_event *ev)
 {
     bool got;
     if (s == NULL || ev == NULL)

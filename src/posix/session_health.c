@@ -29,7 +29,7 @@ void lep_priv_health_client(session_health_state *hs, const lep_client_stats *st
 
 void lep_priv_health_sample(session_health_state *hs, double t)
 {
-    lep_session_health *h = &hs->h;
+    lep_session_health_info *h = &hs->h;
     h->received++;
     if (h->received == 1) {
         hs->first_t = t;
@@ -73,7 +73,7 @@ void lep_priv_health_reconnected(session_health_state *hs, const lep_client_stat
     hs->h.reconnects++;
 }
 
-void lep_session_get_health(lep_session *s, lep_session_health *out)
+void lep_session_get_health(lep_session *s, lep_session_health_info *out)
 {
     if (out == NULL)
         return;

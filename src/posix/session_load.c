@@ -11,6 +11,7 @@
 
 #include "errmsg.h"
 #include "leptrino/error.h"
+#include "struct_api.h"
 #include "session_priv.h"
 
 /* A limit episode ends when every axis is back within this share of its limit. */
@@ -34,7 +35,7 @@ int lep_priv_load_check(const lep_session_options *o, char *err, size_t errlen)
 {
     double w[LEP_AXES];
     int bad = 0;
-    if (lep_payload_wrench(&o->payload, o->gravity, w) != LEP_OK) {
+    if (lep_payload_wrench_p(&o->payload, o->gravity, w) != LEP_OK) {
         lep_priv_set_err(err, errlen,
                          "session: payload (mass %g kg, com %g %g %g m) or gravity (%g %g %g): "
                          "a mass >= 0 and finite numbers expected",
@@ -56,7 +57,7 @@ void lep_priv_load_init(session_load *l, const lep_session_options *o)
     l->payload = o->payload;
     memcpy(l->gravity, o->gravity, sizeof l->gravity);
     memcpy(l->limit, o->limit, sizeof l->limit);
-    (void)lep_payload_wrench(&l->payload, l->gravity, l->wrench); /* checked at open */
+    (void)lep_payload_wrench_p(&l->payload, l->gravity, l->wrench); /* checked at open */
 }
 
 void lep_priv_load_start(session_load *l)
@@ -145,7 +146,7 @@ int lep_session_set_payload(lep_session *s, const lep_payload *p)
     if (p == NULL)
         p = &none;
     pthread_mutex_lock(&s->mu);
-    if (lep_payload_wrench(p, s->load.gravity, w) != LEP_OK) {
+    if (lep_payload_wrench_p(p, s->load.gravity, w) != LEP_OK) {
         pthread_mutex_unlock(&s->mu);
         return LEP_E_ARG;
     }
@@ -161,7 +162,7 @@ int lep_session_set_gravity(lep_session *s, const double gravity[3])
     if (s == NULL || gravity == NULL)
         return LEP_E_ARG;
     pthread_mutex_lock(&s->mu);
-    if (lep_payload_wrench(&s->load.payload, gravity, w) != LEP_OK) {
+    if (lep_payload_wrench_p(&s->load.payload, gravity, w) != LEP_OK) {
         pthread_mutex_unlock(&s->mu);
         return LEP_E_ARG;
     }

@@ -29,7 +29,7 @@ static void copy_str(char *dst, size_t cap, const char *src)
     dst[n] = '\0';
 }
 
-void lep_session_get_metadata(lep_session *s, lep_session_metadata *out)
+void lep_session_get_metadata(lep_session *s, lep_session_meta *out)
 {
     if (out == NULL)
         return;
@@ -168,7 +168,7 @@ int lep_session_metadata_json(lep_session *s, char *buf, size_t cap, size_t *len
 {
     static const char *const rated_names[LEP_AXES] = { "fx_N",  "fy_N",  "fz_N",
                                                        "mx_Nm", "my_Nm", "mz_Nm" };
-    lep_session_metadata m;
+    lep_session_meta m;
     jbuf j;
     char iso[96];
     int k;
@@ -236,12 +236,12 @@ int lep_session_metadata_json(lep_session *s, char *buf, size_t cap, size_t *len
     jput(&j, ",\"port\":");
     jstr(&j, m.port);
     jput(&j, ",\"sim\":%s}", m.sim ? "true" : "false");
+    if (len != NULL)
+        *len = j.len; /* the room needed, also when it did not fit */
     if (j.over) {
         if (cap > 0)
             buf[0] = '\0';
         return LEP_E_BUFFER;
     }
-    if (len != NULL)
-        *len = j.len;
     return LEP_OK;
 }

@@ -46,7 +46,7 @@ void lep_priv_session_disconnect(lep_session *s)
     s->conn = CONN_DOWN;
 }
 
-int lep_session_serial_info(const lep_session *s, lep_serial_info *out)
+int lep_session_get_serial_info(const lep_session *s, lep_serial_info *out)
 {
     if (out != NULL)
         memset(out, 0, sizeof *out);
@@ -54,7 +54,7 @@ int lep_session_serial_info(const lep_session *s, lep_serial_info *out)
         return LEP_E_ARG;
     if (s->conn != CONN_UP)
         return LEP_E_DISCONNECTED;
-    lep_serial_get_info(s->serial, out);
+    lep_serial_get_latency_info(s->serial, out);
     return LEP_OK;
 }
 

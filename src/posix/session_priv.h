@@ -43,6 +43,7 @@
 #include "leptrino/serial.h"
 #include "leptrino/session.h"
 #include "leptrino/sim.h"
+#include "struct_api.h"
 
 /* Bytes taken from the port per read: 16 KiB is 0.55 s of a 1.2 kHz stream,
  * so a latency budget of up to half a second needs one read per wake-up. */
@@ -71,7 +72,7 @@
 /* How often a vanished port is looked for while reconnecting. */
 #define SESSION_WATCH_S 0.02
 /* Events kept until lep_session_next_event takes them; beyond, the oldest go
- * (counted in lep_session_health.events_dropped). */
+ * (counted in lep_session_health_info.events_dropped). */
 #define SESSION_EVENTS 1024u
 /* A wall-clock step smaller than this is measurement jitter, not a step. */
 #define SESSION_UTC_STEP_S 1e-3
@@ -103,7 +104,7 @@ typedef struct session_events {
 
 /* session_health.c: [mu] the health counters and what they are computed from. */
 typedef struct session_health_state {
-    lep_session_health h; /* h.delivered: rows returned by lep_session_read */
+    lep_session_health_info h; /* h.delivered: rows returned by lep_session_read */
     uint64_t processed;   /* rows processed: the next row's number (events' sample) */
     double first_t;
     double window_t;

@@ -213,12 +213,13 @@ static void tare_finish(lep_session *s, double t, uint64_t sample)
     tare_event(s, t, sample);
 }
 
-int lep_session_tare(lep_session *s, unsigned n, double duration_s)
+int lep_session_tare(lep_session *s, int samples, double duration_s)
 {
-    if (s == NULL || !isfinite(duration_s) || duration_s < 0.0 || (n == 0 && duration_s <= 0.0))
+    if (s == NULL || samples < 0 || !isfinite(duration_s) || duration_s < 0.0 ||
+        (samples == 0 && duration_s <= 0.0))
         return LEP_E_ARG;
     pthread_mutex_lock(&s->mu);
-    begin_tare(s, n, n > 0 ? 0.0 : duration_s, false);
+    begin_tare(s, (unsigned)samples, samples > 0 ? 0.0 : duration_s, false);
     pthread_mutex_unlock(&s->mu);
     return LEP_OK;
 }
@@ -255,31 +256,31 @@ int lep_session_set_tare(lep_session *s, const double offset[LEP_AXES])
     return LEP_OK;
 }
 
-bool lep_session_get_tare(lep_session *s, double offset[LEP_AXES])
+int lep_session_get_tare(lep_session *s, double offset[LEP_AXES])
 {
     bool tared;
     if (s == NULL) {
         if (offset != NULL)
             memset(offset, 0, sizeof(double) * LEP_AXES);
-        return false;
+        return LEP_E_ARG;
     }
     pthread_mutex_lock(&s->mu);
     if (offset != NULL)
         memcpy(offset, s->proc.tare, sizeof s->proc.tare);
     tared = s->proc.tared;
     pthread_mutex_unlock(&s->mu);
-    return tared;
+    return tared ? 1 : 0;
 }
 
-bool lep_session_taring(lep_session *s)
+int lep_session_taring(lep_session *s)
 {
     bool taring;
     if (s == NULL)
-        return false;
+        return 0;
     pthread_mutex_lock(&s->mu);
     taring = s->proc.taring;
     pthread_mutex_unlock(&s->mu);
-    return taring;
+    return taring ? 1 : 0;
 }
 
 /* ---- one sample ---- */

@@ -183,7 +183,7 @@ static int read_one(lep_session *s, lep_session_batch *b)
  * another thread is seen (a latency budget lengthens it, see below). */
 #define GUARD_SLICE_MS 50
 
-int lep_session_read(lep_session *s, lep_session_batch *b, int timeout_ms)
+int lep_session_read_batch(lep_session *s, lep_session_batch *b, int timeout_ms)
 {
     double deadline;
     int rc, slice_ms;
@@ -213,7 +213,7 @@ int lep_session_read(lep_session *s, lep_session_batch *b, int timeout_ms)
     return rc;
 }
 
-int lep_session_read_one(lep_session *s, lep_session_batch *b)
+int lep_session_read_one_batch(lep_session *s, lep_session_batch *b)
 {
     int rc;
     if (s == NULL || b == NULL || b->n >= b->cap)

@@ -17,7 +17,7 @@
 #include "posix_clock.h"
 #include "sim_priv.h"
 
-int lep_sim_start(const lep_sim_options *o, lep_sim **out, char *err, size_t errlen)
+int lep_sim_start_so(const lep_sim_options *o, lep_sim **out, char *err, size_t errlen)
 {
     lep_sim_options defaults;
     lep_sim *s;
@@ -51,7 +51,7 @@ int lep_sim_start(const lep_sim_options *o, lep_sim **out, char *err, size_t err
     s->link = s->opt.link;
     s->period_ns = NS_PER_S / o->rate_hz;
     s->rng = o->seed ^ 0x5EEDF00DCAFEBEEFu;
-    (void)lep_sim_model_rated(s->opt.model, &s->rated);
+    (void)lep_sim_model_rated_f(s->opt.model, &s->rated);
     if (pthread_mutex_init(&s->lock, NULL) != 0) {
         free(s);
         lep_priv_set_err(err, errlen, "cannot create a mutex");
@@ -107,7 +107,7 @@ int lep_sim_start(const lep_sim_options *o, lep_sim **out, char *err, size_t err
     return LEP_OK;
 }
 
-int lep_sim_stream_sample(const lep_sim *s, uint64_t k, uint8_t filter, lep_sample *out)
+int lep_sim_sample_at(const lep_sim *s, uint64_t k, uint8_t filter, lep_sample *out)
 {
     if (s == NULL || out == NULL || filter > LEP_FILTER_MAX)
         return LEP_E_ARG;
@@ -196,7 +196,7 @@ int lep_sim_trace_writes(lep_sim *s, const char *path, char *err, size_t errlen)
     return LEP_OK;
 }
 
-void lep_sim_get_stats(lep_sim *s, lep_sim_stats *out)
+void lep_sim_get_stats(lep_sim *s, lep_sim_counters *out)
 {
     if (out == NULL)
         return;

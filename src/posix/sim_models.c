@@ -3,6 +3,7 @@
 
 #include "leptrino/error.h"
 #include "leptrino/sim.h"
+#include "struct_api.h"
 
 struct preset {
     const char *name;
@@ -25,7 +26,7 @@ const char *const *lep_sim_models(void)
     return names;
 }
 
-int lep_sim_model_rated(const char *model, lep_rated *out)
+int lep_sim_model_rated_f(const char *model, lep_rated *out)
 {
     size_t i;
     if (model == NULL || out == NULL)

@@ -29,6 +29,7 @@
 #include "leptrino/device.h"
 #include "leptrino/frame.h"
 #include "leptrino/sim.h"
+#include "struct_api.h"
 #include "sim_filter.h"
 #include "sim_signal.h"
 
@@ -53,7 +54,7 @@ struct lep_sim {
     int req_hold_ms;          /* -1: none */
     lep_sim_trace *req_trace; /* lep_sim_trace_writes: handed to the serving thread */
     bool trace_requested;     /* lep_sim_trace_writes was called (once only) */
-    lep_sim_stats stats;
+    lep_sim_counters stats;
     int wake[2];
     pthread_t thread;
     bool thread_started;
@@ -71,7 +72,7 @@ struct lep_sim {
     double period_ns;
 
     /* ---- owned by the serving thread ---- */
-    lep_sim_stats st; /* working copy, published under lock (every file counts in it) */
+    lep_sim_counters st; /* working copy, published under lock (every file counts in it) */
     /* sim_schedule.c */
     lep_sim_fir_state fir_state; /* the stream's filter inputs */
     uint8_t fir_code;            /* the code fir_state was filled for */

@@ -11,6 +11,7 @@
 #include "errmsg.h"
 #include "leptrino/error.h"
 #include "leptrino/payload.h"
+#include "struct_api.h"
 #include "sim_signal.h"
 
 #define TWO_PI 6.283185307179586
@@ -59,7 +60,7 @@ int lep_priv_signal_init(lep_sim_signal *g, const lep_sim_options *o, const lep_
         double w[LEP_AXES];
         p.mass_kg = o->payload[0];
         memcpy(p.com_m, &o->payload[1], sizeof p.com_m);
-        if (lep_payload_wrench(&p, o->gravity, w) != LEP_OK) {
+        if (lep_payload_wrench_p(&p, o->gravity, w) != LEP_OK) {
             lep_priv_set_err(err, errlen, "payload or gravity: not finite, or a negative mass");
             return LEP_E_ARG; /* lep_sim_options_check refuses it first */
         }

@@ -7,6 +7,7 @@
 
 #include "leptrino/message.h"
 #include "leptrino/sim.h"
+#include "struct_api.h"
 
 /* splitmix64: a small seedable generator (no rand(), no global state). */
 uint64_t lep_priv_splitmix64(uint64_t *state);

@@ -16,6 +16,7 @@
 
 #include <leptrino/leptrino.h>
 #include <leptrino/sim.h>
+#include "struct_api.h"
 
 int main(int argc, char **argv)
 {
@@ -37,7 +38,7 @@ int main(int argc, char **argv)
             return 2;
         }
     }
-    if (lep_sim_start(&o, &sim, err, sizeof err) != LEP_OK) {
+    if (lep_sim_start_so(&o, &sim, err, sizeof err) != LEP_OK) {
         fprintf(stderr, "lep_cli_sim: %s\n", err);
         return 1;
     }
@@ -46,7 +47,7 @@ int main(int argc, char **argv)
     while (fgets(line, sizeof line, stdin) != NULL) {
         line[strcspn(line, "\r\n")] = '\0';
         if (strcmp(line, "stats") == 0) {
-            lep_sim_stats st;
+            lep_sim_counters st;
             lep_sim_get_stats(sim, &st);
             printf("streaming=%d samples=%llu filter=%u pending=%u commands=%llu hangups=%llu\n",
                    st.streaming ? 1 : 0, (unsigned long long)st.samples_sent, (unsigned)st.filter,

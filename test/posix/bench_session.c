@@ -22,6 +22,7 @@
 #include "leptrino/error.h"
 #include "leptrino/serial.h"
 #include "leptrino/session.h"
+#include "struct_api.h"
 
 #define CAP 4096u
 
@@ -48,7 +49,7 @@ int main(int argc, char **argv)
     lep_session_options o;
     lep_session *s;
     lep_session_batch b;
-    lep_session_health h;
+    lep_session_health_info h;
     struct rusage r0, r1;
     char err[256];
     double seconds = 10.0, t0, cpu;
@@ -74,7 +75,7 @@ int main(int argc, char **argv)
             return 2;
         }
     }
-    rc = lep_session_open(&o, &s, err, sizeof err);
+    rc = lep_session_open_so(&o, &s, err, sizeof err);
     if (rc != LEP_OK) {
         fprintf(stderr, "bench_session: %s\n", err);
         return 1;
@@ -94,7 +95,7 @@ int main(int argc, char **argv)
     t0 = lep_monotonic_seconds();
     while (lep_monotonic_seconds() - t0 < seconds) {
         b.n = 0;
-        rc = lep_session_read(s, &b, 1000);
+        rc = lep_session_read_batch(s, &b, 1000);
         samples += b.n;
         if (rc != LEP_OK && rc != LEP_E_TIMEOUT)
             break;

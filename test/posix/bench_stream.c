@@ -11,6 +11,7 @@
 #include "leptrino/process.h"
 #include "leptrino/serial.h"
 #include "leptrino/sim.h"
+#include "struct_api.h"
 
 /* Counts what the client asks of the port. */
 struct counting {
@@ -55,7 +56,7 @@ int main(int argc, char **argv)
     struct counting k = { { 0 }, 0, 0, 0, 0 };
     lep_io io;
     lep_sample smp;
-    lep_sim_stats st;
+    lep_sim_counters st;
     char err[256];
     unsigned long n = 0, gaps = 0;
     uint16_t expect = 0;
@@ -64,7 +65,7 @@ int main(int argc, char **argv)
 
     lep_sim_options_init(&o);
     o.rate_hz = rate;
-    if (lep_sim_start(&o, &sim, err, sizeof err) != LEP_OK ||
+    if (lep_sim_start_so(&o, &sim, err, sizeof err) != LEP_OK ||
         lep_serial_open(lep_sim_port(sim), &port, err, sizeof err) != LEP_OK) {
         fprintf(stderr, "bench_stream: %s\n", err);
         return 1;

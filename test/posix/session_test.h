@@ -11,6 +11,7 @@
 #include "leptrino/error.h"
 #include "leptrino/session.h"
 #include "leptrino/sim.h"
+#include "struct_api.h"
 #include "unity.h"
 
 typedef struct st_batch {
@@ -95,7 +96,7 @@ static lep_session *open_sim(lep_session_options *o, const lep_session_options *
     else if (in != o)
         *o = *in;
     o->use_sim = true;
-    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_session_open(o, &s, err, sizeof err), err);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_session_open_so(o, &s, err, sizeof err), err);
     TEST_ASSERT_NOT_NULL(s);
     return s;
 }
@@ -113,10 +114,10 @@ static inline lep_session *open_on_port(lep_sim **sim, const lep_sim_options *so
         lep_sim_options_init(&d);
         so = &d;
     }
-    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_sim_start(so, sim, err, sizeof err), err);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_sim_start_so(so, sim, err, sizeof err), err);
     o->use_sim = false;
     o->port = lep_sim_port(*sim);
-    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_session_open(o, &s, err, sizeof err), err);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_session_open_so(o, &s, err, sizeof err), err);
     return s;
 }
 

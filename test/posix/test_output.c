@@ -12,6 +12,7 @@
 
 #include "leptrino/error.h"
 #include "leptrino/output.h"
+#include "struct_api.h"
 #include "unity.h"
 
 #define META "{\"model\":\"M\",\"serial\":\"1\"}"
@@ -77,7 +78,7 @@ static lep_output *open_with(int format, int time, unsigned columns, double t0)
     o.time = time;
     o.columns = columns;
     o.t0_mono = t0;
-    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_output_open(path, &o, &w, err, sizeof err), err);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_output_open_opts(path, &o, &w, err, sizeof err), err);
     return w;
 }
 
@@ -85,7 +86,7 @@ static void test_csv_default_columns(void)
 {
     lep_output *w = open_with(LEP_OUTPUT_CSV, LEP_TIME_REL, LEP_COL_DEFAULT, 0.0);
     TEST_ASSERT_EQUAL_INT(0, lep_output_add_sensor(w, NULL, META, 100.0));
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_output_write(w, 0, &batch, 0, NULL, 0));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_output_write_batch(w, 0, &batch, 0, NULL, 0));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_output_close(w));
     TEST_ASSERT_EQUAL_STRING(
         "# leptrino-metadata: " META "\n"
@@ -103,7 +104,7 @@ static void test_csv_all_columns_mono_time(void)
                   LEP_COL_RAW | LEP_COL_ZEROED | LEP_COL_STATUS | LEP_COL_FLAGS | LEP_COL_SEQ, 0.0);
     batch.n = 2;
     TEST_ASSERT_EQUAL_INT(0, lep_output_add_sensor(w, NULL, META, 100.0));
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_output_write(w, 0, &batch, 0, NULL, 0));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_output_write_batch(w, 0, &batch, 0, NULL, 0));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_output_close(w));
     TEST_ASSERT_EQUAL_STRING(
         "# leptrino-metadata: " META "\n"
@@ -140,7 +141,7 @@ static void test_jsonl_utc_with_events(void)
     ev[2].t_utc = 1700000001.0;
     ev[2].error = LEP_E_TIMEOUT;
     TEST_ASSERT_EQUAL_INT(0, lep_output_add_sensor(w, NULL, META, 100.0));
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_output_write(w, 0, &batch, 0, ev, 3));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_output_write_batch(w, 0, &batch, 0, ev, 3));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_output_close(w));
     TEST_ASSERT_EQUAL_STRING(
         "{\"metadata\":" META "}\n"
@@ -181,8 +182,8 @@ static void test_csv_events_and_two_sensors_on_one_time_base(void)
     TEST_ASSERT_EQUAL_INT(0, lep_output_add_sensor(w, "left", META, 100.0));
     TEST_ASSERT_EQUAL_INT(1, lep_output_add_sensor(w, "right", "{}", 100.1));
     b2.n = 2;
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_output_write(w, 0, &b2, 0, &ev[0], 1));
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_output_write(w, 1, &b2, 1, &ev[1], 1));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_output_write_batch(w, 0, &b2, 0, &ev[0], 1));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_output_write_batch(w, 1, &b2, 1, &ev[1], 1));
     TEST_ASSERT_EQUAL_INT(LEP_E_STATE, lep_output_add_sensor(w, "late", "{}", 0.0));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_output_close(w));
     TEST_ASSERT_EQUAL_STRING(
@@ -207,13 +208,13 @@ static void test_refuses_to_overwrite_and_keeps_the_file(void)
     fputs("someone's data\n", f);
     fclose(f);
     lep_output_options_init(&o);
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_output_open(path, &o, &w, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_output_open_opts(path, &o, &w, err, sizeof err));
     TEST_ASSERT_NULL(w);
     TEST_ASSERT_NOT_NULL(strstr(err, "already exists"));
     TEST_ASSERT_NOT_NULL(strstr(err, path));
     TEST_ASSERT_EQUAL_STRING("someone's data\n", slurp(path));
     o.overwrite = true;
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_output_open(path, &o, &w, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_output_open_opts(path, &o, &w, err, sizeof err));
     TEST_ASSERT_EQUAL_INT(0, lep_output_add_sensor(w, NULL, "{}", 0.0));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_output_close(w));
     TEST_ASSERT_EQUAL_STRING(
@@ -227,20 +228,20 @@ static void test_bad_arguments(void)
     char err[256] = "", missing[160];
     lep_output_options_init(&o);
     snprintf(missing, sizeof missing, "%s/no/such/file.csv", dir);
-    TEST_ASSERT_EQUAL_INT(LEP_E_NOT_FOUND, lep_output_open(missing, &o, &w, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(LEP_E_NOT_FOUND, lep_output_open_opts(missing, &o, &w, err, sizeof err));
     TEST_ASSERT_NOT_NULL(strstr(err, missing));
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_output_open(dir, &o, &w, err, sizeof err));
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_output_open_fd(-1, &o, &w, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_output_open_opts(dir, &o, &w, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_output_open_fd_opts(-1, &o, &w, err, sizeof err));
     o.format = 7;
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_output_open(path, &o, &w, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_output_open_opts(path, &o, &w, err, sizeof err));
     TEST_ASSERT_EQUAL_INT(-1, access(path, F_OK)); /* nothing created for bad options */
     w = open_with(LEP_OUTPUT_CSV, LEP_TIME_REL, LEP_COL_DEFAULT | LEP_COL_SEQ, 0.0);
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_output_add_sensor(w, "a,b", "{}", 0.0));
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_output_add_sensor(w, "x", "not json", 0.0));
     TEST_ASSERT_EQUAL_INT(0, lep_output_add_sensor(w, "x", "{}", 0.0));
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_output_write(w, 1, &batch, 0, NULL, 0));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_output_write_batch(w, 1, &batch, 0, NULL, 0));
     batch.seq = NULL; /* a chosen column without its array */
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_output_write(w, 0, &batch, 0, NULL, 0));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_output_write_batch(w, 0, &batch, 0, NULL, 0));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_output_close(w));
 }
 
@@ -252,10 +253,10 @@ static void test_write_error_is_reported(void)
     int i, rc = LEP_OK;
     TEST_ASSERT_EQUAL_INT(0, pipe(fds));
     close(fds[0]); /* nobody reads: EPIPE (SIGPIPE ignored below) */
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_output_open_fd(fds[1], NULL, &w, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_output_open_fd_opts(fds[1], NULL, &w, err, sizeof err));
     TEST_ASSERT_EQUAL_INT(0, lep_output_add_sensor(w, NULL, "{}", 0.0));
     for (i = 0; i < 3000 && rc == LEP_OK; i++)
-        rc = lep_output_write(w, 0, &batch, 0, NULL, 0);
+        rc = lep_output_write_batch(w, 0, &batch, 0, NULL, 0);
     if (rc == LEP_OK)
         rc = lep_output_flush(w);
     TEST_ASSERT_EQUAL_INT(LEP_E_IO, rc);

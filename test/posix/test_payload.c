@@ -15,6 +15,7 @@
 #include "leptrino/payload.h"
 #include "leptrino/session.h"
 #include "leptrino/sim.h"
+#include "struct_api.h"
 #include "rng.h"
 #include "unity.h"
 
@@ -70,7 +71,7 @@ static void synth(const lep_payload *p, const double fb[3], const double mb[3], 
     size_t i;
     int k;
     for (i = 0; i < n; i++) {
-        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_payload_wrench(p, &g[i * 3], &w[i * 6]));
+        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_payload_wrench_p(p, &g[i * 3], &w[i * 6]));
         for (k = 0; k < 3; k++) {
             w[i * 6 + (size_t)k] += fb[k] + sf * gauss(s);
             w[i * 6 + 3u + (size_t)k] += mb[k] + sm * gauss(s);
@@ -137,7 +138,7 @@ static void test_wrench_is_the_model(void)
 {
     lep_payload p = { 2.0, { 0.1, 0.0, 0.05 } };
     double g[3] = { 0, 0, -G0 }, w[6];
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_payload_wrench(&p, g, w));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_payload_wrench_p(&p, g, w));
     TEST_ASSERT_EQUAL_DOUBLE(0.0, w[0]);
     TEST_ASSERT_EQUAL_DOUBLE(-2.0 * G0, w[2]);
     /* c x F = (0.1, 0, 0.05) x (0, 0, -2g) = (0, 0.2 g, 0) */
@@ -145,16 +146,16 @@ static void test_wrench_is_the_model(void)
     TEST_ASSERT_DOUBLE_WITHIN(1e-12, 0.2 * G0, w[4]);
     TEST_ASSERT_DOUBLE_WITHIN(1e-12, 0.0, w[5]);
     p.mass_kg = -1.0;
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_payload_wrench(&p, g, w));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_payload_wrench_p(&p, g, w));
     p.mass_kg = 1.0;
     g[1] = NAN;
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_payload_wrench(&p, g, w));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_payload_wrench_p(&p, g, w));
     g[1] = 0.0;
     p.com_m[2] = INFINITY;
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_payload_wrench(&p, g, w));
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_payload_wrench(NULL, g, w));
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_payload_wrench(&p, NULL, w));
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_payload_wrench(&p, g, NULL));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_payload_wrench_p(&p, g, w));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_payload_wrench_p(NULL, g, w));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_payload_wrench_p(&p, NULL, w));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_payload_wrench_p(&p, g, NULL));
 }
 
 /* Exact data: the payload and biases come back to rounding. */
@@ -167,7 +168,7 @@ static void test_identify_exact(void)
     uint32_t s = 1;
     int k;
     synth(&p, fb, mb, g, 3, 0.0, 0.0, &s, w);
-    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_payload_identify(g, w, 3, &f, err, sizeof err), err);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_payload_identify_fit(g, w, 3, &f, err, sizeof err), err);
     TEST_ASSERT_DOUBLE_WITHIN(1e-12, p.mass_kg, f.payload.mass_kg);
     for (k = 0; k < 3; k++) {
         TEST_ASSERT_DOUBLE_WITHIN(1e-12, p.com_m[k], f.payload.com_m[k]);
@@ -201,7 +202,7 @@ static void test_identify_noisy_matches_reference(void)
         for (i = 0; i < n; i++)
             random_gravity(&s, &g[i * 3]);
         synth(&p, fb, mb, g, n, sf, sm, &s, w);
-        if (lep_payload_identify(g, w, n, &f, err, sizeof err) != LEP_OK) {
+        if (lep_payload_identify_fit(g, w, n, &f, err, sizeof err) != LEP_OK) {
             /* random poses may be too close to one line: then refused, never wrong */
             TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err, "too few distinct directions"), err);
             continue;
@@ -236,7 +237,7 @@ static void test_identify_four_poses_with_noise(void)
     uint32_t s = 99;
     int k;
     synth(&p, fb, mb, g, 4, 0.03, 0.001, &s, w);
-    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_payload_identify(g, w, 4, &f, err, sizeof err), err);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_payload_identify_fit(g, w, 4, &f, err, sizeof err), err);
     TEST_ASSERT_DOUBLE_WITHIN(0.01 * p.mass_kg, p.mass_kg, f.payload.mass_kg);
     for (k = 0; k < 3; k++)
         TEST_ASSERT_DOUBLE_WITHIN(0.002, p.com_m[k], f.payload.com_m[k]);
@@ -247,7 +248,7 @@ static void expect_refused(const double *g, const double *w, size_t n, int code,
     lep_payload_fit f, before;
     memset(&f, 0x5A, sizeof f);
     before = f;
-    TEST_ASSERT_EQUAL_INT_MESSAGE(code, lep_payload_identify(g, w, n, &f, err, sizeof err), err);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(code, lep_payload_identify_fit(g, w, n, &f, err, sizeof err), err);
     TEST_ASSERT_EQUAL_MEMORY(&before, &f, sizeof f); /* untouched */
     TEST_ASSERT_NULL_MESSAGE(strchr(err, '\n'), err);
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err, needle), err);
@@ -297,7 +298,7 @@ static void test_degenerate_sets_refused(void)
     {
         lep_payload_fit f;
         synth(&p, zero, zero, g, 3, 0.0, 0.0, &s, w);
-        TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_payload_identify(g, w, 3, &f, err, sizeof err),
+        TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_payload_identify_fit(g, w, 3, &f, err, sizeof err),
                                       err);
         TEST_ASSERT_DOUBLE_WITHIN(1e-9, 1.0, f.payload.mass_kg);
         TEST_ASSERT_DOUBLE_WITHIN(1e-9, 0.1, f.payload.com_m[2]);
@@ -327,8 +328,8 @@ static void test_non_finite_and_null_refused(void)
     w[2 * 6 + 5] = 0.0;
     expect_refused(NULL, w, 3, LEP_E_ARG, "no gravity");
     expect_refused(g, NULL, 3, LEP_E_ARG, "no gravity");
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_payload_identify(g, w, 3, NULL, NULL, 0));
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_payload_identify(g, w, 3, &f, NULL, 0));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_payload_identify_fit(g, w, 3, NULL, NULL, 0));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_payload_identify_fit(g, w, 3, &f, NULL, 0));
 }
 
 /* ---- poses from recordings ---- */
@@ -450,10 +451,10 @@ static void record_pose(const char *path, const char *payload, const double g[3]
         lep_rotation_from_rpy(rpy[0], rpy[1], rpy[2], o.rotation);
     if (shift != NULL)
         memcpy(o.shift_m, shift, sizeof o.shift_m);
-    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_session_open(&o, &s, err, sizeof err), err);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_session_open_so(&o, &s, err, sizeof err), err);
     lep_output_options_init(&oo);
     oo.columns = columns;
-    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_output_open(path, &oo, &w, err, sizeof err), err);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_output_open_opts(path, &oo, &w, err, sizeof err), err);
     idx = lep_output_add_session(w, s, NULL);
     TEST_ASSERT_TRUE(idx >= 0);
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
@@ -469,10 +470,10 @@ static void record_pose(const char *path, const char *payload, const double g[3]
         b.raw = raw;
         b.status = status;
         b.flags = flags;
-        rc = lep_session_read(s, &b, 1000);
-        while (nev < 16 && lep_session_next_event(s, &ev[nev]))
+        rc = lep_session_read_batch(s, &b, 1000);
+        while (nev < 16 && lep_session_pop_event(s, &ev[nev]))
             nev++;
-        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_output_write(w, idx, &b, 0, ev, nev));
+        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_output_write_batch(w, idx, &b, 0, ev, nev));
         got += b.n;
         if (rc == LEP_E_END)
             break;
@@ -500,10 +501,10 @@ static void test_sim_reads_the_payload(void)
     TEST_ASSERT_EQUAL_INT(
         LEP_OK, lep_sim_option_set(&o, "payload", "2.5,0.02,-0.01,0.12", err, sizeof err));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_sim_option_set(&o, "gravity", "3,-4,-8", err, sizeof err));
-    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_sim_start(&o, &sim, err, sizeof err), err);
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_sim_model_rated(o.model, &rated));
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_sim_stream_sample(sim, 5, 0, &smp));
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_payload_wrench(&p, g, w));
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_sim_start_so(&o, &sim, err, sizeof err), err);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_sim_model_rated_f(o.model, &rated));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_sim_sample_at(sim, 5, 0, &smp));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_payload_wrench_p(&p, g, w));
     for (k = 0; k < 6; k++) {
         double counts = w[k] / (double)rated.axis[k] * LEP_RAW_FULL_SCALE;
         TEST_ASSERT_DOUBLE_WITHIN(0.5, counts, (double)smp.raw[k]);
@@ -534,7 +535,7 @@ static void test_sim_four_poses_identified(void)
             LEP_OK, lep_payload_pose_read(path, &w[i * 6], &n, err, sizeof err), err);
         TEST_ASSERT_EQUAL_UINT64(600, n);
     }
-    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_payload_identify(g, w, 4, &f, err, sizeof err), err);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_payload_identify_fit(g, w, 4, &f, err, sizeof err), err);
     printf("sim, 4 poses x 600 samples: mass %.5f kg (1.5), com %.5f %.5f %.5f m "
            "(0.01 -0.02 0.08), spread %.3f, residual %.3g N %.3g N m\n",
            f.payload.mass_kg, f.payload.com_m[0], f.payload.com_m[1], f.payload.com_m[2], f.spread,

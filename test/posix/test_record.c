@@ -5,6 +5,7 @@
 #include "leptrino/record.h"
 #include "leptrino/serial.h"
 #include "leptrino/sim.h"
+#include "struct_api.h"
 #include "unity.h"
 
 #define CAP 1000u
@@ -27,7 +28,7 @@ void setUp(void)
     lep_sim_options_init(&o);
     o.overload_every_s = 0.2;
     o.overload_duration_s = 0.05;
-    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_sim_start(&o, &sim, err, sizeof(err)), err);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_sim_start_so(&o, &sim, err, sizeof(err)), err);
     TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK,
                                   lep_serial_open(lep_sim_port(sim), &port, err, sizeof(err)), err);
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_serial_client_init(&client, port));
@@ -50,21 +51,21 @@ void tearDown(void)
 
 static void test_not_streaming_is_a_state_error(void)
 {
-    TEST_ASSERT_EQUAL_INT(LEP_E_STATE, lep_record_fill(&client, &rated, &batch, 0, 100));
+    TEST_ASSERT_EQUAL_INT(LEP_E_STATE, lep_record_fill_batch(&client, &rated, &batch, 0, 100));
     TEST_ASSERT_EQUAL_size_t(0, batch.n);
 }
 
 static void test_bad_arguments(void)
 {
     lep_record_batch b = batch;
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_record_fill(NULL, &rated, &b, 0, 100));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_record_fill_batch(NULL, &rated, &b, 0, 100));
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG,
-                          lep_record_fill(&client, NULL, &b, 0, 100)); /* si needs rated */
+                          lep_record_fill_batch(&client, NULL, &b, 0, 100)); /* si needs rated */
     b.t = NULL;
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_record_fill(&client, &rated, &b, 0, 100));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_record_fill_batch(&client, &rated, &b, 0, 100));
     b = batch;
     b.n = b.cap + 1;
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_record_fill(&client, &rated, &b, 0, 100));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_record_fill_batch(&client, &rated, &b, 0, 100));
 }
 
 static void test_fills_every_column_in_order(void)
@@ -75,10 +76,10 @@ static void test_fills_every_column_in_order(void)
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
     /* Two calls: the second appends where the first stopped. */
     batch.cap = CAP / 2;
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_record_fill(&client, &rated, &batch, 0, 500));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_record_fill_batch(&client, &rated, &batch, 0, 500));
     TEST_ASSERT_EQUAL_size_t(CAP / 2, batch.n);
     batch.cap = CAP;
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_record_fill(&client, &rated, &batch, 0, 500));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_record_fill_batch(&client, &rated, &batch, 0, 500));
     TEST_ASSERT_EQUAL_size_t(CAP, batch.n);
     for (i = 0; i < CAP; i++) {
         if (i > 0) {
@@ -102,7 +103,7 @@ static void test_stops_at_the_deadline(void)
     double start;
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
     start = lep_monotonic_seconds();
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_record_fill(&client, &rated, &batch, start + 0.25, 500));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_record_fill_batch(&client, &rated, &batch, start + 0.25, 500));
     TEST_ASSERT_TRUE(batch.n > 100 && batch.n < CAP);
     TEST_ASSERT_TRUE(lep_monotonic_seconds() - start < 1.0);
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_stop(&client));
@@ -116,11 +117,11 @@ static void test_optional_columns_and_disconnect(void)
     b.t = t;
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
     TEST_ASSERT_EQUAL_INT(LEP_OK,
-                          lep_record_fill(&client, NULL, &b, lep_monotonic_seconds() + 0.1, 500));
+                          lep_record_fill_batch(&client, NULL, &b, lep_monotonic_seconds() + 0.1, 500));
     TEST_ASSERT_TRUE(b.n > 0);
     lep_sim_hangup(sim);
     b.n = 0;
-    TEST_ASSERT_EQUAL_INT(LEP_E_DISCONNECTED, lep_record_fill(&client, NULL, &b, 0, 500));
+    TEST_ASSERT_EQUAL_INT(LEP_E_DISCONNECTED, lep_record_fill_batch(&client, NULL, &b, 0, 500));
 }
 
 int main(void)

@@ -7,6 +7,7 @@
 
 #include "leptrino/error.h"
 #include "leptrino/ros_cdr.h"
+#include "struct_api.h"
 #include "unity.h"
 
 static double t_utc[3] = { 1700000000.25, 1700000000.2499999, 1700000001.0 };
@@ -66,7 +67,7 @@ static void test_bytes(void)
     memset(w, 0xee, sizeof w);
     memset(r, 0xee, sizeof r);
     TEST_ASSERT_EQUAL_INT(
-        LEP_OK, lep_ros_wrench_cdr(&batch, 0, 3, &rated, "left", &last, w, r, sizeof w, st));
+        LEP_OK, lep_ros_wrench_cdr_batch(&batch, 0, 3, &rated, "left", &last, w, r, sizeof w, st));
     /* 1700000000 = 0x6553f100, 250000000 = 0x0ee6b280 */
     TEST_ASSERT_EQUAL_HEX8_ARRAY(want_head, w, 24);
     TEST_ASSERT_EQUAL_HEX8_ARRAY(want_head, r, 24);
@@ -101,7 +102,7 @@ static void test_last_carries_over(void)
     uint8_t w[76];
     int64_t st, last = 1700000000300000000LL; /* a later stamp from the previous batch */
     TEST_ASSERT_EQUAL_INT(
-        LEP_OK, lep_ros_wrench_cdr(&batch, 1, 1, NULL, "left", &last, w, NULL, sizeof w, &st));
+        LEP_OK, lep_ros_wrench_cdr_batch(&batch, 1, 1, NULL, "left", &last, w, NULL, sizeof w, &st));
     TEST_ASSERT_EQUAL_INT64(1700000000300000000LL, st);
     TEST_ASSERT_EQUAL_UINT32(300000000u, u32_at(w + 8));
 }
@@ -111,7 +112,7 @@ static void test_empty_frame_id(void)
     uint8_t w[68];
     int64_t last = 0;
     TEST_ASSERT_EQUAL_INT(
-        LEP_OK, lep_ros_wrench_cdr(&batch, 2, 1, NULL, "", &last, w, NULL, sizeof w, NULL));
+        LEP_OK, lep_ros_wrench_cdr_batch(&batch, 2, 1, NULL, "", &last, w, NULL, sizeof w, NULL));
     TEST_ASSERT_EQUAL_UINT32(1u, u32_at(w + 12)); /* the NUL alone */
     TEST_ASSERT_EQUAL_HEX8(0, w[16]);
     TEST_ASSERT_EQUAL_HEX8(0, w[19]);
@@ -132,35 +133,35 @@ static void test_refusals_write_nothing(void)
     memset(w, 0xee, sizeof w);
     memset(r, 0xee, sizeof r);
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG,
-                          lep_ros_wrench_cdr(NULL, 0, 1, &rated, "a", &last, w, r, sizeof w, st));
+                          lep_ros_wrench_cdr_batch(NULL, 0, 1, &rated, "a", &last, w, r, sizeof w, st));
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG,
-                          lep_ros_wrench_cdr(&batch, 2, 2, &rated, "a", &last, w, r, sizeof w, st));
+                          lep_ros_wrench_cdr_batch(&batch, 2, 2, &rated, "a", &last, w, r, sizeof w, st));
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG,
-                          lep_ros_wrench_cdr(&batch, 4, 0, &rated, "a", &last, w, r, sizeof w, st));
+                          lep_ros_wrench_cdr_batch(&batch, 4, 0, &rated, "a", &last, w, r, sizeof w, st));
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG,
-                          lep_ros_wrench_cdr(&batch, 0, 1, NULL, "a", &last, w, r, sizeof w, st));
+                          lep_ros_wrench_cdr_batch(&batch, 0, 1, NULL, "a", &last, w, r, sizeof w, st));
     TEST_ASSERT_EQUAL_INT(
-        LEP_E_ARG, lep_ros_wrench_cdr(&batch, 0, 1, &rated, NULL, &last, w, r, sizeof w, st));
+        LEP_E_ARG, lep_ros_wrench_cdr_batch(&batch, 0, 1, &rated, NULL, &last, w, r, sizeof w, st));
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG,
-                          lep_ros_wrench_cdr(&batch, 0, 1, &rated, "a", NULL, w, r, sizeof w, st));
+                          lep_ros_wrench_cdr_batch(&batch, 0, 1, &rated, "a", NULL, w, r, sizeof w, st));
     TEST_ASSERT_EQUAL_INT(
-        LEP_E_ARG, lep_ros_wrench_cdr(&batch, 0, 1, &rated, longid, &last, w, r, sizeof w, st));
-    TEST_ASSERT_EQUAL_INT(LEP_E_BUFFER, lep_ros_wrench_cdr(&batch, 0, 3, &rated, "left", &last, w,
+        LEP_E_ARG, lep_ros_wrench_cdr_batch(&batch, 0, 1, &rated, longid, &last, w, r, sizeof w, st));
+    TEST_ASSERT_EQUAL_INT(LEP_E_BUFFER, lep_ros_wrench_cdr_batch(&batch, 0, 3, &rated, "left", &last, w,
                                                            r, 3 * 76 - 1, st));
     batch.si = NULL;
     TEST_ASSERT_EQUAL_INT(
-        LEP_E_ARG, lep_ros_wrench_cdr(&batch, 0, 1, &rated, "a", &last, w, NULL, sizeof w, st));
+        LEP_E_ARG, lep_ros_wrench_cdr_batch(&batch, 0, 1, &rated, "a", &last, w, NULL, sizeof w, st));
     batch.si = si;
     batch.raw = NULL;
     TEST_ASSERT_EQUAL_INT(
-        LEP_E_ARG, lep_ros_wrench_cdr(&batch, 0, 1, &rated, "a", &last, NULL, r, sizeof w, st));
+        LEP_E_ARG, lep_ros_wrench_cdr_batch(&batch, 0, 1, &rated, "a", &last, NULL, r, sizeof w, st));
     batch.raw = raw;
     batch.t_utc = bad_t;
     TEST_ASSERT_EQUAL_INT(LEP_E_VALUE,
-                          lep_ros_wrench_cdr(&batch, 0, 3, &rated, "a", &last, w, r, sizeof w, st));
+                          lep_ros_wrench_cdr_batch(&batch, 0, 3, &rated, "a", &last, w, r, sizeof w, st));
     batch.t_utc = far_t; /* 2^32 s: past int32 seconds */
     TEST_ASSERT_EQUAL_INT(LEP_E_VALUE,
-                          lep_ros_wrench_cdr(&batch, 0, 3, &rated, "a", &last, w, r, sizeof w, st));
+                          lep_ros_wrench_cdr_batch(&batch, 0, 3, &rated, "a", &last, w, r, sizeof w, st));
     for (size_t i = 0; i < sizeof w; i++) {
         TEST_ASSERT_EQUAL_HEX8(0xee, w[i]);
         TEST_ASSERT_EQUAL_HEX8(0xee, r[i]);
@@ -169,7 +170,7 @@ static void test_refusals_write_nothing(void)
     TEST_ASSERT_EQUAL_INT64(9, st[0]);
     batch.t_utc = t_utc;
     TEST_ASSERT_EQUAL_INT(LEP_OK,
-                          lep_ros_wrench_cdr(&batch, 3, 0, &rated, "a", &last, w, r, 0, st));
+                          lep_ros_wrench_cdr_batch(&batch, 3, 0, &rated, "a", &last, w, r, 0, st));
     TEST_ASSERT_EQUAL_INT64(5, last);
 }
 

@@ -13,6 +13,7 @@
 
 #include "leptrino/leptrino.h"
 #include "leptrino/serial.h"
+#include "struct_api.h"
 #include "posix/serial_list.h"
 #include "unity.h"
 
@@ -103,7 +104,7 @@ static void test_bad_args(void)
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_serial_open("", &port, err, sizeof err));
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_serial_open("/dev/null", NULL, NULL, 0));
     lep_serial_close(NULL);
-    lep_serial_get_info(NULL, &info);
+    lep_serial_get_latency_info(NULL, &info);
     TEST_ASSERT_EQUAL_INT(-1, info.ftdi_latency_ms);
     TEST_ASSERT_EQUAL_INT(-1, lep_serial_fd(NULL));
 }
@@ -131,7 +132,7 @@ static void test_raw_bytes_both_ways(void)
     open_port(slave_path);
     TEST_ASSERT_EQUAL_STRING(slave_path, lep_serial_path(port));
     TEST_ASSERT_TRUE(lep_serial_fd(port) >= 0);
-    lep_serial_get_info(port, &info);
+    lep_serial_get_latency_info(port, &info);
     TEST_ASSERT_FALSE(info.low_latency); /* a pty has no such flag */
     TEST_ASSERT_EQUAL_INT(-1, info.ftdi_latency_ms);
     for (i = 0; i < 256; i++)

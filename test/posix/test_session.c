@@ -17,6 +17,7 @@
 #include "leptrino/serial.h"
 #include "leptrino/session.h"
 #include "session_test.h"
+#include "struct_api.h"
 #include "unity.h"
 
 void setUp(void)
@@ -32,20 +33,20 @@ static void test_open_start_read_stop(void)
     lep_session_options o;
     lep_session *s = open_sim(&o, NULL);
     st_batch b;
-    lep_session_health h;
+    lep_session_health_info h;
     size_t i;
     int rc = LEP_OK;
 
     st_batch_init(&b, 600);
     TEST_ASSERT_FALSE(lep_session_streaming(s));
-    TEST_ASSERT_EQUAL_INT(LEP_E_STATE, lep_session_read(s, &b.b, 10));
+    TEST_ASSERT_EQUAL_INT(LEP_E_STATE, lep_session_read_batch(s, &b.b, 10));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
     TEST_ASSERT_EQUAL_INT(LEP_E_STATE, lep_session_start(s));
     TEST_ASSERT_TRUE(lep_session_streaming(s));
     TEST_ASSERT_TRUE(lep_session_fd(s) >= 0);
     TEST_ASSERT_NOT_NULL(lep_session_client(s));
     TEST_ASSERT_NOT_NULL(lep_session_sim(s));
-    while (b.b.n < 600 && (rc = lep_session_read(s, &b.b, 2000)) == LEP_OK) {
+    while (b.b.n < 600 && (rc = lep_session_read_batch(s, &b.b, 2000)) == LEP_OK) {
     }
     TEST_ASSERT_EQUAL_INT(LEP_OK, rc);
     TEST_ASSERT_EQUAL_size_t(600, b.b.n);
@@ -83,7 +84,7 @@ static void test_open_start_read_stop(void)
     TEST_ASSERT_EQUAL_DOUBLE(1200.0, h.nominal_hz);
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_stop(s));
     TEST_ASSERT_FALSE(lep_session_streaming(s));
-    TEST_ASSERT_EQUAL_INT(LEP_E_STATE, lep_session_read(s, &b.b, 10));
+    TEST_ASSERT_EQUAL_INT(LEP_E_STATE, lep_session_read_batch(s, &b.b, 10));
     /* the client answers single commands again once the stream is stopped */
     {
         lep_sample one;
@@ -107,16 +108,16 @@ static void test_count_and_start_tare_are_exact(void)
     s = open_sim(&o, &o);
     st_batch_init(&b, 1000);
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
-    while ((rc = lep_session_read(s, &b.b, 2000)) == LEP_OK) {
+    while ((rc = lep_session_read_batch(s, &b.b, 2000)) == LEP_OK) {
     }
     TEST_ASSERT_EQUAL_INT(LEP_E_END, rc);
-    TEST_ASSERT_EQUAL_INT(LEP_E_END, lep_session_read(s, &b.b, 10)); /* and stays there */
+    TEST_ASSERT_EQUAL_INT(LEP_E_END, lep_session_read_batch(s, &b.b, 10)); /* and stays there */
     TEST_ASSERT_EQUAL_size_t(250, b.b.n);
     /* the tare samples (sequence 0..39) are not delivered */
     TEST_ASSERT_EQUAL_UINT16(40, b.seq[0]);
     TEST_ASSERT_EQUAL_UINT16(289, b.seq[249]);
     TEST_ASSERT_TRUE(lep_session_get_tare(s, off));
-    TEST_ASSERT_TRUE(lep_session_next_event(s, &ev));
+    TEST_ASSERT_TRUE(lep_session_pop_event(s, &ev));
     TEST_ASSERT_EQUAL_INT(LEP_EV_TARE, ev.type);
     TEST_ASSERT_EQUAL_UINT64(0, ev.sample);
     for (k = 0; k < LEP_AXES; k++)
@@ -147,7 +148,7 @@ static void test_duration_counts_from_the_first_delivered_sample(void)
     s = open_sim(&o, &o);
     st_batch_init(&b, 2000);
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
-    while ((rc = lep_session_read(s, &b.b, 2000)) == LEP_OK) {
+    while ((rc = lep_session_read_batch(s, &b.b, 2000)) == LEP_OK) {
     }
     TEST_ASSERT_EQUAL_INT(LEP_E_END, rc);
     /* arrival times are reconstructed per period, so half a second of a
@@ -164,7 +165,7 @@ static void test_metadata_and_json(void)
 {
     lep_session_options o;
     lep_session *s;
-    lep_session_metadata m;
+    lep_session_meta m;
     char json[4096], small[16];
     size_t len = 0;
     lep_session_options_init(&o);
@@ -209,33 +210,33 @@ static void test_bad_options_are_refused_with_a_message(void)
     char err[256];
     lep_session_options_init(&o);
     err[0] = '\0';
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_session_open(&o, &s, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_session_open_so(&o, &s, err, sizeof err));
     TEST_ASSERT_NULL(s);
     TEST_ASSERT_NOT_NULL(strstr(err, "no port"));
     o.use_sim = true;
     o.decimate = 0;
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_session_open(&o, &s, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_session_open_so(&o, &s, err, sizeof err));
     TEST_ASSERT_NOT_NULL(strstr(err, "decimate"));
     o.decimate = 1;
     o.lowpass_hz = 1000.0; /* above 0.45 x 1200 Hz */
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_session_open(&o, &s, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_session_open_so(&o, &s, err, sizeof err));
     TEST_ASSERT_NOT_NULL(strstr(err, "lowpass"));
     o.lowpass_hz = -3.0; /* the message names lowpass alone, with the value */
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_session_open(&o, &s, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_session_open_so(&o, &s, err, sizeof err));
     TEST_ASSERT_NOT_NULL(strstr(err, "lowpass_hz -3"));
     TEST_ASSERT_NULL(strstr(err, "duration"));
     o.lowpass_hz = 0.0;
     o.duration_s = -1.0;
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_session_open(&o, &s, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_session_open_so(&o, &s, err, sizeof err));
     TEST_ASSERT_NOT_NULL(strstr(err, "duration_s -1"));
     TEST_ASSERT_NULL(strstr(err, "lowpass"));
     o.duration_s = 0.0;
     o.rotation[0] = 2.0;
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_session_open(&o, &s, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_session_open_so(&o, &s, err, sizeof err));
     TEST_ASSERT_NOT_NULL(strstr(err, "rotation"));
     lep_session_options_init(&o);
     o.port = "/dev/leptrino-no-such-port";
-    TEST_ASSERT_EQUAL_INT(LEP_E_NOT_FOUND, lep_session_open(&o, &s, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(LEP_E_NOT_FOUND, lep_session_open_so(&o, &s, err, sizeof err));
     TEST_ASSERT_NOT_NULL(strstr(err, "/dev/leptrino-no-such-port"));
     TEST_ASSERT_NULL(s);
     lep_session_close(NULL);
@@ -246,7 +247,7 @@ static void test_two_sessions_at_once(void)
     lep_session_options o1, o2;
     lep_session *a, *b;
     st_batch ba, bb;
-    lep_session_health ha, hb;
+    lep_session_health_info ha, hb;
     lep_session_options_init(&o1);
     lep_session_options_init(&o2);
     o1.count = 300;
@@ -261,9 +262,9 @@ static void test_two_sessions_at_once(void)
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(b));
     while (ba.b.n < 300 || bb.b.n < 300) {
         if (ba.b.n < 300)
-            TEST_ASSERT_TRUE(lep_session_read(a, &ba.b, 2000) >= LEP_E_END);
+            TEST_ASSERT_TRUE(lep_session_read_batch(a, &ba.b, 2000) >= LEP_E_END);
         if (bb.b.n < 300)
-            TEST_ASSERT_TRUE(lep_session_read(b, &bb.b, 2000) >= LEP_E_END);
+            TEST_ASSERT_TRUE(lep_session_read_batch(b, &bb.b, 2000) >= LEP_E_END);
     }
     TEST_ASSERT_EQUAL_UINT16(299, ba.seq[299]);
     TEST_ASSERT_EQUAL_UINT16(309, bb.seq[299]);
@@ -296,7 +297,7 @@ static void test_latency_budget_delivers_the_same_samples(void)
         s = open_sim(&o, &o);
         st_batch_init(&b, 700);
         TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
-        while ((rc = lep_session_read(s, &b.b, 2000)) == LEP_OK)
+        while ((rc = lep_session_read_batch(s, &b.b, 2000)) == LEP_OK)
             calls++;
         TEST_ASSERT_EQUAL_INT(LEP_E_END, rc);
         TEST_ASSERT_EQUAL_size_t(700, b.b.n);
@@ -323,8 +324,8 @@ static void *poke(void *arg)
 {
     poker *p = arg;
     double r[9], off[LEP_AXES];
-    lep_session_health h;
-    lep_session_metadata m;
+    lep_session_health_info h;
+    lep_session_meta m;
     char json[4096];
     size_t len;
     lep_rotation_from_rpy(0.1, 0.2, 0.3, r);
@@ -365,14 +366,14 @@ static void test_settings_from_another_thread(void)
     p.s = s;
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
     TEST_ASSERT_EQUAL_INT(0, pthread_create(&th, NULL, poke, &p));
-    while (lep_session_read(s, &b.b, 2000) == LEP_OK) {
+    while (lep_session_read_batch(s, &b.b, 2000) == LEP_OK) {
     }
     st_flag_raise(&p.stop);
     pthread_join(th, NULL);
     TEST_ASSERT_EQUAL_size_t(1200, b.b.n);
     for (i = 1; i < b.b.n; i++) /* nothing lost, nothing stalled */
         TEST_ASSERT_EQUAL_UINT16((uint16_t)(b.seq[i - 1] + 1u), b.seq[i]);
-    while (lep_session_next_event(s, &ev))
+    while (lep_session_pop_event(s, &ev))
         tares += ev.type == LEP_EV_TARE;
     TEST_ASSERT_TRUE(p.calls > 10);
     TEST_ASSERT_TRUE(tares > 0);
@@ -388,7 +389,7 @@ static void test_recording_from_a_session(void)
     lep_session *s;
     lep_output_options oo;
     lep_output *w = NULL;
-    lep_session_metadata m;
+    lep_session_meta m;
     st_batch b;
     char path[64], err[256] = "", line[8192], want[256];
     FILE *f;
@@ -401,15 +402,15 @@ static void test_recording_from_a_session(void)
     (void)unlink(path);
     lep_output_options_init(&oo);
     oo.columns = LEP_COL_RAW | LEP_COL_SI | LEP_COL_SEQ;
-    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_output_open(path, &oo, &w, err, sizeof err), err);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_output_open_opts(path, &oo, &w, err, sizeof err), err);
     TEST_ASSERT_EQUAL_INT(0, lep_output_add_session(w, s, "a"));
     st_batch_init(&b, 16);
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
-    while ((rc = lep_session_read(s, &b.b, 2000)) == LEP_OK) {
+    while ((rc = lep_session_read_batch(s, &b.b, 2000)) == LEP_OK) {
     }
     TEST_ASSERT_EQUAL_INT(LEP_E_END, rc);
     lep_session_get_metadata(s, &m);
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_output_write(w, 0, &b.b, 0, NULL, 0));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_output_write_batch(w, 0, &b.b, 0, NULL, 0));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_output_close(w));
     f = fopen(path, "r");
     TEST_ASSERT_NOT_NULL(f);
@@ -449,15 +450,15 @@ static void test_read_one_uses_the_sessions_processing(void)
     static const double offset[LEP_AXES] = { 100, -50, 25, 10, -10, 5 };
     lep_session_options o;
     lep_session *s = open_sim(&o, NULL);
-    lep_session_metadata m;
-    lep_session_health h;
+    lep_session_meta m;
+    lep_session_health_info h;
     st_batch b;
     double v[LEP_AXES];
     int k;
 
     st_batch_init(&b, 2);
     lep_session_get_metadata(s, &m);
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_read_one(s, &b.b));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_read_one_batch(s, &b.b));
     TEST_ASSERT_EQUAL_size_t(1, b.b.n);
     TEST_ASSERT_TRUE(b.t_mono[0] > 0.0 && b.t_utc[0] > 1e9);
     for (k = 0; k < LEP_AXES; k++) {
@@ -470,7 +471,7 @@ static void test_read_one_uses_the_sessions_processing(void)
     /* a tare and a frame: x' = -y, y' = x, z' = z for forces and moments */
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_set_tare(s, offset));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_set_rotation(s, yaw90, NULL));
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_read_one(s, &b.b));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_read_one_batch(s, &b.b));
     TEST_ASSERT_EQUAL_size_t(2, b.b.n);
     for (k = 0; k < LEP_AXES; k++) {
         double zeroed = (double)b.raw[LEP_AXES + k] - offset[k];
@@ -484,12 +485,12 @@ static void test_read_one_uses_the_sessions_processing(void)
     }
 
     /* a full batch, NULLs; refused while streaming; the health untouched */
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_session_read_one(s, &b.b));
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_session_read_one(s, NULL));
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_session_read_one(NULL, &b.b));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_session_read_one_batch(s, &b.b));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_session_read_one_batch(s, NULL));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_session_read_one_batch(NULL, &b.b));
     b.b.n = 0;
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
-    TEST_ASSERT_EQUAL_INT(LEP_E_STATE, lep_session_read_one(s, &b.b));
+    TEST_ASSERT_EQUAL_INT(LEP_E_STATE, lep_session_read_one_batch(s, &b.b));
     TEST_ASSERT_EQUAL_size_t(0, b.b.n);
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_stop(s));
     lep_session_get_health(s, &h);
@@ -503,7 +504,7 @@ static void test_a_full_event_queue_counts_what_it_drops(void)
 {
     lep_session_options o;
     lep_session *s = open_sim(&o, NULL);
-    lep_session_health h;
+    lep_session_health_info h;
     lep_session_event ev;
     unsigned i, popped = 0;
 
@@ -511,7 +512,7 @@ static void test_a_full_event_queue_counts_what_it_drops(void)
         TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_untare(s)); /* one LEP_EV_TARE each */
     lep_session_get_health(s, &h);
     TEST_ASSERT_EQUAL_UINT64(6, h.events_dropped);
-    while (lep_session_next_event(s, &ev)) {
+    while (lep_session_pop_event(s, &ev)) {
         TEST_ASSERT_EQUAL_INT(LEP_EV_TARE, ev.type);
         popped++;
     }

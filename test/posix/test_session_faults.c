@@ -18,6 +18,7 @@
 #include "leptrino/session.h"
 #include "leptrino/sim.h"
 #include "session_test.h"
+#include "struct_api.h"
 #include "unity.h"
 
 void setUp(void)
@@ -56,7 +57,7 @@ static int read_until(lep_session *s, st_batch *b, size_t want)
 {
     int rc = LEP_OK;
     while (b->b.n < want) {
-        rc = lep_session_read(s, &b->b, 3000);
+        rc = lep_session_read_batch(s, &b->b, 3000);
         if (rc != LEP_OK)
             break;
     }
@@ -87,7 +88,7 @@ static void test_a_stall_shorter_than_the_data_timeout_is_a_gap(void)
     lep_session_options o;
     lep_session *s = open_sim(&o, NULL);
     st_batch b;
-    lep_session_health h;
+    lep_session_health_info h;
     lep_session_event ev;
     size_t holes, i, after = 0;
     bool seen = false;
@@ -104,7 +105,7 @@ static void test_a_stall_shorter_than_the_data_timeout_is_a_gap(void)
     TEST_ASSERT_UINT64_WITHIN(120, 1200, h.lost); /* about one second of samples */
     TEST_ASSERT_TRUE(h.max_gap_s > 0.5);
     TEST_ASSERT_EQUAL_UINT64(0, h.disconnects);
-    while (lep_session_next_event(s, &ev)) {
+    while (lep_session_pop_event(s, &ev)) {
         if (ev.type != LEP_EV_GAP)
             continue;
         seen = true;
@@ -125,7 +126,7 @@ static void test_dropped_samples_are_counted_exactly(void)
     lep_session_options o;
     lep_session *s;
     st_batch b;
-    lep_session_health h;
+    lep_session_health_info h;
     lep_session_event ev;
     size_t holes, events = 0, i;
     uint64_t lost_in_events = 0;
@@ -141,7 +142,7 @@ static void test_dropped_samples_are_counted_exactly(void)
     TEST_ASSERT_TRUE(h.lost > 10);
     TEST_ASSERT_EQUAL_UINT64(missing(&b, &holes), h.lost);
     TEST_ASSERT_EQUAL_UINT64(holes, h.gaps);
-    while (lep_session_next_event(s, &ev))
+    while (lep_session_pop_event(s, &ev))
         if (ev.type == LEP_EV_GAP) {
             events++;
             lost_in_events += ev.lost;
@@ -198,7 +199,7 @@ static void steal_from(bool on_port)
     lep_sim *sim = NULL;
     lep_session *s = NULL;
     st_batch b;
-    lep_session_health h;
+    lep_session_health_info h;
     thief t;
     pthread_t th;
     size_t holes;
@@ -256,7 +257,7 @@ static void test_hangup_without_reconnect_is_reported(void)
     lep_session *s = open_sim(&o, NULL);
     st_batch b;
     lep_session_event ev;
-    lep_session_health h;
+    lep_session_health_info h;
     int rc;
     bool seen = false;
 
@@ -266,8 +267,8 @@ static void test_hangup_without_reconnect_is_reported(void)
     lep_sim_hangup(lep_session_sim(s));
     rc = read_until(s, &b, 4000);
     TEST_ASSERT_EQUAL_INT(LEP_E_DISCONNECTED, rc);
-    TEST_ASSERT_EQUAL_INT(LEP_E_DISCONNECTED, lep_session_read(s, &b.b, 10)); /* and stays */
-    while (lep_session_next_event(s, &ev))
+    TEST_ASSERT_EQUAL_INT(LEP_E_DISCONNECTED, lep_session_read_batch(s, &b.b, 10)); /* and stays */
+    while (lep_session_pop_event(s, &ev))
         if (ev.type == LEP_EV_DISCONNECTED) {
             seen = true;
             TEST_ASSERT_EQUAL_INT(LEP_E_DISCONNECTED, ev.error);
@@ -286,7 +287,7 @@ static void test_hangup_with_reconnect_resumes_and_marks_the_gap(void)
     lep_session *s;
     st_batch b;
     lep_session_event ev;
-    lep_session_health h;
+    lep_session_health_info h;
     size_t i, resumed = 0;
     int order = 0;
     lep_session_options_init(&o);
@@ -311,7 +312,7 @@ static void test_hangup_with_reconnect_resumes_and_marks_the_gap(void)
     TEST_ASSERT_EQUAL_UINT16(0, b.seq[resumed]);
     TEST_ASSERT_TRUE(b.flags[resumed] & LEP_SF_GAP);
     TEST_ASSERT_TRUE(b.t_mono[resumed] - b.t_mono[resumed - 1] > 0.25);
-    while (lep_session_next_event(s, &ev)) {
+    while (lep_session_pop_event(s, &ev)) {
         if (ev.type == LEP_EV_DISCONNECTED) {
             TEST_ASSERT_EQUAL_INT(0, order++);
             TEST_ASSERT_EQUAL_INT(LEP_E_DISCONNECTED, ev.error);
@@ -344,9 +345,9 @@ static void test_data_timeout_without_reconnect(void)
     lep_sim_stall(lep_session_sim(s), 1500);
     /* lost, not "nothing yet": LEP_E_LOST then and on later calls */
     TEST_ASSERT_EQUAL_INT(LEP_E_LOST, read_until(s, &b, 4000));
-    TEST_ASSERT_EQUAL_INT(LEP_E_LOST, lep_session_read(s, &b.b, 10));
-    TEST_ASSERT_EQUAL_INT(LEP_E_LOST, lep_session_read(s, &b.b, 0));
-    while (lep_session_next_event(s, &ev))
+    TEST_ASSERT_EQUAL_INT(LEP_E_LOST, lep_session_read_batch(s, &b.b, 10));
+    TEST_ASSERT_EQUAL_INT(LEP_E_LOST, lep_session_read_batch(s, &b.b, 0));
+    while (lep_session_pop_event(s, &ev))
         if (ev.type == LEP_EV_DISCONNECTED) {
             seen = true;
             TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, ev.error);
@@ -362,7 +363,7 @@ static void test_overload_episodes_are_events(void)
     lep_session *s;
     st_batch b;
     lep_session_event ev;
-    lep_session_health h;
+    lep_session_health_info h;
     size_t i, flagged = 0;
     int begins = 0, ends = 0;
     lep_session_options_init(&o);
@@ -378,7 +379,7 @@ static void test_overload_episodes_are_events(void)
         flagged += over;
     }
     TEST_ASSERT_TRUE(flagged > 0);
-    while (lep_session_next_event(s, &ev)) {
+    while (lep_session_pop_event(s, &ev)) {
         if (ev.type == LEP_EV_OVERLOAD_BEGIN) {
             TEST_ASSERT_EQUAL_INT(begins, ends);
             begins++;
@@ -407,7 +408,7 @@ static void test_a_stall_on_a_port_is_found_from_arrival_times(void)
     lep_session_options o;
     lep_session *s = NULL;
     st_batch b;
-    lep_session_health h;
+    lep_session_health_info h;
     lep_session_event ev;
     bool seen = false;
     size_t i, flagged = 0;
@@ -423,7 +424,7 @@ static void test_a_stall_on_a_port_is_found_from_arrival_times(void)
     lep_session_get_health(s, &h);
     TEST_ASSERT_TRUE(h.gaps >= 1);
     TEST_ASSERT_UINT64_WITHIN(400, 1200, h.lost); /* estimated from arrival times */
-    while (lep_session_next_event(s, &ev))
+    while (lep_session_pop_event(s, &ev))
         if (ev.type == LEP_EV_GAP && ev.lost > 600) {
             seen = true;
             TEST_ASSERT_TRUE(ev.gap_to - ev.gap_from > 0.8);
@@ -456,8 +457,8 @@ static void test_a_reader_behind_by_several_buffers_loses_nothing(void)
     lep_session_options o;
     lep_session *s = NULL;
     st_batch b;
-    lep_session_health h;
-    lep_sim_stats st;
+    lep_session_health_info h;
+    lep_sim_counters st;
     size_t false_gaps = 0;
     uint64_t lost;
 
@@ -505,8 +506,8 @@ static void test_a_sender_running_late_is_not_a_hole(void)
     lep_session_options o;
     lep_session *s = NULL;
     st_batch b;
-    lep_session_health h;
-    lep_sim_stats st;
+    lep_session_health_info h;
+    lep_sim_counters st;
     size_t n0, false_gaps = 0;
     uint64_t lost;
     double t0, silent;
@@ -524,7 +525,7 @@ static void test_a_sender_running_late_is_not_a_hole(void)
         nanosleep(&taken, NULL);
     }
     do /* what was written before the hold */
-        rc = lep_session_read(s, &b.b, 0);
+        rc = lep_session_read_batch(s, &b.b, 0);
     while (rc == LEP_OK && b.b.n < b.b.cap);
     TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, rc);
     n0 = b.b.n;
@@ -569,11 +570,11 @@ static void test_another_sensor_after_a_reconnect_is_refused(void)
     TEST_ASSERT_EQUAL_INT(LEP_OK, read_until(s, &b, 100));
     lep_sim_stop(sim); /* unplugged ... */
     snprintf(so.serial, sizeof so.serial, "%s", "77");
-    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_sim_start(&so, &sim, err, sizeof err), err);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_sim_start_so(&so, &sim, err, sizeof err), err);
     for (i = 0; i < 100 && (rc == LEP_OK || rc == LEP_E_TIMEOUT); i++) /* ... another plugged in */
-        rc = lep_session_read(s, &b.b, 100);
+        rc = lep_session_read_batch(s, &b.b, 100);
     TEST_ASSERT_EQUAL_INT(LEP_E_UNEXPECTED, rc);
-    TEST_ASSERT_EQUAL_INT(LEP_E_UNEXPECTED, lep_session_read(s, &b.b, 10));
+    TEST_ASSERT_EQUAL_INT(LEP_E_UNEXPECTED, lep_session_read_batch(s, &b.b, 10));
     lep_session_close(s);
     lep_sim_stop(sim);
     st_batch_free(&b);

@@ -14,6 +14,7 @@
 #include "leptrino/session.h"
 #include "leptrino/sim.h"
 #include "session_test.h"
+#include "struct_api.h"
 #include "unity.h"
 
 #define G0 LEP_STANDARD_GRAVITY
@@ -60,9 +61,9 @@ static void read_n(lep_session *s, st_batch *x, size_t n, double mean[6], double
     x->b.n = 0;
     while (x->b.n < n) {
         lep_session_event e;
-        int rc = lep_session_read(s, &x->b, 1000);
+        int rc = lep_session_read_batch(s, &x->b, 1000);
         TEST_ASSERT_TRUE_MESSAGE(rc == LEP_OK || rc == LEP_E_END, lep_strerror(rc));
-        while (lep_session_next_event(s, &e))
+        while (lep_session_pop_event(s, &e))
             if (nev != NULL && *nev < evcap)
                 ev[(*nev)++] = e;
         if (rc == LEP_E_END)
@@ -123,7 +124,7 @@ static void test_identified_then_compensated_at_a_fifth(void)
         read_n(s, &x, 600, &w[i * 6], NULL, NULL, NULL, 0, NULL);
         lep_session_close(s);
     }
-    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_payload_identify(g, w, 4, &fit, err, sizeof err),
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_payload_identify_fit(g, w, 4, &fit, err, sizeof err),
                                   err);
     TEST_ASSERT_DOUBLE_WITHIN(0.013, tool.mass_kg, fit.payload.mass_kg);
     for (k = 0; k < 3; k++)
@@ -140,8 +141,8 @@ static void test_identified_then_compensated_at_a_fifth(void)
         TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_set_payload(s, &fit.payload));
         TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_set_gravity(s, &g[12]));
         read_n(s, &x, 600, mean, raw, rms, NULL, 0, NULL);
-        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_payload_wrench(&tool, &g[12], expect));
-        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_sim_model_rated(o.sim.model, &rated));
+        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_payload_wrench_p(&tool, &g[12], expect));
+        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_sim_model_rated_f(o.sim.model, &rated));
         printf("fifth pose: uncompensated fz %.3f N mx %.4f N m; compensated fz %.4f N mx %.5f "
                "N m; noise rms fz %.3f N mx %.4f N m\n",
                before[2], before[3], mean[2], mean[3], rms[2], rms[3]);
@@ -183,7 +184,7 @@ static void test_tare_with_a_payload_keeps_the_tool(void)
     o.payload = tool;
     memcpy(o.gravity, g1, sizeof g1);
     s = open_sim(&o, &o);
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_sim_model_rated(o.sim.model, &rated));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_sim_model_rated_f(o.sim.model, &rated));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_tare(s, 100, 0.0));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
     read_n(s, &x, 200, mean, NULL, NULL, ev, 8, &nev);
@@ -191,8 +192,8 @@ static void test_tare_with_a_payload_keeps_the_tool(void)
         tare_seen = tare_seen || ev[i].type == LEP_EV_TARE;
     TEST_ASSERT_TRUE(tare_seen);
     TEST_ASSERT_TRUE(lep_session_get_tare(s, off));
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_payload_wrench(&tool, g1, w1));
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_payload_wrench(&tool, g2, w2));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_payload_wrench_p(&tool, g1, w1));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_payload_wrench_p(&tool, g2, w2));
     for (k = 0; k < 6; k++) {
         /* the bias alone (50 counts), to the rounding of the tool's counts */
         TEST_ASSERT_DOUBLE_WITHIN(0.5, 50.0, off[k]);
@@ -230,7 +231,7 @@ static void test_limits_with_overload_episodes(void)
     lep_session_options o;
     lep_session *s;
     lep_session_event ev[64];
-    lep_session_health h;
+    lep_session_health_info h;
     size_t nev, i, exceeded = 0, cleared = 0, overloads = 0, runs = 0, first = 0, checked = 0;
     uint64_t processed, queued;
     st_batch x;
@@ -362,16 +363,16 @@ static void test_metadata_and_refusals(void)
     lep_payload neg = { -1.0, { 0, 0, 0 } }, inf = { 1.0, { 0, INFINITY, 0 } };
     lep_session_options o;
     lep_session *s;
-    lep_session_metadata m;
+    lep_session_meta m;
     char json[4096];
     size_t len;
     sim_options(&o, g, "0.002");
     o.limit[1] = -1.0;
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_session_open(&o, &s, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_session_open_so(&o, &s, err, sizeof err));
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err, "limit fy -1"), err);
     o.limit[1] = 0.0;
     o.payload = neg;
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_session_open(&o, &s, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_session_open_so(&o, &s, err, sizeof err));
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err, "payload"), err);
     o.payload = tool;
     o.gravity[0] = 1.0;

@@ -12,6 +12,7 @@
 #include "leptrino/error.h"
 #include "leptrino/session.h"
 #include "session_test.h"
+#include "struct_api.h"
 #include "unity.h"
 
 #ifndef M_PI
@@ -32,7 +33,7 @@ void tearDown(void)
 static void read_until(lep_session *s, st_batch *b, size_t want)
 {
     while (b->b.n < want) {
-        int rc = lep_session_read(s, &b->b, 3000);
+        int rc = lep_session_read_batch(s, &b->b, 3000);
         if (rc == LEP_E_END)
             break;
         TEST_ASSERT_EQUAL_INT(LEP_OK, rc);
@@ -46,7 +47,7 @@ static void test_tare_while_streaming_is_exact_and_never_stalls(void)
     st_batch b;
     lep_session_event ev;
     lep_rated rated;
-    lep_session_metadata m;
+    lep_session_meta m;
     double sum[LEP_AXES] = { 0 }, off[LEP_AXES];
     size_t i, first_taring = 0, n_taring = 0, start;
     int k;
@@ -96,7 +97,7 @@ static void test_tare_while_streaming_is_exact_and_never_stalls(void)
             TEST_ASSERT_DOUBLE_WITHIN(1e-9, z * (double)rated.axis[k] / 10000.0,
                                       b.si[i * 6 + (size_t)k]);
         }
-    TEST_ASSERT_TRUE(lep_session_next_event(s, &ev));
+    TEST_ASSERT_TRUE(lep_session_pop_event(s, &ev));
     TEST_ASSERT_EQUAL_INT(LEP_EV_TARE, ev.type);
     TEST_ASSERT_EQUAL_UINT64(first_taring + 50, ev.sample); /* the first sample it applies to */
     for (k = 0; k < LEP_AXES; k++)
@@ -105,7 +106,7 @@ static void test_tare_while_streaming_is_exact_and_never_stalls(void)
     /* un-tare: zeroed is raw again, an event with zero offsets */
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_untare(s));
     TEST_ASSERT_FALSE(lep_session_get_tare(s, off));
-    TEST_ASSERT_TRUE(lep_session_next_event(s, &ev));
+    TEST_ASSERT_TRUE(lep_session_pop_event(s, &ev));
     TEST_ASSERT_EQUAL_INT(LEP_EV_TARE, ev.type);
     TEST_ASSERT_EQUAL_DOUBLE(0.0, ev.tare[0]);
     start = b.b.n;
@@ -161,7 +162,7 @@ static void test_lowpass_step_response_is_a_butterworth(void)
 {
     lep_session_options o;
     lep_session *s;
-    lep_session_metadata m;
+    lep_session_meta m;
     st_batch b;
     FILE *f;
     size_t i, step = 0;
@@ -240,7 +241,7 @@ static void test_rotation_and_moment_point(void)
 {
     lep_session_options o;
     lep_session *s;
-    lep_session_metadata m;
+    lep_session_meta m;
     st_batch b;
     double r[9];
     const double p[3] = { 0.01, -0.02, 0.1 };

@@ -15,6 +15,7 @@
 #include "leptrino/session.h"
 #include "leptrino/sim.h"
 #include "session_test.h"
+#include "struct_api.h"
 #include "unity.h"
 
 void setUp(void)
@@ -50,7 +51,7 @@ static void *read_loop(void *arg)
         size_t cap = r->b.b.cap;
         int rc;
         r->b.b.cap = r->b.b.n + 20;
-        rc = lep_session_read(r->s, &r->b.b, 500);
+        rc = lep_session_read_batch(r->s, &r->b.b, 500);
         r->b.b.cap = cap;
         if (rc == LEP_E_STATE) {
             r->refused++;
@@ -113,7 +114,7 @@ static void *blocked_read(void *arg)
 {
     reader *r = arg;
     st_flag_raise(&r->entered);
-    r->rc = lep_session_read(r->s, &r->b.b, -1);
+    r->rc = lep_session_read_batch(r->s, &r->b.b, -1);
     r->returned_t = lep_monotonic_seconds();
     return NULL;
 }
@@ -136,10 +137,10 @@ static void test_second_caller_refused_and_close_interrupts(void)
     st_batch_init(&r.b, 4000);
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
     while (r.b.b.n < 100)
-        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_read(s, &r.b.b, 2000));
+        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_read_batch(s, &r.b.b, 2000));
     lep_sim_stall(lep_session_sim(s), 20000);
     do /* take what came before the stall */
-        rc = lep_session_read(s, &r.b.b, 300);
+        rc = lep_session_read_batch(s, &r.b.b, 300);
     while (rc == LEP_OK);
     TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, rc);
     r.b.b.n = 0;
@@ -153,7 +154,7 @@ static void test_second_caller_refused_and_close_interrupts(void)
     {
         st_batch mine;
         st_batch_init(&mine, 16);
-        TEST_ASSERT_EQUAL_INT(LEP_E_STATE, lep_session_read(s, &mine.b, 1000));
+        TEST_ASSERT_EQUAL_INT(LEP_E_STATE, lep_session_read_batch(s, &mine.b, 1000));
         TEST_ASSERT_EQUAL_size_t(0, mine.b.n);
         st_batch_free(&mine);
     }

@@ -11,6 +11,7 @@
 #include "leptrino/leptrino.h"
 #include "leptrino/serial.h"
 #include "leptrino/sim.h"
+#include "struct_api.h"
 #include "unity.h"
 
 static lep_sim *sim;
@@ -52,7 +53,7 @@ static void sleep_ms(long ms)
 
 static void start_sim(const lep_sim_options *o)
 {
-    int rc = lep_sim_start(o, &sim, err, sizeof err);
+    int rc = lep_sim_start_so(o, &sim, err, sizeof err);
     TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, rc, err);
 }
 
@@ -71,9 +72,9 @@ static void start_default(void)
     open_client();
 }
 
-static lep_sim_stats stats_now(void)
+static lep_sim_counters stats_now(void)
 {
-    lep_sim_stats st;
+    lep_sim_counters st;
     lep_sim_get_stats(sim, &st);
     return st;
 }
@@ -152,7 +153,7 @@ static void test_every_command(void)
     TEST_ASSERT_FALSE(info.has_output_rate);
 
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_rated(&client, &rated));
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_sim_model_rated("PFS080YS102U6", &want));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_sim_model_rated_f("PFS080YS102U6", &want));
     TEST_ASSERT_EQUAL_MEMORY(&want, &rated, sizeof want);
     TEST_ASSERT_EQUAL_FLOAT(1000.0f, rated.axis[LEP_FZ]);
 
@@ -230,7 +231,7 @@ static void test_stream_exact_accounting(void)
 {
     lep_sample smp;
     lep_client_stats cs;
-    lep_sim_stats st;
+    lep_sim_counters st;
     unsigned received = 0, gaps = 0;
     uint16_t expect = 0;
     double t0, elapsed;
@@ -271,7 +272,7 @@ static void test_nak_retries(void)
     lep_sim_options o;
     lep_product_info info;
     lep_client_stats cs;
-    lep_sim_stats st;
+    lep_sim_counters st;
     int i;
     lep_sim_options_init(&o);
     o.p_nak = 0.3;
@@ -327,7 +328,7 @@ static void test_stale_stream_recovery(void)
 static void test_nobody_reading_blocks(void)
 {
     lep_sim_options o;
-    lep_sim_stats st;
+    lep_sim_counters st;
     int i;
     lep_sim_options_init(&o);
     o.start_streaming = true;
@@ -477,7 +478,7 @@ static void expect_link_refused(const char *link, const char *needle)
     lep_sim *other = NULL;
     lep_sim_options_init(&o);
     snprintf(o.link, sizeof o.link, "%s", link);
-    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_E_BUSY, lep_sim_start(&o, &other, err, sizeof err), err);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_E_BUSY, lep_sim_start_so(&o, &other, err, sizeof err), err);
     TEST_ASSERT_NULL(other);
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err, link), err);
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err, needle), err);
@@ -726,7 +727,7 @@ static unsigned stream_and_stop(unsigned stop_after, uint16_t *expect, uint64_t 
 static void test_drop_and_garbage_accounting(void)
 {
     lep_sim_options o;
-    lep_sim_stats st;
+    lep_sim_counters st;
     uint16_t expect = 0;
     uint64_t gaps = 0;
     unsigned got, bad = 0;
@@ -851,7 +852,7 @@ static void test_replay_and_determinism(void)
 
     /* a missing replay file is a clear error */
     snprintf(o.replay_csv, sizeof o.replay_csv, "%s", "/nonexistent/replay.csv");
-    TEST_ASSERT_EQUAL_INT(LEP_E_NOT_FOUND, lep_sim_start(&o, &sim, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(LEP_E_NOT_FOUND, lep_sim_start_so(&o, &sim, err, sizeof err));
     TEST_ASSERT_NOT_NULL(strstr(err, "/nonexistent/replay.csv"));
 
     /* same seed, same stream */
@@ -890,7 +891,7 @@ static int start_replay(const char *file)
     lep_sim_options o;
     lep_sim_options_init(&o);
     snprintf(o.replay_csv, sizeof o.replay_csv, "%s", file);
-    return lep_sim_start(&o, &sim, err, sizeof err);
+    return lep_sim_start_so(&o, &sim, err, sizeof err);
 }
 
 /* The leptrino tool's own raw recordings replay: comments skipped, columns
@@ -918,7 +919,7 @@ static void test_replay_of_a_raw_recording(void)
                 "0.003333, left ,1600,0,-1600,0.07,0.08,0.09, 9 , 8,7,-32000,0,32000,0,3\n");
     TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, start_replay(file), err);
     for (i = 0; i < 6; i++) {
-        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_sim_stream_sample(sim, i, 0, &smp));
+        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_sim_sample_at(sim, i, 0, &smp));
         for (a = 0; a < 6; a++)
             TEST_ASSERT_EQUAL_INT16(want[i % 3][a], smp.raw[a]);
         TEST_ASSERT_EQUAL_HEX8(want_status[i % 3], smp.status);
@@ -938,9 +939,9 @@ static void test_replay_of_a_raw_recording(void)
     /* the old headerless form with a status column, and CRLF */
     replay_file(file, sizeof file, "1,2,3,4,5,6,4\r\n-1,-2,-3,-4,-5,-6\r\n");
     TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, start_replay(file), err);
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_sim_stream_sample(sim, 0, 0, &smp));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_sim_sample_at(sim, 0, 0, &smp));
     TEST_ASSERT_EQUAL_HEX8(LEP_STATUS_OVERLOAD, smp.status);
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_sim_stream_sample(sim, 1, 0, &smp));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_sim_sample_at(sim, 1, 0, &smp));
     TEST_ASSERT_EQUAL_INT16(-6, smp.raw[5]);
     lep_sim_stop(sim);
     sim = NULL;
@@ -976,23 +977,23 @@ static void test_bad_options(void)
     lep_sim_options o;
     lep_sim_options_init(&o);
     snprintf(o.model, sizeof o.model, "%s", "XYZ");
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_sim_start(&o, &sim, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_sim_start_so(&o, &sim, err, sizeof err));
     TEST_ASSERT_NOT_NULL(strstr(err, "XYZ"));
     lep_sim_options_init(&o);
     o.rate_hz = 0;
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_sim_start(&o, &sim, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_sim_start_so(&o, &sim, err, sizeof err));
     lep_sim_options_init(&o);
     o.filter = 4;
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_sim_start(&o, &sim, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_sim_start_so(&o, &sim, err, sizeof err));
     lep_sim_options_init(&o);
     snprintf(o.serial, sizeof o.serial, "%s", "12a");
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_sim_start(&o, &sim, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_sim_start_so(&o, &sim, err, sizeof err));
     lep_sim_options_init(&o);
     o.p_nak = 1.5;
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_sim_start(&o, &sim, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_sim_start_so(&o, &sim, err, sizeof err));
     lep_sim_options_init(&o);
     o.reopen_after_ms = 100; /* needs a link */
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_sim_start(&o, &sim, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_sim_start_so(&o, &sim, err, sizeof err));
     TEST_ASSERT_NULL(sim);
 }
 
@@ -1004,16 +1005,16 @@ static void test_models(void)
     while (m[n] != NULL)
         n++;
     TEST_ASSERT_EQUAL_size_t(4, n);
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_sim_model_rated("CFS018CA201U", &r));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_sim_model_rated_f("CFS018CA201U", &r));
     TEST_ASSERT_EQUAL_FLOAT(200.0f, r.axis[LEP_FZ]);
     TEST_ASSERT_EQUAL_FLOAT(1.0f, r.axis[LEP_MZ]);
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_sim_model_rated("CFS034CA301U", &r));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_sim_model_rated_f("CFS034CA301U", &r));
     TEST_ASSERT_EQUAL_FLOAT(4.0f, r.axis[LEP_MX]);
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_sim_model_rated("PFS055YA501U6", &r));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_sim_model_rated_f("PFS055YA501U6", &r));
     TEST_ASSERT_EQUAL_FLOAT(8.0f, r.axis[LEP_MZ]);
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_sim_model_rated("PFS080YS102U6", &r));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_sim_model_rated_f("PFS080YS102U6", &r));
     TEST_ASSERT_EQUAL_FLOAT(30.0f, r.axis[LEP_MZ]);
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_sim_model_rated("nope", &r));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_sim_model_rated_f("nope", &r));
 }
 
 int main(void)

@@ -11,6 +11,7 @@
 #include "leptrino/leptrino.h"
 #include "leptrino/serial.h"
 #include "leptrino/sim.h"
+#include "struct_api.h"
 #include "unity.h"
 
 static lep_sim *sim;
@@ -36,7 +37,7 @@ void tearDown(void)
 
 static void start(const lep_sim_options *o)
 {
-    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_sim_start(o, &sim, err, sizeof err), err);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_sim_start_so(o, &sim, err, sizeof err), err);
     TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK,
                                   lep_serial_open(lep_sim_port(sim), &port, err, sizeof err), err);
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_serial_client_init(&client, port));
@@ -58,7 +59,7 @@ static void stream_and_check(unsigned n, uint8_t filter)
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_stop(&client));
     for (i = 0; i < n; i++) {
         lep_sample want;
-        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_sim_stream_sample(sim, got[i].reserved, filter, &want));
+        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_sim_sample_at(sim, got[i].reserved, filter, &want));
         TEST_ASSERT_EQUAL_MEMORY(&want, &got[i], sizeof want);
     }
 }
@@ -69,7 +70,7 @@ static void stream(lep_sample *out, unsigned n, uint8_t filter)
     unsigned i;
     stream_and_check(n < 600 ? n : 600, filter);
     for (i = 0; i < n; i++)
-        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_sim_stream_sample(sim, i, filter, &out[i]));
+        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_sim_sample_at(sim, i, filter, &out[i]));
 }
 
 /* Variance of axis a over samples [from, n). */
@@ -147,7 +148,7 @@ static void test_step_response(void)
     TEST_ASSERT_EQUAL_INT16(10000, s[400].raw[LEP_FX]);
     lep_sim_power_cycle(sim);
     {
-        lep_sim_stats st;
+        lep_sim_counters st;
         for (i = 0; i < 300; i++) {
             lep_sim_get_stats(sim, &st);
             if (st.filter == 1)
@@ -195,10 +196,10 @@ static void test_stream_sample_arguments(void)
     lep_sample smp;
     lep_sim_options_init(&o);
     start(&o);
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_sim_stream_sample(sim, 0, 4, &smp));
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_sim_stream_sample(NULL, 0, 0, &smp));
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_sim_stream_sample(sim, 0, 0, NULL));
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_sim_stream_sample(sim, 70000, 0, &smp));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_sim_sample_at(sim, 0, 4, &smp));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_sim_sample_at(NULL, 0, 0, &smp));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_sim_sample_at(sim, 0, 0, NULL));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_sim_sample_at(sim, 70000, 0, &smp));
     TEST_ASSERT_EQUAL_UINT16(70000 - 65536, smp.reserved);
 }
 

@@ -5,6 +5,7 @@
 
 #include "leptrino/leptrino.h"
 #include "leptrino/sim.h"
+#include "struct_api.h"
 #include "unity.h"
 
 static lep_sim_options o;
@@ -226,12 +227,12 @@ static void test_check_is_the_one_validation(void)
     o.hangup_after_s = INFINITY;
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_sim_options_check(&o, err, sizeof err));
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err, "hangup-after"), err);
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_sim_start(&o, &sim, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_sim_start_so(&o, &sim, err, sizeof err));
     TEST_ASSERT_NULL(sim);
     lep_sim_options_init(&o);
     o.stall_after_s = 9.3e9;
     o.stall_ms = 10;
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_sim_start(&o, &sim, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_sim_start_so(&o, &sim, err, sizeof err));
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err, "stall-after"), err);
     lep_sim_options_init(&o);
     o.rate_hz = NAN;

@@ -14,6 +14,7 @@
 #include "leptrino/leptrino.h"
 #include "leptrino/serial.h"
 #include "leptrino/sim.h"
+#include "struct_api.h"
 #include "unity.h"
 
 #ifndef LEP_SIM_EXE
@@ -177,7 +178,7 @@ static void test_link_ownership_across_processes(void)
     target[n] = '\0';
     lep_sim_options_init(&o);
     snprintf(o.link, sizeof o.link, "%s", link);
-    TEST_ASSERT_EQUAL_INT(LEP_E_BUSY, lep_sim_start(&o, &sim, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(LEP_E_BUSY, lep_sim_start_so(&o, &sim, err, sizeof err));
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err, "running virtual sensor"), err);
     {
         char pid[32], now[256];
@@ -193,7 +194,7 @@ static void test_link_ownership_across_processes(void)
     close(ofd);
     close(efd);
     TEST_ASSERT_EQUAL_INT(0, access(lock, F_OK)); /* left behind, unlocked */
-    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_sim_start(&o, &sim, err, sizeof err), err);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_sim_start_so(&o, &sim, err, sizeof err), err);
     TEST_ASSERT_EQUAL_STRING(link, lep_sim_port(sim));
     lep_sim_stop(sim);
     TEST_ASSERT_NOT_EQUAL(0, access(link, F_OK));

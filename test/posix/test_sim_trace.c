@@ -13,6 +13,7 @@
 #include "leptrino/leptrino.h"
 #include "leptrino/serial.h"
 #include "leptrino/sim.h"
+#include "struct_api.h"
 #include "unity.h"
 
 static lep_sim *sim;
@@ -33,7 +34,7 @@ void setUp(void)
     TEST_ASSERT_NOT_NULL(mkdtemp(dir));
     snprintf(path, sizeof path, "%s/writes.bin", dir);
     lep_sim_options_init(&o);
-    rc = lep_sim_start(&o, &sim, err, sizeof err);
+    rc = lep_sim_start_so(&o, &sim, err, sizeof err);
     TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, rc, err);
 }
 
@@ -103,7 +104,7 @@ static void stream(unsigned count)
 static void test_every_message_written_is_recorded_in_order(void)
 {
     lep_sim_trace_record *r;
-    lep_sim_stats st;
+    lep_sim_counters st;
     uint64_t first = 0, second = 0;
     size_t n, at;
     TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_sim_trace_writes(sim, path, err, sizeof err), err);
@@ -136,7 +137,7 @@ static void test_power_cycle_ends_the_stream(void)
     stream(20);
     lep_sim_power_cycle(sim);
     for (n = 0; n < 200; n++) { /* applied by the sensor's thread */
-        lep_sim_stats st;
+        lep_sim_counters st;
         struct timespec ts = { 0, 10000000 };
         lep_sim_get_stats(sim, &st);
         if (st.power_cycles > 0)

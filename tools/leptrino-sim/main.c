@@ -20,6 +20,7 @@
 #include "leptrino/leptrino.h"
 #include "leptrino/process.h"
 #include "leptrino/sim.h"
+#include "struct_api.h"
 
 #define EXIT_USAGE 2
 
@@ -79,7 +80,7 @@ static int list_models(void)
            "My[Nm]", "Mz[Nm]");
     for (m = lep_sim_models(); *m != NULL; m++) {
         lep_rated r;
-        if (lep_sim_model_rated(*m, &r) != LEP_OK)
+        if (lep_sim_model_rated_f(*m, &r) != LEP_OK)
             continue;
         printf("%-14s %8g %8g %8g %8g %8g %8g\n", *m, (double)r.axis[0], (double)r.axis[1],
                (double)r.axis[2], (double)r.axis[3], (double)r.axis[4], (double)r.axis[5]);
@@ -183,7 +184,7 @@ static int parse(int argc, char **argv, struct cli *c)
 
 static void print_stats(lep_sim *s)
 {
-    lep_sim_stats st;
+    lep_sim_counters st;
     double cpu = lep_cpu_seconds();
     lep_sim_get_stats(s, &st);
     fprintf(stderr,
@@ -225,7 +226,7 @@ int main(int argc, char **argv)
     signal(SIGPIPE, SIG_IGN);
 
     err[0] = '\0';
-    rc = lep_sim_start(&c.o, &sim, err, sizeof err);
+    rc = lep_sim_start_so(&c.o, &sim, err, sizeof err);
     if (rc != LEP_OK) {
         fprintf(stderr, "leptrino-sim: %s\n", err[0] ? err : lep_strerror(rc));
         return rc == LEP_E_ARG ? EXIT_USAGE : 1;

@@ -22,6 +22,7 @@
 #include "leptrino/process.h"
 #include "leptrino/serial.h"
 #include "leptrino/sim.h"
+#include "struct_api.h"
 #include "soak.h"
 
 #define EXIT_USAGE 2
@@ -248,7 +249,7 @@ static int stream(soak *k)
             }
             kk += d;
         }
-        if (lep_sim_stream_sample(k->sim, kk,
+        if (lep_sim_sample_at(k->sim, kk,
                                   k->check_filter >= 0 ? (uint8_t)k->check_filter : k->opt.filter,
                                   &want) != LEP_OK ||
             memcmp(&want, &got, sizeof want) != 0)
@@ -293,7 +294,7 @@ static void run(soak *k)
     close_port(k);
 }
 
-static void report(const soak *k, const lep_sim_stats *st, double elapsed, double cpu)
+static void report(const soak *k, const lep_sim_counters *st, double elapsed, double cpu)
 {
     uint64_t generated =
         st->samples_sent + st->samples_dropped + st->samples_skipped + st->samples_blocked;
@@ -414,7 +415,7 @@ int main(int argc, char **argv)
 {
     soak k;
     char err[256];
-    lep_sim_stats st;
+    lep_sim_counters st;
     double t0, cpu0;
     int rc;
     memset(&k, 0, sizeof k);
@@ -431,7 +432,7 @@ int main(int argc, char **argv)
                  dir != NULL && dir[0] != '\0' && strlen(dir) < 256 ? dir : "/tmp", (long)getpid());
     }
     k.rng = k.opt.seed ^ 0x50A4u;
-    rc = lep_sim_start(&k.opt, &k.sim, err, sizeof err);
+    rc = lep_sim_start_so(&k.opt, &k.sim, err, sizeof err);
     if (rc != LEP_OK) {
         fprintf(stderr, "leptrino-soak: cannot start the virtual sensor: %s\n", err);
         return rc == LEP_E_ARG ? EXIT_USAGE : 1;
@@ -443,7 +444,7 @@ int main(int argc, char **argv)
              (int)(sizeof k.want_info.serial - 1), k.opt.serial);
     snprintf(k.want_info.firmware, sizeof k.want_info.firmware, "%.*s",
              (int)(sizeof k.want_info.firmware - 1), k.opt.firmware);
-    (void)lep_sim_model_rated(k.opt.model, &k.want_rated);
+    (void)lep_sim_model_rated_f(k.opt.model, &k.want_rated);
     t0 = lep_monotonic_seconds();
     cpu0 = lep_cpu_seconds();
     run(&k);

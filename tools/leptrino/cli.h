@@ -25,6 +25,7 @@
 #include <leptrino/serial.h>
 #include <leptrino/session.h>
 #include <leptrino/sim.h>
+#include "struct_api.h"
 
 /* Exit codes (documented in `leptrino --help` and docs/cli.md): the
  * library's table (leptrino/process.h), which lep_exit_code applies. */
@@ -195,8 +196,8 @@ void cli_sleep_ms(int ms);
 
 /* ---- watch_view.c: the screen of `leptrino watch` ---- */
 typedef struct cli_watch_view {
-    lep_session_metadata meta;
-    lep_session_health health;
+    lep_session_meta meta;
+    lep_session_health_info health;
     bool have_sample;
     double si[LEP_AXES];   /* the latest sample, zeroed SI */
     uint8_t status;        /* its status bits */

@@ -54,8 +54,8 @@ typedef struct check_opts {
 
 /* What the stream showed. */
 typedef struct check_data {
-    lep_session_metadata meta;
-    lep_session_health h;
+    lep_session_meta meta;
+    lep_session_health_info h;
     uint8_t status_or; /* every sample's status bits, or'ed (with the handshake sample's) */
     uint64_t samples;
     double sq[LEP_AXES]; /* sums of squared differences of consecutive raw counts */
@@ -158,7 +158,7 @@ static int measure(const check_opts *o, cli_port_opts *po, check_data *d)
     b.si = si;
     b.status = status;
     b.flags = flags;
-    rc = lep_session_read_one(s, &b); /* the status bits before streaming */
+    rc = lep_session_read_one_batch(s, &b); /* the status bits before streaming */
     if (rc != LEP_OK)
         return cli_session_fail(s, "check", po->sensor[0].name, "sample", rc);
     d->status_or |= status[0];
@@ -168,9 +168,9 @@ static int measure(const check_opts *o, cli_port_opts *po, check_data *d)
     for (;;) {
         lep_session_event ev;
         b.n = 0;
-        rc = lep_session_read(s, &b, 500);
+        rc = lep_session_read_batch(s, &b, 500);
         add_rows(d, &b);
-        while (lep_session_next_event(s, &ev)) {
+        while (lep_session_pop_event(s, &ev)) {
         }
         if (rc == LEP_E_END)
             break;
@@ -244,7 +244,7 @@ static void judge(const check_opts *o, const check_data *d, criterion c[C_COUNT]
 static void print_text(const check_opts *o, const check_data *d, const criterion c[C_COUNT],
                        const char *port, int code)
 {
-    const lep_session_metadata *m = &d->meta;
+    const lep_session_meta *m = &d->meta;
     char text[4 * 64 + 1];
     int k;
     printf("%-14s%s%s\n", "port:", port, m->sim ? " (virtual sensor)" : "");
@@ -294,7 +294,7 @@ static void jstr(const char *s)
 
 static void print_json(const check_data *d, const criterion c[C_COUNT], const char *port, int code)
 {
-    const lep_session_metadata *m = &d->meta;
+    const lep_session_meta *m = &d->meta;
     int k;
     printf("{\"port\":");
     jstr(port);

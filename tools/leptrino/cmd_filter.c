@@ -88,7 +88,7 @@ int cli_cmd_filter(int argc, char **argv)
         return exit_code;
     sess = po.sensor[0].session;
     if (setting == NULL) {
-        lep_session_metadata m;
+        lep_session_meta m;
         lep_session_get_metadata(sess, &m);
         if (m.sensor_filter >= 0)
             printf("filter: %d (%s)\n", m.sensor_filter, m.sensor_filter_label);

@@ -35,7 +35,7 @@ int cli_cmd_info(int argc, char **argv)
     cli_args a;
     cli_port_opts po;
     lep_session_options so;
-    static lep_session_metadata m;
+    static lep_session_meta m;
     lep_serial_info si;
     int code;
 
@@ -79,7 +79,7 @@ int cli_cmd_info(int argc, char **argv)
         printf("%-14s%d (%s)\n", "filter:", m.sensor_filter, m.sensor_filter_label);
     else
         printf("%-14s%s\n", "filter:", "not supported by this sensor");
-    if (lep_session_serial_info(po.sensor[0].session, &si) == LEP_OK) {
+    if (lep_session_get_serial_info(po.sensor[0].session, &si) == LEP_OK) {
         printf("%-14slow-latency flag %s", "latency:", si.low_latency ? "set" : "not set");
         if (si.ftdi_latency_ms >= 0)
             printf(", FTDI latency timer %d ms%s", si.ftdi_latency_ms,

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include <leptrino/payload.h>
+#include "struct_api.h"
 
 #include "cli.h"
 
@@ -166,7 +167,7 @@ int cli_cmd_payload(int argc, char **argv)
             return CLI_FAIL;
         }
     }
-    rc = lep_payload_identify(g, w, n, &fit, err, sizeof err);
+    rc = lep_payload_identify_fit(g, w, n, &fit, err, sizeof err);
     if (rc != LEP_OK) {
         fprintf(stderr, "leptrino: payload: %s\n", err);
         return CLI_FAIL;

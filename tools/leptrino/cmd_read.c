@@ -81,7 +81,7 @@ int cli_cmd_read(int argc, char **argv)
     oo.t0_mono = lep_monotonic_seconds();
     err[0] = '\0';
     if (rc == LEP_OK)
-        rc = lep_output_open_fd(STDOUT_FILENO, &oo, &w, err, sizeof err);
+        rc = lep_output_open_fd_opts(STDOUT_FILENO, &oo, &w, err, sizeof err);
     if (rc == LEP_OK)
         rc = idx = lep_output_add_sensor(w, po.sensor[0].name, meta, oo.t0_mono);
     if (rc < 0) {
@@ -103,13 +103,13 @@ int cli_cmd_read(int argc, char **argv)
         b.si = si;
         b.status = &status;
         b.flags = &flags;
-        rc = lep_session_read_one(s, &b);
+        rc = lep_session_read_one_batch(s, &b);
         if (rc != LEP_OK) {
             lep_output_flush(w);
             code = cli_session_fail(s, "read", lep_session_port(s), "sample", rc);
             break;
         }
-        if (lep_output_write(w, idx, &b, 0, NULL, 0) != LEP_OK)
+        if (lep_output_write_batch(w, idx, &b, 0, NULL, 0) != LEP_OK)
             break;
     }
     if (lep_output_close(w) != LEP_OK && code == CLI_OK) {

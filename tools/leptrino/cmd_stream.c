@@ -377,7 +377,7 @@ static void stop_at_limit(stream_state *st, sensor_run *r, lep_session_batch *b,
 {
     static const char *const names[LEP_AXES] = { "fx", "fy", "fz", "mx", "my", "mz" };
     static const char *const units[LEP_AXES] = { "N", "N", "N", "N m", "N m", "N m" };
-    lep_session_metadata m;
+    lep_session_meta m;
     size_t k;
     int a;
     for (k = 0; k < *nev && ev[k].type != LEP_EV_LIMIT_EXCEEDED; ++k) {
@@ -410,13 +410,13 @@ static void emit(stream_state *st, sensor_run *r, const lep_session_batch *batch
     bool more = true;
     uint64_t first = 0;
     if (st->o.stop_on_limit) {
-        lep_session_health h;
+        lep_session_health_info h;
         lep_session_get_health(r->s, &h);
         first = h.delivered - b->n; /* the session's number of the batch's first row */
     }
     while (more) {
         nev = 0;
-        while (nev < EVENTS && lep_session_next_event(r->s, &ev[nev]))
+        while (nev < EVENTS && lep_session_pop_event(r->s, &ev[nev]))
             nev++;
         more = nev == EVENTS;
         if (st->o.stop_on_limit) {
@@ -443,7 +443,7 @@ static void emit(stream_state *st, sensor_run *r, const lep_session_batch *batch
         }
         if (st->write_error != 0 || (b->n == 0 && nev == 0))
             break;
-        rc = lep_output_write(r->w, r->index, b, from, ev, nev);
+        rc = lep_output_write_batch(r->w, r->index, b, from, ev, nev);
         from = b->n; /* the rows go with the first events only */
         if (rc != LEP_OK) {
             st->write_error = lep_output_errno(r->w) != 0 ? lep_output_errno(r->w) : EIO;
@@ -461,7 +461,7 @@ static void status_line(stream_state *st)
         return;
     text[0] = '\0';
     for (i = 0; i < st->n && used < sizeof text - 1; ++i) {
-        lep_session_health h;
+        lep_session_health_info h;
         int len;
         lep_session_get_health(st->run[i].s, &h);
         len = snprintf(text + used, sizeof text - used,
@@ -545,7 +545,7 @@ static int loop(stream_state *st)
             if (r->done)
                 continue;
             batch_init(st, &b);
-            rc = lep_session_read(r->s, &b, st->n > 1 || st->keys ? 0 : WAIT_MS);
+            rc = lep_session_read_batch(r->s, &b, st->n > 1 || st->keys ? 0 : WAIT_MS);
             emit(st, r, &b);
             /* a quiet source: what was written reaches the file now (the
              * writer itself flushes a file every 100 ms while rows come) */
@@ -567,7 +567,7 @@ static void summary(stream_state *st)
     size_t i;
     for (i = 0; i < st->n; ++i) {
         sensor_run *r = &st->run[i];
-        lep_session_health h;
+        lep_session_health_info h;
         bool tared;
         double off[LEP_AXES];
         const char *tare_words = "";
@@ -666,7 +666,7 @@ static int open_outputs(stream_state *st)
         if (target != NULL && stat(target, &sb) == 0 && !S_ISREG(sb.st_mode) &&
             !S_ISDIR(sb.st_mode))
             oo.overwrite = true;
-        rc = lep_output_open(target, &oo, &r->w, err, sizeof err);
+        rc = lep_output_open_opts(target, &oo, &r->w, err, sizeof err);
         if (rc == LEP_E_ARG && target != NULL && !oo.overwrite && stat(target, &sb) == 0) {
             r->w = NULL; /* the library's words name no flag: this tool's does */
             fprintf(stderr,
@@ -729,7 +729,7 @@ int cli_cmd_stream(int argc, char **argv)
         /* One time base: t = 0 at the earliest start. */
         st.t0 = INFINITY;
         for (i = 0; i < st.n; ++i) {
-            lep_session_metadata m;
+            lep_session_meta m;
             lep_session_get_metadata(st.run[i].s, &m);
             if (m.start_mono < st.t0)
                 st.t0 = m.start_mono;

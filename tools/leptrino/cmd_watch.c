@@ -190,14 +190,14 @@ int cli_cmd_watch(int argc, char **argv)
             b.cap = WATCH_BATCH;
             b.si = si;
             b.status = status;
-            rc = lep_session_read(s, &b, 0);
+            rc = lep_session_read_batch(s, &b, 0);
             if (b.n > 0) {
                 memcpy(v.si, &si[(b.n - 1) * LEP_AXES], sizeof v.si);
                 v.status = status[b.n - 1];
                 v.have_sample = true;
             }
         } while (rc == LEP_OK && b.n == b.cap);
-        while (lep_session_next_event(s, &ev))
+        while (lep_session_pop_event(s, &ev))
             note_event(&v, &ev, t0);
         /* LEP_E_TIMEOUT: nothing yet; LEP_E_LOST, LEP_E_DISCONNECTED: the end */
         if (rc != LEP_OK && rc != LEP_E_TIMEOUT) {

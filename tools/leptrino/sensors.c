@@ -293,7 +293,7 @@ int cli_sensors_open(cli_port_opts *po, const lep_session_options *o, const char
         if (so.use_sim)
             so.sim = s->sim;
         err[0] = '\0';
-        rc = lep_session_open(&so, &s->session, err, sizeof err);
+        rc = lep_session_open_so(&so, &s->session, err, sizeof err);
         if (rc != LEP_OK) {
             int code = lep_exit_code(rc);
             s->session = NULL;

@@ -132,8 +132,8 @@ void cli_watch_draw(int fd, const cli_watch_view *v, int cols, int rows)
     static screen s;
     char model[4 * LEP_MODEL_LEN + 1], serial[4 * LEP_SERIAL_LEN + 1];
     char firmware[4 * LEP_FIRMWARE_LEN + 1];
-    const lep_session_metadata *m = &v->meta;
-    const lep_session_health *h = &v->health;
+    const lep_session_meta *m = &v->meta;
+    const lep_session_health_info *h = &v->health;
     int i, bw;
 
     s.used = 0;
