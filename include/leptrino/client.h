@@ -14,7 +14,6 @@
 #ifndef LEPTRINO_CLIENT_H
 #define LEPTRINO_CLIENT_H
 
-#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -99,8 +98,8 @@ typedef struct lep_client {
     uint8_t max_retries; /* resends allowed per transaction */
     uint8_t last_result; /* result code of the last sensor answer */
     lep_command cmd;     /* the pending command (its filter is read only by a filter set) */
-    bool streaming;      /* continuous output is on */
-    bool fresh;          /* a sample arrived since the watchdog last looked */
+    uint8_t streaming;   /* 1: continuous output is on */
+    uint8_t fresh;       /* 1: a sample arrived since the watchdog last looked */
     uint8_t kept_len;    /* length of the last outcome's message (in dec.buf), 0: none */
     uint8_t clock_in;    /* single-byte steps left before the clock is looked at */
     uint16_t watchdog_ms;
@@ -161,8 +160,8 @@ LEP_API void lep_client_get_stats(const lep_client *c, lep_client_stats *out);
 /* Result code of the last sensor answer (LEP_RESULT_*): why LEP_E_SENSOR. */
 LEP_API uint8_t lep_client_last_result(const lep_client *c);
 
-/* True between a successful start and the stop. */
-LEP_API bool lep_client_streaming(const lep_client *c);
+/* 1 between a successful start and the stop, else 0. */
+LEP_API int lep_client_streaming(const lep_client *c);
 
 /* Decode the message that completed the last LEP_STEP_RESPONSE or
  * LEP_STEP_SAMPLE into *out. Valid only until the next lep_client_step or
@@ -193,7 +192,7 @@ LEP_API int lep_client_send(lep_client *c, const lep_command *cmd);
 /* Non-blocking start-up recovery: send a stop (its answer, a timeout, a NAK
  * or a refusal all go on), drain until no byte has been fed for quiet_ms
  * (0: 50 ms), then query the product info. Driven by lep_client_step, like a
- * transaction (lep_client_busy is true meanwhile); it ends with
+ * transaction (lep_client_busy is 1 meanwhile); it ends with
  * LEP_STEP_RESPONSE (lep_client_response gives the product info),
  * LEP_E_NO_SYNC when the line never goes quiet (about 20 timeouts), or the
  * query's error. Streaming is off afterwards. Stale data is counted as
@@ -225,8 +224,8 @@ LEP_API int lep_client_step(lep_client *c, const uint8_t *data, size_t len, size
  * NULL. */
 LEP_API int lep_client_step_byte(lep_client *c, uint8_t b, lep_sample *out);
 
-/* True while a transaction or a recovery waits for its answer. */
-LEP_API bool lep_client_busy(const lep_client *c);
+/* 1 while a transaction or a recovery waits for its answer, else 0. */
+LEP_API int lep_client_busy(const lep_client *c);
 
 /* ---- Blocking calls (use io.read; return within the bounds above) ---- */
 

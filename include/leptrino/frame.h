@@ -11,7 +11,6 @@
 #ifndef LEPTRINO_FRAME_H
 #define LEPTRINO_FRAME_H
 
-#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -130,8 +129,8 @@ typedef void (*lep_frame_handler)(void *user, const lep_frame_event *ev);
 LEP_API int lep_frame_decoder_feed_all(lep_frame_decoder *d, const uint8_t *data, size_t len,
                                        lep_frame_handler on_event, void *user);
 
-/* True when the decoder is inside a frame (between DLE STX and its BCC). */
-LEP_API bool lep_frame_decoder_busy(const lep_frame_decoder *d);
+/* 1 when the decoder is inside a frame (between DLE STX and its BCC), else 0. */
+LEP_API int lep_frame_decoder_busy(const lep_frame_decoder *d);
 
 /* Copy the decoder's counters into *out. */
 LEP_API void lep_frame_decoder_get_stats(const lep_frame_decoder *d, lep_frame_stats *out);

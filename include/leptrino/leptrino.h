@@ -9,7 +9,7 @@
  * needs an object is never dereferenced and the call has no other effect
  * (but an output count or length it was given may be set to 0). A function
  * that returns an int status then returns LEP_E_ARG; one that returns a
- * count, a flag, a code or a text returns 0, false, 0 or "" unless its
+ * count, a flag, a code or a text returns 0, 0, 0 or "" unless its
  * header names another value; a void function does nothing. A pointer with
  * a length of 0 may be NULL, and a pointer its header calls optional ("may
  * be NULL", "when not NULL") means "not wanted" when NULL. A call that

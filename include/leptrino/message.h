@@ -7,7 +7,6 @@
 #ifndef LEPTRINO_MESSAGE_H
 #define LEPTRINO_MESSAGE_H
 
-#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -76,7 +75,7 @@ typedef struct lep_product_info {
     char serial[LEP_SERIAL_LEN + 1];
     char firmware[LEP_FIRMWARE_LEN + 1];
     char output_rate[LEP_RATE_LEN + 1]; /* empty in the 32-byte v1.13 form */
-    bool has_output_rate;               /* true for the 38-byte form */
+    uint8_t has_output_rate;            /* 1 for the 38-byte form, else 0 */
     uint32_t output_rate_hz;            /* output_rate as a number, 0 if absent or not numeric */
 } lep_product_info;
 
@@ -98,7 +97,7 @@ typedef struct lep_sample {
 typedef struct lep_response {
     uint8_t code;   /* LEP_CMD_* answered */
     uint8_t result; /* LEP_RESULT_*; when non-zero the message had no data */
-    bool stream;    /* a continuous-output data message (code 0x32, 20 bytes) */
+    uint8_t stream; /* 1: a continuous-output data message (code 0x32, 20 bytes), else 0 */
     union {
         lep_product_info info; /* LEP_CMD_PRODUCT_INFO */
         lep_rated rated;       /* LEP_CMD_RATED */

@@ -7,6 +7,7 @@
  * place, framed or not (it never needs stuffing). */
 #include "leptrino/message.h"
 
+#include <stdbool.h>
 #include <string.h>
 
 #include "leptrino/error.h"
@@ -437,7 +438,8 @@ int lep_response_encode(const lep_response *r, uint8_t *msg, size_t cap, size_t 
     } else if (k == N_CODES) {
         return LEP_E_UNEXPECTED;
     } else {
-        bool other = k == I_INFO ? r->u.info.has_output_rate : (k == I_START && r->stream);
+        bool other =
+            k == I_INFO ? r->u.info.has_output_rate != 0u : (k == I_START && r->stream != 0u);
         n = k_response_len[k][other ? 1 : 0];
     }
     if (cap < n) {
