@@ -74,12 +74,18 @@ enum lep_step {
     LEP_STEP_SAMPLE = 2 /* a stream sample arrived: lep_client_get_sample() */
 };
 
-#define LEP_CLIENT_DEFAULT_TIMEOUT_MS 100
-#define LEP_CLIENT_DEFAULT_RETRIES 3u
-#define LEP_CLIENT_DEFAULT_QUIET_MS 50u
-/* The drain of a recovery gives up (LEP_E_NO_SYNC) after this many timeouts plus the quiet time. */
-#define LEP_CLIENT_DRAIN_TIMEOUTS 20u
-#define LEP_CLIENT_RX_SIZE 128u
+/* The client's defaults and its recovery's limit. */
+enum lep_client_default {
+    LEP_CLIENT_DEFAULT_TIMEOUT_MS = 100, /* per attempt of a transaction (lep_client_set_timeout) */
+    LEP_CLIENT_DEFAULT_RETRIES = 3,      /* resends per transaction (lep_client_set_retries) */
+    LEP_CLIENT_DEFAULT_QUIET_MS = 50,    /* quiet time of a recovery's drain */
+    /* The drain of a recovery gives up (LEP_E_NO_SYNC) after this many
+     * timeouts plus the quiet time. */
+    LEP_CLIENT_DRAIN_TIMEOUTS = 20
+};
+
+/* Size of the blocking calls' read buffer (lep_client_rx), in bytes. */
+enum lep_client_rx_size { LEP_CLIENT_RX_SIZE = 128 };
 
 /* Read buffer of the blocking calls: bytes read from io.read but not yet
  * stepped. Caller-allocated; fields are private. Not needed by the step API. */

@@ -20,15 +20,17 @@
 extern "C" {
 #endif
 
-#define LEP_DLE 0x10u
-#define LEP_STX 0x02u
-#define LEP_ETX 0x03u
-#define LEP_NAK 0x15u
+/* Constants are enumerators, not macros, so that an FFI reading the
+ * declarations sees them; each is an int. */
 
-/* Longest unstuffed message (Length .. end of Data). */
-#define LEP_MAX_MESSAGE 128u
-/* Longest frame on the wire: every message byte stuffed, plus 5 control bytes. */
-#define LEP_MAX_FRAME (2u * LEP_MAX_MESSAGE + 5u)
+/* Control bytes of the framing (spec 2.3). */
+enum lep_control_byte { LEP_DLE = 0x10, LEP_STX = 0x02, LEP_ETX = 0x03, LEP_NAK = 0x15 };
+
+/* Size limits, in bytes. */
+enum lep_frame_limit {
+    LEP_MAX_MESSAGE = 128,                  /* longest unstuffed message (Length .. end of Data) */
+    LEP_MAX_FRAME = 2 * LEP_MAX_MESSAGE + 5 /* longest frame (all stuffed, + 5 control bytes) */
+};
 
 /* BCC of an unstuffed message: XOR of its bytes and ETX (NULL: that of no
  * bytes, ETX). */

@@ -135,14 +135,15 @@ static bool length_ok(const uint8_t *msg, size_t len)
 /* A command never holds a DLE: its length is 4 or 8, then 0xFF, a code of
  * k_codes, 0x00 and, for a filter set, a filter code 0..3 and three 0x00
  * (the codes are checked below); so the frame is DLE STX, the message as it
- * is, DLE ETX and the BCC (never stuffed). */
-typedef char
-    lep_no_command_code_is_dle[(LEP_CMD_PRODUCT_INFO != LEP_DLE && LEP_CMD_RATED != LEP_DLE &&
-                                LEP_CMD_FILTER_GET != LEP_DLE && LEP_CMD_SAMPLE != LEP_DLE &&
-                                LEP_CMD_START != LEP_DLE && LEP_CMD_STOP != LEP_DLE &&
-                                LEP_CMD_FILTER_SET != LEP_DLE && LEP_FILTER_MAX < LEP_DLE)
-                                   ? 1
-                                   : -1];
+ * is, DLE ETX and the BCC (never stuffed). (The casts: the codes and the
+ * control byte are enumerators of different enums.) */
+typedef char lep_no_command_code_is_dle
+    [(LEP_CMD_PRODUCT_INFO != (int)LEP_DLE && LEP_CMD_RATED != (int)LEP_DLE &&
+      LEP_CMD_FILTER_GET != (int)LEP_DLE && LEP_CMD_SAMPLE != (int)LEP_DLE &&
+      LEP_CMD_START != (int)LEP_DLE && LEP_CMD_STOP != (int)LEP_DLE &&
+      LEP_CMD_FILTER_SET != (int)LEP_DLE && LEP_FILTER_MAX < (int)LEP_DLE)
+         ? 1
+         : -1];
 
 /* The one builder of a command: cmd as a message (extra 0) or as a frame
  * (extra FRAME_EXTRA) into out[0..cap); the errors of lep_command_frame. */

@@ -9,6 +9,18 @@ from __future__ import annotations
 
 CDEF = """
 /* frame.h */
+enum lep_control_byte
+{
+  LEP_DLE = 16,
+  LEP_STX = 2,
+  LEP_ETX = 3,
+  LEP_NAK = 21
+};
+enum lep_frame_limit
+{
+  LEP_MAX_MESSAGE = 128,
+  LEP_MAX_FRAME = 261
+};
 uint8_t lep_bcc(const uint8_t *msg, size_t len);
 int lep_frame_encode(const uint8_t *msg, size_t len, uint8_t *out, size_t cap, size_t *out_len);
 size_t lep_frame_size(const uint8_t *msg, size_t len);
@@ -73,6 +85,39 @@ enum lep_axis
   LEP_MY,
   LEP_MZ,
   LEP_AXES
+};
+enum lep_message_length
+{
+  LEP_LEN_HEADER = 4,
+  LEP_LEN_FILTER_SET_CMD = 8,
+  LEP_LEN_PRODUCT_INFO = 32,
+  LEP_LEN_PRODUCT_INFO_RATE = 38,
+  LEP_LEN_RATED = 28,
+  LEP_LEN_FILTER = 8,
+  LEP_LEN_SAMPLE = 20
+};
+enum lep_status_bit
+{
+  LEP_STATUS_CALIBRATION = 1,
+  LEP_STATUS_SENSOR_FAULT = 2,
+  LEP_STATUS_OVERLOAD = 4
+};
+enum lep_raw_scale
+{
+  LEP_RAW_FULL_SCALE = 10000,
+  LEP_SATURATION_V113 = 32000,
+  LEP_SATURATION_LATER = 15000
+};
+enum lep_filter_limit
+{
+  LEP_FILTER_MAX = 3
+};
+enum lep_info_length
+{
+  LEP_MODEL_LEN = 16,
+  LEP_SERIAL_LEN = 8,
+  LEP_FIRMWARE_LEN = 4,
+  LEP_RATE_LEN = 6
 };
 typedef struct lep_command
 {
@@ -153,6 +198,17 @@ enum lep_step
   LEP_STEP_NONE = 0,
   LEP_STEP_RESPONSE = 1,
   LEP_STEP_SAMPLE = 2
+};
+enum lep_client_default
+{
+  LEP_CLIENT_DEFAULT_TIMEOUT_MS = 100,
+  LEP_CLIENT_DEFAULT_RETRIES = 3,
+  LEP_CLIENT_DEFAULT_QUIET_MS = 50,
+  LEP_CLIENT_DRAIN_TIMEOUTS = 20
+};
+enum lep_client_rx_size
+{
+  LEP_CLIENT_RX_SIZE = 128
 };
 typedef struct lep_client_rx
 {
