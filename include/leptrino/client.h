@@ -88,7 +88,11 @@ enum lep_client_default {
 enum lep_client_rx_size { LEP_CLIENT_RX_SIZE = 128 };
 
 /* Read buffer of the blocking calls: bytes read from io.read but not yet
- * stepped. Caller-allocated; fields are private. Not needed by the step API. */
+ * stepped. Caller-allocated; fields are private. Not needed by the step API.
+ * Evolution rule: the layout is public only so that C and firmware can
+ * allocate it statically. Other languages allocate lep_client_rx_sizeof()
+ * bytes (aligned for a uint16_t) and never read its fields; the fields may
+ * change between minor versions while the version is 0.x. */
 typedef struct lep_client_rx {
     uint16_t pos;
     uint16_t len;
@@ -96,8 +100,11 @@ typedef struct lep_client_rx {
 } lep_client_rx;
 
 /* Client context. Caller-allocated (static memory on an MCU is fine); its
- * fields are private. A binding that cannot see this declaration allocates
- * lep_client_sizeof() bytes, aligned for a pointer and a uint32_t. */
+ * fields are private.
+ * Evolution rule: the layout is public only so that C and firmware can
+ * allocate it statically. Other languages allocate lep_client_sizeof() bytes
+ * (aligned for a pointer and a uint32_t) and never read its fields; the fields
+ * may change between minor versions while the version is 0.x. */
 typedef struct lep_client {
     uint8_t phase;       /* what the client waits for (client.c's enum phase) */
     uint8_t tries;       /* copies of the pending command sent again */
@@ -131,6 +138,9 @@ typedef struct lep_client {
 
 /* sizeof(lep_client), for callers that allocate it as bytes. */
 LEP_API size_t lep_client_sizeof(void);
+
+/* sizeof(lep_client_rx), for callers that allocate it as bytes. */
+LEP_API size_t lep_client_rx_sizeof(void);
 
 /* Bind c to io (copied) with the default timeout and retry limit, no read
  * buffer and no watchdog. Returns LEP_E_ARG when c or io is NULL or io lacks

@@ -41,9 +41,11 @@ typedef struct lep_device_event {
     uint8_t filter; /* LEP_DEVICE_COMMAND with a filter set: the code requested */
 } lep_device_event;
 
-/* Device context. Caller-allocated; its fields are private. A binding that
- * cannot see this declaration allocates lep_device_sizeof() bytes, aligned for
- * a uint32_t and a float. */
+/* Device context. Caller-allocated; its fields are private.
+ * Evolution rule: the layout is public only so that C and firmware can
+ * allocate it statically. Other languages allocate lep_device_sizeof() bytes
+ * (aligned for a uint32_t and a float) and never read its fields; the fields
+ * may change between minor versions while the version is 0.x. */
 typedef struct lep_device {
     uint8_t filter_active;
     uint8_t filter_pending;

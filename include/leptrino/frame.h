@@ -76,10 +76,12 @@ typedef struct lep_frame_stats {
 } lep_frame_stats;
 
 /* Push decoder. Caller-allocated (static memory is fine); its fields are
- * private: read the counters with lep_frame_decoder_get_stats. A binding that
- * cannot see this declaration allocates lep_frame_decoder_sizeof() bytes,
- * aligned for a uint32_t. One decoder must not be fed from two contexts at once;
- * distinct decoders are independent. */
+ * private: read the counters with lep_frame_decoder_get_stats. One decoder must
+ * not be fed from two contexts at once; distinct decoders are independent.
+ * Evolution rule: the layout is public only so that C and firmware can
+ * allocate it statically. Other languages allocate lep_frame_decoder_sizeof()
+ * bytes (aligned for a uint32_t) and never read its fields; the fields may
+ * change between minor versions while the version is 0.x. */
 typedef struct lep_frame_decoder {
     uint8_t state;
     uint8_t bcc;

@@ -47,6 +47,11 @@ size_t lep_client_sizeof(void)
     return sizeof(lep_client);
 }
 
+size_t lep_client_rx_sizeof(void)
+{
+    return sizeof(lep_client_rx);
+}
+
 int lep_client_init(lep_client *c, const lep_io *io)
 {
     if (c == NULL || io == NULL || io->write == NULL || io->now_ms == NULL) {

@@ -247,6 +247,7 @@ typedef struct lep_client
   lep_frame_decoder dec;
 } lep_client;
 size_t lep_client_sizeof(void);
+size_t lep_client_rx_sizeof(void);
 int lep_client_init(lep_client *c, const lep_io *io);
 int lep_client_set_rx(lep_client *c, lep_client_rx *rx);
 int lep_client_set_timeout(lep_client *c, int timeout_ms);
@@ -722,6 +723,7 @@ FUNCTIONS = (
     'lep_filter_label',
     'lep_command_name',
     'lep_client_sizeof',
+    'lep_client_rx_sizeof',
     'lep_client_init',
     'lep_client_set_rx',
     'lep_client_set_timeout',

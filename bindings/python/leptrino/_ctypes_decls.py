@@ -572,6 +572,7 @@ FUNCTIONS: Dict[str, Tuple[Any, List[Any]]] = {
     'lep_filter_label': (c_char_p, [c_uint8]),
     'lep_command_name': (c_char_p, [c_uint8]),
     'lep_client_sizeof': (c_size_t, []),
+    'lep_client_rx_sizeof': (c_size_t, []),
     'lep_client_init': (c_int, [POINTER(lep_client), POINTER(lep_io)]),
     'lep_client_set_rx': (c_int, [POINTER(lep_client), POINTER(lep_client_rx)]),
     'lep_client_set_timeout': (c_int, [POINTER(lep_client), c_int]),
