@@ -12,6 +12,7 @@
  * documented errors come back; nothing is busy after a blocking call; the
  * sample counter equals the samples delivered; a delivered sample satisfies
  * the message rules (|raw| <= 32000). */
+#include <stdbool.h>
 #include <stdint.h>
 #include <string.h>
 
