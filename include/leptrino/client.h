@@ -161,8 +161,8 @@ LEP_API int lep_client_set_rx(lep_client *c, lep_client_rx *rx);
 LEP_API int lep_client_set_timeout(lep_client *c, int timeout_ms);
 
 /* Times a command is sent again (after a NAK or a timeout, one shared budget)
- * before LEP_E_NAK / LEP_E_TIMEOUT (0..255), default 3. */
-LEP_API int lep_client_set_retries(lep_client *c, unsigned retries);
+ * before LEP_E_NAK / LEP_E_TIMEOUT (0..255, else LEP_E_ARG), default 3. */
+LEP_API int lep_client_set_retries(lep_client *c, int retries);
 
 /* Stream watchdog: while streaming, no sample for ms milliseconds makes a
  * step return LEP_E_STALLED once (counted in stalls), then it re-arms. The

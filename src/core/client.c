@@ -88,9 +88,9 @@ int lep_client_set_timeout(lep_client *c, int timeout_ms)
     return LEP_OK;
 }
 
-int lep_client_set_retries(lep_client *c, unsigned retries)
+int lep_client_set_retries(lep_client *c, int retries)
 {
-    if (c == NULL || retries > 255u) {
+    if (c == NULL || retries < 0 || retries > 255) {
         return LEP_E_ARG;
     }
     c->max_retries = (uint8_t)retries;

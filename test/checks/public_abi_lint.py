@@ -73,6 +73,20 @@ CONTEXTS: Dict[str, str] = {
     "lep_device": "the sensor side: allocated statically, holds its decoder by value",
 }
 
+#: The portable core's C value structs (frame.h, message.h, client.h): they
+#: pass through the core's C API on a microcontroller and hold a pointer, a
+#: union or a nested value by design. No host task needs them from another
+#: language (the session, sim, output and payload headers are flat; see
+#: docs/ffi.md); only `bool` is checked in them, as in CONTEXTS.
+CORE_VALUES: Dict[str, str] = {
+    "lep_io": "the C I/O table (write/read/clock callbacks) firmware gives the client; "
+              "FFI callers use a session, which owns its port",
+    "lep_frame_event": "the sans-I/O frame decoder's result, pointing into the decoder's "
+                       "buffer, for C and firmware",
+    "lep_response": "the message codec's decoded message (a union by command), for C and "
+                    "firmware",
+}
+
 #: Object-like macros with a value that stay, (header, name) -> why.
 MACRO_ALLOW: Dict[Tuple[str, str], str] = {
     ("export.h", "LEP_API"): "the visibility/dllexport attribute of every prototype, not a value",
@@ -244,7 +258,7 @@ class Lint:
     def check_structs(self) -> None:
         for name, su in self.model.structs.items():
             kind = self.model.struct_kind[name]
-            ctx = name in CONTEXTS
+            ctx = name in CONTEXTS or name in CORE_VALUES
             not_flat: List[str] = []
             if kind == "union" and not ctx:
                 not_flat.append("(a union)")

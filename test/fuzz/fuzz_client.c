@@ -226,7 +226,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     io.user = &l;
     check(lep_client_init(&c, &io) == LEP_OK);
     check(lep_client_set_timeout(&c, 1 + (cfg & 7u)) == LEP_OK);
-    check(lep_client_set_retries(&c, (cfg >> 3) & 3u) == LEP_OK);
+    check(lep_client_set_retries(&c, (int)((cfg >> 3) & 3u)) == LEP_OK);
     check(lep_client_set_watchdog(&c, (uint16_t)((cfg & 0x20u) ? 4u : 0u)) == LEP_OK);
     check(lep_client_set_rx(&c, (cfg & 0x40u) ? &rx : NULL) == LEP_OK);
     if (cfg & 0x80u) {
