@@ -40,6 +40,11 @@ echo "-- Go (cgo)"
 (
   cd examples/ffi/go
   export PKG_CONFIG_PATH="$libdir/pkgconfig" CGO_ENABLED=1
+  # Go's build cache does not hash an external library or the headers it
+  # includes from -I: a binary linked against an older libleptrino (another
+  # SONAME) would be reused. A define carrying their hash keys the cache.
+  stamp=$(cat "$libdir"/libleptrino.so "$prefix"/include/leptrino/*.h | sha256sum | cut -c1-16)
+  export CGO_CPPFLAGS="-DLEPTRINO_FFI_STAMP=$stamp"
   go vet .
   go build -o "$root/build/ffi/leptrino-ffi-go" .
   LD_LIBRARY_PATH="$libdir" "$root/build/ffi/leptrino-ffi-go"
