@@ -66,7 +66,10 @@ pub use values::{
 pub fn list_ports() -> Result<Vec<PortInfo>> {
     let mut l: *mut sys::lep_port_list = std::ptr::null_mut();
     // SAFETY: valid out pointer.
-    error::check(unsafe { sys::lep_port_list_new(&mut l) }, "listing serial ports")?;
+    error::check(
+        unsafe { sys::lep_port_list_new(&mut l) },
+        "listing serial ports",
+    )?;
     let text = |p: *const std::ffi::c_char| options::static_str(p).to_owned();
     // SAFETY: l is a list made above, read by index below its count, its
     // strings copied before it is freed.

@@ -61,12 +61,16 @@ impl Handle {
         // SAFETY: no arguments; NULL only when out of memory.
         let p = unsafe { sys::lep_options_new() };
         Handle(Mutex::new(Ptr(
-            NonNull::new(p).expect("lep_options_new: out of memory"),
+            NonNull::new(p).expect("lep_options_new: out of memory")
         )))
     }
 
     fn ptr_mut(&mut self) -> *mut sys::lep_options {
-        self.0.get_mut().unwrap_or_else(|e| e.into_inner()).0.as_ptr()
+        self.0
+            .get_mut()
+            .unwrap_or_else(|e| e.into_inner())
+            .0
+            .as_ptr()
     }
 
     /// Run f on the handle, locked.
@@ -139,7 +143,7 @@ impl Clone for Handle {
         // SAFETY: a live handle; the copy is a new one we own.
         let p = self.with(|o| unsafe { sys::lep_options_copy(o) });
         Handle(Mutex::new(Ptr(
-            NonNull::new(p).expect("lep_options_copy: out of memory"),
+            NonNull::new(p).expect("lep_options_copy: out of memory")
         )))
     }
 }

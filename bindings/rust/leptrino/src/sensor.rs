@@ -155,7 +155,10 @@ impl Control {
         if name == "latency" {
             return Err(Error::with_message(
                 sys::LEP_E_STATE,
-                format!("{}: latency: set it on the Sensor (the reading thread)", self.port),
+                format!(
+                    "{}: latency: set it on the Sensor (the reading thread)",
+                    self.port
+                ),
             ));
         }
         let v = cstring(name, &value.to_string())?;
@@ -194,7 +197,9 @@ impl Control {
         let cname = cstring("option", name)?;
         // SAFETY: any-thread call; buf holds cap bytes (or is NULL with cap 0).
         text_result(
-            |buf, cap, len| unsafe { sys::lep_session_get(self.ptr(), cname.as_ptr(), buf, cap, len) },
+            |buf, cap, len| unsafe {
+                sys::lep_session_get(self.ptr(), cname.as_ptr(), buf, cap, len)
+            },
             &format!("{}: option {name:?}", self.port),
         )
     }
@@ -233,10 +238,7 @@ impl Control {
 
     /// The output frame in force: rotation (row-major) and moment point (m).
     pub fn frame(&self) -> ([f64; 9], [f64; 3]) {
-        (
-            self.get_doubles(c"rotation"),
-            self.get_doubles(c"shift"),
-        )
+        (self.get_doubles(c"rotation"), self.get_doubles(c"shift"))
     }
 
     /// Change the output frame (rotation row-major, moment point in metres);
@@ -318,7 +320,9 @@ impl Control {
     fn info(&self, which: u32) -> Result<String> {
         // SAFETY: any-thread call; buf holds cap bytes (or is NULL with cap 0).
         text_result(
-            |buf, cap, len| unsafe { sys::lep_session_info(self.ptr(), which as i32, buf, cap, len) },
+            |buf, cap, len| unsafe {
+                sys::lep_session_info(self.ptr(), which as i32, buf, cap, len)
+            },
             &format!("{}: session info", self.port),
         )
     }
@@ -590,7 +594,8 @@ impl Sensor {
     /// s.set_filter(2)?;
     /// assert_eq!(sim.stats().filter_pending, 2);
     /// drop(s);
-    /// sim.power_cycle();
+    /// sim.power_cycle(); // done by the virtual sensor's thread
+    /// # while sim.stats().filter != 2 { std::thread::sleep(std::time::Duration::from_millis(5)); }
     /// let s = Sensor::open(sim.port())?;
     /// assert_eq!((s.filter(), s.filter_label().as_str()), (Some(2), "100 Hz"));
     /// # Ok::<(), leptrino::Error>(())

@@ -299,9 +299,9 @@ impl Simulator {
         let mut out: *mut sys::lep_sim = std::ptr::null_mut();
         let mut err = [0u8; 512];
         // SAFETY: valid options (copied by the call), out pointer, err buffer.
-        let rc = options
-            .h
-            .with(|o| unsafe { sys::lep_sim_start(o, &mut out, err.as_mut_ptr().cast(), err.len()) });
+        let rc = options.h.with(|o| unsafe {
+            sys::lep_sim_start(o, &mut out, err.as_mut_ptr().cast(), err.len())
+        });
         check_msg(rc, &err, "starting the virtual sensor")?;
         let sim = NonNull::new(out)
             .ok_or_else(|| Error::in_context(sys::LEP_E_UNEXPECTED, "lep_sim_start"))?;

@@ -471,9 +471,8 @@ impl Health {
         let n = unsafe { sys::lep_session_health_fields() }.min(H_COUNT);
         (0..n)
             .map(|i| {
-                let name = crate::options::static_str(unsafe {
-                    sys::lep_session_health_field_name(i)
-                });
+                let name =
+                    crate::options::static_str(unsafe { sys::lep_session_health_field_name(i) });
                 (name, self.values[i])
             })
             .collect()
