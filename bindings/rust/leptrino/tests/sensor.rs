@@ -247,7 +247,7 @@ fn gaps_from_dropped_samples() {
         .iter()
         .filter_map(|e| match e.kind {
             EventKind::Gap { lost, from, to } => {
-                assert!(to > from);
+                assert!(to > from, "gap from {from} to {to} ({lost} lost)");
                 Some(lost)
             }
             _ => None,
@@ -636,12 +636,8 @@ fn payload_and_gravity_compensation() {
     let m = s.metadata();
     assert_eq!((m.payload, m.gravity), (Some(tool), [-g, 0.0, 0.0]));
     let rec = s.record_count(50).unwrap();
-    for a in 0..6 {
-        assert!(
-            mean(&rec, a).abs() <= resolution[a],
-            "axis {a}: {}",
-            mean(&rec, a)
-        );
+    for (a, r) in resolution.iter().enumerate() {
+        assert!(mean(&rec, a).abs() <= *r, "axis {a}: {}", mean(&rec, a));
     }
     // raw and zeroed counts stay as measured
     assert!(rec.raw[0][0] < 0);
