@@ -2,8 +2,9 @@
 //!
 //! Everything the session does (start-up recovery, tare, host low-pass,
 //! decimation, rotation, gap detection, reconnect, health, metadata) runs in
-//! C; this module moves its batches into plain vectors and turns its structs
-//! into Rust values.
+//! C; this module reads its samples (`lep_session_read`) straight into plain
+//! vectors and its events, health and metadata (arrays of numbers indexed by
+//! the header's enumerators, texts by `lep_session_info`) into Rust values.
 
 use std::cell::Cell;
 use std::ffi::{c_char, CStr};
@@ -44,10 +45,12 @@ fn monotonic() -> f64 {
 /// when the last of them goes.
 struct Session(NonNull<sys::lep_session>);
 
-// SAFETY: session.h: "one thread drives a session" (any one, one at a time:
-// only Sensor makes those calls, and Sensor is not Sync); the calls Control
-// makes (tare, untare, set/get tare, low-pass, rotation, health, metadata)
-// "may also be called from other threads at any time".
+// SAFETY: session.h: the driving calls (start, read, read_one, stop, the
+// "latency" option) are for one thread at a time: only Sensor makes them
+// (and uses the session's client), and Sensor is not Sync. The calls Control
+// makes (tare, untare, set/get tare, taring, lep_session_set*/get* of the
+// other live options, health, metadata, rated, info, next_event) "may be
+// called from any thread at any time before close".
 unsafe impl Send for Session {}
 // SAFETY: see above.
 unsafe impl Sync for Session {}
