@@ -63,6 +63,12 @@ pub struct SimStats {
     values: [u64; SIMST_COUNT],
 }
 
+impl Default for SimStats {
+    fn default() -> Self {
+        SimStats::from_fields(&[0; SIMST_COUNT])
+    }
+}
+
 impl SimStats {
     fn from_fields(f: &[u64; SIMST_COUNT]) -> SimStats {
         let n = |i: u32| f[i as usize];
