@@ -184,11 +184,14 @@ fn build_bundled(csrc: &Path) {
         .flag_if_supported("-fvisibility=hidden")
         .warnings(true);
     // The host layer's subsystems (src/host/<dir>), as src/CMakeLists.txt lists them.
-    let host = ["platform", "serial", "options", "session", "sim", "output", "payload", "ros"];
+    let host = [
+        "platform", "serial", "options", "session", "sim", "output", "payload", "ros",
+    ];
     for dir in host {
         build.include(src.join("host").join(dir));
     }
-    let dirs = std::iter::once(src.join("core")).chain(host.iter().map(|d| src.join("host").join(d)));
+    let dirs =
+        std::iter::once(src.join("core")).chain(host.iter().map(|d| src.join("host").join(d)));
     for dir in dirs {
         for f in c_files(&dir) {
             println!("cargo:rerun-if-changed={}", f.display());
@@ -199,7 +202,10 @@ fn build_bundled(csrc: &Path) {
             }
         }
     }
-    println!("cargo:rerun-if-changed={}", src.join("host/struct_api.h").display());
+    println!(
+        "cargo:rerun-if-changed={}",
+        src.join("host/struct_api.h").display()
+    );
     build.compile("leptrino");
     // The session's filter and rotation use libm; the virtual sensor a thread.
     println!("cargo:rustc-link-lib=m");
