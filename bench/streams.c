@@ -7,6 +7,7 @@
  *  - 1 % corrupted: the realistic stream with 1 % of its bytes replaced by
  *    another value (frames then fail their BCC, lose sync, restart). */
 #include <math.h>
+#include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
 

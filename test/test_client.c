@@ -63,6 +63,7 @@ static void test_init_rejects_incomplete_io(void)
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_set_timeout(&client, 0));
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_set_retries(&client, 256));
     TEST_ASSERT_EQUAL_size_t(sizeof(lep_client), lep_client_sizeof());
+    TEST_ASSERT_EQUAL_size_t(sizeof(lep_client_rx), lep_client_rx_sizeof());
 }
 
 /* lep_client_init zeroes the whole context and does not call

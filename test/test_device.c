@@ -1,4 +1,5 @@
 /* Sensor side: answers, result codes, state errors, filter power cycle. */
+#include <stdbool.h>
 #include <string.h>
 
 #include "unity.h"

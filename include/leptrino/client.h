@@ -14,7 +14,6 @@
 #ifndef LEPTRINO_CLIENT_H
 #define LEPTRINO_CLIENT_H
 
-#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -75,15 +74,25 @@ enum lep_step {
     LEP_STEP_SAMPLE = 2 /* a stream sample arrived: lep_client_get_sample() */
 };
 
-#define LEP_CLIENT_DEFAULT_TIMEOUT_MS 100
-#define LEP_CLIENT_DEFAULT_RETRIES 3u
-#define LEP_CLIENT_DEFAULT_QUIET_MS 50u
-/* The drain of a recovery gives up (LEP_E_NO_SYNC) after this many timeouts plus the quiet time. */
-#define LEP_CLIENT_DRAIN_TIMEOUTS 20u
-#define LEP_CLIENT_RX_SIZE 128u
+/* The client's defaults and its recovery's limit. */
+enum lep_client_default {
+    LEP_CLIENT_DEFAULT_TIMEOUT_MS = 100, /* per attempt of a transaction (lep_client_set_timeout) */
+    LEP_CLIENT_DEFAULT_RETRIES = 3,      /* resends per transaction (lep_client_set_retries) */
+    LEP_CLIENT_DEFAULT_QUIET_MS = 50,    /* quiet time of a recovery's drain */
+    /* The drain of a recovery gives up (LEP_E_NO_SYNC) after this many
+     * timeouts plus the quiet time. */
+    LEP_CLIENT_DRAIN_TIMEOUTS = 20
+};
+
+/* Size of the blocking calls' read buffer (lep_client_rx), in bytes. */
+enum lep_client_rx_size { LEP_CLIENT_RX_SIZE = 128 };
 
 /* Read buffer of the blocking calls: bytes read from io.read but not yet
- * stepped. Caller-allocated; fields are private. Not needed by the step API. */
+ * stepped. Caller-allocated; fields are private. Not needed by the step API.
+ * Evolution rule: the layout is public only so that C and firmware can
+ * allocate it statically. Other languages allocate lep_client_rx_sizeof()
+ * bytes (aligned for a uint16_t) and never read its fields; the fields may
+ * change between minor versions while the version is 0.x. */
 typedef struct lep_client_rx {
     uint16_t pos;
     uint16_t len;
@@ -91,16 +100,19 @@ typedef struct lep_client_rx {
 } lep_client_rx;
 
 /* Client context. Caller-allocated (static memory on an MCU is fine); its
- * fields are private. A binding that cannot see this declaration allocates
- * lep_client_sizeof() bytes, aligned for a pointer and a uint32_t. */
+ * fields are private.
+ * Evolution rule: the layout is public only so that C and firmware can
+ * allocate it statically. Other languages allocate lep_client_sizeof() bytes
+ * (aligned for a pointer and a uint32_t) and never read its fields; the fields
+ * may change between minor versions while the version is 0.x. */
 typedef struct lep_client {
     uint8_t phase;       /* what the client waits for (client.c's enum phase) */
     uint8_t tries;       /* copies of the pending command sent again */
     uint8_t max_retries; /* resends allowed per transaction */
     uint8_t last_result; /* result code of the last sensor answer */
     lep_command cmd;     /* the pending command (its filter is read only by a filter set) */
-    bool streaming;      /* continuous output is on */
-    bool fresh;          /* a sample arrived since the watchdog last looked */
+    uint8_t streaming;   /* 1: continuous output is on */
+    uint8_t fresh;       /* 1: a sample arrived since the watchdog last looked */
     uint8_t kept_len;    /* length of the last outcome's message (in dec.buf), 0: none */
     uint8_t clock_in;    /* single-byte steps left before the clock is looked at */
     uint16_t watchdog_ms;
@@ -127,6 +139,9 @@ typedef struct lep_client {
 /* sizeof(lep_client), for callers that allocate it as bytes. */
 LEP_API size_t lep_client_sizeof(void);
 
+/* sizeof(lep_client_rx), for callers that allocate it as bytes. */
+LEP_API size_t lep_client_rx_sizeof(void);
+
 /* Bind c to io (copied) with the default timeout and retry limit, no read
  * buffer and no watchdog. Returns LEP_E_ARG when c or io is NULL or io lacks
  * write or now_ms. */
@@ -146,8 +161,8 @@ LEP_API int lep_client_set_rx(lep_client *c, lep_client_rx *rx);
 LEP_API int lep_client_set_timeout(lep_client *c, int timeout_ms);
 
 /* Times a command is sent again (after a NAK or a timeout, one shared budget)
- * before LEP_E_NAK / LEP_E_TIMEOUT (0..255), default 3. */
-LEP_API int lep_client_set_retries(lep_client *c, unsigned retries);
+ * before LEP_E_NAK / LEP_E_TIMEOUT (0..255, else LEP_E_ARG), default 3. */
+LEP_API int lep_client_set_retries(lep_client *c, int retries);
 
 /* Stream watchdog: while streaming, no sample for ms milliseconds makes a
  * step return LEP_E_STALLED once (counted in stalls), then it re-arms. The
@@ -161,8 +176,8 @@ LEP_API void lep_client_get_stats(const lep_client *c, lep_client_stats *out);
 /* Result code of the last sensor answer (LEP_RESULT_*): why LEP_E_SENSOR. */
 LEP_API uint8_t lep_client_last_result(const lep_client *c);
 
-/* True between a successful start and the stop. */
-LEP_API bool lep_client_streaming(const lep_client *c);
+/* 1 between a successful start and the stop, else 0. */
+LEP_API int lep_client_streaming(const lep_client *c);
 
 /* Decode the message that completed the last LEP_STEP_RESPONSE or
  * LEP_STEP_SAMPLE into *out. Valid only until the next lep_client_step or
@@ -193,7 +208,7 @@ LEP_API int lep_client_send(lep_client *c, const lep_command *cmd);
 /* Non-blocking start-up recovery: send a stop (its answer, a timeout, a NAK
  * or a refusal all go on), drain until no byte has been fed for quiet_ms
  * (0: 50 ms), then query the product info. Driven by lep_client_step, like a
- * transaction (lep_client_busy is true meanwhile); it ends with
+ * transaction (lep_client_busy is 1 meanwhile); it ends with
  * LEP_STEP_RESPONSE (lep_client_response gives the product info),
  * LEP_E_NO_SYNC when the line never goes quiet (about 20 timeouts), or the
  * query's error. Streaming is off afterwards. Stale data is counted as
@@ -225,8 +240,8 @@ LEP_API int lep_client_step(lep_client *c, const uint8_t *data, size_t len, size
  * NULL. */
 LEP_API int lep_client_step_byte(lep_client *c, uint8_t b, lep_sample *out);
 
-/* True while a transaction or a recovery waits for its answer. */
-LEP_API bool lep_client_busy(const lep_client *c);
+/* 1 while a transaction or a recovery waits for its answer, else 0. */
+LEP_API int lep_client_busy(const lep_client *c);
 
 /* ---- Blocking calls (use io.read; return within the bounds above) ---- */
 

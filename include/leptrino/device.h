@@ -15,7 +15,6 @@
 #ifndef LEPTRINO_DEVICE_H
 #define LEPTRINO_DEVICE_H
 
-#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -42,13 +41,15 @@ typedef struct lep_device_event {
     uint8_t filter; /* LEP_DEVICE_COMMAND with a filter set: the code requested */
 } lep_device_event;
 
-/* Device context. Caller-allocated; its fields are private. A binding that
- * cannot see this declaration allocates lep_device_sizeof() bytes, aligned for
- * a uint32_t and a float. */
+/* Device context. Caller-allocated; its fields are private.
+ * Evolution rule: the layout is public only so that C and firmware can
+ * allocate it statically. Other languages allocate lep_device_sizeof() bytes
+ * (aligned for a uint32_t and a float) and never read its fields; the fields
+ * may change between minor versions while the version is 0.x. */
 typedef struct lep_device {
     uint8_t filter_active;
     uint8_t filter_pending;
-    bool streaming;
+    uint8_t streaming; /* 1: continuous output is on */
     lep_frame_decoder dec;
     lep_product_info info;
     lep_rated rated;
@@ -82,9 +83,9 @@ LEP_API void lep_device_set_sample(lep_device *d, const lep_sample *s);
  * Errors as lep_response_frame. */
 LEP_API int lep_device_stream_frame(const lep_sample *s, uint8_t *out, size_t cap, size_t *len);
 
-/* True while continuous output is on: the application then sends
+/* 1 while continuous output is on (else 0): the application then sends
  * lep_device_stream_frame() at its output rate. */
-LEP_API bool lep_device_streaming(const lep_device *d);
+LEP_API int lep_device_streaming(const lep_device *d);
 
 /* Filter code in effect, and the one that takes effect at power-cycle. */
 LEP_API uint8_t lep_device_filter(const lep_device *d);

@@ -11,7 +11,6 @@
 #ifndef LEPTRINO_FRAME_H
 #define LEPTRINO_FRAME_H
 
-#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -21,15 +20,17 @@
 extern "C" {
 #endif
 
-#define LEP_DLE 0x10u
-#define LEP_STX 0x02u
-#define LEP_ETX 0x03u
-#define LEP_NAK 0x15u
+/* Constants are enumerators, not macros, so that an FFI reading the
+ * declarations sees them; each is an int. */
 
-/* Longest unstuffed message (Length .. end of Data). */
-#define LEP_MAX_MESSAGE 128u
-/* Longest frame on the wire: every message byte stuffed, plus 5 control bytes. */
-#define LEP_MAX_FRAME (2u * LEP_MAX_MESSAGE + 5u)
+/* Control bytes of the framing (spec 2.3). */
+enum lep_control_byte { LEP_DLE = 0x10, LEP_STX = 0x02, LEP_ETX = 0x03, LEP_NAK = 0x15 };
+
+/* Size limits, in bytes. */
+enum lep_frame_limit {
+    LEP_MAX_MESSAGE = 128,                  /* longest unstuffed message (Length .. end of Data) */
+    LEP_MAX_FRAME = 2 * LEP_MAX_MESSAGE + 5 /* longest frame (all stuffed, + 5 control bytes) */
+};
 
 /* BCC of an unstuffed message: XOR of its bytes and ETX (NULL: that of no
  * bytes, ETX). */
@@ -75,10 +76,12 @@ typedef struct lep_frame_stats {
 } lep_frame_stats;
 
 /* Push decoder. Caller-allocated (static memory is fine); its fields are
- * private: read the counters with lep_frame_decoder_get_stats. A binding that
- * cannot see this declaration allocates lep_frame_decoder_sizeof() bytes,
- * aligned for a uint32_t. One decoder must not be fed from two contexts at once;
- * distinct decoders are independent. */
+ * private: read the counters with lep_frame_decoder_get_stats. One decoder must
+ * not be fed from two contexts at once; distinct decoders are independent.
+ * Evolution rule: the layout is public only so that C and firmware can
+ * allocate it statically. Other languages allocate lep_frame_decoder_sizeof()
+ * bytes (aligned for a uint32_t) and never read its fields; the fields may
+ * change between minor versions while the version is 0.x. */
 typedef struct lep_frame_decoder {
     uint8_t state;
     uint8_t bcc;
@@ -130,8 +133,8 @@ typedef void (*lep_frame_handler)(void *user, const lep_frame_event *ev);
 LEP_API int lep_frame_decoder_feed_all(lep_frame_decoder *d, const uint8_t *data, size_t len,
                                        lep_frame_handler on_event, void *user);
 
-/* True when the decoder is inside a frame (between DLE STX and its BCC). */
-LEP_API bool lep_frame_decoder_busy(const lep_frame_decoder *d);
+/* 1 when the decoder is inside a frame (between DLE STX and its BCC), else 0. */
+LEP_API int lep_frame_decoder_busy(const lep_frame_decoder *d);
 
 /* Copy the decoder's counters into *out. */
 LEP_API void lep_frame_decoder_get_stats(const lep_frame_decoder *d, lep_frame_stats *out);

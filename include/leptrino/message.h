@@ -7,7 +7,6 @@
 #ifndef LEPTRINO_MESSAGE_H
 #define LEPTRINO_MESSAGE_H
 
-#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -30,33 +29,43 @@ enum lep_command_code {
 
 enum lep_axis { LEP_FX = 0, LEP_FY, LEP_FZ, LEP_MX, LEP_MY, LEP_MZ, LEP_AXES };
 
-/* Message lengths fixed by the spec. */
-#define LEP_LEN_HEADER 4u
-#define LEP_LEN_FILTER_SET_CMD 8u
-#define LEP_LEN_PRODUCT_INFO 32u
-#define LEP_LEN_PRODUCT_INFO_RATE 38u
-#define LEP_LEN_RATED 28u
-#define LEP_LEN_FILTER 8u
-#define LEP_LEN_SAMPLE 20u
+/* Message lengths fixed by the spec, in bytes (Length .. end of Data). */
+enum lep_message_length {
+    LEP_LEN_HEADER = 4,             /* a message with no data (commands, acknowledgements) */
+    LEP_LEN_FILTER_SET_CMD = 8,     /* the filter-set command (0xA6) */
+    LEP_LEN_PRODUCT_INFO = 32,      /* product information, v1.13 form */
+    LEP_LEN_PRODUCT_INFO_RATE = 38, /* product information with the output rate */
+    LEP_LEN_RATED = 28,             /* rated values */
+    LEP_LEN_FILTER = 8,             /* the answer to a filter query (0xB6) */
+    LEP_LEN_SAMPLE = 20             /* a sample (handshake or stream) */
+};
 
 /* Status bits of a sample (spec 6.1); 1 = fault. */
-#define LEP_STATUS_CALIBRATION 0x01u /* calibration data in ROM corrupt */
-#define LEP_STATUS_SENSOR_FAULT 0x02u
-#define LEP_STATUS_OVERLOAD 0x04u /* load beyond rating detected */
+enum lep_status_bit {
+    LEP_STATUS_CALIBRATION = 0x01,  /* calibration data in ROM corrupt */
+    LEP_STATUS_SENSOR_FAULT = 0x02, /* sensor error */
+    LEP_STATUS_OVERLOAD = 0x04      /* load beyond rating detected */
+};
 
-/* Raw scale: +/-10000 counts = +/- rated value. */
-#define LEP_RAW_FULL_SCALE 10000
-/* Saturation magnitude of v1.13 firmware, and as reported for later firmware. */
-#define LEP_SATURATION_V113 32000
-#define LEP_SATURATION_LATER 15000
+/* Raw scale: +/-10000 counts = +/- rated value; and the saturation magnitude
+ * of v1.13 firmware, and as reported for later firmware. */
+enum lep_raw_scale {
+    LEP_RAW_FULL_SCALE = 10000,  /* counts at the rated value */
+    LEP_SATURATION_V113 = 32000, /* saturation magnitude of v1.13 firmware */
+    LEP_SATURATION_LATER = 15000 /* saturation magnitude as reported for later firmware */
+};
 
 /* Highest filter code of the spec (0 off, 1..3 FIR cut-offs). */
-#define LEP_FILTER_MAX 3u
+enum lep_filter_limit { LEP_FILTER_MAX = 3 };
 
-#define LEP_MODEL_LEN 16u
-#define LEP_SERIAL_LEN 8u
-#define LEP_FIRMWARE_LEN 4u
-#define LEP_RATE_LEN 6u
+/* Widths of the product-information text fields, in characters (without the
+ * terminating NUL of lep_product_info's arrays). */
+enum lep_info_length {
+    LEP_MODEL_LEN = 16,
+    LEP_SERIAL_LEN = 8,
+    LEP_FIRMWARE_LEN = 4,
+    LEP_RATE_LEN = 6
+};
 
 /* A command. filter is used by LEP_CMD_FILTER_SET only. */
 typedef struct lep_command {
@@ -76,7 +85,7 @@ typedef struct lep_product_info {
     char serial[LEP_SERIAL_LEN + 1];
     char firmware[LEP_FIRMWARE_LEN + 1];
     char output_rate[LEP_RATE_LEN + 1]; /* empty in the 32-byte v1.13 form */
-    bool has_output_rate;               /* true for the 38-byte form */
+    uint8_t has_output_rate;            /* 1 for the 38-byte form, else 0 */
     uint32_t output_rate_hz;            /* output_rate as a number, 0 if absent or not numeric */
 } lep_product_info;
 
@@ -98,7 +107,7 @@ typedef struct lep_sample {
 typedef struct lep_response {
     uint8_t code;   /* LEP_CMD_* answered */
     uint8_t result; /* LEP_RESULT_*; when non-zero the message had no data */
-    bool stream;    /* a continuous-output data message (code 0x32, 20 bytes) */
+    uint8_t stream; /* 1: a continuous-output data message (code 0x32, 20 bytes), else 0 */
     union {
         lep_product_info info; /* LEP_CMD_PRODUCT_INFO */
         lep_rated rated;       /* LEP_CMD_RATED */

@@ -104,8 +104,8 @@ LEP_API int lep_options_get(const lep_options *o, const char *name, char *buf, s
 LEP_API int lep_options_get_int(const lep_options *o, const char *name, int64_t *out);
 LEP_API int lep_options_get_double(const lep_options *o, const char *name, double *out);
 /* Writes min(cap, count) numbers; *n (when not NULL) gets the count. */
-LEP_API int lep_options_get_doubles(const lep_options *o, const char *name, double *out,
-                                    size_t cap, size_t *n);
+LEP_API int lep_options_get_doubles(const lep_options *o, const char *name, double *out, size_t cap,
+                                    size_t *n);
 
 /* Check how the options combine (what each setter cannot see alone:
  * overload duration below its period, reopen needs a link, ...): the one

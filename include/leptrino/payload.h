@@ -82,8 +82,8 @@ enum lep_fit_field {
  *                positive (no payload, or gravity given with the wrong sign
  *                or frame).
  * Never answers from a degenerate set: the conditioning is checked, not just n. */
-LEP_API int lep_payload_identify(const double *gravity, const double *wrench, size_t n,
-                                 double *fit, size_t nfit, char *err, size_t errlen);
+LEP_API int lep_payload_identify(const double *gravity, const double *wrench, size_t n, double *fit,
+                                 size_t nfit, char *err, size_t errlen);
 
 /* The mean wrench of one pose, from a CSV recording made by the leptrino tool
  * (`leptrino stream`, leptrino/output.h): in the sensor frame, N and N m, as
@@ -96,8 +96,8 @@ LEP_API int lep_payload_identify(const double *gravity, const double *wrench, si
  * CSV recording (no metadata line, JSON lines), several sensors, a tare or
  * payload that changed during the recording, no force/torque columns, an
  * overloaded sample, no rows, a malformed line. Blocks on file I/O only. */
-LEP_API int lep_payload_pose_read(const char *path, double mean[6], uint64_t *samples,
-                                  char *err, size_t errlen);
+LEP_API int lep_payload_pose_read(const char *path, double mean[6], uint64_t *samples, char *err,
+                                  size_t errlen);
 
 #ifdef __cplusplus
 }

@@ -29,8 +29,8 @@ extern "C" {
  * LEP_E_ARG (NULL c, n or t, si without rated), LEP_E_STATE (not
  * streaming), or the client's error (LEP_E_DISCONNECTED, ...); nothing
  * already read is lost. */
-LEP_API int lep_record_fill(lep_client *c, const double rated[6], size_t cap, size_t *n,
-                            double *t, double *si, int16_t *raw, uint8_t *status, uint16_t *seq,
+LEP_API int lep_record_fill(lep_client *c, const double rated[6], size_t cap, size_t *n, double *t,
+                            double *si, int16_t *raw, uint8_t *status, uint16_t *seq,
                             double until_s, int timeout_ms);
 
 #ifdef __cplusplus

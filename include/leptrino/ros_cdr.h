@@ -51,12 +51,11 @@ LEP_API size_t lep_ros_wrench_size(size_t frame_id_len);
  * LEP_E_ARG: t_utc, frame_id or last_ns NULL; wrench given and si NULL;
  * wrench_raw given and raw or rated NULL; frame_id too long. LEP_E_BUFFER:
  * cap < n * lep_ros_wrench_size(). LEP_E_VALUE: a t_utc that is not finite
- * or whose seconds do not fit builtin_interfaces/Time (int32, from 1970). n =
- * 0 writes nothing, LEP_OK. */
-LEP_API int lep_ros_wrench_cdr(size_t n, const double *t_utc, const double *si,
-                               const int16_t *raw, const double rated[6], const char *frame_id,
-                               int64_t *last_ns, uint8_t *wrench, uint8_t *wrench_raw, size_t cap,
-                               int64_t *stamp_ns);
+ * or whose seconds do not fit builtin_interfaces/Time (int32, from 1970), or
+ * a rated value that is not a finite float > 0. n = 0 writes nothing, LEP_OK. */
+LEP_API int lep_ros_wrench_cdr(size_t n, const double *t_utc, const double *si, const int16_t *raw,
+                               const double rated[6], const char *frame_id, int64_t *last_ns,
+                               uint8_t *wrench, uint8_t *wrench_raw, size_t cap, int64_t *stamp_ns);
 
 #ifdef __cplusplus
 }

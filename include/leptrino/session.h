@@ -143,9 +143,9 @@ LEP_API int lep_session_streaming(const lep_session *s);
  * may come with samples (*n > 0): use them. cap 0 returns LEP_OK at once.
  * Times of samples that one port read brought together are reconstructed
  * (docs/session.md). */
-LEP_API int lep_session_read(lep_session *s, int timeout_ms, size_t cap, size_t *n,
-                             double *t_mono, double *t_utc, double *si, int16_t *raw,
-                             double *zeroed, uint8_t *status, uint8_t *flags, uint16_t *seq);
+LEP_API int lep_session_read(lep_session *s, int timeout_ms, size_t cap, size_t *n, double *t_mono,
+                             double *t_utc, double *si, int16_t *raw, double *zeroed,
+                             uint8_t *status, uint8_t *flags, uint16_t *seq);
 
 /* One sample in handshake mode (command 0x30), outside the stream, into the
  * same arrays as lep_session_read with room for one sample (any may be
@@ -295,14 +295,14 @@ LEP_API int lep_session_rated(lep_session *s, double rated[6]);
 /* Health since lep_session_start, as indices into the array
  * lep_session_health fills (every field a double; counts are exact). */
 enum lep_health_field {
-    LEP_H_ELAPSED_S = 0,       /* from the first sample to the last */
-    LEP_H_NOMINAL_HZ = 1,      /* the nominal rate ("nominal-rate", else the sensor's) */
-    LEP_H_MEASURED_HZ = 2,     /* (samples received - 1) / elapsed (before decimation) */
-    LEP_H_RECENT_HZ = 3,       /* over the last second or so */
-    LEP_H_SHORTFALL = 4,       /* 1 when measured below 98 % of nominal over >= 1 s */
-    LEP_H_RECEIVED = 5,        /* samples received (tare samples included) */
-    LEP_H_DELIVERED = 6,       /* samples returned by lep_session_read (after decimation) */
-    LEP_H_LOST = 7,            /* samples estimated lost in gaps */
+    LEP_H_ELAPSED_S = 0,   /* from the first sample to the last */
+    LEP_H_NOMINAL_HZ = 1,  /* the nominal rate ("nominal-rate", else the sensor's) */
+    LEP_H_MEASURED_HZ = 2, /* (samples received - 1) / elapsed (before decimation) */
+    LEP_H_RECENT_HZ = 3,   /* over the last second or so */
+    LEP_H_SHORTFALL = 4,   /* 1 when measured below 98 % of nominal over >= 1 s */
+    LEP_H_RECEIVED = 5,    /* samples received (tare samples included) */
+    LEP_H_DELIVERED = 6,   /* samples returned by lep_session_read (after decimation) */
+    LEP_H_LOST = 7,        /* samples estimated lost in gaps */
     LEP_H_GAPS = 8,
     LEP_H_ERRORS = 9,          /* framing, BCC, invalid messages, timeouts (all connections) */
     LEP_H_OVERLOADS = 10,      /* overload episodes begun */
@@ -341,18 +341,18 @@ LEP_API int lep_session_health(lep_session *s, double *out, size_t n);
 /* Numbers of what a recording says about itself, as indices into the array
  * lep_session_metadata fills (texts: lep_session_info). */
 enum lep_metadata_field {
-    LEP_MD_RATED = 0,            /* 6 fields: rated values, N and N m */
-    LEP_MD_OUTPUT_RATE_HZ = 6,   /* the output-rate field as a number, 0 when absent */
-    LEP_MD_SENSOR_FILTER = 7,    /* the sensor's filter code, -1 when it refused */
+    LEP_MD_RATED = 0,          /* 6 fields: rated values, N and N m */
+    LEP_MD_OUTPUT_RATE_HZ = 6, /* the output-rate field as a number, 0 when absent */
+    LEP_MD_SENSOR_FILTER = 7,  /* the sensor's filter code, -1 when it refused */
     LEP_MD_NOMINAL_HZ = 8,
     LEP_MD_LOWPASS_HZ = 9,       /* host low-pass cut-off, 0 off */
     LEP_MD_LOWPASS_DELAY_S = 10, /* its group delay at low frequency */
     LEP_MD_DECIMATE = 11,
-    LEP_MD_ROTATION = 12, /* 9 fields, row-major */
-    LEP_MD_SHIFT_M = 21,  /* 3 fields */
-    LEP_MD_TARED = 24,    /* 1 when a tare is in force */
-    LEP_MD_TARE = 25,     /* 6 fields, counts */
-    LEP_MD_START_UTC = 31, /* UTC s of the last start (of open before one) */
+    LEP_MD_ROTATION = 12,   /* 9 fields, row-major */
+    LEP_MD_SHIFT_M = 21,    /* 3 fields */
+    LEP_MD_TARED = 24,      /* 1 when a tare is in force */
+    LEP_MD_TARE = 25,       /* 6 fields, counts */
+    LEP_MD_START_UTC = 31,  /* UTC s of the last start (of open before one) */
     LEP_MD_START_MONO = 32, /* monotonic s of the same instant */
     LEP_MD_SIM = 33,        /* 1 for an in-process virtual sensor */
     LEP_MD_PAYLOAD = 34,    /* 4 fields: mass kg, centre of mass x y z m; mass 0: none */

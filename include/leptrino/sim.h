@@ -31,11 +31,11 @@ typedef struct lep_sim lep_sim;
 /* Counters of what the virtual sensor did (since lep_sim_start), as indices
  * into the array lep_sim_stats fills. */
 enum lep_sim_stat {
-    LEP_SIMST_SAMPLES_SENT = 0,     /* continuous data messages queued to the port */
-    LEP_SIMST_SAMPLES_DROPPED = 1,  /* data messages dropped by the drop fault */
-    LEP_SIMST_COMMANDS = 2,         /* commands answered (any result code) */
-    LEP_SIMST_NAKS = 3,             /* DLE NAK sent (bad BCC, or the nak fault) */
-    LEP_SIMST_BYTES_CORRUPTED = 4,  /* messages with a byte flipped by the corrupt fault */
+    LEP_SIMST_SAMPLES_SENT = 0,    /* continuous data messages queued to the port */
+    LEP_SIMST_SAMPLES_DROPPED = 1, /* data messages dropped by the drop fault */
+    LEP_SIMST_COMMANDS = 2,        /* commands answered (any result code) */
+    LEP_SIMST_NAKS = 3,            /* DLE NAK sent (bad BCC, or the nak fault) */
+    LEP_SIMST_BYTES_CORRUPTED = 4, /* messages with a byte flipped by the corrupt fault */
     LEP_SIMST_HANGUPS = 5,
     LEP_SIMST_STREAMING = 6,        /* 1 while streaming */
     LEP_SIMST_FILTER = 7,           /* filter code in effect */

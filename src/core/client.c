@@ -16,6 +16,7 @@
  * it is (0: none), and lep_client_response decodes it from there. */
 #include "leptrino/client.h"
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <string.h>
 
@@ -44,6 +45,11 @@ enum phase {
 size_t lep_client_sizeof(void)
 {
     return sizeof(lep_client);
+}
+
+size_t lep_client_rx_sizeof(void)
+{
+    return sizeof(lep_client_rx);
 }
 
 int lep_client_init(lep_client *c, const lep_io *io)
@@ -82,9 +88,9 @@ int lep_client_set_timeout(lep_client *c, int timeout_ms)
     return LEP_OK;
 }
 
-int lep_client_set_retries(lep_client *c, unsigned retries)
+int lep_client_set_retries(lep_client *c, int retries)
 {
-    if (c == NULL || retries > 255u) {
+    if (c == NULL || retries < 0 || retries > 255) {
         return LEP_E_ARG;
     }
     c->max_retries = (uint8_t)retries;
@@ -131,12 +137,12 @@ uint8_t lep_client_last_result(const lep_client *c)
     return c == NULL ? 0u : c->last_result;
 }
 
-bool lep_client_streaming(const lep_client *c)
+int lep_client_streaming(const lep_client *c)
 {
-    return c != NULL && c->streaming;
+    return c != NULL && c->streaming != 0u;
 }
 
-bool lep_client_busy(const lep_client *c)
+int lep_client_busy(const lep_client *c)
 {
     return c != NULL && c->phase != PH_NONE;
 }

@@ -4,6 +4,7 @@
  * on Thumb-1 at -Os (the size budgets of docs/embedded.md). */
 #include "leptrino/device.h"
 
+#include <stdbool.h>
 #include <string.h>
 
 #include "leptrino/error.h"
@@ -61,9 +62,9 @@ void lep_device_set_sample(lep_device *d, const lep_sample *s)
     }
 }
 
-bool lep_device_streaming(const lep_device *d)
+int lep_device_streaming(const lep_device *d)
 {
-    return d != NULL && d->streaming;
+    return d != NULL && d->streaming != 0u;
 }
 
 uint8_t lep_device_filter(const lep_device *d)

@@ -24,6 +24,7 @@
  * listed with the shared vectors in test/vectors/README.md. */
 #include "leptrino/frame.h"
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <string.h>
 
@@ -118,7 +119,7 @@ size_t lep_frame_decoder_sizeof(void)
     return sizeof(lep_frame_decoder);
 }
 
-bool lep_frame_decoder_busy(const lep_frame_decoder *d)
+int lep_frame_decoder_busy(const lep_frame_decoder *d)
 {
     return d != NULL && d->state >= S_BODY;
 }

@@ -7,6 +7,7 @@
  * place, framed or not (it never needs stuffing). */
 #include "leptrino/message.h"
 
+#include <stdbool.h>
 #include <string.h>
 
 #include "leptrino/error.h"
@@ -134,14 +135,15 @@ static bool length_ok(const uint8_t *msg, size_t len)
 /* A command never holds a DLE: its length is 4 or 8, then 0xFF, a code of
  * k_codes, 0x00 and, for a filter set, a filter code 0..3 and three 0x00
  * (the codes are checked below); so the frame is DLE STX, the message as it
- * is, DLE ETX and the BCC (never stuffed). */
-typedef char
-    lep_no_command_code_is_dle[(LEP_CMD_PRODUCT_INFO != LEP_DLE && LEP_CMD_RATED != LEP_DLE &&
-                                LEP_CMD_FILTER_GET != LEP_DLE && LEP_CMD_SAMPLE != LEP_DLE &&
-                                LEP_CMD_START != LEP_DLE && LEP_CMD_STOP != LEP_DLE &&
-                                LEP_CMD_FILTER_SET != LEP_DLE && LEP_FILTER_MAX < LEP_DLE)
-                                   ? 1
-                                   : -1];
+ * is, DLE ETX and the BCC (never stuffed). (The casts: the codes and the
+ * control byte are enumerators of different enums.) */
+typedef char lep_no_command_code_is_dle
+    [(LEP_CMD_PRODUCT_INFO != (int)LEP_DLE && LEP_CMD_RATED != (int)LEP_DLE &&
+      LEP_CMD_FILTER_GET != (int)LEP_DLE && LEP_CMD_SAMPLE != (int)LEP_DLE &&
+      LEP_CMD_START != (int)LEP_DLE && LEP_CMD_STOP != (int)LEP_DLE &&
+      LEP_CMD_FILTER_SET != (int)LEP_DLE && LEP_FILTER_MAX < (int)LEP_DLE)
+         ? 1
+         : -1];
 
 /* The one builder of a command: cmd as a message (extra 0) or as a frame
  * (extra FRAME_EXTRA) into out[0..cap); the errors of lep_command_frame. */
@@ -437,7 +439,8 @@ int lep_response_encode(const lep_response *r, uint8_t *msg, size_t cap, size_t 
     } else if (k == N_CODES) {
         return LEP_E_UNEXPECTED;
     } else {
-        bool other = k == I_INFO ? r->u.info.has_output_rate : (k == I_START && r->stream);
+        bool other =
+            k == I_INFO ? r->u.info.has_output_rate != 0u : (k == I_START && r->stream != 0u);
         n = k_response_len[k][other ? 1 : 0];
     }
     if (cap < n) {

@@ -94,8 +94,7 @@ static bool known_model(const char *m)
 }
 
 /* Check a text member: terminated, length in range, its rule. */
-static int check_text(const opt_row *r, const char *label, const char *t, char *err,
-                      size_t errlen)
+static int check_text(const opt_row *r, const char *label, const char *t, char *err, size_t errlen)
 {
     const lep_sim_option_info *in = &r->info;
     size_t n = 0, i;
@@ -264,8 +263,8 @@ static int parse_value(void *p, const opt_row *r, const char *v)
     }
 }
 
-int lep_priv_row_set(void *base, const opt_row *r, const char *label, const char *value,
-                     char *err, size_t errlen)
+int lep_priv_row_set(void *base, const opt_row *r, const char *label, const char *value, char *err,
+                     size_t errlen)
 {
     unsigned char tmp[LEP_SIM_PATH_SIZE]; /* the largest member of any table */
     const lep_sim_option_info *in = &r->info;

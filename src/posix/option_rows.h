@@ -13,14 +13,14 @@
 
 /* How a row's value is stored in its struct. */
 enum opt_store {
-    S_BOOL,    /* bool */
-    S_INT,     /* int */
-    S_UNSIGNED,/* unsigned */
-    S_U8,      /* uint8_t */
-    S_U64,     /* uint64_t */
-    S_DOUBLE,  /* double */
-    S_CHARS,   /* char[size], NUL-terminated */
-    S_DOUBLES  /* double[size / sizeof(double)] */
+    S_BOOL,     /* bool */
+    S_INT,      /* int */
+    S_UNSIGNED, /* unsigned */
+    S_U8,       /* uint8_t */
+    S_U64,      /* uint64_t */
+    S_DOUBLE,   /* double */
+    S_CHARS,    /* char[size], NUL-terminated */
+    S_DOUBLES   /* double[size / sizeof(double)] */
 };
 
 /* Extra checks of a text value beyond its length. */
@@ -45,8 +45,8 @@ int lep_priv_row_check(const void *base, const opt_row *r, char *err, size_t err
 
 /* Parse value for r and store it in base (nothing changes on an error: the
  * message names the option by label, e.g. its public name). */
-int lep_priv_row_set(void *base, const opt_row *r, const char *label, const char *value,
-                     char *err, size_t errlen);
+int lep_priv_row_set(void *base, const opt_row *r, const char *label, const char *value, char *err,
+                     size_t errlen);
 
 /* The member as text that lep_priv_row_set accepts; *len gets the length
  * needed (the text rule of leptrino/options.h). */

@@ -28,35 +28,27 @@ static const opt_row *row_at(size_t i, int *is_sim)
     return NULL;
 }
 
-/* "sim-rate" and "sim_rate" name the virtual sensor's "rate". */
-static const char *sim_name(const char *name)
+/* a equals b, where '_' in a also matches '-' in b. */
+static bool same_name(const char *a, const char *b)
 {
-    if (strncmp(name, "sim-", 4) == 0 || strncmp(name, "sim_", 4) == 0)
-        return name + 4;
-    return NULL;
+    for (; *a != '\0' && *b != '\0'; a++, b++) {
+        if (*a != *b && !(*a == '_' && *b == '-'))
+            return false;
+    }
+    return *a == '\0' && *b == '\0';
 }
 
 const opt_row *lep_priv_options_find(const lep_options *o, const char *name, const void **base)
 {
-    size_t ns, nm;
-    const opt_row *s = lep_priv_session_rows(&ns);
-    const opt_row *m = lep_priv_sim_rows(&nm);
-    const opt_row *r;
-    const char *sub;
+    size_t i;
     if (name == NULL)
         return NULL;
-    r = lep_priv_row_find(s, ns, name);
-    if (r != NULL && strcmp(r->field, name) != 0) { /* fields are not public names here */
-        if (base != NULL)
-            *base = o;
-        return r;
-    }
-    sub = sim_name(name);
-    if (sub != NULL && sub[0] != '\0') {
-        r = lep_priv_row_find(m, nm, sub);
-        if (r != NULL && strcmp(r->field, sub) != 0) {
+    for (i = 0; i < lep_option_count(); i++) {
+        int is_sim = 0;
+        const opt_row *r = row_at(i, &is_sim);
+        if (same_name(name, r->public_name)) {
             if (base != NULL)
-                *base = o != NULL ? (const void *)&o->so.sim : NULL;
+                *base = is_sim ? (o != NULL ? (const void *)&o->so.sim : NULL) : (const void *)o;
             return r;
         }
     }
@@ -183,8 +175,7 @@ int lep_options_set_int(lep_options *o, const char *name, int64_t value, char *e
     return lep_options_set(o, name, text, err, errlen);
 }
 
-int lep_options_set_double(lep_options *o, const char *name, double value, char *err,
-                           size_t errlen)
+int lep_options_set_double(lep_options *o, const char *name, double value, char *err, size_t errlen)
 {
     const opt_row *r;
     char text[40];
@@ -205,8 +196,7 @@ int lep_options_set_double(lep_options *o, const char *name, double value, char 
         snprintf(text, sizeof text, "%.0f", value);
     } else {
         if (!isfinite(value)) {
-            lep_priv_set_err(err, errlen, "%s %g: expected a finite number", r->public_name,
-                             value);
+            lep_priv_set_err(err, errlen, "%s %g: expected a finite number", r->public_name, value);
             return LEP_E_ARG;
         }
         number_text(text, sizeof text, value);
@@ -351,8 +341,8 @@ int lep_options_check(const lep_options *o, char *err, size_t errlen)
     for (i = 0; i < lep_option_count(); i++) {
         int is_sim = 0;
         const opt_row *r = row_at(i, &is_sim);
-        rc = lep_priv_row_check(is_sim ? (const void *)&o->so.sim : (const void *)o, r, err,
-                                errlen);
+        rc =
+            lep_priv_row_check(is_sim ? (const void *)&o->so.sim : (const void *)o, r, err, errlen);
         if (rc != LEP_OK)
             return rc;
     }

@@ -160,7 +160,7 @@ static int new_writer(int fd, bool own, const lep_output_options *o, lep_output 
 }
 
 int lep_output_open_fd_opts(int fd, const lep_output_options *o, lep_output **out, char *err,
-                       size_t errlen)
+                            size_t errlen)
 {
     if (out != NULL)
         *out = NULL;
@@ -172,7 +172,7 @@ int lep_output_open_fd_opts(int fd, const lep_output_options *o, lep_output **ou
 }
 
 int lep_output_open_opts(const char *path, const lep_output_options *o, lep_output **out, char *err,
-                    size_t errlen)
+                         size_t errlen)
 {
     int fd, flags, rc;
     if (out != NULL)
@@ -523,7 +523,7 @@ static void write_event(lep_output *w, const out_sensor *s, const lep_session_ev
 }
 
 int lep_output_write_batch(lep_output *w, int sensor, const lep_session_batch *b, size_t from,
-                     const lep_session_event *ev, size_t nev)
+                           const lep_session_event *ev, size_t nev)
 {
     unsigned c;
     out_sensor *s;
@@ -595,5 +595,104 @@ int lep_output_close(lep_output *w)
     for (i = 0; i < w->n_sensors; i++)
         free(w->sensors[i].meta);
     free(w);
+    return rc;
+}
+
+/* ---- the flat form (leptrino/output.h) ---- */
+
+static int flat_options(lep_output_options *o, int format, int time, int columns, double t0_mono,
+                        int overwrite, char *err, size_t errlen)
+{
+    lep_output_options_init(o);
+    if (format != LEP_OUTPUT_CSV && format != LEP_OUTPUT_JSONL) {
+        lep_priv_set_err(err, errlen, "output: format %d: expected 0 (CSV) or 1 (JSON lines)",
+                         format);
+        return LEP_E_ARG;
+    }
+    if (time < LEP_TIME_REL || time > LEP_TIME_UTC) {
+        lep_priv_set_err(err, errlen, "output: time %d: expected 0 (rel), 1 (mono) or 2 (utc)",
+                         time);
+        return LEP_E_ARG;
+    }
+    if (columns < 0 || columns > 0x7F) {
+        lep_priv_set_err(err, errlen, "output: columns 0x%x: expected LEP_COL_* bits", columns);
+        return LEP_E_ARG;
+    }
+    if (!(t0_mono >= 0.0) || t0_mono > 1e15) { /* also NaN */
+        lep_priv_set_err(err, errlen, "output: t0_mono %g: expected 0 or a monotonic time",
+                         t0_mono);
+        return LEP_E_ARG;
+    }
+    o->format = format;
+    o->time = time;
+    o->columns = (unsigned)columns;
+    o->t0_mono = t0_mono;
+    o->overwrite = overwrite != 0;
+    return LEP_OK;
+}
+
+int lep_output_open(const char *path, int format, int time, int columns, double t0_mono,
+                    int overwrite, lep_output **out, char *err, size_t errlen)
+{
+    lep_output_options o;
+    int rc = flat_options(&o, format, time, columns, t0_mono, overwrite, err, errlen);
+    if (rc != LEP_OK) {
+        if (out != NULL)
+            *out = NULL;
+        return rc;
+    }
+    return lep_output_open_opts(path, &o, out, err, errlen);
+}
+
+int lep_output_open_fd(int fd, int format, int time, int columns, double t0_mono, lep_output **out,
+                       char *err, size_t errlen)
+{
+    lep_output_options o;
+    int rc = flat_options(&o, format, time, columns, t0_mono, 0, err, errlen);
+    if (rc != LEP_OK) {
+        if (out != NULL)
+            *out = NULL;
+        return rc;
+    }
+    return lep_output_open_fd_opts(fd, &o, out, err, errlen);
+}
+
+int lep_output_write(lep_output *w, int sensor, size_t n, const double *t_mono, const double *t_utc,
+                     const double *si, const int16_t *raw, const double *zeroed,
+                     const uint8_t *status, const uint8_t *flags, const uint16_t *seq,
+                     const double *events, size_t nev, size_t ev_fields)
+{
+    lep_session_batch b;
+    lep_session_event few[16];
+    lep_session_event *ev = few;
+    double f[LEP_EVF_COUNT];
+    size_t k, take = ev_fields < LEP_EVF_COUNT ? ev_fields : LEP_EVF_COUNT;
+    int rc;
+    if (nev > 0 && (events == NULL || ev_fields < (size_t)LEP_EVF_TARE + 6u))
+        return LEP_E_ARG;
+    if (nev > sizeof few / sizeof few[0]) {
+        ev = malloc(nev * sizeof *ev);
+        if (ev == NULL)
+            return LEP_E_IO;
+    }
+    for (k = 0; k < nev; k++) {
+        memset(f, 0, sizeof f);
+        memcpy(f, events + k * ev_fields, sizeof(double) * take);
+        lep_event_from_fields(f, &ev[k]);
+    }
+    /* The batch is only read (its members are not const for the session's sake). */
+    memset(&b, 0, sizeof b);
+    b.cap = b.n = n;
+    b.t_mono = (double *)t_mono;
+    b.t_utc = (double *)t_utc;
+    b.si = (double *)si;
+    b.raw = (int16_t *)raw;
+    b.zeroed = (double *)zeroed;
+    b.status = (uint8_t *)status;
+    b.flags = (uint8_t *)flags;
+    b.seq = (uint16_t *)seq;
+    rc = lep_output_write_batch(w, sensor, &b, 0, nev > 0 ? ev : NULL, nev);
+    if (ev != few)
+        free(ev);
     return rc;
 }

@@ -129,7 +129,7 @@ static int find_non_finite(const double *gravity, const double *wrench, size_t n
 }
 
 int lep_payload_identify_fit(const double *gravity, const double *wrench, size_t n,
-                         lep_payload_fit *out, char *err, size_t errlen)
+                             lep_payload_fit *out, char *err, size_t errlen)
 {
     double gm[3] = { 0 }, fm[3] = { 0 }, mm[3] = { 0 };
     double a[3][3] = { { 0 } }, b[3] = { 0 }, lam[3], v[3][3];
@@ -258,5 +258,51 @@ int lep_payload_identify_fit(const double *gravity, const double *wrench, size_t
         fit.residual[k] = sqrt(fit.residual[k] / (double)n);
     fit.poses = n;
     *out = fit;
+    return LEP_OK;
+}
+
+/* ---- the flat form (leptrino/payload.h) ---- */
+
+double lep_standard_gravity(void)
+{
+    return LEP_STANDARD_GRAVITY;
+}
+
+double lep_payload_min_spread(void)
+{
+    return LEP_PAYLOAD_MIN_SPREAD;
+}
+
+int lep_payload_wrench(const double payload[4], const double gravity[3], double wrench[6])
+{
+    lep_payload p;
+    if (payload == NULL)
+        return LEP_E_ARG;
+    p.mass_kg = payload[0];
+    memcpy(p.com_m, payload + 1, sizeof p.com_m);
+    return lep_payload_wrench_p(&p, gravity, wrench);
+}
+
+int lep_payload_identify(const double *gravity, const double *wrench, size_t n, double *fit,
+                         size_t nfit, char *err, size_t errlen)
+{
+    lep_payload_fit r;
+    double f[LEP_FIT_COUNT];
+    int rc;
+    if (fit == NULL && nfit > 0) {
+        lep_priv_set_err(err, errlen, "payload: no array for the fit");
+        return LEP_E_ARG;
+    }
+    rc = lep_payload_identify_fit(gravity, wrench, n, &r, err, errlen);
+    if (rc != LEP_OK)
+        return rc;
+    f[LEP_FIT_PAYLOAD] = r.payload.mass_kg;
+    memcpy(f + LEP_FIT_PAYLOAD + 1, r.payload.com_m, sizeof r.payload.com_m);
+    memcpy(f + LEP_FIT_FORCE_BIAS_N, r.force_bias_N, sizeof r.force_bias_N);
+    memcpy(f + LEP_FIT_TORQUE_BIAS_NM, r.torque_bias_Nm, sizeof r.torque_bias_Nm);
+    memcpy(f + LEP_FIT_RESIDUAL, r.residual, sizeof r.residual);
+    f[LEP_FIT_SPREAD] = r.spread;
+    f[LEP_FIT_POSES] = (double)r.poses;
+    memcpy(fit, f, sizeof(double) * (nfit < LEP_FIT_COUNT ? nfit : LEP_FIT_COUNT));
     return LEP_OK;
 }

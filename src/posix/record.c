@@ -3,6 +3,8 @@
 
 #include "leptrino/record.h"
 
+#include <float.h>
+
 #include "leptrino/error.h"
 #include "leptrino/serial.h"
 #include "struct_api.h"
@@ -33,8 +35,8 @@ static void record_store(lep_record_batch *b, const lep_rated *rated, const lep_
     b->n = i + 1u;
 }
 
-int lep_record_fill_batch(lep_client *c, const lep_rated *rated, lep_record_batch *b, double until_s,
-                    int timeout_ms)
+int lep_record_fill_batch(lep_client *c, const lep_rated *rated, lep_record_batch *b,
+                          double until_s, int timeout_ms)
 {
     lep_sample chunk[LEP_RECORD_CHUNK];
 
@@ -87,4 +89,34 @@ int lep_record_fill_batch(lep_client *c, const lep_rated *rated, lep_record_batc
         }
     }
     return LEP_OK;
+}
+
+int lep_record_fill(lep_client *c, const double rated[6], size_t cap, size_t *n, double *t,
+                    double *si, int16_t *raw, uint8_t *status, uint16_t *seq, double until_s,
+                    int timeout_ms)
+{
+    lep_record_batch b;
+    lep_rated r;
+    int k, rc;
+    if (n != NULL)
+        *n = 0;
+    if (n == NULL)
+        return LEP_E_ARG;
+    if (rated != NULL) {
+        for (k = 0; k < LEP_AXES; k++) {
+            if (!(rated[k] > 0.0 && rated[k] <= FLT_MAX)) /* also NaN */
+                return LEP_E_ARG;
+            r.axis[k] = (float)rated[k];
+        }
+    }
+    b.cap = cap;
+    b.n = 0;
+    b.t = t;
+    b.si = si;
+    b.raw = raw;
+    b.status = status;
+    b.seq = seq;
+    rc = lep_record_fill_batch(c, rated != NULL ? &r : NULL, &b, until_s, timeout_ms);
+    *n = b.n;
+    return rc;
 }

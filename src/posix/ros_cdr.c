@@ -3,6 +3,7 @@
 #include "leptrino/ros_cdr.h"
 
 #include <math.h>
+#include <float.h>
 #include <string.h>
 
 #include "leptrino/error.h"
@@ -68,9 +69,9 @@ static void write_one(uint8_t *p, const uint8_t *head, size_t hlen, const double
         p = put_f64(p, v[k]);
 }
 
-int lep_ros_wrench_cdr_batch(const lep_session_batch *b, size_t from, size_t n, const lep_rated *rated,
-                       const char *frame_id, int64_t *last_ns, uint8_t *wrench, uint8_t *wrench_raw,
-                       size_t cap, int64_t *stamp_ns)
+int lep_ros_wrench_cdr_batch(const lep_session_batch *b, size_t from, size_t n,
+                             const lep_rated *rated, const char *frame_id, int64_t *last_ns,
+                             uint8_t *wrench, uint8_t *wrench_raw, size_t cap, int64_t *stamp_ns)
 {
     uint8_t head[4 + 8 + 4 + LEP_ROS_FRAME_ID_MAX + 1 + 7];
     size_t flen, hlen, size, i;
@@ -122,4 +123,28 @@ int lep_ros_wrench_cdr_batch(const lep_session_batch *b, size_t from, size_t n, 
     }
     *last_ns = last;
     return LEP_OK;
+}
+
+int lep_ros_wrench_cdr(size_t n, const double *t_utc, const double *si, const int16_t *raw,
+                       const double rated[6], const char *frame_id, int64_t *last_ns,
+                       uint8_t *wrench, uint8_t *wrench_raw, size_t cap, int64_t *stamp_ns)
+{
+    lep_session_batch b;
+    lep_rated r;
+    int k;
+    if (rated != NULL) {
+        for (k = 0; k < LEP_AXES; k++) {
+            if (!(rated[k] > 0.0 && rated[k] <= FLT_MAX)) /* also NaN */
+                return LEP_E_VALUE;
+            r.axis[k] = (float)rated[k];
+        }
+    }
+    /* The batch is only read (its members are not const for the session's sake). */
+    memset(&b, 0, sizeof b);
+    b.cap = b.n = n;
+    b.t_utc = (double *)t_utc;
+    b.si = (double *)si;
+    b.raw = (int16_t *)raw;
+    return lep_ros_wrench_cdr_batch(&b, 0, n, rated != NULL ? &r : NULL, frame_id, last_ns, wrench,
+                                    wrench_raw, cap, stamp_ns);
 }

@@ -2,6 +2,7 @@
  * by name, samples into caller arrays, events, health and metadata as
  * arrays of doubles, texts by key. Each fills or reads the session's own
  * structs (struct_api.h) and calls the one implementation. */
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -248,20 +249,17 @@ static int set_doubles(lep_options *o, const char *name, const void *v, size_t n
     return lep_options_set_doubles(o, name, (const double *)v, n, err, errlen);
 }
 
-int lep_session_set(lep_session *s, const char *name, const char *value, char *err,
-                    size_t errlen)
+int lep_session_set(lep_session *s, const char *name, const char *value, char *err, size_t errlen)
 {
     return session_set(s, name, set_text, value, 0, err, errlen);
 }
 
-int lep_session_set_int(lep_session *s, const char *name, int64_t value, char *err,
-                        size_t errlen)
+int lep_session_set_int(lep_session *s, const char *name, int64_t value, char *err, size_t errlen)
 {
     return session_set(s, name, set_int, &value, 1, err, errlen);
 }
 
-int lep_session_set_double(lep_session *s, const char *name, double value, char *err,
-                           size_t errlen)
+int lep_session_set_double(lep_session *s, const char *name, double value, char *err, size_t errlen)
 {
     return session_set(s, name, set_double, &value, 1, err, errlen);
 }
@@ -389,16 +387,37 @@ int lep_session_rated(lep_session *s, double rated[6])
     return LEP_OK;
 }
 
-static const char *const health_names[LEP_H_COUNT] = {
-    "elapsed_s",  "nominal_hz",      "measured_hz",     "recent_hz",
-    "shortfall",  "received",        "delivered",       "lost",
-    "gaps",       "errors",          "overloads",       "limit_episodes",
-    "disconnects", "reconnects",     "events_dropped",  "max_gap_s",
-    "messages",   "bcc_errors",      "frame_errors",    "bytes_discarded",
-    "naks",       "retries",         "unexpected",      "invalid",
-    "timeouts",   "samples",         "resent_after_timeout", "resent_confirmed",
-    "recoveries", "reserved_nonzero", "stalls"
-};
+static const char *const health_names[LEP_H_COUNT] = { "elapsed_s",
+                                                       "nominal_hz",
+                                                       "measured_hz",
+                                                       "recent_hz",
+                                                       "shortfall",
+                                                       "received",
+                                                       "delivered",
+                                                       "lost",
+                                                       "gaps",
+                                                       "errors",
+                                                       "overloads",
+                                                       "limit_episodes",
+                                                       "disconnects",
+                                                       "reconnects",
+                                                       "events_dropped",
+                                                       "max_gap_s",
+                                                       "messages",
+                                                       "bcc_errors",
+                                                       "frame_errors",
+                                                       "bytes_discarded",
+                                                       "naks",
+                                                       "retries",
+                                                       "unexpected",
+                                                       "invalid",
+                                                       "timeouts",
+                                                       "samples",
+                                                       "resent_after_timeout",
+                                                       "resent_confirmed",
+                                                       "recoveries",
+                                                       "reserved_nonzero",
+                                                       "stalls" };
 
 size_t lep_session_health_fields(void)
 {

@@ -6,9 +6,9 @@
 #include "options_priv.h"
 
 #define F(m) #m, offsetof(struct lep_options, m), sizeof(((struct lep_options *)0)->m)
-#define ROW(name, type, arg, help, def, lo, hi, scope, member, store)                      \
+#define ROW(name, type, arg, help, def, lo, hi, scope, member, store)                       \
     {                                                                                       \
-        {name, type, arg, help, def, lo, hi, false}, name, scope, F(member), store, T_ANY \
+        { name, type, arg, help, def, lo, hi, false }, name, scope, F(member), store, T_ANY \
     }
 
 #define MAX_MS 86400000.0
@@ -23,8 +23,8 @@ static const opt_row rows[] = {
         LEP_SCOPE_SESSION, so.use_sim, S_BOOL),
     ROW("timeout", LEP_SIM_OPT_INT, "MS", "answer timeout per attempt of a command, ms", "500", 1,
         MAX_MS, LEP_SCOPE_SESSION, so.timeout_ms, S_INT),
-    ROW("sync-quiet", LEP_SIM_OPT_INT, "MS", "quiet time that ends the start-up drain, ms", "30",
-        0, MAX_MS, LEP_SCOPE_SESSION, so.sync_quiet_ms, S_INT),
+    ROW("sync-quiet", LEP_SIM_OPT_INT, "MS", "quiet time that ends the start-up drain, ms", "30", 0,
+        MAX_MS, LEP_SCOPE_SESSION, so.sync_quiet_ms, S_INT),
     ROW("data-timeout", LEP_SIM_OPT_INT, "MS",
         "no sample for MS ms while streaming: a disconnect (reconnect) or a lost stream", "2000", 1,
         MAX_MS, LEP_SCOPE_SESSION, so.data_timeout_ms, S_INT),
@@ -48,19 +48,19 @@ static const opt_row rows[] = {
         "latency budget: how long delivery may hold samples back to save wake-ups (0: none)", "0",
         0, 10000, LEP_SCOPE_LIVE, so.latency_ms, S_INT),
     ROW("tare-samples", LEP_SIM_OPT_UINT, "N",
-        "tare over the first N samples after start; they are not delivered (0: none)", "0", 0,
-        1e9, LEP_SCOPE_SESSION, so.tare_samples, S_UNSIGNED),
+        "tare over the first N samples after start; they are not delivered (0: none)", "0", 0, 1e9,
+        LEP_SCOPE_SESSION, so.tare_samples, S_UNSIGNED),
     ROW("lowpass", LEP_SIM_OPT_DOUBLE, "HZ",
         "host low-pass cut-off on the SI values, Hz, at most 0.45 x the rate (0: off)", "0", 0,
         100000, LEP_SCOPE_LIVE, so.lowpass_hz, S_DOUBLE),
-    ROW("decimate", LEP_SIM_OPT_UINT, "N", "deliver every Nth sample (after the low-pass)", "1",
-        1, 1e6, LEP_SCOPE_SESSION, so.decimate, S_UNSIGNED),
+    ROW("decimate", LEP_SIM_OPT_UINT, "N", "deliver every Nth sample (after the low-pass)", "1", 1,
+        1e6, LEP_SCOPE_SESSION, so.decimate, S_UNSIGNED),
     ROW("rotation", LEP_SIM_OPT_NUMBERS, "R11,R12,R13,R21,R22,R23,R31,R32,R33",
-        "output frame: row-major orthonormal R, force = R f, moment = R m", "1,0,0,0,1,0,0,0,1",
-        -1, 1, LEP_SCOPE_LIVE, so.rotation, S_DOUBLES),
+        "output frame: row-major orthonormal R, force = R f, moment = R m", "1,0,0,0,1,0,0,0,1", -1,
+        1, LEP_SCOPE_LIVE, so.rotation, S_DOUBLES),
     ROW("shift", LEP_SIM_OPT_NUMBERS, "X,Y,Z",
-        "moment reference point in the output frame, m: moment = m' - r x f'", "0,0,0", -1000,
-        1000, LEP_SCOPE_LIVE, so.shift_m, S_DOUBLES),
+        "moment reference point in the output frame, m: moment = m' - r x f'", "0,0,0", -1000, 1000,
+        LEP_SCOPE_LIVE, so.shift_m, S_DOUBLES),
     ROW("duration", LEP_SIM_OPT_DOUBLE, "S",
         "reading ends (LEP_E_END) S s after the first sample (0: none)", "0", 0, MAX_SECONDS,
         LEP_SCOPE_SESSION, so.duration_s, S_DOUBLE),

@@ -105,7 +105,7 @@ typedef struct session_events {
 /* session_health.c: [mu] the health counters and what they are computed from. */
 typedef struct session_health_state {
     lep_session_health_info h; /* h.delivered: rows returned by lep_session_read */
-    uint64_t processed;   /* rows processed: the next row's number (events' sample) */
+    uint64_t processed;        /* rows processed: the next row's number (events' sample) */
     double first_t;
     double window_t;
     uint64_t window_n;

@@ -39,3 +39,27 @@ int lep_sim_model_rated_f(const char *model, lep_rated *out)
     }
     return LEP_E_ARG;
 }
+
+size_t lep_sim_model_count(void)
+{
+    return sizeof names / sizeof names[0] - 1u;
+}
+
+const char *lep_sim_model_name(size_t i)
+{
+    return i < lep_sim_model_count() ? names[i] : NULL;
+}
+
+int lep_sim_model_rated(const char *model, double rated[6])
+{
+    lep_rated r;
+    int k, rc;
+    if (rated == NULL)
+        return LEP_E_ARG;
+    rc = lep_sim_model_rated_f(model, &r);
+    if (rc != LEP_OK)
+        return rc;
+    for (k = 0; k < LEP_AXES; k++)
+        rated[k] = (double)r.axis[k];
+    return LEP_OK;
+}

@@ -10,19 +10,19 @@
 #include "errmsg.h"
 #include "leptrino/error.h"
 #include "leptrino/sim.h"
-#include "option_rows.h"
+#include "options_priv.h"
 #include "struct_api.h"
 
 #define F(m) #m, offsetof(lep_sim_options, m), sizeof(((lep_sim_options *)0)->m)
-#define NUM(name, type, arg, help, def, lo, hi, excl, member, store)                            \
-    {                                                                                           \
-        {name, type, arg, help, def, lo, hi, excl}, "sim-" name, LEP_SCOPE_SIM, F(member), store, \
-            T_ANY                                                                               \
+#define NUM(name, type, arg, help, def, lo, hi, excl, member, store)                         \
+    {                                                                                        \
+        { name, type, arg, help, def, lo, hi, excl }, "sim-" name, LEP_SCOPE_SIM, F(member), \
+            store, T_ANY                                                                     \
     }
-#define TXT(name, type, arg, help, def, lo, hi, member, rule)                                   \
-    {                                                                                           \
-        {name, type, arg, help, def, lo, hi, false}, "sim-" name, LEP_SCOPE_SIM, F(member),       \
-            S_CHARS, rule                                                                       \
+#define TXT(name, type, arg, help, def, lo, hi, member, rule)                                 \
+    {                                                                                         \
+        { name, type, arg, help, def, lo, hi, false }, "sim-" name, LEP_SCOPE_SIM, F(member), \
+            S_CHARS, rule                                                                     \
     }
 
 /* Time options stop well short of 9.2e9 s, where nanoseconds leave int64. */

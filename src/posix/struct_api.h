@@ -181,13 +181,12 @@ const lep_sim_option_info *lep_sim_option_find(const char *name);
  * (when not NULL) naming the option and what is allowed, e.g.
  * "amplitude '5': expected a number from 0 to 4". Re-entrant. */
 int lep_sim_option_set(lep_sim_options *o, const char *name, const char *value, char *err,
-                               size_t errlen);
+                       size_t errlen);
 
 /* Write the current value of an option in o as text that lep_sim_option_set
  * accepts (flags: "1"/"0") into buf. LEP_E_ARG for an unknown name or a NULL
  * argument, LEP_E_BUFFER when buf is too small (buf then holds ""). */
-int lep_sim_option_get(const lep_sim_options *o, const char *name, char *buf,
-                               size_t buflen);
+int lep_sim_option_get(const lep_sim_options *o, const char *name, char *buf, size_t buflen);
 
 /* Check every option of o and how they combine (overload duration < every,
  * reopen needs a link, stall-after needs a stall): the one validation
@@ -398,8 +397,7 @@ typedef struct lep_session_meta {
 void lep_session_options_init(lep_session_options *o);
 
 /* lep_session_open on a struct (the one implementation). */
-int lep_session_open_so(const lep_session_options *o, lep_session **out, char *err,
-                        size_t errlen);
+int lep_session_open_so(const lep_session_options *o, lep_session **out, char *err, size_t errlen);
 
 /* lep_session_read appending to b (from b->n up to b->cap); b->n counts the
  * samples appended whatever it returns; a b already full returns LEP_OK at
@@ -441,8 +439,8 @@ typedef struct lep_output_options {
 } lep_output_options;
 
 void lep_output_options_init(lep_output_options *o);
-int lep_output_open_opts(const char *path, const lep_output_options *o, lep_output **out,
-                         char *err, size_t errlen);
+int lep_output_open_opts(const char *path, const lep_output_options *o, lep_output **out, char *err,
+                         size_t errlen);
 int lep_output_open_fd_opts(int fd, const lep_output_options *o, lep_output **out, char *err,
                             size_t errlen);
 /* Rows b[from..b->n) and events ev[0..nev), as lep_output_write. */

@@ -12,6 +12,7 @@
  * documented errors come back; nothing is busy after a blocking call; the
  * sample counter equals the samples delivered; a delivered sample satisfies
  * the message rules (|raw| <= 32000). */
+#include <stdbool.h>
 #include <stdint.h>
 #include <string.h>
 
@@ -225,7 +226,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     io.user = &l;
     check(lep_client_init(&c, &io) == LEP_OK);
     check(lep_client_set_timeout(&c, 1 + (cfg & 7u)) == LEP_OK);
-    check(lep_client_set_retries(&c, (cfg >> 3) & 3u) == LEP_OK);
+    check(lep_client_set_retries(&c, (int)((cfg >> 3) & 3u)) == LEP_OK);
     check(lep_client_set_watchdog(&c, (uint16_t)((cfg & 0x20u) ? 4u : 0u)) == LEP_OK);
     check(lep_client_set_rx(&c, (cfg & 0x40u) ? &rx : NULL) == LEP_OK);
     if (cfg & 0x80u) {

@@ -3,6 +3,7 @@
  * that the host side decodes to a well-formed response for the command
  * answered (or a DLE NAK); the device's streaming state follows start/stop;
  * streaming data frames stay valid. */
+#include <stdbool.h>
 #include <stdint.h>
 #include <string.h>
 

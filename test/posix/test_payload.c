@@ -168,7 +168,8 @@ static void test_identify_exact(void)
     uint32_t s = 1;
     int k;
     synth(&p, fb, mb, g, 3, 0.0, 0.0, &s, w);
-    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_payload_identify_fit(g, w, 3, &f, err, sizeof err), err);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_payload_identify_fit(g, w, 3, &f, err, sizeof err),
+                                  err);
     TEST_ASSERT_DOUBLE_WITHIN(1e-12, p.mass_kg, f.payload.mass_kg);
     for (k = 0; k < 3; k++) {
         TEST_ASSERT_DOUBLE_WITHIN(1e-12, p.com_m[k], f.payload.com_m[k]);
@@ -237,7 +238,8 @@ static void test_identify_four_poses_with_noise(void)
     uint32_t s = 99;
     int k;
     synth(&p, fb, mb, g, 4, 0.03, 0.001, &s, w);
-    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_payload_identify_fit(g, w, 4, &f, err, sizeof err), err);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_payload_identify_fit(g, w, 4, &f, err, sizeof err),
+                                  err);
     TEST_ASSERT_DOUBLE_WITHIN(0.01 * p.mass_kg, p.mass_kg, f.payload.mass_kg);
     for (k = 0; k < 3; k++)
         TEST_ASSERT_DOUBLE_WITHIN(0.002, p.com_m[k], f.payload.com_m[k]);
@@ -248,7 +250,8 @@ static void expect_refused(const double *g, const double *w, size_t n, int code,
     lep_payload_fit f, before;
     memset(&f, 0x5A, sizeof f);
     before = f;
-    TEST_ASSERT_EQUAL_INT_MESSAGE(code, lep_payload_identify_fit(g, w, n, &f, err, sizeof err), err);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(code, lep_payload_identify_fit(g, w, n, &f, err, sizeof err),
+                                  err);
     TEST_ASSERT_EQUAL_MEMORY(&before, &f, sizeof f); /* untouched */
     TEST_ASSERT_NULL_MESSAGE(strchr(err, '\n'), err);
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err, needle), err);
@@ -298,8 +301,8 @@ static void test_degenerate_sets_refused(void)
     {
         lep_payload_fit f;
         synth(&p, zero, zero, g, 3, 0.0, 0.0, &s, w);
-        TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_payload_identify_fit(g, w, 3, &f, err, sizeof err),
-                                      err);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK,
+                                      lep_payload_identify_fit(g, w, 3, &f, err, sizeof err), err);
         TEST_ASSERT_DOUBLE_WITHIN(1e-9, 1.0, f.payload.mass_kg);
         TEST_ASSERT_DOUBLE_WITHIN(1e-9, 0.1, f.payload.com_m[2]);
     }
@@ -454,7 +457,8 @@ static void record_pose(const char *path, const char *payload, const double g[3]
     TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_session_open_so(&o, &s, err, sizeof err), err);
     lep_output_options_init(&oo);
     oo.columns = columns;
-    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_output_open_opts(path, &oo, &w, err, sizeof err), err);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_output_open_opts(path, &oo, &w, err, sizeof err),
+                                  err);
     idx = lep_output_add_session(w, s, NULL);
     TEST_ASSERT_TRUE(idx >= 0);
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
@@ -535,7 +539,8 @@ static void test_sim_four_poses_identified(void)
             LEP_OK, lep_payload_pose_read(path, &w[i * 6], &n, err, sizeof err), err);
         TEST_ASSERT_EQUAL_UINT64(600, n);
     }
-    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_payload_identify_fit(g, w, 4, &f, err, sizeof err), err);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_payload_identify_fit(g, w, 4, &f, err, sizeof err),
+                                  err);
     printf("sim, 4 poses x 600 samples: mass %.5f kg (1.5), com %.5f %.5f %.5f m "
            "(0.01 -0.02 0.08), spread %.3f, residual %.3g N %.3g N m\n",
            f.payload.mass_kg, f.payload.com_m[0], f.payload.com_m[1], f.payload.com_m[2], f.spread,

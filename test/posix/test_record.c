@@ -103,7 +103,8 @@ static void test_stops_at_the_deadline(void)
     double start;
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
     start = lep_monotonic_seconds();
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_record_fill_batch(&client, &rated, &batch, start + 0.25, 500));
+    TEST_ASSERT_EQUAL_INT(LEP_OK,
+                          lep_record_fill_batch(&client, &rated, &batch, start + 0.25, 500));
     TEST_ASSERT_TRUE(batch.n > 100 && batch.n < CAP);
     TEST_ASSERT_TRUE(lep_monotonic_seconds() - start < 1.0);
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_stop(&client));
@@ -116,8 +117,8 @@ static void test_optional_columns_and_disconnect(void)
     b.cap = CAP;
     b.t = t;
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
-    TEST_ASSERT_EQUAL_INT(LEP_OK,
-                          lep_record_fill_batch(&client, NULL, &b, lep_monotonic_seconds() + 0.1, 500));
+    TEST_ASSERT_EQUAL_INT(
+        LEP_OK, lep_record_fill_batch(&client, NULL, &b, lep_monotonic_seconds() + 0.1, 500));
     TEST_ASSERT_TRUE(b.n > 0);
     lep_sim_hangup(sim);
     b.n = 0;

@@ -101,8 +101,8 @@ static void test_last_carries_over(void)
 {
     uint8_t w[76];
     int64_t st, last = 1700000000300000000LL; /* a later stamp from the previous batch */
-    TEST_ASSERT_EQUAL_INT(
-        LEP_OK, lep_ros_wrench_cdr_batch(&batch, 1, 1, NULL, "left", &last, w, NULL, sizeof w, &st));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_ros_wrench_cdr_batch(&batch, 1, 1, NULL, "left", &last, w,
+                                                           NULL, sizeof w, &st));
     TEST_ASSERT_EQUAL_INT64(1700000000300000000LL, st);
     TEST_ASSERT_EQUAL_UINT32(300000000u, u32_at(w + 8));
 }
@@ -132,36 +132,36 @@ static void test_refusals_write_nothing(void)
     longid[sizeof longid - 1] = 0;
     memset(w, 0xee, sizeof w);
     memset(r, 0xee, sizeof r);
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG,
-                          lep_ros_wrench_cdr_batch(NULL, 0, 1, &rated, "a", &last, w, r, sizeof w, st));
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG,
-                          lep_ros_wrench_cdr_batch(&batch, 2, 2, &rated, "a", &last, w, r, sizeof w, st));
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG,
-                          lep_ros_wrench_cdr_batch(&batch, 4, 0, &rated, "a", &last, w, r, sizeof w, st));
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG,
-                          lep_ros_wrench_cdr_batch(&batch, 0, 1, NULL, "a", &last, w, r, sizeof w, st));
+    TEST_ASSERT_EQUAL_INT(
+        LEP_E_ARG, lep_ros_wrench_cdr_batch(NULL, 0, 1, &rated, "a", &last, w, r, sizeof w, st));
+    TEST_ASSERT_EQUAL_INT(
+        LEP_E_ARG, lep_ros_wrench_cdr_batch(&batch, 2, 2, &rated, "a", &last, w, r, sizeof w, st));
+    TEST_ASSERT_EQUAL_INT(
+        LEP_E_ARG, lep_ros_wrench_cdr_batch(&batch, 4, 0, &rated, "a", &last, w, r, sizeof w, st));
+    TEST_ASSERT_EQUAL_INT(
+        LEP_E_ARG, lep_ros_wrench_cdr_batch(&batch, 0, 1, NULL, "a", &last, w, r, sizeof w, st));
     TEST_ASSERT_EQUAL_INT(
         LEP_E_ARG, lep_ros_wrench_cdr_batch(&batch, 0, 1, &rated, NULL, &last, w, r, sizeof w, st));
-    TEST_ASSERT_EQUAL_INT(LEP_E_ARG,
-                          lep_ros_wrench_cdr_batch(&batch, 0, 1, &rated, "a", NULL, w, r, sizeof w, st));
     TEST_ASSERT_EQUAL_INT(
-        LEP_E_ARG, lep_ros_wrench_cdr_batch(&batch, 0, 1, &rated, longid, &last, w, r, sizeof w, st));
-    TEST_ASSERT_EQUAL_INT(LEP_E_BUFFER, lep_ros_wrench_cdr_batch(&batch, 0, 3, &rated, "left", &last, w,
-                                                           r, 3 * 76 - 1, st));
+        LEP_E_ARG, lep_ros_wrench_cdr_batch(&batch, 0, 1, &rated, "a", NULL, w, r, sizeof w, st));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_ros_wrench_cdr_batch(&batch, 0, 1, &rated, longid, &last,
+                                                              w, r, sizeof w, st));
+    TEST_ASSERT_EQUAL_INT(LEP_E_BUFFER, lep_ros_wrench_cdr_batch(&batch, 0, 3, &rated, "left",
+                                                                 &last, w, r, 3 * 76 - 1, st));
     batch.si = NULL;
-    TEST_ASSERT_EQUAL_INT(
-        LEP_E_ARG, lep_ros_wrench_cdr_batch(&batch, 0, 1, &rated, "a", &last, w, NULL, sizeof w, st));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_ros_wrench_cdr_batch(&batch, 0, 1, &rated, "a", &last, w,
+                                                              NULL, sizeof w, st));
     batch.si = si;
     batch.raw = NULL;
-    TEST_ASSERT_EQUAL_INT(
-        LEP_E_ARG, lep_ros_wrench_cdr_batch(&batch, 0, 1, &rated, "a", &last, NULL, r, sizeof w, st));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_ros_wrench_cdr_batch(&batch, 0, 1, &rated, "a", &last,
+                                                              NULL, r, sizeof w, st));
     batch.raw = raw;
     batch.t_utc = bad_t;
-    TEST_ASSERT_EQUAL_INT(LEP_E_VALUE,
-                          lep_ros_wrench_cdr_batch(&batch, 0, 3, &rated, "a", &last, w, r, sizeof w, st));
+    TEST_ASSERT_EQUAL_INT(LEP_E_VALUE, lep_ros_wrench_cdr_batch(&batch, 0, 3, &rated, "a", &last, w,
+                                                                r, sizeof w, st));
     batch.t_utc = far_t; /* 2^32 s: past int32 seconds */
-    TEST_ASSERT_EQUAL_INT(LEP_E_VALUE,
-                          lep_ros_wrench_cdr_batch(&batch, 0, 3, &rated, "a", &last, w, r, sizeof w, st));
+    TEST_ASSERT_EQUAL_INT(LEP_E_VALUE, lep_ros_wrench_cdr_batch(&batch, 0, 3, &rated, "a", &last, w,
+                                                                r, sizeof w, st));
     for (size_t i = 0; i < sizeof w; i++) {
         TEST_ASSERT_EQUAL_HEX8(0xee, w[i]);
         TEST_ASSERT_EQUAL_HEX8(0xee, r[i]);

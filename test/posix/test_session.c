@@ -402,7 +402,8 @@ static void test_recording_from_a_session(void)
     (void)unlink(path);
     lep_output_options_init(&oo);
     oo.columns = LEP_COL_RAW | LEP_COL_SI | LEP_COL_SEQ;
-    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_output_open_opts(path, &oo, &w, err, sizeof err), err);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_output_open_opts(path, &oo, &w, err, sizeof err),
+                                  err);
     TEST_ASSERT_EQUAL_INT(0, lep_output_add_session(w, s, "a"));
     st_batch_init(&b, 16);
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));

@@ -5,6 +5,7 @@
  * anywhere in the frame (stuffing, DLE/STX/ETX and BCC included), fed to the
  * frame decoder followed by a clean frame; a message that comes out different
  * from both and decodes is an undetected error. */
+#include <stdbool.h>
 #include <stdio.h>
 #include <string.h>
 

@@ -493,7 +493,7 @@ static void tare_requests(stream_state *st)
         if (u > 0)
             lep_session_untare(st->run[i].s);
         if (t > 0)
-            lep_session_tare(st->run[i].s, st->o.retare, 0.0);
+            lep_session_tare(st->run[i].s, (int)st->o.retare, 0.0);
     }
 }
 

@@ -206,12 +206,12 @@ int cli_cmd_watch(int argc, char **argv)
         }
 
         for (n = cli_take_tare_requests(); n > 0; --n)
-            lep_session_tare(s, o.tare_n, 0.0);
+            lep_session_tare(s, (int)o.tare_n, 0.0);
         for (n = cli_take_untare_requests(); n > 0; --n)
             lep_session_untare(s);
         while ((key = cli_term_read_key()) >= 0) {
             if (key == 't' || key == 'T')
-                lep_session_tare(s, o.tare_n, 0.0);
+                lep_session_tare(s, (int)o.tare_n, 0.0);
             else if (key == 'u' || key == 'U')
                 lep_session_untare(s);
             else if (key == 'q' || key == 'Q')

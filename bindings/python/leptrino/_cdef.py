@@ -9,6 +9,18 @@ from __future__ import annotations
 
 CDEF = """
 /* frame.h */
+enum lep_control_byte
+{
+  LEP_DLE = 16,
+  LEP_STX = 2,
+  LEP_ETX = 3,
+  LEP_NAK = 21
+};
+enum lep_frame_limit
+{
+  LEP_MAX_MESSAGE = 128,
+  LEP_MAX_FRAME = 261
+};
 uint8_t lep_bcc(const uint8_t *msg, size_t len);
 int lep_frame_encode(const uint8_t *msg, size_t len, uint8_t *out, size_t cap, size_t *out_len);
 size_t lep_frame_size(const uint8_t *msg, size_t len);
@@ -51,7 +63,7 @@ size_t lep_frame_decoder_feed(lep_frame_decoder *d, const uint8_t *data, size_t 
 int lep_frame_decoder_feed_byte(lep_frame_decoder *d, uint8_t b, lep_frame_event *ev);
 typedef void (*lep_frame_handler)(void *user, const lep_frame_event *ev);
 int lep_frame_decoder_feed_all(lep_frame_decoder *d, const uint8_t *data, size_t len, lep_frame_handler on_event, void *user);
-_Bool lep_frame_decoder_busy(const lep_frame_decoder *d);
+int lep_frame_decoder_busy(const lep_frame_decoder *d);
 void lep_frame_decoder_get_stats(const lep_frame_decoder *d, lep_frame_stats *out);
 /* message.h */
 enum lep_command_code
@@ -74,6 +86,39 @@ enum lep_axis
   LEP_MZ,
   LEP_AXES
 };
+enum lep_message_length
+{
+  LEP_LEN_HEADER = 4,
+  LEP_LEN_FILTER_SET_CMD = 8,
+  LEP_LEN_PRODUCT_INFO = 32,
+  LEP_LEN_PRODUCT_INFO_RATE = 38,
+  LEP_LEN_RATED = 28,
+  LEP_LEN_FILTER = 8,
+  LEP_LEN_SAMPLE = 20
+};
+enum lep_status_bit
+{
+  LEP_STATUS_CALIBRATION = 1,
+  LEP_STATUS_SENSOR_FAULT = 2,
+  LEP_STATUS_OVERLOAD = 4
+};
+enum lep_raw_scale
+{
+  LEP_RAW_FULL_SCALE = 10000,
+  LEP_SATURATION_V113 = 32000,
+  LEP_SATURATION_LATER = 15000
+};
+enum lep_filter_limit
+{
+  LEP_FILTER_MAX = 3
+};
+enum lep_info_length
+{
+  LEP_MODEL_LEN = 16,
+  LEP_SERIAL_LEN = 8,
+  LEP_FIRMWARE_LEN = 4,
+  LEP_RATE_LEN = 6
+};
 typedef struct lep_command
 {
   uint8_t code;
@@ -85,7 +130,7 @@ typedef struct lep_product_info
   char serial[9];
   char firmware[5];
   char output_rate[7];
-  _Bool has_output_rate;
+  uint8_t has_output_rate;
   uint32_t output_rate_hz;
 } lep_product_info;
 typedef struct lep_rated
@@ -102,7 +147,7 @@ typedef struct lep_response
 {
   uint8_t code;
   uint8_t result;
-  _Bool stream;
+  uint8_t stream;
   union 
   {
     lep_product_info info;
@@ -154,6 +199,17 @@ enum lep_step
   LEP_STEP_RESPONSE = 1,
   LEP_STEP_SAMPLE = 2
 };
+enum lep_client_default
+{
+  LEP_CLIENT_DEFAULT_TIMEOUT_MS = 100,
+  LEP_CLIENT_DEFAULT_RETRIES = 3,
+  LEP_CLIENT_DEFAULT_QUIET_MS = 50,
+  LEP_CLIENT_DRAIN_TIMEOUTS = 20
+};
+enum lep_client_rx_size
+{
+  LEP_CLIENT_RX_SIZE = 128
+};
 typedef struct lep_client_rx
 {
   uint16_t pos;
@@ -167,8 +223,8 @@ typedef struct lep_client
   uint8_t max_retries;
   uint8_t last_result;
   lep_command cmd;
-  _Bool streaming;
-  _Bool fresh;
+  uint8_t streaming;
+  uint8_t fresh;
   uint8_t kept_len;
   uint8_t clock_in;
   uint16_t watchdog_ms;
@@ -191,6 +247,7 @@ typedef struct lep_client
   lep_frame_decoder dec;
 } lep_client;
 size_t lep_client_sizeof(void);
+size_t lep_client_rx_sizeof(void);
 int lep_client_init(lep_client *c, const lep_io *io);
 int lep_client_set_rx(lep_client *c, lep_client_rx *rx);
 int lep_client_set_timeout(lep_client *c, int timeout_ms);
@@ -198,14 +255,14 @@ int lep_client_set_retries(lep_client *c, unsigned retries);
 int lep_client_set_watchdog(lep_client *c, uint16_t ms);
 void lep_client_get_stats(const lep_client *c, lep_client_stats *out);
 uint8_t lep_client_last_result(const lep_client *c);
-_Bool lep_client_streaming(const lep_client *c);
+int lep_client_streaming(const lep_client *c);
 int lep_client_response(const lep_client *c, lep_response *out);
 int lep_client_get_sample(const lep_client *c, lep_sample *out);
 int lep_client_send(lep_client *c, const lep_command *cmd);
 int lep_client_recover(lep_client *c, uint16_t quiet_ms);
 int lep_client_step(lep_client *c, const uint8_t *data, size_t len, size_t *consumed);
 int lep_client_step_byte(lep_client *c, uint8_t b, lep_sample *out);
-_Bool lep_client_busy(const lep_client *c);
+int lep_client_busy(const lep_client *c);
 int lep_client_transact(lep_client *c, const lep_command *cmd, lep_response *resp);
 int lep_client_sync(lep_client *c, int quiet_ms, lep_product_info *info);
 int lep_client_product_info(lep_client *c, lep_product_info *out);
@@ -236,7 +293,7 @@ typedef struct lep_device
 {
   uint8_t filter_active;
   uint8_t filter_pending;
-  _Bool streaming;
+  uint8_t streaming;
   lep_frame_decoder dec;
   lep_product_info info;
   lep_rated rated;
@@ -247,7 +304,7 @@ int lep_device_init(lep_device *d, const lep_product_info *info, const lep_rated
 size_t lep_device_feed(lep_device *d, const uint8_t *in, size_t len, lep_device_event *ev, uint8_t *out, size_t cap, size_t *out_len);
 void lep_device_set_sample(lep_device *d, const lep_sample *s);
 int lep_device_stream_frame(const lep_sample *s, uint8_t *out, size_t cap, size_t *len);
-_Bool lep_device_streaming(const lep_device *d);
+int lep_device_streaming(const lep_device *d);
 uint8_t lep_device_filter(const lep_device *d);
 uint8_t lep_device_filter_pending(const lep_device *d);
 void lep_device_power_cycle(lep_device *d);
@@ -658,6 +715,7 @@ FUNCTIONS = (
     'lep_filter_label',
     'lep_command_name',
     'lep_client_sizeof',
+    'lep_client_rx_sizeof',
     'lep_client_init',
     'lep_client_set_rx',
     'lep_client_set_timeout',

@@ -1,6 +1,7 @@
 /* Print the wire bytes libleptrino produces for every command and a set of
  * responses, one frame per line: "<name>\t<hex>". check_frames.py decodes
  * them with its own implementation of the spec and compares the contents. */
+#include <stdbool.h>
 #include <stdio.h>
 #include <string.h>
 

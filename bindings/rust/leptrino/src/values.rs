@@ -36,7 +36,8 @@ impl ProductInfo {
             model: text(&c.model),
             serial: text(&c.serial),
             firmware: text(&c.firmware),
-            output_rate_hz: (c.has_output_rate && c.output_rate_hz > 0).then_some(c.output_rate_hz),
+            output_rate_hz: (c.has_output_rate != 0 && c.output_rate_hz > 0)
+                .then_some(c.output_rate_hz),
         }
     }
 }
