@@ -251,7 +251,7 @@ size_t lep_client_rx_sizeof(void);
 int lep_client_init(lep_client *c, const lep_io *io);
 int lep_client_set_rx(lep_client *c, lep_client_rx *rx);
 int lep_client_set_timeout(lep_client *c, int timeout_ms);
-int lep_client_set_retries(lep_client *c, unsigned retries);
+int lep_client_set_retries(lep_client *c, int retries);
 int lep_client_set_watchdog(lep_client *c, uint16_t ms);
 void lep_client_get_stats(const lep_client *c, lep_client_stats *out);
 uint8_t lep_client_last_result(const lep_client *c);

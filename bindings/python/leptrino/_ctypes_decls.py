@@ -297,7 +297,7 @@ FUNCTIONS: Dict[str, Tuple[Any, List[Any]]] = {
     'lep_client_init': (c_int, [POINTER(lep_client), POINTER(lep_io)]),
     'lep_client_set_rx': (c_int, [POINTER(lep_client), POINTER(lep_client_rx)]),
     'lep_client_set_timeout': (c_int, [POINTER(lep_client), c_int]),
-    'lep_client_set_retries': (c_int, [POINTER(lep_client), c_uint]),
+    'lep_client_set_retries': (c_int, [POINTER(lep_client), c_int]),
     'lep_client_set_watchdog': (c_int, [POINTER(lep_client), c_uint16]),
     'lep_client_get_stats': (None, [POINTER(lep_client), POINTER(lep_client_stats)]),
     'lep_client_last_result': (c_uint8, [POINTER(lep_client)]),
