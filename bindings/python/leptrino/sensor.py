@@ -170,6 +170,10 @@ class Sensor:
         sh = None if shift is None else self._vec3(shift, "Sensor")
         self._timeout_ms = max(1, _ms(timeout, "timeout"))
         self._retries = int(retries)  # named by a lost stream's message
+        if port is not None and not isinstance(port, str):
+            port = getattr(port, "port", port)  # a Simulator
+        if (port is None) == (sim is None or sim is False):
+            raise ValueError("give a port, or sim=True / sim={options}, not both")
         data_timeout_ms = max(1, _ms(data_timeout, "data_timeout", lo_exclusive=True))
         with _opts.Options(be) as o:
             if port is not None:
@@ -762,7 +766,10 @@ class Sensor:
             raise
         finally:
             if self._s is not None:
-                self._set_latency_ms(latency_before)
+                try:  # the session's own budget back (refused once close() has begun)
+                    _opts.set_value(be, self._s, "latency", latency_before, session=True)
+                except (LeptrinoError, ValueError):
+                    pass
             if started and self._s is not None:
                 try:
                     lib.lep_session_stop(self._s)
