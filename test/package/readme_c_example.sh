@@ -3,8 +3,8 @@
 # compile it as shown (C99, warnings as errors) with the given flags (the build
 # tree's, or `pkg-config --cflags --libs leptrino` for an installed copy as the
 # README says), and, when the virtual sensor program is given (not "-"), run it
-# against leptrino-sim and check that it identifies the sensor and prints 10
-# samples.
+# against leptrino-sim and check that it identifies the sensor, reports the
+# samples of 1 s and their rate, prints 10 samples and names a missing port.
 # usage: readme_c_example.sh README CC LEPTRINO_SIM|- COMPILER_AND_LINKER_FLAGS...
 set -eu
 readme=$1 cc=$2 sim=$3
@@ -51,6 +51,12 @@ if [ -n "$sim" ]; then
     rows=$(grep -c '^Fz ' "$tmp/run$i.out" || true)
     if ! grep -q 'serial' "$tmp/run$i.out" || [ "$rows" -ne 10 ]; then
       echo "FAIL README.md C block $i printed $rows samples (want 10):"; cat "$tmp/run$i.out"; exit 1
+    fi
+    # 1 s of samples at the virtual sensor's 1200 Hz, and the missing port named
+    if ! grep -Eq '^1[12][0-9][0-9] samples, 1[12][0-9][0-9]\.[0-9] Hz$' "$tmp/run$i.out" ||
+       ! grep -q '^as expected: /dev/leptrino-none: ' "$tmp/run$i.out"; then
+      echo "FAIL README.md C block $i: no rate over 1 s or no message for the missing port:"
+      cat "$tmp/run$i.out"; exit 1
     fi
   done
   echo "README.md: $count C block(s) ran against leptrino-sim (10 samples each)"

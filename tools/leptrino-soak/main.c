@@ -250,8 +250,8 @@ static int stream(soak *k)
             kk += d;
         }
         if (lep_sim_sample_at(k->sim, kk,
-                                  k->check_filter >= 0 ? (uint8_t)k->check_filter : k->opt.filter,
-                                  &want) != LEP_OK ||
+                              k->check_filter >= 0 ? (uint8_t)k->check_filter : k->opt.filter,
+                              &want) != LEP_OK ||
             memcmp(&want, &got, sizeof want) != 0)
             k->wrong++;
     }

@@ -33,7 +33,8 @@ fn median(v: &mut [f64]) -> f64 {
 }
 
 /// CPU per sample of lep_session_read alone, in a session of its own
-/// (opened through leptrino-sys) with this latency budget; one value per run.
+/// (opened through leptrino-sys, options by name) with this latency budget;
+/// one value per run.
 fn session_alone(latency_ms: u64, runs: usize, seconds: f64) -> Vec<f64> {
     let cap = (1200.0 * seconds * 1.2) as usize + 1000;
     let (mut t, mut tu, mut st, mut fl, mut sq) = (
@@ -45,42 +46,52 @@ fn session_alone(latency_ms: u64, runs: usize, seconds: f64) -> Vec<f64> {
     );
     let (mut raw, mut zeroed, mut si) =
         (vec![0i16; cap * 6], vec![0.0; cap * 6], vec![0.0; cap * 6]);
-    let mut o = sys::lep_session_options::default();
     let mut session = std::ptr::null_mut();
-    // SAFETY: plain C calls with valid pointers.
+    // SAFETY: plain C calls with valid pointers and NUL-terminated names; the
+    // options handle is copied by lep_session_open and freed after.
     unsafe {
-        sys::lep_session_options_init(&mut o);
-        o.use_sim = true;
-        o.latency_ms = latency_ms as i32;
+        let o = sys::lep_options_new();
+        assert!(!o.is_null());
+        let null = std::ptr::null_mut();
+        assert_eq!(sys::lep_options_set_int(o, c"sim".as_ptr(), 1, null, 0), 0);
         assert_eq!(
-            sys::lep_session_open(&o, &mut session, std::ptr::null_mut(), 0),
+            sys::lep_options_set_int(o, c"latency".as_ptr(), latency_ms as i64, null, 0),
             0
         );
+        assert_eq!(sys::lep_session_open(o, &mut session, null, 0), 0);
+        sys::lep_options_free(o);
     }
     let mut out = Vec::new();
     for _ in 0..runs {
-        let mut b = sys::lep_session_batch {
-            cap,
-            n: 0,
-            t_mono: t.as_mut_ptr(),
-            t_utc: tu.as_mut_ptr(),
-            raw: raw.as_mut_ptr(),
-            zeroed: zeroed.as_mut_ptr(),
-            si: si.as_mut_ptr(),
-            status: st.as_mut_ptr(),
-            flags: fl.as_mut_ptr(),
-            seq: sq.as_mut_ptr(),
-        };
-        // SAFETY: the batch's columns hold cap rows; the session is open.
+        // SAFETY: the session is open.
         unsafe { assert_eq!(sys::lep_session_start(session), 0) };
         let end = Instant::now() + Duration::from_secs_f64(seconds);
         let c0 = thread_cpu();
-        while Instant::now() < end {
-            unsafe { sys::lep_session_read(session, &mut b, 250) };
+        let mut total = 0usize;
+        while Instant::now() < end && total < cap {
+            let mut n = 0usize;
+            // SAFETY: every column holds cap rows from row `total` on: cap - total.
+            unsafe {
+                sys::lep_session_read(
+                    session,
+                    250,
+                    cap - total,
+                    &mut n,
+                    t.as_mut_ptr().add(total),
+                    tu.as_mut_ptr().add(total),
+                    si.as_mut_ptr().add(total * 6),
+                    raw.as_mut_ptr().add(total * 6),
+                    zeroed.as_mut_ptr().add(total * 6),
+                    st.as_mut_ptr().add(total),
+                    fl.as_mut_ptr().add(total),
+                    sq.as_mut_ptr().add(total),
+                )
+            };
+            total += n;
         }
         let c1 = thread_cpu();
         unsafe { sys::lep_session_stop(session) };
-        out.push((c1 - c0) / b.n.max(1) as f64 * 1e6);
+        out.push((c1 - c0) / total.max(1) as f64 * 1e6);
     }
     unsafe { sys::lep_session_close(session) };
     out

@@ -1,6 +1,6 @@
 //! Errors: every `LEP_E_*` code of the library, with the library's message.
 
-use std::ffi::CStr;
+use std::ffi::{c_char, CStr};
 use std::fmt;
 
 use leptrino_sys as sys;
@@ -158,4 +158,30 @@ pub(crate) fn check_msg(rc: i32, buf: &[u8], fallback: &str) -> Result<()> {
     } else {
         Error::with_message(rc, msg)
     })
+}
+
+/// A text result under the library's text rule (leptrino/options.h): `f(buf,
+/// cap, len)` writes the text and a NUL when they fit and always sets *len to
+/// the text's length; LEP_E_BUFFER when not. Asks for the size first.
+pub(crate) fn text_result(
+    mut f: impl FnMut(*mut c_char, usize, *mut usize) -> i32,
+    context: &str,
+) -> Result<String> {
+    let mut len = 0usize;
+    let rc = f(std::ptr::null_mut(), 0, &mut len);
+    if rc < 0 && rc != sys::LEP_E_BUFFER {
+        return Err(Error::in_context(rc, context));
+    }
+    // The text may grow between the two calls (a session's metadata): ask again.
+    for _ in 0..8 {
+        let mut buf = vec![0u8; len + 1];
+        let rc = f(buf.as_mut_ptr().cast(), buf.len(), &mut len);
+        if rc == sys::LEP_E_BUFFER {
+            continue;
+        }
+        check(rc, context)?;
+        buf.truncate(len.min(buf.len()));
+        return Ok(String::from_utf8_lossy(&buf).into_owned());
+    }
+    Err(Error::in_context(sys::LEP_E_BUFFER, context))
 }

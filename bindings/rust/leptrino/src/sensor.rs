@@ -2,11 +2,12 @@
 //!
 //! Everything the session does (start-up recovery, tare, host low-pass,
 //! decimation, rotation, gap detection, reconnect, health, metadata) runs in
-//! C; this module moves its batches into plain vectors and turns its structs
-//! into Rust values.
+//! C; this module reads its samples (`lep_session_read`) straight into plain
+//! vectors and its events, health and metadata (arrays of numbers indexed by
+//! the header's enumerators, texts by `lep_session_info`) into Rust values.
 
 use std::cell::Cell;
-use std::ffi::{c_char, CStr, CString};
+use std::ffi::{c_char, CStr};
 use std::fmt;
 use std::marker::PhantomData;
 use std::ptr::NonNull;
@@ -15,9 +16,13 @@ use std::time::Duration;
 
 use leptrino_sys as sys;
 
-use crate::error::{check, Error, Result};
+use crate::error::{check, check_msg, text_result, Error, Result};
+use crate::options::{cstring, Handle, Options};
 use crate::sim::{SimOptions, VirtualSensor};
-use crate::values::{Event, ProductInfo, Rated, Recording, Sample};
+use crate::values::{
+    Event, Health, MetaNumbers, Metadata, Payload, ProductInfo, Rated, Recording, Sample,
+    EVF_COUNT, H_COUNT, MD_COUNT,
+};
 
 /// Samples per `lep_session_read` of the sample iterator.
 const ITER_BATCH: usize = 256;
@@ -25,139 +30,27 @@ const ITER_BATCH: usize = 256;
 const RECORD_SLICE_S: f64 = 0.25;
 /// record() returns only at its end, so it lets the library hold samples back
 /// this long (ms) to save wake-ups; the sensor's own budget comes back after.
-const RECORD_LATENCY_MS: i32 = 100;
+const RECORD_LATENCY_MS: i64 = 100;
 /// Reads after the end of record(duration) that collect what the budget held back.
 const RECORD_FINAL_READS: u32 = 64;
-
-/// Health since the stream started (`lep_session_health`): measured against
-/// nominal rate, samples lost, gaps, errors, overloads, reconnects.
-pub type Health = sys::lep_session_health;
-
-fn ms(d: Duration) -> i32 {
-    i32::try_from(d.as_nanos().div_ceil(1_000_000)).unwrap_or(i32::MAX)
-}
+/// Room for the one-line messages of lep_session_open and lep_session_set*.
+const ERR_LEN: usize = 512;
 
 fn monotonic() -> f64 {
     // SAFETY: no arguments, no state.
     unsafe { sys::lep_monotonic_seconds() }
 }
 
-/// Options of a session; start from [`Options::new`] (the library's defaults,
-/// `lep_session_options_init`) and change what you need. The library checks
-/// them when the sensor is opened (`ErrorKind::Arg` with a message).
-///
-/// ```
-/// use std::time::Duration;
-/// let o = leptrino::Options::new()
-///     .tare(100)
-///     .lowpass(50.0)
-///     .reconnect(true)
-///     .data_timeout(Duration::from_secs(1));
-/// # let _ = o;
-/// ```
-#[derive(Clone)]
-pub struct Options {
-    raw: sys::lep_session_options,
-}
-
-// SAFETY: the one pointer of lep_session_options, port, is always NULL in an
-// Options (open sets it in a copy of its own, for the call only).
-unsafe impl Send for Options {}
-// SAFETY: as above; nothing is shared through &Options.
-unsafe impl Sync for Options {}
-
-impl Default for Options {
-    fn default() -> Self {
-        Options::new()
-    }
-}
-
-impl fmt::Debug for Options {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let o = &self.raw;
-        f.debug_struct("Options")
-            .field("timeout_ms", &o.timeout_ms)
-            .field("data_timeout_ms", &o.data_timeout_ms)
-            .field("latency_ms", &o.latency_ms)
-            .field("reconnect", &o.reconnect)
-            .field("tare_samples", &o.tare_samples)
-            .field("lowpass_hz", &o.lowpass_hz)
-            .field("decimate", &o.decimate)
-            .finish_non_exhaustive()
-    }
-}
-
-impl Options {
-    /// The library's defaults.
-    pub fn new() -> Options {
-        let mut raw = sys::lep_session_options::default();
-        // SAFETY: valid, writable options.
-        unsafe { sys::lep_session_options_init(&mut raw) };
-        Options { raw }
-    }
-    /// Answer timeout per attempt of a command (default 500 ms); also how
-    /// long one read waits for stream data.
-    pub fn timeout(mut self, d: Duration) -> Options {
-        self.raw.timeout_ms = ms(d);
-        self
-    }
-    /// No sample for this long while streaming is a disconnect (default 2 s).
-    pub fn data_timeout(mut self, d: Duration) -> Options {
-        self.raw.data_timeout_ms = ms(d);
-        self
-    }
-    /// How long delivery may hold samples back to save wake-ups (default 0:
-    /// each sample as soon as it is read, for a control loop).
-    pub fn latency(mut self, d: Duration) -> Options {
-        self.raw.latency_ms = ms(d);
-        self
-    }
-    /// After a disconnect or data timeout, reopen with backoff and go on
-    /// (reported as events).
-    pub fn reconnect(mut self, on: bool) -> Options {
-        self.raw.reconnect = on;
-        self
-    }
-    /// Tare over the first n samples after the stream starts (not delivered).
-    pub fn tare(mut self, n: u32) -> Options {
-        self.raw.tare_samples = n;
-        self
-    }
-    /// Host low-pass cut-off on SI values, Hz (0 off).
-    pub fn lowpass(mut self, hz: f64) -> Options {
-        self.raw.lowpass_hz = hz;
-        self
-    }
-    /// Deliver every nth sample (after the low-pass).
-    pub fn decimate(mut self, n: u32) -> Options {
-        self.raw.decimate = n;
-        self
-    }
-    /// A hole longer than this many nominal periods is a gap (default 3).
-    pub fn gap_periods(mut self, periods: f64) -> Options {
-        self.raw.gap_periods = periods;
-        self
-    }
-    /// Output frame: row-major rotation matrix R (force = R f, moment = R m).
-    pub fn rotation(mut self, r: [f64; 9]) -> Options {
-        self.raw.rotation = r;
-        self
-    }
-    /// Moment reference point in the output frame, metres.
-    pub fn shift(mut self, m: [f64; 3]) -> Options {
-        self.raw.shift_m = m;
-        self
-    }
-}
-
 /// The session pointer, shared by a [`Sensor`] and its [`Control`]s; closed
 /// when the last of them goes.
 struct Session(NonNull<sys::lep_session>);
 
-// SAFETY: session.h: "one thread drives a session" (any one, one at a time:
-// only Sensor makes those calls, and Sensor is not Sync); the calls Control
-// makes (tare, untare, set/get tare, low-pass, rotation, health, metadata)
-// "may also be called from other threads at any time".
+// SAFETY: session.h: the driving calls (start, read, read_one, stop, the
+// "latency" option) are for one thread at a time: only Sensor makes them
+// (and uses the session's client), and Sensor is not Sync. The calls Control
+// makes (tare, untare, set/get tare, taring, lep_session_set*/get* of the
+// other live options, health, metadata, rated, info, next_event) "may be
+// called from any thread at any time before close".
 unsafe impl Send for Session {}
 // SAFETY: see above.
 unsafe impl Sync for Session {}
@@ -209,6 +102,7 @@ impl Control {
     /// it averages carry the taring flag); a `Tare` event marks its end.
     /// Replaces a tare in progress. Before the stream starts, it begins with it.
     pub fn begin_tare(&self, n: u32) -> Result<()> {
+        let n = i32::try_from(n).unwrap_or(i32::MAX);
         // SAFETY: any-thread call on an open session.
         check(
             unsafe { sys::lep_session_tare(self.ptr(), n, 0.0) },
@@ -228,94 +122,271 @@ impl Control {
     /// The tare offsets in force, counts (zeros when not tared).
     pub fn tare_offsets(&self) -> [f64; 6] {
         let mut off = [0.0; 6];
-        // SAFETY: any-thread call; off holds LEP_AXES doubles.
+        // SAFETY: any-thread call; off holds 6 doubles.
         unsafe { sys::lep_session_get_tare(self.ptr(), off.as_mut_ptr()) };
         off
     }
 
     /// Set the tare offsets, counts.
     pub fn set_tare_offsets(&self, counts: [f64; 6]) -> Result<()> {
-        // SAFETY: any-thread call; counts holds LEP_AXES doubles.
+        // SAFETY: any-thread call; counts holds 6 doubles.
         let rc = unsafe { sys::lep_session_set_tare(self.ptr(), counts.as_ptr()) };
         check(rc, &format!("{}: tare offsets", self.port))
     }
 
     /// True while a tare is in force.
     pub fn tared(&self) -> bool {
-        let mut off = [0.0; 6];
-        // SAFETY: as tare_offsets.
-        unsafe { sys::lep_session_get_tare(self.ptr(), off.as_mut_ptr()) }
+        // SAFETY: any-thread call; NULL offsets are allowed.
+        unsafe { sys::lep_session_get_tare(self.ptr(), std::ptr::null_mut()) == 1 }
+    }
+
+    /// Change an option of the open session by name, from text, as
+    /// `lep_session_set` (the options of scope "live": "lowpass",
+    /// "rotation", "shift", "payload", "gravity", "limit"; "latency" is the
+    /// reading thread's and is refused here). Another option is
+    /// `ErrorKind::State`; a bad value `ErrorKind::Arg` or `ErrorKind::Value`,
+    /// with the library's message naming it.
+    ///
+    /// ```
+    /// let s = leptrino::Sensor::open_sim(&Default::default(), &Default::default())?;
+    /// s.set("lowpass", 100)?;
+    /// assert_eq!(s.lowpass(), 100.0);
+    /// assert_eq!(s.set("decimate", 2).unwrap_err().kind(), leptrino::ErrorKind::State);
+    /// # Ok::<(), leptrino::Error>(())
+    /// ```
+    pub fn set(&self, name: &str, value: impl fmt::Display) -> Result<()> {
+        if name == "latency" {
+            return Err(Error::with_message(
+                sys::LEP_E_STATE,
+                format!(
+                    "{}: latency: set it on the Sensor (the reading thread)",
+                    self.port
+                ),
+            ));
+        }
+        let v = cstring(name, &value.to_string())?;
+        self.set_with(name, |s, n, e, l| unsafe {
+            sys::lep_session_set(s, n, v.as_ptr(), e, l)
+        })
+    }
+
+    fn set_with(
+        &self,
+        name: &str,
+        f: impl FnOnce(*mut sys::lep_session, *const c_char, *mut c_char, usize) -> i32,
+    ) -> Result<()> {
+        let cname = cstring("option", name)?;
+        let mut err = [0u8; ERR_LEN];
+        // f makes an any-thread call on an open session with these buffers.
+        let rc = f(
+            self.ptr(),
+            cname.as_ptr(),
+            err.as_mut_ptr().cast(),
+            err.len(),
+        );
+        check_msg(rc, &err, &format!("{}: {name}", self.port))
+    }
+
+    fn set_doubles(&self, name: &str, v: &[f64]) -> Result<()> {
+        // SAFETY: any-thread call; v holds v.len() doubles.
+        self.set_with(name, |s, n, e, l| unsafe {
+            sys::lep_session_set_doubles(s, n, v.as_ptr(), v.len(), e, l)
+        })
+    }
+
+    /// Any option as the session uses it now, as text (the live ones as last
+    /// set; "port" the path opened).
+    pub fn get(&self, name: &str) -> Result<String> {
+        let cname = cstring("option", name)?;
+        // SAFETY: any-thread call; buf holds cap bytes (or is NULL with cap 0).
+        text_result(
+            |buf, cap, len| unsafe {
+                sys::lep_session_get(self.ptr(), cname.as_ptr(), buf, cap, len)
+            },
+            &format!("{}: option {name:?}", self.port),
+        )
+    }
+
+    fn get_doubles<const N: usize>(&self, cname: &CStr) -> [f64; N] {
+        let mut v = [0.0; N];
+        // SAFETY: any-thread call; v holds N doubles.
+        unsafe {
+            sys::lep_session_get_doubles(
+                self.ptr(),
+                cname.as_ptr(),
+                v.as_mut_ptr(),
+                N,
+                std::ptr::null_mut(),
+            )
+        };
+        v
+    }
+
+    /// The host low-pass cut-off in force, Hz (0 off).
+    pub fn lowpass(&self) -> f64 {
+        let mut hz = 0.0;
+        // SAFETY: any-thread call, valid out pointer.
+        unsafe { sys::lep_session_get_double(self.ptr(), c"lowpass".as_ptr(), &mut hz) };
+        hz
     }
 
     /// Change the host low-pass cut-off, Hz (0 off; `ErrorKind::Value` above
     /// 0.45 x the rate).
     pub fn set_lowpass(&self, hz: f64) -> Result<()> {
         // SAFETY: any-thread call.
-        check(
-            unsafe { sys::lep_session_set_lowpass(self.ptr(), hz) },
-            &format!("{}: low-pass {hz} Hz", self.port),
-        )
+        self.set_with("lowpass", |s, n, e, l| unsafe {
+            sys::lep_session_set_double(s, n, hz, e, l)
+        })
+    }
+
+    /// The output frame in force: rotation (row-major) and moment point (m).
+    pub fn frame(&self) -> ([f64; 9], [f64; 3]) {
+        (self.get_doubles(c"rotation"), self.get_doubles(c"shift"))
     }
 
     /// Change the output frame (rotation row-major, moment point in metres);
-    /// `ErrorKind::Value` for a matrix that is not orthonormal.
+    /// `ErrorKind::Value` for a matrix that is not orthonormal. On an error
+    /// the frame is unchanged.
     pub fn set_frame(&self, rotation: [f64; 9], shift_m: [f64; 3]) -> Result<()> {
-        // SAFETY: any-thread call; 9 and 3 doubles.
-        let rc = unsafe {
-            sys::lep_session_set_rotation(self.ptr(), rotation.as_ptr(), shift_m.as_ptr())
-        };
-        check(rc, &format!("{}: output frame", self.port))
+        let (old_rotation, _) = self.frame();
+        self.set_doubles("rotation", &rotation)?;
+        if let Err(e) = self.set_doubles("shift", &shift_m) {
+            let _ = self.set_doubles("rotation", &old_rotation);
+            return Err(e);
+        }
+        Ok(())
     }
 
     /// Limits on the SI values, per axis (N, N·m; 0: none): a sample beyond
     /// one is flagged and `LimitExceeded` / `LimitCleared` events mark the
     /// episodes. `ErrorKind::Arg` for negative or non-finite limits.
     pub fn set_limits(&self, limits: [f64; 6]) -> Result<()> {
-        // SAFETY: any-thread call; 6 doubles.
-        let rc = unsafe { sys::lep_session_set_limits(self.ptr(), limits.as_ptr()) };
-        check(rc, &format!("{}: limits", self.port))
+        self.set_doubles("limit", &limits)
+    }
+
+    /// The limits in force (0: none).
+    pub fn limits(&self) -> [f64; 6] {
+        self.get_doubles(c"limit")
+    }
+
+    /// Remove a tool's gravity wrench from the SI values (raw and zeroed
+    /// counts stay as measured), `None` for none. A tare taken while a
+    /// payload is set removes the bias only. `ErrorKind::Arg` for a negative
+    /// mass or non-finite values. Applies from the next sample.
+    ///
+    /// ```
+    /// use leptrino::{Options, Payload, Sensor, SimOptions};
+    /// let mut sim = SimOptions::new();
+    /// sim.set("payload", "0.5,0,0,0.05")?.set("noise", 0)?;
+    /// let mut s = Sensor::open_sim(&sim, &Options::new())?;
+    /// s.set_payload(Some(Payload::new(0.5, [0.0, 0.0, 0.05])))?;
+    /// assert_eq!(s.payload(), Some(Payload::new(0.5, [0.0, 0.0, 0.05])));
+    /// # Ok::<(), leptrino::Error>(())
+    /// ```
+    pub fn set_payload(&self, payload: Option<Payload>) -> Result<()> {
+        self.set_doubles("payload", &payload.unwrap_or_default().to_array())
+    }
+
+    /// The payload compensated, if any.
+    pub fn payload(&self) -> Option<Payload> {
+        Payload::from_array(self.get_doubles(c"payload"))
+    }
+
+    /// Gravity in the sensor frame, m/s² ((0, 0, -9.80665) when its z axis
+    /// points up): what payload compensation uses. Set it as often as the
+    /// robot moves.
+    pub fn set_gravity(&self, gravity: [f64; 3]) -> Result<()> {
+        self.set_doubles("gravity", &gravity)
+    }
+
+    /// Gravity in force, m/s², sensor frame.
+    pub fn gravity(&self) -> [f64; 3] {
+        self.get_doubles(c"gravity")
     }
 
     /// Health since the stream started.
     pub fn health(&self) -> Health {
-        let mut h = Health::default();
-        // SAFETY: any-thread call, valid out pointer.
-        unsafe { sys::lep_session_get_health(self.ptr(), &mut h) };
-        h
+        let mut h = [0.0; H_COUNT];
+        // SAFETY: any-thread call; H_COUNT doubles.
+        unsafe { sys::lep_session_health(self.ptr(), h.as_mut_ptr(), H_COUNT) };
+        Health::from_fields(&h)
     }
 
-    fn metadata_struct(&self) -> sys::lep_session_metadata {
-        let mut m = sys::lep_session_metadata::default();
-        // SAFETY: any-thread call, valid out pointer.
-        unsafe { sys::lep_session_get_metadata(self.ptr(), &mut m) };
-        m
+    fn numbers(&self) -> MetaNumbers {
+        let mut m = [0.0; MD_COUNT];
+        // SAFETY: any-thread call; MD_COUNT doubles.
+        unsafe { sys::lep_session_metadata(self.ptr(), m.as_mut_ptr(), MD_COUNT) };
+        MetaNumbers(m)
+    }
+
+    /// A text of `lep_session_info` (`LEP_INFO_*`).
+    fn info(&self, which: u32) -> Result<String> {
+        // SAFETY: any-thread call; buf holds cap bytes (or is NULL with cap 0).
+        text_result(
+            |buf, cap, len| unsafe {
+                sys::lep_session_info(self.ptr(), which as i32, buf, cap, len)
+            },
+            &format!("{}: session info", self.port),
+        )
+    }
+
+    fn product_info(&self, m: &MetaNumbers) -> ProductInfo {
+        ProductInfo {
+            model: self.info(sys::LEP_INFO_MODEL).unwrap_or_default(),
+            serial: self.info(sys::LEP_INFO_SERIAL).unwrap_or_default(),
+            firmware: self.info(sys::LEP_INFO_FIRMWARE).unwrap_or_default(),
+            output_rate_hz: m.output_rate_hz(),
+        }
+    }
+
+    /// The sensor's digital filter code as read when it was opened (0 off,
+    /// 1..3); `None` when the sensor refused or did not answer. A new code
+    /// ([`Sensor::set_filter`]) applies after a power cycle.
+    pub fn filter(&self) -> Option<u8> {
+        self.numbers().sensor_filter()
+    }
+
+    /// The label of that filter code ("10 Hz", ...), or "not supported by sensor".
+    pub fn filter_label(&self) -> String {
+        self.info(sys::LEP_INFO_FILTER_LABEL).unwrap_or_default()
+    }
+
+    /// What the session says about itself: identity, rated values, filters,
+    /// tare, frame, payload, limits, start time.
+    pub fn metadata(&self) -> Metadata {
+        let m = self.numbers();
+        let text = |which| self.info(which).unwrap_or_default();
+        Metadata {
+            product: self.product_info(&m),
+            protocol: text(sys::LEP_INFO_PROTOCOL),
+            rated: m.rated(),
+            sensor_filter: m.sensor_filter(),
+            sensor_filter_label: text(sys::LEP_INFO_FILTER_LABEL),
+            nominal_hz: m.nominal_hz(),
+            lowpass_hz: m.at(sys::LEP_MD_LOWPASS_HZ),
+            lowpass_name: text(sys::LEP_INFO_LOWPASS_NAME),
+            lowpass_delay_s: m.at(sys::LEP_MD_LOWPASS_DELAY_S),
+            decimate: m.at(sys::LEP_MD_DECIMATE) as u32,
+            rotation: m.rotation(),
+            shift_m: crate::values::three(&m.0, sys::LEP_MD_SHIFT_M),
+            tared: m.at(sys::LEP_MD_TARED) != 0.0,
+            tare: crate::values::six(&m.0, sys::LEP_MD_TARE),
+            start_utc: m.at(sys::LEP_MD_START_UTC),
+            start_mono: m.start_mono(),
+            port: text(sys::LEP_INFO_PORT),
+            sim: m.at(sys::LEP_MD_SIM) != 0.0,
+            library_version: text(sys::LEP_INFO_LIBRARY_VERSION),
+            payload: m.payload(),
+            gravity: crate::values::three(&m.0, sys::LEP_MD_GRAVITY),
+            limit: crate::values::six(&m.0, sys::LEP_MD_LIMIT),
+        }
     }
 
     /// The metadata as the library writes it in every recording: one JSON
     /// object (model, serial, firmware, rated values, filters, tare, frame,
     /// start time, library version).
     pub fn metadata_json(&self) -> Result<String> {
-        let mut cap = 4096;
-        loop {
-            let mut buf = vec![0u8; cap];
-            let mut len = 0usize;
-            // SAFETY: any-thread call; buf of cap bytes, len out pointer.
-            let rc = unsafe {
-                sys::lep_session_metadata_json(
-                    self.ptr(),
-                    buf.as_mut_ptr().cast::<c_char>(),
-                    cap,
-                    &mut len,
-                )
-            };
-            if rc == sys::LEP_E_BUFFER && cap < 1 << 20 {
-                cap *= 4;
-                continue;
-            }
-            check(rc, &format!("{}: metadata", self.port))?;
-            buf.truncate(len);
-            return Ok(String::from_utf8_lossy(&buf).into_owned());
-        }
+        self.info(sys::LEP_INFO_METADATA_JSON)
     }
 }
 
@@ -387,32 +458,45 @@ impl Sensor {
 
     /// Open the sensor on a port with these options.
     pub fn open_with(port: &str, options: &Options) -> Result<Sensor> {
-        let cport = CString::new(port)
-            .map_err(|_| Error::arg(format!("port {port:?}: contains a NUL byte")))?;
-        let mut raw = options.raw;
-        raw.use_sim = false;
-        raw.port = cport.as_ptr();
-        Sensor::open_raw(&raw, port)
+        let mut h = Sensor::handle(options)?;
+        h.set_int("sim", 0)?;
+        h.set_text("port", port)?;
+        Sensor::open_handle(&h, port)
     }
 
     /// Open a virtual sensor that the session starts itself (and stops when
     /// closed); [`simulator`](Self::simulator) reaches it for fault injection.
+    /// Its options are `sim`'s (every "sim-*" of `options` is replaced).
     pub fn open_sim(sim: &SimOptions, options: &Options) -> Result<Sensor> {
-        let mut raw = options.raw;
-        raw.use_sim = true;
-        raw.sim = sim.raw;
-        raw.port = std::ptr::null();
-        Sensor::open_raw(&raw, "virtual sensor")
+        let mut h = Sensor::handle(options)?;
+        h.set_int("sim", 1)?;
+        for (_, name, scope) in crate::options::table() {
+            if scope == sys::LEP_SCOPE_SIM as i32 {
+                let v = sim.h.get_text(name)?;
+                if h.get_text(name)? != v {
+                    h.set_text(name, &v)?;
+                }
+            }
+        }
+        Sensor::open_handle(&h, "virtual sensor")
     }
 
-    fn open_raw(raw: &sys::lep_session_options, what: &str) -> Result<Sensor> {
+    fn handle(options: &Options) -> Result<Handle> {
+        match options.deferred_error() {
+            Some(e) => Err(e),
+            None => Ok(options.h.clone()),
+        }
+    }
+
+    fn open_handle(h: &Handle, what: &str) -> Result<Sensor> {
         let mut out: *mut sys::lep_session = std::ptr::null_mut();
-        let mut err = [0u8; 512];
-        // SAFETY: valid options (copied at open; the port string outlives the
-        // call), out pointer, err buffer of its size.
-        let rc =
-            unsafe { sys::lep_session_open(raw, &mut out, err.as_mut_ptr().cast(), err.len()) };
-        crate::error::check_msg(rc, &err, what)?;
+        let mut err = [0u8; ERR_LEN];
+        // SAFETY: a live options handle (copied by the call), out pointer,
+        // err buffer of its size.
+        let rc = h.with(|o| unsafe {
+            sys::lep_session_open(o, &mut out, err.as_mut_ptr().cast(), err.len())
+        });
+        check_msg(rc, &err, what)?;
         let session = Session(
             NonNull::new(out).ok_or_else(|| Error::in_context(sys::LEP_E_UNEXPECTED, what))?,
         );
@@ -424,17 +508,24 @@ impl Sensor {
             session: Arc::new(session),
             port,
         };
-        let meta = control.metadata_struct();
+        let meta = control.numbers();
+        let int = |name: &CStr| {
+            let mut v = 0i64;
+            // SAFETY: any-thread call, valid out pointer.
+            unsafe { sys::lep_session_get_int(control.ptr(), name.as_ptr(), &mut v) };
+            v
+        };
+        let nominal = meta.nominal_hz();
         Ok(Sensor {
-            info: ProductInfo::from_c(&meta.info),
-            rated: Rated::from_c(&meta.rated),
-            nominal_hz: if meta.nominal_hz > 0.0 {
-                meta.nominal_hz
+            info: control.product_info(&meta),
+            rated: meta.rated(),
+            nominal_hz: if nominal > 0.0 {
+                nominal
             } else {
-                sys::LEP_SESSION_NOMINAL_HZ
+                f64::from(sys::LEP_SESSION_NOMINAL_HZ)
             },
-            decimate: raw.decimate.max(1),
-            timeout_ms: raw.timeout_ms.max(1),
+            decimate: u32::try_from(int(c"decimate")).unwrap_or(1).max(1),
+            timeout_ms: i32::try_from(int(c"timeout")).unwrap_or(500).max(1),
             control,
             delivered: 0,
             start_mono: 0.0,
@@ -487,7 +578,78 @@ impl Sensor {
     /// True while the stream runs.
     pub fn streaming(&self) -> bool {
         // SAFETY: driving-thread call (Sensor is not Sync).
-        unsafe { sys::lep_session_streaming(self.ptr()) }
+        unsafe { sys::lep_session_streaming(self.ptr()) == 1 }
+    }
+
+    /// Set the sensor's digital filter (0 off, 1..3: per spec v1.13 10, 100,
+    /// 200 Hz; models differ, the code is the truth), as `leptrino filter`
+    /// does: the sensor stores it and applies it only after its power is
+    /// switched off and on. [`filter`](Control::filter) keeps saying the code
+    /// read at open. `ErrorKind::Value` for a code above 3, `ErrorKind::State`
+    /// while streaming, `ErrorKind::Sensor` when the sensor refuses (with its
+    /// result code).
+    ///
+    /// ```
+    /// use leptrino::{Sensor, Simulator};
+    /// let sim = Simulator::start()?;
+    /// let mut s = Sensor::open(sim.port())?;
+    /// assert_eq!(s.filter(), Some(0));
+    /// s.set_filter(2)?;
+    /// assert_eq!(sim.stats().filter_pending, 2);
+    /// drop(s);
+    /// sim.power_cycle(); // done by the virtual sensor's thread
+    /// # while sim.stats().filter != 2 { std::thread::sleep(std::time::Duration::from_millis(5)); }
+    /// let s = Sensor::open(sim.port())?;
+    /// assert_eq!((s.filter(), s.filter_label().as_str()), (Some(2), "100 Hz"));
+    /// # Ok::<(), leptrino::Error>(())
+    /// ```
+    pub fn set_filter(&mut self, code: u8) -> Result<()> {
+        if self.streaming() {
+            return Err(Error::with_message(
+                sys::LEP_E_STATE,
+                format!("{}: filter set: stop the stream first", self.port()),
+            ));
+        }
+        // SAFETY: a driving-thread call (Sensor is not Sync); the client is
+        // the session's, an opaque pointer passed back to the library.
+        let c = unsafe { sys::lep_session_client(self.ptr()) };
+        if c.is_null() {
+            return Err(Error::in_context(
+                sys::LEP_E_DISCONNECTED,
+                &format!("{}: filter set", self.port()),
+            ));
+        }
+        // SAFETY: as above; the session is not streaming, nobody else drives it.
+        let rc = unsafe { sys::lep_client_filter_set(c, code) };
+        self.check_cmd(rc, "filter set")
+    }
+
+    /// The latency budget in force ([`Options::latency`]).
+    pub fn latency(&self) -> Duration {
+        let mut v = 0i64;
+        // SAFETY: valid out pointer.
+        unsafe { sys::lep_session_get_int(self.ptr(), c"latency".as_ptr(), &mut v) };
+        Duration::from_millis(u64::try_from(v).unwrap_or(0))
+    }
+
+    /// Change the latency budget (the reading thread's option).
+    pub fn set_latency(&mut self, d: Duration) -> Result<()> {
+        let ms = crate::options::ms(d);
+        // SAFETY: a driving-thread call.
+        self.control.set_with("latency", |s, n, e, l| unsafe {
+            sys::lep_session_set_int(s, n, ms, e, l)
+        })
+    }
+
+    fn latency_ms(&self) -> i64 {
+        i64::try_from(self.latency().as_millis()).unwrap_or(i64::MAX)
+    }
+
+    fn set_latency_ms(&mut self, ms: i64) {
+        // SAFETY: a driving-thread call.
+        let _ = self.control.set_with("latency", |s, n, e, l| unsafe {
+            sys::lep_session_set_int(s, n, ms, e, l)
+        });
     }
 
     /// An error from a command, with the sensor's result code when it refused.
@@ -518,7 +680,7 @@ impl Sensor {
         let rc = unsafe { sys::lep_session_start(self.ptr()) };
         self.check_cmd(rc, "starting the stream")?;
         self.delivered = 0;
-        self.start_mono = self.control.metadata_struct().start_mono;
+        self.start_mono = self.control.numbers().start_mono();
         Ok(())
     }
 
@@ -543,9 +705,16 @@ impl Sensor {
     /// ```
     pub fn read(&mut self) -> Result<Sample> {
         let mut one = Recording::with_capacity(1);
-        let (rc, _) = append(&mut one, 1, |b| {
-            // SAFETY: driving-thread call; b has room for one row.
-            unsafe { sys::lep_session_read_one(self.ptr(), b) }
+        let s = self.ptr();
+        let (rc, _) = append(&mut one, 1, |c, n| {
+            // SAFETY: driving-thread call; every column has room for one row.
+            let rc = unsafe {
+                sys::lep_session_read_one(
+                    s, c.t_mono, c.t_utc, c.si, c.raw, c.zeroed, c.status, c.flags, c.seq,
+                )
+            };
+            *n = usize::from(rc == sys::LEP_OK);
+            rc
         });
         self.check_cmd(rc, "reading a sample")?;
         if one.is_empty() {
@@ -592,7 +761,7 @@ impl Sensor {
     fn wait_tare(&mut self) -> Result<()> {
         let mut scratch = Recording::with_capacity(ITER_BATCH);
         // SAFETY (each call): driving-thread calls on an open session.
-        while unsafe { sys::lep_session_taring(self.ptr()) } {
+        while unsafe { sys::lep_session_taring(self.ptr()) } == 1 {
             scratch.clear_rows();
             let (rc, n) = read_into(self.ptr(), &mut scratch, ITER_BATCH, self.timeout_ms);
             self.delivered += n as u64;
@@ -607,10 +776,10 @@ impl Sensor {
 
     fn drain_events(&mut self, base: u64) -> Vec<Event> {
         let mut out = Vec::new();
-        let mut ev = sys::lep_session_event::default();
-        // SAFETY: driving-thread call, valid out pointer.
-        while unsafe { sys::lep_session_next_event(self.ptr(), &mut ev) } {
-            out.push(Event::from_c(&ev, base, self.start_mono));
+        let mut ev = [0.0; EVF_COUNT];
+        // SAFETY: any-thread call; ev holds EVF_COUNT doubles.
+        while unsafe { sys::lep_session_next_event(self.ptr(), ev.as_mut_ptr(), EVF_COUNT) } == 1 {
+            out.push(Event::from_fields(&ev, base, self.start_mono));
         }
         out
     }
@@ -659,13 +828,12 @@ impl Sensor {
             self.start()?;
         }
         let base = self.delivered;
-        // SAFETY: driving-thread calls.
-        let latency_before = unsafe { sys::lep_session_latency(self.ptr()) };
+        let latency_before = self.latency_ms();
         if latency_before < RECORD_LATENCY_MS {
-            unsafe { sys::lep_session_set_latency(self.ptr(), RECORD_LATENCY_MS) };
+            self.set_latency_ms(RECORD_LATENCY_MS);
         }
         let result = self.record_loop(&mut rec, seconds, count, rate, base);
-        unsafe { sys::lep_session_set_latency(self.ptr(), latency_before) };
+        self.set_latency_ms(latency_before);
         if started {
             let _ = self.stop();
         }
@@ -706,8 +874,7 @@ impl Sensor {
                         return Ok(());
                     }
                     if final_reads == 0 {
-                        // SAFETY: driving-thread call.
-                        unsafe { sys::lep_session_set_latency(self.ptr(), 0) };
+                        self.set_latency_ms(0);
                     }
                     final_reads += 1;
                 }
@@ -777,23 +944,40 @@ fn read_into(
     room: usize,
     timeout_ms: i32,
 ) -> (i32, usize) {
-    append(rec, room, |b| {
-        // SAFETY: a driving-thread call on an open session; b as append says.
-        unsafe { sys::lep_session_read(s, b, timeout_ms) }
+    append(rec, room, |c, n| {
+        // SAFETY: a driving-thread call on an open session; every column
+        // has room for `room` rows from c on, n a valid out pointer.
+        unsafe {
+            sys::lep_session_read(
+                s, timeout_ms, room, n, c.t_mono, c.t_utc, c.si, c.raw, c.zeroed, c.status,
+                c.flags, c.seq,
+            )
+        }
     })
 }
 
-/// Let `fill` append up to `room` rows to rec through a `lep_session_batch`
-/// pointing into the columns' spare capacity (lep_session_read and
-/// lep_session_read_one append rows n..b.n to every column, nothing else);
+/// Where the next row of each column of a Recording goes.
+struct Columns {
+    t_mono: *mut f64,
+    t_utc: *mut f64,
+    si: *mut f64,
+    raw: *mut i16,
+    zeroed: *mut f64,
+    status: *mut u8,
+    flags: *mut u8,
+    seq: *mut u16,
+}
+
+/// Let `fill` write up to `room` rows into the columns' spare capacity
+/// (lep_session_read and lep_session_read_one write rows from the pointers
+/// they are given and say how many: `fill`'s second argument); append them.
 /// (its status, rows added).
 fn append(
     rec: &mut Recording,
     room: usize,
-    fill: impl FnOnce(&mut sys::lep_session_batch) -> i32,
+    fill: impl FnOnce(&Columns, &mut usize) -> i32,
 ) -> (i32, usize) {
     let n = rec.len();
-    let cap = n + room;
     rec.t.reserve(room);
     rec.t_utc.reserve(room);
     rec.raw.reserve(room);
@@ -802,23 +986,23 @@ fn append(
     rec.status.reserve(room);
     rec.flags.reserve(room);
     rec.seq.reserve(room);
-    // Every column has room for cap rows ([f64; 6] and [i16; 6] rows are 6
-    // contiguous values, as the batch's [cap*6] arrays).
-    let mut b = sys::lep_session_batch {
-        cap,
-        n,
-        t_mono: rec.t.as_mut_ptr(),
-        t_utc: rec.t_utc.as_mut_ptr(),
-        raw: rec.raw.as_mut_ptr().cast::<i16>(),
-        zeroed: rec.zeroed.as_mut_ptr().cast::<f64>(),
-        si: rec.si.as_mut_ptr().cast::<f64>(),
-        status: rec.status.as_mut_ptr(),
-        flags: rec.flags.as_mut_ptr(),
-        seq: rec.seq.as_mut_ptr(),
+    // Every column has room for n + room rows ([f64; 6] and [i16; 6] rows
+    // are 6 contiguous values, as the library's [cap*6] arrays); the
+    // pointers are to row n, within each allocation.
+    let c = Columns {
+        t_mono: rec.t.spare_capacity_mut().as_mut_ptr().cast(),
+        t_utc: rec.t_utc.spare_capacity_mut().as_mut_ptr().cast(),
+        si: rec.si.spare_capacity_mut().as_mut_ptr().cast(),
+        raw: rec.raw.spare_capacity_mut().as_mut_ptr().cast(),
+        zeroed: rec.zeroed.spare_capacity_mut().as_mut_ptr().cast(),
+        status: rec.status.spare_capacity_mut().as_mut_ptr().cast(),
+        flags: rec.flags.spare_capacity_mut().as_mut_ptr().cast(),
+        seq: rec.seq.spare_capacity_mut().as_mut_ptr().cast(),
     };
-    let rc = fill(&mut b);
-    let m = b.n.clamp(n, cap);
-    // SAFETY: rows n..m of every column were written by the session.
+    let mut added = 0usize;
+    let rc = fill(&c, &mut added);
+    let m = n + added.min(room);
+    // SAFETY: rows n..m of every column were written by the library.
     unsafe {
         rec.t.set_len(m);
         rec.t_utc.set_len(m);

@@ -1,7 +1,7 @@
 //! The virtual sensor in-process (leptrino/sim.h): a pseudo-terminal served
 //! by a C thread that behaves like a Leptrino sensor, with faults on demand.
 
-use std::ffi::{c_char, CStr, CString};
+use std::ffi::CStr;
 use std::fmt;
 use std::marker::{PhantomData, PhantomPinned};
 use std::ptr::NonNull;
@@ -10,14 +10,111 @@ use std::time::Duration;
 use leptrino_sys as sys;
 
 use crate::error::{check_msg, Error, Result};
+use crate::options::{cstring, static_str, table, Handle};
 use crate::Rated;
 
-/// Counters of what a virtual sensor did since it started (`lep_sim_stats`).
-pub type SimStats = sys::lep_sim_stats;
+/// Counters `lep_sim_stats` fills (`LEP_SIMST_*`).
+const SIMST_COUNT: usize = sys::LEP_SIMST_COUNT as usize;
+
+/// Counters of what a virtual sensor did since it started (`lep_sim_stats`);
+/// [`fields`](Self::fields) gives every counter by the library's names.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SimStats {
+    /// Continuous data messages queued to the port.
+    pub samples_sent: u64,
+    /// Data messages dropped by the drop fault.
+    pub samples_dropped: u64,
+    /// Commands answered (any result code).
+    pub commands: u64,
+    /// DLE NAK sent (bad BCC, or the nak fault).
+    pub naks: u64,
+    /// Messages with a byte flipped by the corrupt fault.
+    pub bytes_corrupted: u64,
+    /// Hang-ups.
+    pub hangups: u64,
+    /// Streaming now.
+    pub streaming: bool,
+    /// Filter code in effect.
+    pub filter: u8,
+    /// Filter code that takes effect at the next power cycle.
+    pub filter_pending: u8,
+    /// The pty is closed now (after a hang-up, before a reopen).
+    pub hung_up: bool,
+    /// Sequence number the next stream sample will carry.
+    pub sequence: u16,
+    /// Answers to commands queued to the port.
+    pub responses: u64,
+    /// Of naks: those sent by the nak fault.
+    pub faked_naks: u64,
+    /// Sample periods with nothing sent: a stall, or late.
+    pub samples_skipped: u64,
+    /// Data messages not sent because nobody read the port.
+    pub samples_blocked: u64,
+    /// Bytes added by the garbage fault.
+    pub garbage_bytes: u64,
+    /// Bytes read from the host.
+    pub bytes_received: u64,
+    /// New ptys opened after a hang-up.
+    pub reopens: u64,
+    /// Power cycles applied.
+    pub power_cycles: u64,
+    /// Stalls begun.
+    pub stalls: u64,
+    values: [u64; SIMST_COUNT],
+}
+
+impl Default for SimStats {
+    fn default() -> Self {
+        SimStats::from_fields(&[0; SIMST_COUNT])
+    }
+}
+
+impl SimStats {
+    fn from_fields(f: &[u64; SIMST_COUNT]) -> SimStats {
+        let n = |i: u32| f[i as usize];
+        SimStats {
+            samples_sent: n(sys::LEP_SIMST_SAMPLES_SENT),
+            samples_dropped: n(sys::LEP_SIMST_SAMPLES_DROPPED),
+            commands: n(sys::LEP_SIMST_COMMANDS),
+            naks: n(sys::LEP_SIMST_NAKS),
+            bytes_corrupted: n(sys::LEP_SIMST_BYTES_CORRUPTED),
+            hangups: n(sys::LEP_SIMST_HANGUPS),
+            streaming: n(sys::LEP_SIMST_STREAMING) != 0,
+            filter: n(sys::LEP_SIMST_FILTER) as u8,
+            filter_pending: n(sys::LEP_SIMST_FILTER_PENDING) as u8,
+            hung_up: n(sys::LEP_SIMST_HUNG_UP) != 0,
+            sequence: n(sys::LEP_SIMST_SEQUENCE) as u16,
+            responses: n(sys::LEP_SIMST_RESPONSES),
+            faked_naks: n(sys::LEP_SIMST_FAKED_NAKS),
+            samples_skipped: n(sys::LEP_SIMST_SAMPLES_SKIPPED),
+            samples_blocked: n(sys::LEP_SIMST_SAMPLES_BLOCKED),
+            garbage_bytes: n(sys::LEP_SIMST_GARBAGE_BYTES),
+            bytes_received: n(sys::LEP_SIMST_BYTES_RECEIVED),
+            reopens: n(sys::LEP_SIMST_REOPENS),
+            power_cycles: n(sys::LEP_SIMST_POWER_CYCLES),
+            stalls: n(sys::LEP_SIMST_STALLS),
+            values: *f,
+        }
+    }
+
+    /// Every counter the library fills, by its name ("samples_sent", ...:
+    /// `lep_sim_stats_field_name`), in its order.
+    pub fn fields(&self) -> Vec<(&'static str, u64)> {
+        // SAFETY: re-entrant; static names, NULL past the end.
+        let n = unsafe { sys::lep_sim_stats_fields() }.min(SIMST_COUNT);
+        (0..n)
+            .map(|i| {
+                let name = static_str(unsafe { sys::lep_sim_stats_field_name(i) });
+                (name, self.values[i])
+            })
+            .collect()
+    }
+}
 
 /// Options of a virtual sensor: those of `leptrino-sim` and of the
 /// `leptrino` tool's `--sim-*` options, from the same C table (names,
-/// parsing, ranges and defaults are the library's).
+/// parsing, ranges and defaults are the library's; on an options handle of
+/// leptrino/options.h they are the "sim-*" ones).
 ///
 /// ```
 /// use leptrino::SimOptions;
@@ -31,7 +128,7 @@ pub type SimStats = sys::lep_sim_stats;
 /// ```
 #[derive(Clone)]
 pub struct SimOptions {
-    pub(crate) raw: sys::lep_sim_options,
+    pub(crate) h: Handle,
 }
 
 impl Default for SimOptions {
@@ -52,65 +149,42 @@ impl fmt::Debug for SimOptions {
     }
 }
 
-fn cstring(what: &str, s: &str) -> Result<CString> {
-    CString::new(s).map_err(|_| Error::arg(format!("{what} {s:?}: contains a NUL byte")))
+/// "rate" -> "sim-rate"; "sim-rate" and "sim_rate" as they are.
+fn sim_name(name: &str) -> String {
+    if name.starts_with("sim-") || name.starts_with("sim_") {
+        name.to_owned()
+    } else {
+        format!("sim-{name}")
+    }
 }
 
 impl SimOptions {
-    /// The defaults (`lep_sim_options_init`).
+    /// The defaults.
     pub fn new() -> SimOptions {
-        let mut raw = sys::lep_sim_options::default();
-        // SAFETY: raw is a valid, writable lep_sim_options.
-        unsafe { sys::lep_sim_options_init(&mut raw) };
-        SimOptions { raw }
+        SimOptions { h: Handle::new() }
     }
 
     /// Set one option from text, as `leptrino-sim --NAME VALUE` would: the
     /// dash-separated name ("output-rate-field"), the same with underscores,
-    /// or the C field name ("rate_hz"); flags take `true`/`false`/`1`/`0`.
-    /// An unknown name or a value out of range is `ErrorKind::Arg` with the
-    /// library's message, and leaves the options unchanged.
+    /// or either with the "sim-" prefix of the options handle; flags take
+    /// `true`/`false`/`1`/`0`. An unknown name or a value out of range is
+    /// `ErrorKind::Arg` with the library's message, and leaves the options
+    /// unchanged.
     pub fn set(&mut self, name: &str, value: impl fmt::Display) -> Result<&mut SimOptions> {
-        let cname = cstring("option", name)?;
-        let cvalue = cstring(name, &value.to_string())?;
-        let mut err = [0u8; 256];
-        // SAFETY: valid options, NUL-terminated strings, err of the given size.
-        let rc = unsafe {
-            sys::lep_sim_option_set(
-                &mut self.raw,
-                cname.as_ptr(),
-                cvalue.as_ptr(),
-                err.as_mut_ptr().cast::<c_char>(),
-                err.len(),
-            )
-        };
-        check_msg(rc, &err, &format!("virtual sensor option {name}"))?;
+        self.h.set_text(&sim_name(name), &value.to_string())?;
         Ok(self)
     }
 
     /// The current value of an option, as text `set` accepts.
     pub fn get(&self, name: &str) -> Result<String> {
-        let cname = cstring("option", name)?;
-        let mut buf = [0u8; sys::LEP_SIM_PATH_SIZE as usize + 16];
-        // SAFETY: valid options and buffer.
-        let rc = unsafe {
-            sys::lep_sim_option_get(
-                &self.raw,
-                cname.as_ptr(),
-                buf.as_mut_ptr().cast(),
-                buf.len(),
-            )
-        };
-        check_msg(rc, &[], &format!("virtual sensor option {name}"))?;
-        Ok(crate::error::buf_text(&buf))
+        self.h.get_text(&sim_name(name))
     }
 
-    /// Names of every option (dash-separated), from the C table.
+    /// Names of every option (dash-separated, without "sim-"), from the C table.
     pub fn names() -> Vec<&'static str> {
-        // SAFETY: rows and their strings are static data of the library.
-        (0..unsafe { sys::lep_sim_option_count() })
-            .filter_map(|i| unsafe { sys::lep_sim_option_at(i).as_ref() })
-            .map(|row| unsafe { CStr::from_ptr(row.name) }.to_str().unwrap_or(""))
+        table()
+            .filter(|&(_, _, scope)| scope == sys::LEP_SCOPE_SIM as i32)
+            .map(|(_, name, _)| name.strip_prefix("sim-").unwrap_or(name))
             .collect()
     }
 }
@@ -176,12 +250,21 @@ impl VirtualSensor {
         unsafe { sys::lep_sim_power_cycle(self.ptr()) }
     }
 
+    /// Hold the output for this long from now (zero: release now): samples
+    /// are made at their times and queued, then written together when the
+    /// hold ends, as from a sender or a USB adapter running late.
+    pub fn hold(&self, d: Duration) {
+        let ms = i32::try_from(d.as_millis()).unwrap_or(i32::MAX);
+        // SAFETY: thread-safe call on a running sim.
+        unsafe { sys::lep_sim_hold(self.ptr(), ms) }
+    }
+
     /// What it did so far.
     pub fn stats(&self) -> SimStats {
-        let mut st = SimStats::default();
-        // SAFETY: thread-safe call on a running sim, valid out pointer.
-        unsafe { sys::lep_sim_get_stats(self.ptr(), &mut st) };
-        st
+        let mut st = [0u64; SIMST_COUNT];
+        // SAFETY: thread-safe call on a running sim; SIMST_COUNT counters.
+        unsafe { sys::lep_sim_stats(self.ptr(), st.as_mut_ptr(), SIMST_COUNT) };
+        SimStats::from_fields(&st)
     }
 }
 
@@ -222,9 +305,9 @@ impl Simulator {
         let mut out: *mut sys::lep_sim = std::ptr::null_mut();
         let mut err = [0u8; 512];
         // SAFETY: valid options (copied by the call), out pointer, err buffer.
-        let rc = unsafe {
-            sys::lep_sim_start(&options.raw, &mut out, err.as_mut_ptr().cast(), err.len())
-        };
+        let rc = options.h.with(|o| unsafe {
+            sys::lep_sim_start(o, &mut out, err.as_mut_ptr().cast(), err.len())
+        });
         check_msg(rc, &err, "starting the virtual sensor")?;
         let sim = NonNull::new(out)
             .ok_or_else(|| Error::in_context(sys::LEP_E_UNEXPECTED, "lep_sim_start"))?;
@@ -238,26 +321,20 @@ impl Simulator {
 
     /// Names of the model presets.
     pub fn models() -> Vec<String> {
-        let mut out = Vec::new();
-        // SAFETY: a static NULL-terminated array of static strings.
-        unsafe {
-            let mut p = sys::lep_sim_models();
-            while !(*p).is_null() {
-                out.push(CStr::from_ptr(*p).to_string_lossy().into_owned());
-                p = p.add(1);
-            }
-        }
-        out
+        // SAFETY: re-entrant; static names, NULL past the end.
+        (0..unsafe { sys::lep_sim_model_count() })
+            .map(|i| static_str(unsafe { sys::lep_sim_model_name(i) }).to_owned())
+            .collect()
     }
 
     /// The published rated values of a model preset.
     pub fn model_rated(model: &str) -> Result<Rated> {
         let m = cstring("model", model)?;
-        let mut r = sys::lep_rated::default();
-        // SAFETY: valid string and out pointer.
-        let rc = unsafe { sys::lep_sim_model_rated(m.as_ptr(), &mut r) };
+        let mut r = [0.0; 6];
+        // SAFETY: valid string, 6 doubles.
+        let rc = unsafe { sys::lep_sim_model_rated(m.as_ptr(), r.as_mut_ptr()) };
         crate::error::check(rc, &format!("model {model:?}"))?;
-        Ok(Rated::from_c(&r))
+        Ok(Rated::from_axes(r))
     }
 }
 

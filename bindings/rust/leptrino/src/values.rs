@@ -1,19 +1,9 @@
 //! Plain values the session hands out: identity, rated values, samples,
 //! events and recordings.
 
-use std::ffi::c_char;
-
 use leptrino_sys as sys;
 
 use crate::ErrorKind;
-
-fn text(field: &[c_char]) -> String {
-    // SAFETY: the library NUL-terminates every text field of these structs;
-    // the slice bounds the read should it not.
-    let bytes: &[u8] = unsafe { std::slice::from_raw_parts(field.as_ptr().cast(), field.len()) };
-    let end = bytes.iter().position(|&b| b == 0).unwrap_or(bytes.len());
-    String::from_utf8_lossy(&bytes[..end]).into_owned()
-}
 
 /// What the sensor says it is (product information, command 0x2A), read when
 /// it was opened.
@@ -30,18 +20,6 @@ pub struct ProductInfo {
     pub output_rate_hz: Option<u32>,
 }
 
-impl ProductInfo {
-    pub(crate) fn from_c(c: &sys::lep_product_info) -> ProductInfo {
-        ProductInfo {
-            model: text(&c.model),
-            serial: text(&c.serial),
-            firmware: text(&c.firmware),
-            output_rate_hz: (c.has_output_rate != 0 && c.output_rate_hz > 0)
-                .then_some(c.output_rate_hz),
-        }
-    }
-}
-
 /// Rated (full-scale) values (command 0x2B): force in N, torque in N·m.
 /// Raw counts of ±10000 are ± these.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -53,8 +31,7 @@ pub struct Rated {
 }
 
 impl Rated {
-    pub(crate) fn from_c(c: &sys::lep_rated) -> Rated {
-        let a = c.axis.map(f64::from);
+    pub(crate) fn from_axes(a: [f64; 6]) -> Rated {
         Rated {
             force: [a[0], a[1], a[2]],
             torque: [a[3], a[4], a[5]],
@@ -110,6 +87,14 @@ impl Sample {
     /// A tare is averaging this sample.
     pub fn taring(&self) -> bool {
         self.flags & sys::LEP_SF_TARING as u8 != 0
+    }
+    /// The host low-pass has not settled since the start or a gap.
+    pub fn settling(&self) -> bool {
+        self.flags & sys::LEP_SF_SETTLING as u8 != 0
+    }
+    /// An SI value is beyond its limit ([`Control::set_limits`](crate::Control::set_limits)).
+    pub fn limit(&self) -> bool {
+        self.flags & sys::LEP_SF_LIMIT as u8 != 0
     }
 }
 
@@ -177,7 +162,7 @@ pub enum EventKind {
     Other(i32),
 }
 
-/// Something the session noticed beside the data (`lep_session_event`).
+/// Something the session noticed beside the data (`lep_session_next_event`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Event {
     /// Where it applies: the number of samples delivered before it, counted
@@ -191,50 +176,64 @@ pub struct Event {
     pub kind: EventKind,
 }
 
+/// Fields of an event, as `lep_session_next_event` fills them.
+pub(crate) const EVF_COUNT: usize = sys::LEP_EVF_COUNT as usize;
+
+/// Six fields from index i on.
+pub(crate) fn six(f: &[f64], i: u32) -> [f64; 6] {
+    let i = i as usize;
+    [f[i], f[i + 1], f[i + 2], f[i + 3], f[i + 4], f[i + 5]]
+}
+
+/// Three fields from index i on.
+pub(crate) fn three(f: &[f64], i: u32) -> [f64; 3] {
+    let i = i as usize;
+    [f[i], f[i + 1], f[i + 2]]
+}
+
 impl Event {
-    pub(crate) fn from_c(e: &sys::lep_session_event, base: u64, start_mono: f64) -> Event {
-        let cause = ErrorKind::from_code(e.error).unwrap_or(ErrorKind::Disconnected);
-        let kind = match e.type_ as u32 {
+    /// From the fields of `lep_session_next_event` (indices `LEP_EVF_*`).
+    pub(crate) fn from_fields(f: &[f64; EVF_COUNT], base: u64, start_mono: f64) -> Event {
+        let at = |i: u32| f[i as usize];
+        let error = at(sys::LEP_EVF_ERROR) as i32;
+        let cause = ErrorKind::from_code(error).unwrap_or(ErrorKind::Disconnected);
+        let axes = at(sys::LEP_EVF_AXES) as u8;
+        let status = at(sys::LEP_EVF_STATUS) as u8;
+        let (from, to) = (at(sys::LEP_EVF_GAP_FROM), at(sys::LEP_EVF_GAP_TO));
+        let type_ = at(sys::LEP_EVF_TYPE) as i32;
+        let kind = match u32::try_from(type_).unwrap_or(0) {
             sys::LEP_EV_GAP => EventKind::Gap {
-                from: e.gap_from,
-                to: e.gap_to,
-                lost: e.lost,
+                from,
+                to,
+                lost: at(sys::LEP_EVF_LOST) as u32,
             },
-            sys::LEP_EV_DISCONNECTED => EventKind::Disconnected {
-                cause,
-                last: e.gap_from,
+            sys::LEP_EV_DISCONNECTED => EventKind::Disconnected { cause, last: from },
+            sys::LEP_EV_RECONNECTED => EventKind::Reconnected { cause, from, to },
+            sys::LEP_EV_TARE => EventKind::Tare {
+                offsets: six(f, sys::LEP_EVF_TARE),
             },
-            sys::LEP_EV_RECONNECTED => EventKind::Reconnected {
-                cause,
-                from: e.gap_from,
-                to: e.gap_to,
-            },
-            sys::LEP_EV_TARE => EventKind::Tare { offsets: e.tare },
-            sys::LEP_EV_OVERLOAD_BEGIN => EventKind::OverloadBegin {
-                axes: e.axes,
-                status: e.status,
-            },
-            sys::LEP_EV_OVERLOAD_END => EventKind::OverloadEnd {
-                axes: e.axes,
-                status: e.status,
-            },
+            sys::LEP_EV_OVERLOAD_BEGIN => EventKind::OverloadBegin { axes, status },
+            sys::LEP_EV_OVERLOAD_END => EventKind::OverloadEnd { axes, status },
             sys::LEP_EV_LIMIT_EXCEEDED => EventKind::LimitExceeded {
-                axes: e.axes,
-                wrench: e.wrench,
+                axes,
+                wrench: six(f, sys::LEP_EVF_WRENCH),
             },
-            sys::LEP_EV_LIMIT_CLEARED => EventKind::LimitCleared { wrench: e.wrench },
-            _ => EventKind::Other(e.type_),
+            sys::LEP_EV_LIMIT_CLEARED => EventKind::LimitCleared {
+                wrench: six(f, sys::LEP_EVF_WRENCH),
+            },
+            _ => EventKind::Other(type_),
         };
+        let t = at(sys::LEP_EVF_T_MONO);
         // queued before this stream started (an untare while stopped): at its start
-        let sample = if e.t_mono >= start_mono {
-            e.sample.saturating_sub(base)
+        let sample = if t >= start_mono {
+            (at(sys::LEP_EVF_SAMPLE) as u64).saturating_sub(base)
         } else {
             0
         };
         Event {
             sample,
-            t: e.t_mono,
-            t_utc: e.t_utc,
+            t,
+            t_utc: at(sys::LEP_EVF_T_UTC),
             kind,
         }
     }
@@ -334,6 +333,292 @@ impl Recording {
             .filter(|&&f| f & sys::LEP_SF_GAP as u8 != 0)
             .count()
     }
+}
+
+/// Health fields `lep_session_health` fills (`LEP_H_*`).
+pub(crate) const H_COUNT: usize = sys::LEP_H_COUNT as usize;
+
+/// The counters of the current connection's client (part of [`Health`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct ClientStats {
+    /// Framed messages with a good BCC.
+    pub messages: u64,
+    /// Frames rejected for a BCC mismatch.
+    pub bcc_errors: u64,
+    /// Frames rejected otherwise (bad escape, too long, restart).
+    pub frame_errors: u64,
+    /// Received bytes that were not part of a good message or NAK.
+    pub bytes_discarded: u64,
+    /// DLE NAK received.
+    pub naks: u64,
+    /// Commands sent again after a NAK.
+    pub retries: u64,
+    /// Good messages of the wrong type, skipped.
+    pub unexpected: u64,
+    /// Good frames whose message failed validation.
+    pub invalid: u64,
+    /// Transactions and blocking reads that timed out.
+    pub timeouts: u64,
+    /// Stream samples delivered by the client.
+    pub samples: u64,
+    /// Commands sent again because no answer came in time.
+    pub resent_after_timeout: u64,
+    /// Resent starts/stops taken as done (their first copy had been executed).
+    pub resent_confirmed: u64,
+    /// Starts refused because a stream ran, recovered by stop, drain, start.
+    pub recoveries: u64,
+    /// Data messages whose last reserved byte was not 0.
+    pub reserved_nonzero: u64,
+    /// Stream watchdog expiries.
+    pub stalls: u64,
+}
+
+/// Health since the stream started (`lep_session_health`): measured against
+/// nominal rate, samples lost, gaps, errors, overloads, reconnects. The named
+/// fields are the library's `LEP_H_*`; [`fields`](Self::fields) gives every
+/// field by the library's names (a newer library's too).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Health {
+    /// From the first sample to the last, s.
+    pub elapsed_s: f64,
+    /// The nominal rate (the option "nominal-rate", else the sensor's), Hz.
+    pub nominal_hz: f64,
+    /// (samples received - 1) / elapsed, before decimation, Hz.
+    pub measured_hz: f64,
+    /// Over the last second or so, Hz.
+    pub recent_hz: f64,
+    /// Measured below 98 % of nominal over at least 1 s.
+    pub shortfall: bool,
+    /// Samples received (tare samples included).
+    pub received: u64,
+    /// Samples delivered (after decimation).
+    pub delivered: u64,
+    /// Samples estimated lost in gaps.
+    pub lost: u64,
+    /// Gaps.
+    pub gaps: u64,
+    /// Framing, BCC, invalid messages, timeouts (all connections).
+    pub errors: u64,
+    /// Overload episodes begun.
+    pub overloads: u64,
+    /// Limit episodes begun.
+    pub limit_episodes: u64,
+    /// Disconnects.
+    pub disconnects: u64,
+    /// Reconnects.
+    pub reconnects: u64,
+    /// Events pushed out of the full queue before they were taken.
+    pub events_dropped: u64,
+    /// The longest gap, s.
+    pub max_gap_s: f64,
+    /// The current connection's client counters.
+    pub client: ClientStats,
+    values: [f64; H_COUNT],
+}
+
+impl Default for Health {
+    fn default() -> Self {
+        Health::from_fields(&[0.0; H_COUNT])
+    }
+}
+
+impl Health {
+    pub(crate) fn from_fields(f: &[f64; H_COUNT]) -> Health {
+        let d = |i: u32| f[i as usize];
+        let n = |i: u32| f[i as usize] as u64;
+        Health {
+            elapsed_s: d(sys::LEP_H_ELAPSED_S),
+            nominal_hz: d(sys::LEP_H_NOMINAL_HZ),
+            measured_hz: d(sys::LEP_H_MEASURED_HZ),
+            recent_hz: d(sys::LEP_H_RECENT_HZ),
+            shortfall: d(sys::LEP_H_SHORTFALL) != 0.0,
+            received: n(sys::LEP_H_RECEIVED),
+            delivered: n(sys::LEP_H_DELIVERED),
+            lost: n(sys::LEP_H_LOST),
+            gaps: n(sys::LEP_H_GAPS),
+            errors: n(sys::LEP_H_ERRORS),
+            overloads: n(sys::LEP_H_OVERLOADS),
+            limit_episodes: n(sys::LEP_H_LIMIT_EPISODES),
+            disconnects: n(sys::LEP_H_DISCONNECTS),
+            reconnects: n(sys::LEP_H_RECONNECTS),
+            events_dropped: n(sys::LEP_H_EVENTS_DROPPED),
+            max_gap_s: d(sys::LEP_H_MAX_GAP_S),
+            client: ClientStats {
+                messages: n(sys::LEP_H_MESSAGES),
+                bcc_errors: n(sys::LEP_H_BCC_ERRORS),
+                frame_errors: n(sys::LEP_H_FRAME_ERRORS),
+                bytes_discarded: n(sys::LEP_H_BYTES_DISCARDED),
+                naks: n(sys::LEP_H_NAKS),
+                retries: n(sys::LEP_H_RETRIES),
+                unexpected: n(sys::LEP_H_UNEXPECTED),
+                invalid: n(sys::LEP_H_INVALID),
+                timeouts: n(sys::LEP_H_TIMEOUTS),
+                samples: n(sys::LEP_H_SAMPLES),
+                resent_after_timeout: n(sys::LEP_H_RESENT_AFTER_TIMEOUT),
+                resent_confirmed: n(sys::LEP_H_RESENT_CONFIRMED),
+                recoveries: n(sys::LEP_H_RECOVERIES),
+                reserved_nonzero: n(sys::LEP_H_RESERVED_NONZERO),
+                stalls: n(sys::LEP_H_STALLS),
+            },
+            values: *f,
+        }
+    }
+
+    /// Every field the library fills, by its name ("received",
+    /// "bcc_errors", ...: `lep_session_health_field_name`), in its order.
+    pub fn fields(&self) -> Vec<(&'static str, f64)> {
+        // SAFETY: re-entrant; static names, NULL past the end.
+        let n = unsafe { sys::lep_session_health_fields() }.min(H_COUNT);
+        (0..n)
+            .map(|i| {
+                let name =
+                    crate::options::static_str(unsafe { sys::lep_session_health_field_name(i) });
+                (name, self.values[i])
+            })
+            .collect()
+    }
+
+    /// One field by the library's name; `None` for a name it does not fill.
+    pub fn get(&self, name: &str) -> Option<f64> {
+        self.fields()
+            .into_iter()
+            .find(|(n, _)| *n == name)
+            .map(|(_, v)| v)
+    }
+}
+
+/// A tool mounted on the sensor: its mass and centre of mass (sensor frame).
+/// A mass of 0 is no payload.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Payload {
+    /// Mass, kg (>= 0).
+    pub mass_kg: f64,
+    /// Centre of mass x, y, z in metres, sensor frame.
+    pub com_m: [f64; 3],
+}
+
+impl Payload {
+    /// A payload of this mass and centre of mass.
+    pub fn new(mass_kg: f64, com_m: [f64; 3]) -> Payload {
+        Payload { mass_kg, com_m }
+    }
+
+    /// The four numbers the option "payload" takes: mass, cx, cy, cz.
+    pub fn to_array(&self) -> [f64; 4] {
+        let c = self.com_m;
+        [self.mass_kg, c[0], c[1], c[2]]
+    }
+
+    /// From the four numbers of the option "payload"; `None` for mass 0.
+    pub fn from_array(v: [f64; 4]) -> Option<Payload> {
+        (v[0] != 0.0).then_some(Payload::new(v[0], [v[1], v[2], v[3]]))
+    }
+}
+
+/// What a session says about itself (`lep_session_metadata` for the numbers,
+/// `lep_session_info` for the texts): every recording's metadata.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Metadata {
+    /// Model, serial, firmware, output-rate field.
+    pub product: ProductInfo,
+    /// "v1.13 (32-byte info)" or "rate field (38-byte)".
+    pub protocol: String,
+    /// Rated values.
+    pub rated: Rated,
+    /// The sensor's filter code, `None` when it refused or did not answer.
+    pub sensor_filter: Option<u8>,
+    /// The filter's label ("10 Hz"), or "not supported by sensor".
+    pub sensor_filter_label: String,
+    /// Nominal rate, Hz.
+    pub nominal_hz: f64,
+    /// Host low-pass cut-off, Hz (0 off).
+    pub lowpass_hz: f64,
+    /// The host low-pass filter's name, "" when off.
+    pub lowpass_name: String,
+    /// Its group delay at low frequency, s.
+    pub lowpass_delay_s: f64,
+    /// Every nth sample delivered.
+    pub decimate: u32,
+    /// Output rotation, row-major.
+    pub rotation: [f64; 9],
+    /// Moment reference point, m.
+    pub shift_m: [f64; 3],
+    /// A tare is in force.
+    pub tared: bool,
+    /// The tare offsets, counts.
+    pub tare: [f64; 6],
+    /// UTC s of the last start (of the open before one).
+    pub start_utc: f64,
+    /// Monotonic s of the same instant.
+    pub start_mono: f64,
+    /// The port's path.
+    pub port: String,
+    /// An in-process virtual sensor.
+    pub sim: bool,
+    /// The library's version.
+    pub library_version: String,
+    /// The payload compensated, if any.
+    pub payload: Option<Payload>,
+    /// Gravity in the sensor frame, m/s².
+    pub gravity: [f64; 3],
+    /// Limits per axis, N and N·m (0: none).
+    pub limit: [f64; 6],
+}
+
+/// Metadata fields `lep_session_metadata` fills (`LEP_MD_*`).
+pub(crate) const MD_COUNT: usize = sys::LEP_MD_COUNT as usize;
+
+/// The numbers of `lep_session_metadata`, indexed by `LEP_MD_*`.
+pub(crate) struct MetaNumbers(pub(crate) [f64; MD_COUNT]);
+
+impl MetaNumbers {
+    pub(crate) fn at(&self, i: u32) -> f64 {
+        self.0[i as usize]
+    }
+    pub(crate) fn rated(&self) -> Rated {
+        Rated::from_axes(six(&self.0, sys::LEP_MD_RATED))
+    }
+    pub(crate) fn output_rate_hz(&self) -> Option<u32> {
+        let r = self.at(sys::LEP_MD_OUTPUT_RATE_HZ);
+        (r > 0.0).then_some(r as u32)
+    }
+    pub(crate) fn sensor_filter(&self) -> Option<u8> {
+        let f = self.at(sys::LEP_MD_SENSOR_FILTER);
+        (f >= 0.0).then_some(f as u8)
+    }
+    pub(crate) fn nominal_hz(&self) -> f64 {
+        self.at(sys::LEP_MD_NOMINAL_HZ)
+    }
+    pub(crate) fn start_mono(&self) -> f64 {
+        self.at(sys::LEP_MD_START_MONO)
+    }
+    pub(crate) fn payload(&self) -> Option<Payload> {
+        let i = sys::LEP_MD_PAYLOAD as usize;
+        Payload::from_array([self.0[i], self.0[i + 1], self.0[i + 2], self.0[i + 3]])
+    }
+    pub(crate) fn rotation(&self) -> [f64; 9] {
+        let i = sys::LEP_MD_ROTATION as usize;
+        let mut r = [0.0; 9];
+        r.copy_from_slice(&self.0[i..i + 9]);
+        r
+    }
+}
+
+/// A serial port found on this machine ([`list_ports`](crate::list_ports)).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct PortInfo {
+    /// The device path (/dev/ttyACM0).
+    pub path: String,
+    /// A stable path (/dev/serial/by-id/...), or "".
+    pub by_id: String,
+    /// The USB product/manufacturer when known, or "".
+    pub description: String,
+    /// USB vendor id, 0 when unknown.
+    pub vid: u16,
+    /// USB product id, 0 when unknown.
+    pub pid: u16,
+    /// Likely a sensor (STM VCP 0483:5740 or FTDI 0403:6001).
+    pub likely_sensor: bool,
 }
 
 // The session's [cap*6] columns are read as rows of six.

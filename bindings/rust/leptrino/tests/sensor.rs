@@ -1,12 +1,14 @@
 //! The safe API against the in-process virtual sensor, through a real pty:
 //! identity, rated values, recording without loss, tare, faults, a pulled
-//! cable, reconnects, errors. The scenarios of the Python suite
+//! cable, reconnects, errors, options by name, the live options (low-pass,
+//! frame, payload, gravity), metadata and health by name. The scenarios of the Python suite
 //! (bindings/python/tests/test_sensor.py, test_session.py).
 
 use std::time::{Duration, Instant};
 
 use leptrino::{
-    sys, Control, Error, ErrorKind, EventKind, Options, Recording, Sensor, SimOptions, Simulator,
+    identify_payload, standard_gravity, sys, Control, Error, ErrorKind, EventKind, Options,
+    Payload, Recording, Sensor, SimOptions, Simulator,
 };
 
 fn sim_options(pairs: &[(&str, &str)]) -> SimOptions {
@@ -245,7 +247,7 @@ fn gaps_from_dropped_samples() {
         .iter()
         .filter_map(|e| match e.kind {
             EventKind::Gap { lost, from, to } => {
-                assert!(to > from);
+                assert!(to > from, "gap from {from} to {to} ({lost} lost)");
                 Some(lost)
             }
             _ => None,
@@ -493,4 +495,292 @@ fn limits_are_events() {
     assert_eq!((exceeded[0].0, exceeded[0].1), (0, 1 << 2));
     assert!((exceeded[0].2 - 0.25 * s.rated().force[2]).abs() < 1e-9);
     assert_eq!(s.set_limits([-1.0; 6]).unwrap_err().kind(), ErrorKind::Arg);
+}
+
+fn mean(rec: &Recording, axis: usize) -> f64 {
+    rec.si.iter().map(|v| v[axis]).sum::<f64>() / rec.len() as f64
+}
+
+#[test]
+fn options_by_name_from_the_library_table() {
+    let names = Options::names();
+    for n in [
+        "port",
+        "timeout",
+        "data-timeout",
+        "lowpass",
+        "payload",
+        "gravity",
+        "limit",
+    ] {
+        assert!(names.contains(&n), "{n} missing from {names:?}");
+    }
+    assert!(names.iter().all(|n| !n.starts_with("sim-")));
+    let sim_names = SimOptions::names();
+    for n in ["model", "rate", "drop", "payload", "gravity", "link"] {
+        assert!(sim_names.contains(&n), "{n} missing from {sim_names:?}");
+    }
+
+    let mut o = Options::new().lowpass(40.0).decimate(2);
+    assert_eq!(o.get("decimate").unwrap(), "2");
+    assert_eq!(o.get("lowpass").unwrap().parse::<f64>().unwrap(), 40.0);
+    o.set("data_timeout", 700)
+        .unwrap()
+        .set("reconnect", true)
+        .unwrap();
+    assert_eq!(o.get("data-timeout").unwrap(), "700");
+    assert_eq!(o.get("reconnect").unwrap(), "1");
+    let e = o.set("lowpas", 1).unwrap_err();
+    assert_eq!(e.kind(), ErrorKind::Arg);
+    assert!(e.message().contains("lowpas"), "{e}");
+    let e = o.set("lowpass", "fast").unwrap_err();
+    assert!(e.message().contains("lowpass"), "{e}");
+    assert!(format!("{o:?}").contains("data-timeout"));
+    // a copy is a handle of its own
+    let copy = o.clone();
+    o.set("decimate", 3).unwrap();
+    assert_eq!(copy.get("decimate").unwrap(), "2");
+
+    // the "sim-" prefix is optional on SimOptions
+    let mut so = SimOptions::new();
+    so.set("sim-rate", 600).unwrap().set("sim_seed", 9).unwrap();
+    assert_eq!(so.get("rate").unwrap().parse::<f64>().unwrap(), 600.0);
+    assert_eq!(so.get("seed").unwrap(), "9");
+
+    // open_sim: the session's options from Options, the sim's from SimOptions
+    let s = Sensor::open_sim(&so, &copy).unwrap();
+    assert_eq!(s.get("decimate").unwrap(), "2");
+    assert_eq!(s.lowpass(), 40.0);
+    assert_eq!(s.metadata().nominal_hz, 600.0);
+    // a builder's refusal comes back at open, with the library's message
+    let e = Sensor::open_sim(&so, &Options::new().lowpass(-1.0)).unwrap_err();
+    assert_eq!(e.kind(), ErrorKind::Arg);
+    assert!(e.message().contains("lowpass"), "{e}");
+}
+
+#[test]
+fn live_options_low_pass_and_frame() {
+    let mut s = open_sim(&[], Options::new().lowpass(50.0));
+    assert_eq!(s.lowpass(), 50.0);
+    assert_eq!(s.metadata().lowpass_hz, 50.0);
+    assert!(!s.metadata().lowpass_name.is_empty());
+    s.set_lowpass(0.0).unwrap();
+    assert_eq!(s.lowpass(), 0.0);
+    assert_eq!(s.set_lowpass(1000.0).unwrap_err().kind(), ErrorKind::Value);
+    assert_eq!(s.lowpass(), 0.0);
+    s.set("lowpass", 20).unwrap();
+    assert_eq!(s.lowpass(), 20.0);
+    assert_eq!(
+        s.set("decimate", 2).unwrap_err().kind(),
+        ErrorKind::State,
+        "not a live option"
+    );
+
+    let swap = [0.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, -1.0]; // x <-> y, z flipped
+    s.set_frame(swap, [0.0, 0.0, 0.1]).unwrap();
+    assert_eq!(s.frame(), (swap, [0.0, 0.0, 0.1]));
+    let m = s.metadata();
+    assert_eq!((m.rotation, m.shift_m), (swap, [0.0, 0.0, 0.1]));
+    // not orthonormal: refused, and the frame stays
+    let e = s.set_frame([0.5, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0], [0.0; 3]);
+    assert_eq!(e.unwrap_err().kind(), ErrorKind::Value);
+    // beyond the option's range: the table's check
+    let e = s.set_frame([2.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0], [0.0; 3]);
+    assert_eq!(e.unwrap_err().kind(), ErrorKind::Arg);
+    assert_eq!(s.frame(), (swap, [0.0, 0.0, 0.1]));
+    // a bad shift leaves the rotation too
+    let identity = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0];
+    assert!(s.set_frame(identity, [f64::NAN, 0.0, 0.0]).is_err());
+    assert_eq!(s.frame().0, swap);
+
+    // latency is the reading thread's
+    assert_eq!(s.set("latency", 5).unwrap_err().kind(), ErrorKind::State);
+    s.set_latency(Duration::from_millis(5)).unwrap();
+    assert_eq!(s.latency(), Duration::from_millis(5));
+    let rec = s.record_count(50).unwrap();
+    assert_eq!(rec.len(), 50);
+    assert_eq!(
+        s.latency(),
+        Duration::from_millis(5),
+        "record() puts it back"
+    );
+}
+
+#[test]
+fn payload_and_gravity_compensation() {
+    // the virtual sensor carries a 1 kg tool 0.1 m up its z axis, tilted so
+    // that gravity runs along -x: F = (-g, 0, 0), M = c x F = (0, -0.1 g, 0)
+    let g = standard_gravity();
+    let tilted = format!("{},0,0", -g);
+    let sim = sim_options(&[
+        ("constant", "true"),
+        ("amplitude", "0"),
+        ("payload", "1,0,0,0.1"),
+        ("gravity", &tilted),
+    ]);
+    let mut s = Sensor::open_sim(&sim, &Options::new()).unwrap();
+    let resolution = s.rated().axes().map(|r| r / 10000.0);
+    let rec = s.record_count(50).unwrap();
+    assert!(
+        (mean(&rec, 0) + g).abs() <= resolution[0],
+        "{}",
+        mean(&rec, 0)
+    );
+    assert!((mean(&rec, 4) + 0.1 * g).abs() <= resolution[4]);
+
+    let tool = Payload::new(1.0, [0.0, 0.0, 0.1]);
+    s.set_payload(Some(tool)).unwrap();
+    s.set_gravity([-g, 0.0, 0.0]).unwrap();
+    assert_eq!(s.payload(), Some(tool));
+    assert_eq!(s.gravity(), [-g, 0.0, 0.0]);
+    let m = s.metadata();
+    assert_eq!((m.payload, m.gravity), (Some(tool), [-g, 0.0, 0.0]));
+    let rec = s.record_count(50).unwrap();
+    for (a, r) in resolution.iter().enumerate() {
+        assert!(mean(&rec, a).abs() <= *r, "axis {a}: {}", mean(&rec, a));
+    }
+    // raw and zeroed counts stay as measured
+    assert!(rec.raw[0][0] < 0);
+    assert_eq!(
+        tool.wrench([-g, 0.0, 0.0]).unwrap(),
+        [-g, 0.0, 0.0, 0.0, -0.1 * g, 0.0]
+    );
+
+    s.set_payload(None).unwrap();
+    assert_eq!(s.payload(), None);
+    assert_eq!(
+        s.set_payload(Some(Payload::new(-1.0, [0.0; 3])))
+            .unwrap_err()
+            .kind(),
+        ErrorKind::Arg
+    );
+    assert!(s.set_gravity([f64::INFINITY, 0.0, 0.0]).is_err());
+    // also as options at open
+    let s = Sensor::open_sim(
+        &sim,
+        &Options::new()
+            .payload(Some(tool))
+            .gravity([-g, 0.0, 0.0])
+            .limits([0.0, 0.0, 100.0, 0.0, 0.0, 0.0]),
+    )
+    .unwrap();
+    assert_eq!(s.payload(), Some(tool));
+    assert_eq!(s.limits(), [0.0, 0.0, 100.0, 0.0, 0.0, 0.0]);
+}
+
+#[test]
+fn identify_a_payload_from_poses() {
+    let g = standard_gravity();
+    let tool = Payload::new(0.8, [0.01, -0.02, 0.06]);
+    let bias = [0.5, -0.3, 1.0, 0.02, 0.01, -0.03];
+    let poses = [
+        [0.0, 0.0, -g],
+        [-g, 0.0, 0.0],
+        [0.0, -g, 0.0],
+        [0.0, g * 0.6, -g * 0.8],
+    ];
+    let wrench: Vec<[f64; 6]> = poses
+        .iter()
+        .map(|p| {
+            let w = tool.wrench(*p).unwrap();
+            std::array::from_fn(|i| w[i] + bias[i])
+        })
+        .collect();
+    let fit = identify_payload(&poses, &wrench).unwrap();
+    assert!((fit.payload.mass_kg - 0.8).abs() < 1e-9, "{fit:?}");
+    for i in 0..3 {
+        assert!((fit.payload.com_m[i] - tool.com_m[i]).abs() < 1e-9);
+        assert!((fit.force_bias_n[i] - bias[i]).abs() < 1e-9);
+        assert!((fit.torque_bias_nm[i] - bias[3 + i]).abs() < 1e-9);
+    }
+    assert_eq!(fit.poses, 4);
+    assert!(fit.spread > 0.1);
+    // one direction only: the library refuses, and says why
+    let e = identify_payload(&poses[..1].repeat(3), &wrench[..1].repeat(3)).unwrap_err();
+    assert_eq!(e.kind(), ErrorKind::Value, "{e}");
+    assert!(!e.message().is_empty());
+    assert_eq!(
+        identify_payload(&poses, &wrench[..2]).unwrap_err().kind(),
+        ErrorKind::Arg
+    );
+}
+
+#[test]
+fn metadata_and_health_by_name() {
+    let sim =
+        Simulator::start_with(&sim_options(&[("model", "CFS034CA301U"), ("filter", "1")])).unwrap();
+    let mut s = Sensor::open(sim.port()).unwrap();
+    let m = s.metadata();
+    assert_eq!(&m.product, s.product_info());
+    assert_eq!(m.rated, s.rated());
+    assert_eq!((m.sensor_filter, s.filter()), (Some(1), Some(1)));
+    assert_eq!(m.sensor_filter_label, s.filter_label());
+    assert_eq!(m.port, sim.port());
+    assert!(!m.sim, "a port, not a session's own virtual sensor");
+    assert_eq!(m.library_version, leptrino::library_version());
+    assert_eq!((m.nominal_hz, m.decimate, m.tared), (1200.0, 1, false));
+    assert!(!m.protocol.is_empty());
+    assert!(s
+        .metadata_json()
+        .unwrap()
+        .contains("\"serial\":\"00000001\""));
+
+    let rec = s.record_count(300).unwrap();
+    let h = s.health();
+    let fields = h.fields();
+    assert!(fields.len() >= 31, "{fields:?}");
+    assert_eq!(h.get("received"), Some(h.received as f64));
+    assert_eq!(h.get("delivered"), Some(rec.len() as f64));
+    assert_eq!(h.get("bcc_errors"), Some(h.client.bcc_errors as f64));
+    assert!(h.client.messages > 0 && h.client.samples >= 300);
+    assert_eq!(h.get("no-such-field"), None);
+    let st = sim.stats();
+    let by_name = st.fields();
+    assert!(by_name.contains(&("samples_sent", st.samples_sent)));
+    assert!(st.samples_sent >= 300 && st.filter == 1);
+}
+
+#[test]
+fn the_filter_through_the_session_client() {
+    let sim = Simulator::start().unwrap();
+    let mut s = Sensor::open(sim.port()).unwrap();
+    assert_eq!(s.filter(), Some(0));
+    assert_eq!(s.set_filter(4).unwrap_err().kind(), ErrorKind::Value);
+    s.start().unwrap();
+    assert_eq!(s.set_filter(3).unwrap_err().kind(), ErrorKind::State);
+    s.stop().unwrap();
+    s.set_filter(3).unwrap();
+    let st = sim.stats();
+    assert_eq!((st.filter, st.filter_pending), (0, 3));
+    assert_eq!(s.filter(), Some(0), "the code read at open");
+    sim.power_cycle(); // applied on the virtual sensor's thread
+    let t0 = Instant::now();
+    while sim.stats().filter != 3 && t0.elapsed() < Duration::from_secs(2) {
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    assert_eq!(sim.stats().filter, 3);
+}
+
+#[test]
+fn a_held_output_arrives_late_and_whole() {
+    let sim = Simulator::start().unwrap();
+    let mut s = Sensor::open(sim.port()).unwrap();
+    s.start().unwrap();
+    let a = s.record_count(120).unwrap();
+    sim.hold(Duration::from_millis(300));
+    let t0 = Instant::now();
+    let b = s.record_count(600).unwrap();
+    s.stop().unwrap();
+    assert!(t0.elapsed() >= Duration::from_millis(300));
+    assert_eq!(b.seq[0], a.seq[119].wrapping_add(1));
+    assert_eq!(b.missing(), 0);
+    assert_eq!(sim.stats().samples_blocked, 0);
+}
+
+#[test]
+fn the_port_list() {
+    // the machine may have no serial port: an empty list, not an error
+    for p in leptrino::list_ports().unwrap() {
+        assert!(p.path.starts_with("/dev/"), "{p:?}");
+    }
 }

@@ -214,7 +214,10 @@ static int session_set(lep_session *s, const char *name, handle_setter set, cons
     rc = apply(s, r, &o.so, err, errlen);
     if (rc != LEP_OK)
         return rc;
-    /* Keep the session's copy in step, for lep_session_get and the next start. */
+    /* Keep the session's copy in step, for lep_session_get ("latency" is the
+     * driving thread's own field, written by its setter). */
+    if (strcmp(r->public_name, "latency") == 0)
+        return LEP_OK;
     at = r->offset - offsetof(struct lep_options, so);
     pthread_mutex_lock(&s->mu);
     memcpy((unsigned char *)&s->opt + at, (const unsigned char *)&o.so + at, r->size);

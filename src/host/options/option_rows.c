@@ -70,7 +70,9 @@ void lep_priv_row_range(const opt_row *r, char *buf, size_t cap)
     else if (r->store == S_DOUBLES)
         snprintf(buf, cap, "%zu comma-separated numbers (%s), each from %.15g to %.15g",
                  r->size / sizeof(double), in->arg, in->min, in->max);
-    else if (in->type == LEP_SIM_OPT_UINT && r->store == S_U64)
+    else if (r->store == S_U64 && in->max >= 18446744073709551615.0)
+        snprintf(buf, cap, "an integer from 0 to 18446744073709551615");
+    else if (r->store == S_U64)
         snprintf(buf, cap, "an integer from 0 to %.0f", in->max);
     else
         snprintf(buf, cap, "an integer from %.0f to %.0f", in->min, in->max);

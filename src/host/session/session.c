@@ -312,7 +312,9 @@ int lep_session_set_latency(lep_session *s, int latency_ms)
     rc = lep_priv_guard_enter(&s->guard);
     if (rc != LEP_OK)
         return rc;
+    pthread_mutex_lock(&s->mu); /* lep_session_get reads it from any thread */
     s->opt.latency_ms = latency_ms;
+    pthread_mutex_unlock(&s->mu);
     lep_priv_guard_leave(&s->guard);
     return LEP_OK;
 }

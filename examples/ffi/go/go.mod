@@ -1,0 +1,3 @@
+module leptrino.example/ffi
+
+go 1.22
