@@ -12,8 +12,10 @@ bindings/python/leptrino/:
   _cdef.py          CDEF: the types and prototypes for cffi's ffi.cdef
   _ctypes_decls.py  the same as ctypes Structures/Unions, CFUNCTYPEs and
                     FUNCTIONS (name -> restype, argtypes)
-  _stats.py         a frozen dataclass per counter struct (STATS below), one
-                    field per member, with the header's comment
+  _stats.py         a frozen dataclass per set of counters (STATS below): a
+                    struct (one field per member) or the enum of a flat
+                    array's fields (one field per enumerator), with the
+                    header's comment
 
 What is taken, by rule (no list of names to keep up to date):
   - functions: every prototype marked LEP_API (static inline ones are not
@@ -43,6 +45,7 @@ import re
 import subprocess
 import sys
 import tempfile
+import textwrap
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
@@ -56,15 +59,25 @@ PACKAGE = ROOT / "bindings" / "python" / "leptrino"
 #: Headers whose macros are build switches (LEP_HAVE_*, LEP_API), not values.
 SWITCH_HEADERS = ("config.h", "export.h")
 
-#: Counter structs -> the dataclass that carries them in Python (values.py
-#: re-exports these). Their members are read from the header; only the
-#: class name is chosen here. tests/test_declarations.py fails when a header
-#: gains a *_stats or *_health struct that is missing from this table.
+#: Counters -> the dataclass that carries them in Python (values.py
+#: re-exports these): a struct's name (one field per member), or the name of
+#: the enum that indexes a flat array of counters (one field per enumerator,
+#: named as the library's *_field_name() functions name them: the enumerator
+#: without its common prefix, lower case; the *_COUNT enumerator left out).
+#: Only the class name is chosen here; the fields and their types come from
+#: the header: a struct member's C type; for an enumerator, bool when its
+#: comment begins "1 when" or "1 while", float when its name ends in _S or
+#: _HZ, else int. In an enum, a run of enumerators named as the members of a
+#: counter struct of this table, in order, becomes one field of that struct's
+#: dataclass, named after the struct (lep_client_stats: client).
+#: tests/test_declarations.py fails when a header gains a *_stats or *_health
+#: struct, or a field enum of the health or the virtual sensor's counters,
+#: that is missing from this table.
 STATS = {
     "lep_frame_stats": "FrameStats",
     "lep_client_stats": "ClientStats",
-    "lep_sim_stats": "SimStats",
-    "lep_session_health": "Health",
+    "lep_sim_stat": "SimStats",
+    "lep_health_field": "Health",
 }
 
 #: The stand-in system headers: just the names the public headers use.
@@ -679,23 +692,24 @@ def _comment_before(hdr: str, line: int) -> str:
     return " ".join(w for w in text.split() if w != "*")
 
 
-def gen_stats(m: Model) -> str:
-    for name in STATS:
-        if name not in m.structs:
-            raise GenError(f"STATS names {name}, which the headers do not define")
-    out = [f'"""{HEADER_NOTE}\n\nThe counter structs as frozen dataclasses, one field per member in the\n'
-           'header\'s order. from_c(struct) copies a ctypes or cffi struct."""',
-           "", "from __future__ import annotations", "",
-           "from dataclasses import dataclass", "from typing import Any", ""]
-    py_of = {"c_bool": "bool", "c_float": "float", "c_double": "float"}
+def _enum_prefix(names: Sequence[str]) -> str:
+    """The common prefix of names, up to and including its last underscore."""
+    pre = os.path.commonprefix(list(names))
+    return pre[:pre.rfind("_") + 1]
+
+
+def _stat_fields(m: Model, cname: str) -> Tuple[str, str, List[Tuple[str, str, str, str]]]:
+    """(header, doc, [(field, type, from_c expression, note)]) of one STATS entry;
+    from_c is "" for an enum's counters (read by name only)."""
+    p = m.parsed
     w = CtypesWriter(m)
-    for cname, pyname in STATS.items():
+    py_of = {"c_bool": "bool", "c_float": "float", "c_double": "float"}
+    if cname in m.structs:
         su = m.structs[cname]
-        node = next(n for n in m.parsed.decls
-                    if isinstance(n, c_ast.Typedef) and n.name == cname)
+        node = next(n for n in p.decls if isinstance(n, c_ast.Typedef) and n.name == cname)
         hdr = _header_of(node.coord) or ""
         doc = _comment_before(hdr, su.coord.line) or cname
-        fields, conv = [], []
+        out = []
         for d in su.decls:
             if isinstance(d.type, c_ast.TypeDecl) and isinstance(d.type.type, c_ast.IdentifierType) \
                     and d.type.type.names[0] in STATS:
@@ -708,13 +722,78 @@ def gen_stats(m: Model) -> str:
                                    "has no dataclass translation")
                 typ = py_of.get(ct, "int")
                 expr = f"{typ}(c.{d.name})"
-            note = _comment_at(hdr, d.coord.line)
-            fields.append(f"    {d.name}: {typ}" + (f"  # {note}" if note else ""))
-            conv.append(f"            {d.name}={expr},")
-        out += ["", "@dataclass(frozen=True)", f"class {pyname}:",
-                f'    """{doc}', "", f'    C: {cname} ({hdr}).', '    """', ""] + fields + [
-            "", "    @classmethod", f'    def from_c(cls, c: Any) -> "{pyname}":',
-            "        return cls(", *conv, "        )", ""]
+            out.append((d.name, typ, expr, _comment_at(hdr, d.coord.line)))
+        return hdr, doc, out
+    if cname not in p.enums:
+        raise GenError(f"STATS names {cname}, which the headers define neither as a struct nor "
+                       "as an enum")
+    items = [n for n, _ in p.enums[cname] if not n.endswith("_COUNT")]
+    hdr = next(h for n, _, h in p.constants if n == items[0])
+    prefix = _enum_prefix(items)
+    names = [n[len(prefix):].lower() for n in items]
+    notes = {n[len(prefix):].lower(): p.notes.get(n, "") for n in items}
+    line = next(n.coord.line for n in p.decls for e in _enums_in(n) if e.name == cname)
+    doc = _comment_before(hdr, line) or cname
+    out = []
+    i = 0
+    while i < len(names):
+        nested = None
+        for sname, pyname in STATS.items():
+            if sname in m.structs:
+                members = [d.name for d in m.structs[sname].decls]
+                if names[i:i + len(members)] == members:
+                    nested = (sname, pyname, members)
+                    break
+        if nested is not None:
+            sname, pyname, members = nested
+            field_name = sname[len("lep_"):] if sname.startswith("lep_") else sname
+            field_name = field_name.rsplit("_", 1)[0]  # lep_client_stats: client
+            out.append((field_name, pyname, "", f"the {sname} fields "
+                        f"{members[0]} .. {members[-1]} ({hdr})"))
+            i += len(members)
+            continue
+        name, note = names[i], notes[names[i]]
+        if re.match(r"1 wh(en|ile)\b", note):
+            typ = "bool"
+        elif re.search(r"_(s|hz)$", name):
+            typ = "float"
+        else:
+            typ = "int"
+        out.append((name, typ, "", note))
+        i += 1
+    return hdr, doc, out
+
+
+def gen_stats(m: Model) -> str:
+    out = [f'"""{HEADER_NOTE}\n\nThe counters as frozen dataclasses, one field per member (of a struct) or\n'
+           'per enumerator (of an enum indexing a flat array of counters), in the\n'
+           'header\'s order. from_fields(mapping) takes the values by field name (the\n'
+           'names the library\'s *_field_name() functions give); from_c(struct)\n'
+           'copies a ctypes or cffi struct."""',
+           "", "from __future__ import annotations", "",
+           "from dataclasses import dataclass", "from typing import Any, Mapping", ""]
+    kinds = {}
+    for cname, pyname in STATS.items():
+        hdr, doc, fields = _stat_fields(m, cname)
+        kinds[pyname] = "struct" if cname in m.structs else "enum"
+        lines = []
+        by_name = []
+        conv = []
+        for name, typ, expr, note in fields:
+            lines.append(f"    {name}: {typ}" + (f"  # {note}" if note else ""))
+            by_name.append(f"            {name}={typ}.from_fields(fields),"
+                           if typ in kinds else f'            {name}={typ}(fields["{name}"]),')
+            conv.append(f"            {name}={expr},")
+        what = "struct" if cname in m.structs else "enum"
+        doc_lines = textwrap.wrap(doc, 96, initial_indent='    """', subsequent_indent="    ")
+        out += ["", "@dataclass(frozen=True)", f"class {pyname}:", *doc_lines, "",
+                f'    C: {cname} ({hdr}, the {what}).', '    """', ""] + lines
+        out += ["", "    @classmethod",
+                f'    def from_fields(cls, fields: Mapping[str, Any]) -> "{pyname}":',
+                "        return cls(", *by_name, "        )", ""]
+        if cname in m.structs:
+            out += ["    @classmethod", f'    def from_c(cls, c: Any) -> "{pyname}":',
+                    "        return cls(", *conv, "        )", ""]
     text = "\n".join(out)
     # long comments wrap at 100 columns, as the rest of the package
     return "\n".join(_wrap(line) for line in text.splitlines()) + "\n"

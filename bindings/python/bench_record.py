@@ -73,12 +73,12 @@ def main() -> None:
 
         arrays = _Arrays(be, int(args.rate * args.seconds * 1.2) + 1000)
         for _ in range(args.runs):
-            arrays.c.n = 0
+            arrays.n = 0
             sensor.start()
             end = time.monotonic() + args.seconds
             c0 = time.thread_time()
             while time.monotonic() < end:
-                be.lib.lep_session_read(sensor._s, arrays.c, 250)
+                arrays.read(sensor._s, 250, arrays.cap - arrays.n, at=arrays.n)
             c1 = time.thread_time()
             sensor.stop()
             c_us.append((c1 - c0) / max(1, arrays.n) * 1e6)

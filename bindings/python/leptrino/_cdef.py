@@ -251,7 +251,7 @@ size_t lep_client_rx_sizeof(void);
 int lep_client_init(lep_client *c, const lep_io *io);
 int lep_client_set_rx(lep_client *c, lep_client_rx *rx);
 int lep_client_set_timeout(lep_client *c, int timeout_ms);
-int lep_client_set_retries(lep_client *c, unsigned retries);
+int lep_client_set_retries(lep_client *c, int retries);
 int lep_client_set_watchdog(lep_client *c, uint16_t ms);
 void lep_client_get_stats(const lep_client *c, lep_client_stats *out);
 uint8_t lep_client_last_result(const lep_client *c);
@@ -349,192 +349,144 @@ const char *lep_strerror(int err);
 const char *lep_result_str(uint8_t result);
 /* leptrino.h */
 const char *lep_version(void);
-/* payload.h */
-typedef struct lep_payload
+/* options.h */
+typedef struct lep_options lep_options;
+enum lep_option_type
 {
-  double mass_kg;
-  double com_m[3];
-} lep_payload;
-typedef struct lep_payload_fit
+  LEP_OPT_FLAG = 0,
+  LEP_OPT_INT = 1,
+  LEP_OPT_DOUBLE = 2,
+  LEP_OPT_STRING = 3,
+  LEP_OPT_CHOICE = 4,
+  LEP_OPT_NUMBERS = 5
+};
+enum lep_option_scope
 {
-  lep_payload payload;
-  double force_bias_N[3];
-  double torque_bias_Nm[3];
-  double residual[6];
-  double spread;
-  size_t poses;
-} lep_payload_fit;
-int lep_payload_wrench(const lep_payload *p, const double gravity[3], double wrench[6]);
-int lep_payload_identify(const double *gravity, const double *wrench, size_t n, lep_payload_fit *out, char *err, size_t errlen);
-int lep_payload_pose_read(const char *path, double mean[6], uint64_t *samples, char *err, size_t errlen);
+  LEP_SCOPE_SESSION = 1,
+  LEP_SCOPE_LIVE = 2,
+  LEP_SCOPE_SIM = 3
+};
+lep_options *lep_options_new(void);
+lep_options *lep_options_copy(const lep_options *o);
+void lep_options_free(lep_options *o);
+int lep_options_set(lep_options *o, const char *name, const char *value, char *err, size_t errlen);
+int lep_options_set_int(lep_options *o, const char *name, int64_t value, char *err, size_t errlen);
+int lep_options_set_double(lep_options *o, const char *name, double value, char *err, size_t errlen);
+int lep_options_set_doubles(lep_options *o, const char *name, const double *values, size_t n, char *err, size_t errlen);
+int lep_options_get(const lep_options *o, const char *name, char *buf, size_t cap, size_t *len);
+int lep_options_get_int(const lep_options *o, const char *name, int64_t *out);
+int lep_options_get_double(const lep_options *o, const char *name, double *out);
+int lep_options_get_doubles(const lep_options *o, const char *name, double *out, size_t cap, size_t *n);
+int lep_options_check(const lep_options *o, char *err, size_t errlen);
+size_t lep_option_count(void);
+int lep_option_index(const char *name);
+const char *lep_option_name(size_t i);
+int lep_option_type(size_t i);
+int lep_option_scope(size_t i);
+const char *lep_option_arg(size_t i);
+const char *lep_option_help(size_t i);
+const char *lep_option_default(size_t i);
+double lep_option_min(size_t i);
+double lep_option_max(size_t i);
+int lep_option_min_exclusive(size_t i);
+size_t lep_option_numbers(size_t i);
+const char *lep_option_choice(size_t i, size_t j);
 /* serial.h */
-typedef struct lep_serial lep_serial;
-typedef struct lep_serial_info
+enum lep_serial_constants
 {
-  _Bool low_latency;
-  int ftdi_latency_ms;
-  _Bool ftdi_lowered;
-} lep_serial_info;
+  LEP_BAUD = 460800
+};
+typedef struct lep_serial lep_serial;
+enum lep_serial_info_field
+{
+  LEP_SERIAL_LOW_LATENCY = 0,
+  LEP_SERIAL_FTDI_LATENCY_MS = 1,
+  LEP_SERIAL_FTDI_LOWERED = 2,
+  LEP_SERIAL_INFO_COUNT = 3
+};
 int lep_serial_open(const char *path, lep_serial **out, char *err, size_t errlen);
 void lep_serial_close(lep_serial *s);
 void lep_serial_get_io(lep_serial *s, lep_io *io);
 int lep_serial_client_init(lep_client *c, lep_serial *s);
-void lep_serial_get_info(const lep_serial *s, lep_serial_info *info);
+int lep_serial_get_info(const lep_serial *s, int *out, size_t n);
 const char *lep_serial_path(const lep_serial *s);
 int lep_serial_fd(const lep_serial *s);
 uint32_t lep_monotonic_ms(void);
 double lep_monotonic_seconds(void);
-typedef struct lep_port_info
-{
-  char path[256];
-  char by_id[256];
-  char description[128];
-  uint16_t vid;
-  uint16_t pid;
-  _Bool likely_sensor;
-} lep_port_info;
-int lep_serial_list(lep_port_info *out, size_t max, size_t *n);
+typedef struct lep_port_list lep_port_list;
+int lep_port_list_new(lep_port_list **out);
+void lep_port_list_free(lep_port_list *l);
+size_t lep_port_list_count(const lep_port_list *l);
+const char *lep_port_list_path(const lep_port_list *l, size_t i);
+const char *lep_port_list_by_id(const lep_port_list *l, size_t i);
+const char *lep_port_list_description(const lep_port_list *l, size_t i);
+int lep_port_list_vid(const lep_port_list *l, size_t i);
+int lep_port_list_pid(const lep_port_list *l, size_t i);
+int lep_port_list_likely_sensor(const lep_port_list *l, size_t i);
 /* sim.h */
 typedef struct lep_sim lep_sim;
-typedef struct lep_sim_options
+enum lep_sim_stat
 {
-  char model[32];
-  char serial[16];
-  char firmware[8];
-  _Bool output_rate_field;
-  double rate_hz;
-  uint8_t filter;
-  uint64_t seed;
-  double amplitude;
-  double noise;
-  _Bool constant;
-  char replay_csv[512];
-  double overload_every_s;
-  double overload_duration_s;
-  double p_nak;
-  double p_corrupt;
-  double p_garbage;
-  double p_drop;
-  int stall_ms;
-  double stall_after_s;
-  double hangup_after_s;
-  int reopen_after_ms;
-  _Bool start_streaming;
-  char link[512];
-  double payload[4];
-  double gravity[3];
-} lep_sim_options;
-enum lep_sim_option_type
-{
-  LEP_SIM_OPT_FLAG = 0,
-  LEP_SIM_OPT_INT,
-  LEP_SIM_OPT_UINT,
-  LEP_SIM_OPT_DOUBLE,
-  LEP_SIM_OPT_STRING,
-  LEP_SIM_OPT_CHOICE,
-  LEP_SIM_OPT_NUMBERS
+  LEP_SIMST_SAMPLES_SENT = 0,
+  LEP_SIMST_SAMPLES_DROPPED = 1,
+  LEP_SIMST_COMMANDS = 2,
+  LEP_SIMST_NAKS = 3,
+  LEP_SIMST_BYTES_CORRUPTED = 4,
+  LEP_SIMST_HANGUPS = 5,
+  LEP_SIMST_STREAMING = 6,
+  LEP_SIMST_FILTER = 7,
+  LEP_SIMST_FILTER_PENDING = 8,
+  LEP_SIMST_HUNG_UP = 9,
+  LEP_SIMST_SEQUENCE = 10,
+  LEP_SIMST_RESPONSES = 11,
+  LEP_SIMST_FAKED_NAKS = 12,
+  LEP_SIMST_SAMPLES_SKIPPED = 13,
+  LEP_SIMST_SAMPLES_BLOCKED = 14,
+  LEP_SIMST_GARBAGE_BYTES = 15,
+  LEP_SIMST_BYTES_RECEIVED = 16,
+  LEP_SIMST_REOPENS = 17,
+  LEP_SIMST_POWER_CYCLES = 18,
+  LEP_SIMST_STALLS = 19,
+  LEP_SIMST_COUNT = 20
 };
-typedef struct lep_sim_option_info
-{
-  const char *name;
-  int type;
-  const char *arg;
-  const char *help;
-  const char *default_text;
-  double min;
-  double max;
-  _Bool min_exclusive;
-} lep_sim_option_info;
-size_t lep_sim_option_count(void);
-const lep_sim_option_info *lep_sim_option_at(size_t i);
-const lep_sim_option_info *lep_sim_option_find(const char *name);
-int lep_sim_option_set(lep_sim_options *o, const char *name, const char *value, char *err, size_t errlen);
-int lep_sim_option_get(const lep_sim_options *o, const char *name, char *buf, size_t buflen);
-int lep_sim_options_check(const lep_sim_options *o, char *err, size_t errlen);
-typedef struct lep_sim_stats
-{
-  uint64_t samples_sent;
-  uint64_t samples_dropped;
-  uint64_t commands;
-  uint64_t naks;
-  uint64_t bytes_corrupted;
-  uint64_t hangups;
-  _Bool streaming;
-  uint8_t filter;
-  uint8_t filter_pending;
-  _Bool hung_up;
-  uint16_t sequence;
-  uint64_t responses;
-  uint64_t faked_naks;
-  uint64_t samples_skipped;
-  uint64_t samples_blocked;
-  uint64_t garbage_bytes;
-  uint64_t bytes_received;
-  uint64_t reopens;
-  uint64_t power_cycles;
-  uint64_t stalls;
-} lep_sim_stats;
-void lep_sim_options_init(lep_sim_options *o);
-const char * const *lep_sim_models(void);
-int lep_sim_model_rated(const char *model, lep_rated *out);
-int lep_sim_start(const lep_sim_options *o, lep_sim **out, char *err, size_t errlen);
-int lep_sim_stream_sample(const lep_sim *s, uint64_t k, uint8_t filter, lep_sample *out);
+size_t lep_sim_stats_fields(void);
+const char *lep_sim_stats_field_name(size_t i);
+int lep_sim_stats(lep_sim *s, uint64_t *out, size_t n);
+size_t lep_sim_model_count(void);
+const char *lep_sim_model_name(size_t i);
+int lep_sim_model_rated(const char *model, double rated[6]);
+int lep_sim_start(const lep_options *o, lep_sim **out, char *err, size_t errlen);
+int lep_sim_stream_sample(const lep_sim *s, uint64_t k, int filter, int16_t raw[6], uint8_t *status, uint16_t *seq);
 const char *lep_sim_port(const lep_sim *s);
 const char *lep_sim_pty_path(const lep_sim *s);
 void lep_sim_power_cycle(lep_sim *s);
 void lep_sim_hangup(lep_sim *s);
 void lep_sim_stall(lep_sim *s, int ms);
 void lep_sim_hold(lep_sim *s, int ms);
-void lep_sim_get_stats(lep_sim *s, lep_sim_stats *out);
-typedef struct lep_sim_trace_record
-{
-  uint64_t k;
-  int64_t t_call_ns;
-  int64_t t_return_ns;
-} lep_sim_trace_record;
 int lep_sim_trace_writes(lep_sim *s, const char *path, char *err, size_t errlen);
 void lep_sim_stop(lep_sim *s);
 /* session.h */
 typedef struct lep_session lep_session;
-typedef struct lep_session_options
+enum lep_session_constants
 {
-  const char *port;
-  _Bool use_sim;
-  lep_sim_options sim;
-  int timeout_ms;
-  int sync_quiet_ms;
-  int data_timeout_ms;
-  double gap_periods;
-  double nominal_hz;
-  _Bool reconnect;
-  int reconnect_min_ms;
-  int reconnect_max_ms;
-  int reconnect_give_up_ms;
-  int latency_ms;
-  unsigned tare_samples;
-  double lowpass_hz;
-  unsigned decimate;
-  double rotation[9];
-  double shift_m[3];
-  double duration_s;
-  uint64_t count;
-  lep_payload payload;
-  double gravity[3];
-  double limit[6];
-} lep_session_options;
-typedef struct lep_session_batch
+  LEP_SESSION_NOMINAL_HZ = 1200,
+  LEP_SESSION_EVENT_QUEUE = 1024
+};
+enum lep_sample_flag
 {
-  size_t cap;
-  size_t n;
-  double *t_mono;
-  double *t_utc;
-  int16_t *raw;
-  double *zeroed;
-  double *si;
-  uint8_t *status;
-  uint8_t *flags;
-  uint16_t *seq;
-} lep_session_batch;
+  LEP_SF_GAP = 1,
+  LEP_SF_OVERLOAD = 2,
+  LEP_SF_TARING = 4,
+  LEP_SF_SETTLING = 8,
+  LEP_SF_LIMIT = 16
+};
+int lep_session_open(const lep_options *o, lep_session **out, char *err, size_t errlen);
+void lep_session_close(lep_session *s);
+int lep_session_start(lep_session *s);
+int lep_session_stop(lep_session *s);
+int lep_session_streaming(const lep_session *s);
+int lep_session_read(lep_session *s, int timeout_ms, size_t cap, size_t *n, double *t_mono, double *t_utc, double *si, int16_t *raw, double *zeroed, uint8_t *status, uint8_t *flags, uint16_t *seq);
+int lep_session_read_one(lep_session *s, double *t_mono, double *t_utc, double *si, int16_t *raw, double *zeroed, uint8_t *status, uint8_t *flags, uint16_t *seq);
 enum lep_session_event_type
 {
   LEP_EV_GAP = 1,
@@ -546,98 +498,133 @@ enum lep_session_event_type
   LEP_EV_LIMIT_EXCEEDED = 7,
   LEP_EV_LIMIT_CLEARED = 8
 };
-typedef struct lep_session_event
+enum lep_event_field
 {
-  int type;
-  uint64_t sample;
-  double t_mono;
-  double t_utc;
-  double gap_from;
-  double gap_to;
-  uint32_t lost;
-  int error;
-  uint8_t axes;
-  uint8_t status;
-  double tare[6];
-  double wrench[6];
-} lep_session_event;
-typedef struct lep_session_health
-{
-  double elapsed_s;
-  double nominal_hz;
-  double measured_hz;
-  double recent_hz;
-  _Bool shortfall;
-  uint64_t received;
-  uint64_t delivered;
-  uint64_t lost;
-  uint64_t gaps;
-  uint64_t errors;
-  uint64_t overloads;
-  uint64_t limit_episodes;
-  uint64_t disconnects;
-  uint64_t reconnects;
-  uint64_t events_dropped;
-  double max_gap_s;
-  lep_client_stats client;
-} lep_session_health;
-typedef struct lep_session_metadata
-{
-  lep_product_info info;
-  char protocol[24];
-  lep_rated rated;
-  int sensor_filter;
-  char sensor_filter_label[24];
-  double nominal_hz;
-  double lowpass_hz;
-  char lowpass_name[48];
-  double lowpass_delay_s;
-  unsigned decimate;
-  double rotation[9];
-  double shift_m[3];
-  _Bool tared;
-  double tare[6];
-  double start_utc;
-  double start_mono;
-  char port[256];
-  _Bool sim;
-  char library_version[16];
-  lep_payload payload;
-  double gravity[3];
-  double limit[6];
-} lep_session_metadata;
-void lep_session_options_init(lep_session_options *o);
-void lep_rotation_from_rpy(double roll, double pitch, double yaw, double r[9]);
-int lep_session_open(const lep_session_options *o, lep_session **out, char *err, size_t errlen);
-void lep_session_close(lep_session *s);
-int lep_session_start(lep_session *s);
-int lep_session_stop(lep_session *s);
-int lep_session_read(lep_session *s, lep_session_batch *b, int timeout_ms);
-int lep_session_read_one(lep_session *s, lep_session_batch *b);
-_Bool lep_session_next_event(lep_session *s, lep_session_event *ev);
-int lep_session_tare(lep_session *s, unsigned n, double duration_s);
+  LEP_EVF_TYPE = 0,
+  LEP_EVF_SAMPLE = 1,
+  LEP_EVF_T_MONO = 2,
+  LEP_EVF_T_UTC = 3,
+  LEP_EVF_GAP_FROM = 4,
+  LEP_EVF_GAP_TO = 5,
+  LEP_EVF_LOST = 6,
+  LEP_EVF_ERROR = 7,
+  LEP_EVF_AXES = 8,
+  LEP_EVF_STATUS = 9,
+  LEP_EVF_TARE = 10,
+  LEP_EVF_WRENCH = 16,
+  LEP_EVF_COUNT = 22
+};
+size_t lep_session_event_fields(void);
+int lep_session_next_event(lep_session *s, double *fields, size_t nfields);
+int lep_session_tare(lep_session *s, int samples, double duration_s);
 int lep_session_untare(lep_session *s);
 int lep_session_set_tare(lep_session *s, const double offset[6]);
-_Bool lep_session_get_tare(lep_session *s, double offset[6]);
-_Bool lep_session_taring(lep_session *s);
-int lep_session_set_lowpass(lep_session *s, double cutoff_hz);
-int lep_session_set_rotation(lep_session *s, const double rotation[9], const double shift_m[3]);
-int lep_session_set_payload(lep_session *s, const lep_payload *p);
-int lep_session_set_gravity(lep_session *s, const double gravity[3]);
-int lep_session_set_limits(lep_session *s, const double limit[6]);
+int lep_session_get_tare(lep_session *s, double offset[6]);
+int lep_session_taring(lep_session *s);
+int lep_session_set(lep_session *s, const char *name, const char *value, char *err, size_t errlen);
+int lep_session_set_int(lep_session *s, const char *name, int64_t value, char *err, size_t errlen);
+int lep_session_set_double(lep_session *s, const char *name, double value, char *err, size_t errlen);
+int lep_session_set_doubles(lep_session *s, const char *name, const double *values, size_t n, char *err, size_t errlen);
+int lep_session_get(lep_session *s, const char *name, char *buf, size_t cap, size_t *len);
+int lep_session_get_int(lep_session *s, const char *name, int64_t *out);
+int lep_session_get_double(lep_session *s, const char *name, double *out);
+int lep_session_get_doubles(lep_session *s, const char *name, double *out, size_t cap, size_t *n);
 int lep_limits_parse(const char *text, double limit[6]);
-int lep_session_set_latency(lep_session *s, int latency_ms);
-int lep_session_latency(const lep_session *s);
-void lep_session_get_health(lep_session *s, lep_session_health *out);
-void lep_session_get_metadata(lep_session *s, lep_session_metadata *out);
-int lep_session_metadata_json(lep_session *s, char *buf, size_t cap, size_t *len);
+void lep_rotation_from_rpy(double roll, double pitch, double yaw, double r[9]);
+enum lep_session_text
+{
+  LEP_INFO_MODEL = 0,
+  LEP_INFO_SERIAL = 1,
+  LEP_INFO_FIRMWARE = 2,
+  LEP_INFO_OUTPUT_RATE = 3,
+  LEP_INFO_PROTOCOL = 4,
+  LEP_INFO_FILTER_LABEL = 5,
+  LEP_INFO_LOWPASS_NAME = 6,
+  LEP_INFO_PORT = 7,
+  LEP_INFO_LIBRARY_VERSION = 8,
+  LEP_INFO_METADATA_JSON = 9,
+  LEP_INFO_COUNT = 10
+};
+int lep_session_info(lep_session *s, int which, char *buf, size_t cap, size_t *len);
+int lep_session_rated(lep_session *s, double rated[6]);
+enum lep_health_field
+{
+  LEP_H_ELAPSED_S = 0,
+  LEP_H_NOMINAL_HZ = 1,
+  LEP_H_MEASURED_HZ = 2,
+  LEP_H_RECENT_HZ = 3,
+  LEP_H_SHORTFALL = 4,
+  LEP_H_RECEIVED = 5,
+  LEP_H_DELIVERED = 6,
+  LEP_H_LOST = 7,
+  LEP_H_GAPS = 8,
+  LEP_H_ERRORS = 9,
+  LEP_H_OVERLOADS = 10,
+  LEP_H_LIMIT_EPISODES = 11,
+  LEP_H_DISCONNECTS = 12,
+  LEP_H_RECONNECTS = 13,
+  LEP_H_EVENTS_DROPPED = 14,
+  LEP_H_MAX_GAP_S = 15,
+  LEP_H_MESSAGES = 16,
+  LEP_H_BCC_ERRORS = 17,
+  LEP_H_FRAME_ERRORS = 18,
+  LEP_H_BYTES_DISCARDED = 19,
+  LEP_H_NAKS = 20,
+  LEP_H_RETRIES = 21,
+  LEP_H_UNEXPECTED = 22,
+  LEP_H_INVALID = 23,
+  LEP_H_TIMEOUTS = 24,
+  LEP_H_SAMPLES = 25,
+  LEP_H_RESENT_AFTER_TIMEOUT = 26,
+  LEP_H_RESENT_CONFIRMED = 27,
+  LEP_H_RECOVERIES = 28,
+  LEP_H_RESERVED_NONZERO = 29,
+  LEP_H_STALLS = 30,
+  LEP_H_COUNT = 31
+};
+size_t lep_session_health_fields(void);
+const char *lep_session_health_field_name(size_t i);
+int lep_session_health(lep_session *s, double *out, size_t n);
+enum lep_metadata_field
+{
+  LEP_MD_RATED = 0,
+  LEP_MD_OUTPUT_RATE_HZ = 6,
+  LEP_MD_SENSOR_FILTER = 7,
+  LEP_MD_NOMINAL_HZ = 8,
+  LEP_MD_LOWPASS_HZ = 9,
+  LEP_MD_LOWPASS_DELAY_S = 10,
+  LEP_MD_DECIMATE = 11,
+  LEP_MD_ROTATION = 12,
+  LEP_MD_SHIFT_M = 21,
+  LEP_MD_TARED = 24,
+  LEP_MD_TARE = 25,
+  LEP_MD_START_UTC = 31,
+  LEP_MD_START_MONO = 32,
+  LEP_MD_SIM = 33,
+  LEP_MD_PAYLOAD = 34,
+  LEP_MD_GRAVITY = 38,
+  LEP_MD_LIMIT = 41,
+  LEP_MD_COUNT = 47
+};
+size_t lep_session_metadata_fields(void);
+int lep_session_metadata(lep_session *s, double *out, size_t n);
 lep_client *lep_session_client(lep_session *s);
 lep_sim *lep_session_sim(lep_session *s);
 const char *lep_session_port(const lep_session *s);
 int lep_session_fd(const lep_session *s);
-int lep_session_serial_info(const lep_session *s, lep_serial_info *out);
-_Bool lep_session_streaming(const lep_session *s);
+int lep_session_serial_info(lep_session *s, int *out, size_t n);
 /* output.h */
+enum lep_output_column
+{
+  LEP_COL_RAW = 1,
+  LEP_COL_ZEROED = 2,
+  LEP_COL_SI = 4,
+  LEP_COL_STATUS = 8,
+  LEP_COL_FLAGS = 16,
+  LEP_COL_SEQ = 32,
+  LEP_COL_SENSOR = 64,
+  LEP_COL_DEFAULT = 12
+};
 enum lep_output_format
 {
   LEP_OUTPUT_CSV = 0,
@@ -649,24 +636,35 @@ enum lep_output_time
   LEP_TIME_MONO = 1,
   LEP_TIME_UTC = 2
 };
-typedef struct lep_output_options
-{
-  int format;
-  int time;
-  unsigned columns;
-  double t0_mono;
-  _Bool overwrite;
-} lep_output_options;
 typedef struct lep_output lep_output;
-void lep_output_options_init(lep_output_options *o);
-int lep_output_open(const char *path, const lep_output_options *o, lep_output **out, char *err, size_t errlen);
-int lep_output_open_fd(int fd, const lep_output_options *o, lep_output **out, char *err, size_t errlen);
+int lep_output_open(const char *path, int format, int time, int columns, double t0_mono, int overwrite, lep_output **out, char *err, size_t errlen);
+int lep_output_open_fd(int fd, int format, int time, int columns, double t0_mono, lep_output **out, char *err, size_t errlen);
 int lep_output_add_session(lep_output *w, lep_session *s, const char *name);
 int lep_output_add_sensor(lep_output *w, const char *name, const char *metadata_json, double start_mono);
-int lep_output_write(lep_output *w, int sensor, const lep_session_batch *b, size_t from, const lep_session_event *ev, size_t nev);
+int lep_output_write(lep_output *w, int sensor, size_t n, const double *t_mono, const double *t_utc, const double *si, const int16_t *raw, const double *zeroed, const uint8_t *status, const uint8_t *flags, const uint16_t *seq, const double *events, size_t nev, size_t ev_fields);
 int lep_output_flush(lep_output *w);
 int lep_output_errno(const lep_output *w);
 int lep_output_close(lep_output *w);
+/* payload.h */
+enum lep_payload_constants
+{
+  LEP_PAYLOAD_MIN_POSES = 3
+};
+double lep_standard_gravity(void);
+double lep_payload_min_spread(void);
+int lep_payload_wrench(const double payload[4], const double gravity[3], double wrench[6]);
+enum lep_fit_field
+{
+  LEP_FIT_PAYLOAD = 0,
+  LEP_FIT_FORCE_BIAS_N = 4,
+  LEP_FIT_TORQUE_BIAS_NM = 7,
+  LEP_FIT_RESIDUAL = 10,
+  LEP_FIT_SPREAD = 16,
+  LEP_FIT_POSES = 17,
+  LEP_FIT_COUNT = 18
+};
+int lep_payload_identify(const double *gravity, const double *wrench, size_t n, double *fit, size_t nfit, char *err, size_t errlen);
+int lep_payload_pose_read(const char *path, double mean[6], uint64_t *samples, char *err, size_t errlen);
 /* process.h */
 enum lep_exit
 {
@@ -683,20 +681,14 @@ enum lep_exit
 int lep_exit_code(int err);
 double lep_cpu_seconds(void);
 /* record.h */
-typedef struct lep_record_batch
-{
-  size_t cap;
-  size_t n;
-  double *t;
-  double *si;
-  int16_t *raw;
-  uint8_t *status;
-  uint16_t *seq;
-} lep_record_batch;
-int lep_record_fill(lep_client *c, const lep_rated *rated, lep_record_batch *b, double until_s, int timeout_ms);
+int lep_record_fill(lep_client *c, const double rated[6], size_t cap, size_t *n, double *t, double *si, int16_t *raw, uint8_t *status, uint16_t *seq, double until_s, int timeout_ms);
 /* ros_cdr.h */
+enum lep_ros_constants
+{
+  LEP_ROS_FRAME_ID_MAX = 255
+};
 size_t lep_ros_wrench_size(size_t frame_id_len);
-int lep_ros_wrench_cdr(const lep_session_batch *b, size_t from, size_t n, const lep_rated *rated, const char *frame_id, int64_t *last_ns, uint8_t *wrench, uint8_t *wrench_raw, size_t cap, int64_t *stamp_ns);
+int lep_ros_wrench_cdr(size_t n, const double *t_utc, const double *si, const int16_t *raw, const double rated[6], const char *frame_id, int64_t *last_ns, uint8_t *wrench, uint8_t *wrench_raw, size_t cap, int64_t *stamp_ns);
 """
 
 #: The LEP_API functions CDEF declares.
@@ -762,9 +754,31 @@ FUNCTIONS = (
     'lep_strerror',
     'lep_result_str',
     'lep_version',
-    'lep_payload_wrench',
-    'lep_payload_identify',
-    'lep_payload_pose_read',
+    'lep_options_new',
+    'lep_options_copy',
+    'lep_options_free',
+    'lep_options_set',
+    'lep_options_set_int',
+    'lep_options_set_double',
+    'lep_options_set_doubles',
+    'lep_options_get',
+    'lep_options_get_int',
+    'lep_options_get_double',
+    'lep_options_get_doubles',
+    'lep_options_check',
+    'lep_option_count',
+    'lep_option_index',
+    'lep_option_name',
+    'lep_option_type',
+    'lep_option_scope',
+    'lep_option_arg',
+    'lep_option_help',
+    'lep_option_default',
+    'lep_option_min',
+    'lep_option_max',
+    'lep_option_min_exclusive',
+    'lep_option_numbers',
+    'lep_option_choice',
     'lep_serial_open',
     'lep_serial_close',
     'lep_serial_get_io',
@@ -774,15 +788,20 @@ FUNCTIONS = (
     'lep_serial_fd',
     'lep_monotonic_ms',
     'lep_monotonic_seconds',
-    'lep_serial_list',
-    'lep_sim_option_count',
-    'lep_sim_option_at',
-    'lep_sim_option_find',
-    'lep_sim_option_set',
-    'lep_sim_option_get',
-    'lep_sim_options_check',
-    'lep_sim_options_init',
-    'lep_sim_models',
+    'lep_port_list_new',
+    'lep_port_list_free',
+    'lep_port_list_count',
+    'lep_port_list_path',
+    'lep_port_list_by_id',
+    'lep_port_list_description',
+    'lep_port_list_vid',
+    'lep_port_list_pid',
+    'lep_port_list_likely_sensor',
+    'lep_sim_stats_fields',
+    'lep_sim_stats_field_name',
+    'lep_sim_stats',
+    'lep_sim_model_count',
+    'lep_sim_model_name',
     'lep_sim_model_rated',
     'lep_sim_start',
     'lep_sim_stream_sample',
@@ -792,41 +811,44 @@ FUNCTIONS = (
     'lep_sim_hangup',
     'lep_sim_stall',
     'lep_sim_hold',
-    'lep_sim_get_stats',
     'lep_sim_trace_writes',
     'lep_sim_stop',
-    'lep_session_options_init',
-    'lep_rotation_from_rpy',
     'lep_session_open',
     'lep_session_close',
     'lep_session_start',
     'lep_session_stop',
+    'lep_session_streaming',
     'lep_session_read',
     'lep_session_read_one',
+    'lep_session_event_fields',
     'lep_session_next_event',
     'lep_session_tare',
     'lep_session_untare',
     'lep_session_set_tare',
     'lep_session_get_tare',
     'lep_session_taring',
-    'lep_session_set_lowpass',
-    'lep_session_set_rotation',
-    'lep_session_set_payload',
-    'lep_session_set_gravity',
-    'lep_session_set_limits',
+    'lep_session_set',
+    'lep_session_set_int',
+    'lep_session_set_double',
+    'lep_session_set_doubles',
+    'lep_session_get',
+    'lep_session_get_int',
+    'lep_session_get_double',
+    'lep_session_get_doubles',
     'lep_limits_parse',
-    'lep_session_set_latency',
-    'lep_session_latency',
-    'lep_session_get_health',
-    'lep_session_get_metadata',
-    'lep_session_metadata_json',
+    'lep_rotation_from_rpy',
+    'lep_session_info',
+    'lep_session_rated',
+    'lep_session_health_fields',
+    'lep_session_health_field_name',
+    'lep_session_health',
+    'lep_session_metadata_fields',
+    'lep_session_metadata',
     'lep_session_client',
     'lep_session_sim',
     'lep_session_port',
     'lep_session_fd',
     'lep_session_serial_info',
-    'lep_session_streaming',
-    'lep_output_options_init',
     'lep_output_open',
     'lep_output_open_fd',
     'lep_output_add_session',
@@ -835,6 +857,11 @@ FUNCTIONS = (
     'lep_output_flush',
     'lep_output_errno',
     'lep_output_close',
+    'lep_standard_gravity',
+    'lep_payload_min_spread',
+    'lep_payload_wrench',
+    'lep_payload_identify',
+    'lep_payload_pose_read',
     'lep_exit_code',
     'lep_cpu_seconds',
     'lep_record_fill',

@@ -28,6 +28,8 @@ class CffiBackend:
     def __init__(self, path: Optional[str] = None) -> None:
         self.ffi = cffi.FFI()
         self.ffi.cdef(CDEF)
+        #: a NULL pointer argument
+        self.NULL = self.ffi.NULL
         self.lib, self.path = _loader.load(self.ffi.dlopen, self._version_of, path)
         # Resolve every declared function now, so a mismatched library fails
         # at load time rather than at first use.

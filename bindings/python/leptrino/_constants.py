@@ -106,6 +106,17 @@ LEP_SERIAL_LEN = 8
 LEP_FIRMWARE_LEN = 4
 LEP_RATE_LEN = 6
 
+# options.h
+LEP_OPT_FLAG = 0
+LEP_OPT_INT = 1
+LEP_OPT_DOUBLE = 2
+LEP_OPT_STRING = 3
+LEP_OPT_CHOICE = 4
+LEP_OPT_NUMBERS = 5
+LEP_SCOPE_SESSION = 1  # read when a session opens
+LEP_SCOPE_LIVE = 2  # ... and may also be set on an open session (lep_session_set)
+LEP_SCOPE_SIM = 3  # the virtual sensor's ("sim-..."), read when it starts
+
 # output.h
 LEP_COL_RAW = 0x01  # fx_counts..mz_counts
 LEP_COL_ZEROED = 0x02  # fx_zeroed_counts..mz_zeroed_counts
@@ -114,7 +125,7 @@ LEP_COL_STATUS = 0x08  # status
 LEP_COL_FLAGS = 0x10  # flags (LEP_SF_*)
 LEP_COL_SEQ = 0x20  # seq (the reserved bytes)
 LEP_COL_SENSOR = 0x40  # sensor (the name given to lep_output_add_*)
-LEP_COL_DEFAULT = 12
+LEP_COL_DEFAULT = 0x0C  # LEP_COL_SI | LEP_COL_STATUS
 LEP_OUTPUT_CSV = 0
 LEP_OUTPUT_JSONL = 1
 LEP_TIME_REL = 0  # t_s: seconds since t0_mono (default: the first sensor's start)
@@ -122,9 +133,17 @@ LEP_TIME_MONO = 1  # t_mono_s: the monotonic clock
 LEP_TIME_UTC = 2  # t_utc_s: seconds since 1970-01-01 UTC
 
 # payload.h
-LEP_STANDARD_GRAVITY = 9.80665
 LEP_PAYLOAD_MIN_POSES = 3
-LEP_PAYLOAD_MIN_SPREAD = 0.02
+LEP_FIT_PAYLOAD = 0  # 4 fields: mass kg, centre of mass x y z m
+LEP_FIT_FORCE_BIAS_N = 4  # 3 fields: F_b
+LEP_FIT_TORQUE_BIAS_NM = 7  # 3 fields: M_b
+LEP_FIT_RESIDUAL = 10  # 6 fields: per axis, RMS over the poses of measured - model (N, N m): the
+# noise of the means plus what the model misses
+LEP_FIT_SPREAD = 16  # how well the gravity vectors cover the directions the centre of mass needs:
+# sqrt(l_min / (n mean|g|^2)), l_min the smallest eigenvalue of sum(|d|^2 I - d d^T), d = g - mean
+# g. 0 when the vectors lie on one line; 1/sqrt(2)..1 for poses spread evenly over the sphere
+LEP_FIT_POSES = 17  # poses used
+LEP_FIT_COUNT = 18
 
 # process.h
 LEP_EXIT_OK = 0  # success (a session that reached its end too)
@@ -141,15 +160,20 @@ LEP_EXIT_PERMISSION = 8  # no permission to open the port
 LEP_ROS_FRAME_ID_MAX = 255
 
 # serial.h
-LEP_BAUD = 460800
+LEP_BAUD = 460800  # the sensor's line rate, 8N1
+LEP_SERIAL_LOW_LATENCY = 0  # 1 when the ASYNC_LOW_LATENCY flag was set on the port
+LEP_SERIAL_FTDI_LATENCY_MS = 1  # FTDI latency timer now in force, -1 not FTDI/unknown
+LEP_SERIAL_FTDI_LOWERED = 2  # 1 when the timer was lowered by this open
+LEP_SERIAL_INFO_COUNT = 3
 
 # session.h
-LEP_SESSION_NOMINAL_HZ = 1200.0
+LEP_SESSION_NOMINAL_HZ = 1200
+LEP_SESSION_EVENT_QUEUE = 1024
 LEP_SF_GAP = 0x01  # a gap (hole, disconnect) lies just before this sample
 LEP_SF_OVERLOAD = 0x02  # overload status bit, or an axis at saturation
 LEP_SF_TARING = 0x04  # a tare is averaging this sample (zeroed uses the old offset)
 LEP_SF_SETTLING = 0x08  # the host low-pass has not settled since start or a gap
-LEP_SF_LIMIT = 0x10  # an SI value is beyond its limit (lep_session_set_limits)
+LEP_SF_LIMIT = 0x10  # an SI value is beyond its limit (option "limit")
 LEP_EV_GAP = 1  # a hole in the data: lost samples, a stall, a stolen read
 LEP_EV_DISCONNECTED = 2  # the port went away or the data timed out (error says which)
 LEP_EV_RECONNECTED = 3  # the stream runs again after a disconnect
@@ -158,29 +182,112 @@ LEP_EV_OVERLOAD_BEGIN = 5
 LEP_EV_OVERLOAD_END = 6
 LEP_EV_LIMIT_EXCEEDED = 7  # an SI value went beyond its limit (axes: which)
 LEP_EV_LIMIT_CLEARED = 8  # every SI value is back within 95 % of its limit
+LEP_EVF_TYPE = 0  # enum lep_session_event_type
+LEP_EVF_SAMPLE = 1  # index (samples returned by lep_session_read before it)
+LEP_EVF_T_MONO = 2  # when, monotonic s
+LEP_EVF_T_UTC = 3  # when, UTC s
+LEP_EVF_GAP_FROM = 4  # GAP/RECONNECTED: arrival of the last sample before (mono s); DISCONNECTED:
+# the same, the last sample received
+LEP_EVF_GAP_TO = 5  # ... and of the first after
+LEP_EVF_LOST = 6  # GAP: samples estimated lost
+LEP_EVF_ERROR = 7  # DISCONNECTED and RECONNECTED: LEP_E_DISCONNECTED or LEP_E_TIMEOUT; 0 otherwise
+LEP_EVF_AXES = 8  # OVERLOAD_*, LIMIT_*: bit i = axis i
+LEP_EVF_STATUS = 9  # OVERLOAD_*: the sensor's status bits
+LEP_EVF_TARE = 10  # TARE: 6 fields, the offsets now in force (counts; 0 untared)
+LEP_EVF_WRENCH = 16  # LIMIT_*: 6 fields, the sample's SI values (N, N m)
+LEP_EVF_COUNT = 22
+LEP_INFO_MODEL = 0  # product info: model ("PFS055YA501U6")
+LEP_INFO_SERIAL = 1  # serial number
+LEP_INFO_FIRMWARE = 2  # firmware version ("1.13")
+LEP_INFO_OUTPUT_RATE = 3  # the output-rate field as sent, "" in the 32-byte form
+LEP_INFO_PROTOCOL = 4  # "v1.13 (32-byte info)" or "rate field (38-byte)"
+LEP_INFO_FILTER_LABEL = 5  # the sensor filter's label, or "not supported by sensor"
+LEP_INFO_LOWPASS_NAME = 6  # the host low-pass filter's name, "" when off
+LEP_INFO_PORT = 7  # the port's path
+LEP_INFO_LIBRARY_VERSION = 8  # lep_version()
+LEP_INFO_METADATA_JSON = 9  # the metadata as one JSON object (no newline): every front end writes
+# this same object
+LEP_INFO_COUNT = 10
+LEP_H_ELAPSED_S = 0  # from the first sample to the last
+LEP_H_NOMINAL_HZ = 1  # the nominal rate ("nominal-rate", else the sensor's)
+LEP_H_MEASURED_HZ = 2  # (samples received - 1) / elapsed (before decimation)
+LEP_H_RECENT_HZ = 3  # over the last second or so
+LEP_H_SHORTFALL = 4  # 1 when measured below 98 % of nominal over >= 1 s
+LEP_H_RECEIVED = 5  # samples received (tare samples included)
+LEP_H_DELIVERED = 6  # samples returned by lep_session_read (after decimation)
+LEP_H_LOST = 7  # samples estimated lost in gaps
+LEP_H_GAPS = 8
+LEP_H_ERRORS = 9  # framing, BCC, invalid messages, timeouts (all connections)
+LEP_H_OVERLOADS = 10  # overload episodes begun
+LEP_H_LIMIT_EPISODES = 11  # limit episodes begun
+LEP_H_DISCONNECTS = 12
+LEP_H_RECONNECTS = 13
+LEP_H_EVENTS_DROPPED = 14  # events pushed out of the full queue
+LEP_H_MAX_GAP_S = 15
+LEP_H_MESSAGES = 16
+LEP_H_BCC_ERRORS = 17
+LEP_H_FRAME_ERRORS = 18
+LEP_H_BYTES_DISCARDED = 19
+LEP_H_NAKS = 20
+LEP_H_RETRIES = 21
+LEP_H_UNEXPECTED = 22
+LEP_H_INVALID = 23
+LEP_H_TIMEOUTS = 24
+LEP_H_SAMPLES = 25
+LEP_H_RESENT_AFTER_TIMEOUT = 26
+LEP_H_RESENT_CONFIRMED = 27
+LEP_H_RECOVERIES = 28
+LEP_H_RESERVED_NONZERO = 29
+LEP_H_STALLS = 30
+LEP_H_COUNT = 31
+LEP_MD_RATED = 0  # 6 fields: rated values, N and N m
+LEP_MD_OUTPUT_RATE_HZ = 6  # the output-rate field as a number, 0 when absent
+LEP_MD_SENSOR_FILTER = 7  # the sensor's filter code, -1 when it refused
+LEP_MD_NOMINAL_HZ = 8
+LEP_MD_LOWPASS_HZ = 9  # host low-pass cut-off, 0 off
+LEP_MD_LOWPASS_DELAY_S = 10  # its group delay at low frequency
+LEP_MD_DECIMATE = 11
+LEP_MD_ROTATION = 12  # 9 fields, row-major
+LEP_MD_SHIFT_M = 21  # 3 fields
+LEP_MD_TARED = 24  # 1 when a tare is in force
+LEP_MD_TARE = 25  # 6 fields, counts
+LEP_MD_START_UTC = 31  # UTC s of the last start (of open before one)
+LEP_MD_START_MONO = 32  # monotonic s of the same instant
+LEP_MD_SIM = 33  # 1 for an in-process virtual sensor
+LEP_MD_PAYLOAD = 34  # 4 fields: mass kg, centre of mass x y z m; mass 0: none
+LEP_MD_GRAVITY = 38  # 3 fields, m/s^2, sensor frame
+LEP_MD_LIMIT = 41  # 6 fields, N and N m, 0: none
+LEP_MD_COUNT = 47
 
 # sim.h
-LEP_SIM_MODEL_SIZE = 32
-LEP_SIM_SERIAL_SIZE = 16
-LEP_SIM_FIRMWARE_SIZE = 8
-LEP_SIM_PATH_SIZE = 512
-LEP_SIM_OPT_FLAG = 0  # bool; takes no argument on a command line
-LEP_SIM_OPT_INT = 1  # integer in [min, max]
-LEP_SIM_OPT_UINT = 2  # non-negative integer in [min, max] (decimal)
-LEP_SIM_OPT_DOUBLE = 3  # finite number in [min, max] (or (min, max] with min_exclusive)
-LEP_SIM_OPT_STRING = 4  # text of min..max bytes (a path, a serial, a version)
-LEP_SIM_OPT_CHOICE = 5  # one of a fixed set of names (model: lep_sim_models())
-LEP_SIM_OPT_NUMBERS = 6  # comma-separated finite numbers, as many as arg names ("M,CX,CY,CZ"), each
-# in [min, max]
-LEP_SIM_TRACE_START = 18446744073709551615
-LEP_SIM_TRACE_END = 18446744073709551614
+LEP_SIMST_SAMPLES_SENT = 0  # continuous data messages queued to the port
+LEP_SIMST_SAMPLES_DROPPED = 1  # data messages dropped by the drop fault
+LEP_SIMST_COMMANDS = 2  # commands answered (any result code)
+LEP_SIMST_NAKS = 3  # DLE NAK sent (bad BCC, or the nak fault)
+LEP_SIMST_BYTES_CORRUPTED = 4  # messages with a byte flipped by the corrupt fault
+LEP_SIMST_HANGUPS = 5
+LEP_SIMST_STREAMING = 6  # 1 while streaming
+LEP_SIMST_FILTER = 7  # filter code in effect
+LEP_SIMST_FILTER_PENDING = 8  # takes effect at the next power cycle
+LEP_SIMST_HUNG_UP = 9  # 1 while the pty is closed (after a hang-up)
+LEP_SIMST_SEQUENCE = 10  # sequence number the next stream sample will carry
+LEP_SIMST_RESPONSES = 11  # answers to commands queued to the port
+LEP_SIMST_FAKED_NAKS = 12  # of naks: those sent by the nak fault
+LEP_SIMST_SAMPLES_SKIPPED = 13  # sample periods with nothing sent: a stall, or late
+LEP_SIMST_SAMPLES_BLOCKED = 14  # data messages not sent because nobody read the port
+LEP_SIMST_GARBAGE_BYTES = 15  # bytes added by the garbage fault
+LEP_SIMST_BYTES_RECEIVED = 16  # bytes read from the host
+LEP_SIMST_REOPENS = 17  # new ptys opened after a hang-up
+LEP_SIMST_POWER_CYCLES = 18  # lep_sim_power_cycle / SIGUSR1 applied
+LEP_SIMST_STALLS = 19  # stalls begun
+LEP_SIMST_COUNT = 20
 
 # version.h
 LEP_VERSION_MAJOR = 0
-LEP_VERSION_MINOR = 1
+LEP_VERSION_MINOR = 2
 LEP_VERSION_PATCH = 0
-LEP_VERSION_STRING = '0.1.0'
-LEP_VERSION_NUMBER = 100
+LEP_VERSION_STRING = '0.2.0'
+LEP_VERSION_NUMBER = 200
 
 
 class Error(enum.IntEnum):

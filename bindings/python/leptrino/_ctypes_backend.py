@@ -32,6 +32,7 @@ _SCALARS: Dict[str, Any] = {
     "size_t": c_size_t,
     "double": c_double,
     "uint64_t": c_uint64,
+    "int": ctypes.c_int,
 }
 
 
@@ -46,6 +47,8 @@ class CtypesBackend:
     """libleptrino through ctypes (nothing to compile)."""
 
     name = "ctypes"
+    #: a NULL pointer argument
+    NULL: Any = None
 
     def __init__(self, path: Optional[str] = None) -> None:
         self.lib, self.path = _loader.load(ctypes.CDLL, _ctypes_version, path)
@@ -70,7 +73,8 @@ class CtypesBackend:
         return STRUCTS[ctype]()
 
     def new_array(self, ctype: str, n: int) -> Any:
-        return (STRUCTS[ctype] * n)()
+        """n zeroed structs, or n zeroed scalars ("double", "uint64_t", ...)."""
+        return ((STRUCTS[ctype] if ctype in STRUCTS else _SCALARS[ctype]) * n)()
 
     def new_scalar(self, ctype: str) -> Any:
         return _SCALARS[ctype]()

@@ -70,80 +70,28 @@ class lep_device(Structure):
     """struct lep_device."""
 
 
-class lep_payload(Structure):
-    """struct lep_payload."""
-
-
-class lep_payload_fit(Structure):
-    """struct lep_payload_fit."""
+class lep_options(Structure):
+    """Opaque: allocated by the library."""
 
 
 class lep_serial(Structure):
     """Opaque: allocated by the library."""
 
 
-class lep_serial_info(Structure):
-    """struct lep_serial_info."""
-
-
-class lep_port_info(Structure):
-    """struct lep_port_info."""
+class lep_port_list(Structure):
+    """Opaque: allocated by the library."""
 
 
 class lep_sim(Structure):
     """Opaque: allocated by the library."""
 
 
-class lep_sim_options(Structure):
-    """struct lep_sim_options."""
-
-
-class lep_sim_option_info(Structure):
-    """struct lep_sim_option_info."""
-
-
-class lep_sim_stats(Structure):
-    """struct lep_sim_stats."""
-
-
-class lep_sim_trace_record(Structure):
-    """struct lep_sim_trace_record."""
-
-
 class lep_session(Structure):
     """Opaque: allocated by the library."""
 
 
-class lep_session_options(Structure):
-    """struct lep_session_options."""
-
-
-class lep_session_batch(Structure):
-    """struct lep_session_batch."""
-
-
-class lep_session_event(Structure):
-    """struct lep_session_event."""
-
-
-class lep_session_health(Structure):
-    """struct lep_session_health."""
-
-
-class lep_session_metadata(Structure):
-    """struct lep_session_metadata."""
-
-
-class lep_output_options(Structure):
-    """struct lep_output_options."""
-
-
 class lep_output(Structure):
     """Opaque: allocated by the library."""
-
-
-class lep_record_batch(Structure):
-    """struct lep_record_batch."""
 
 
 lep_frame_event._fields_ = [
@@ -294,220 +242,6 @@ lep_device._fields_ = [
     ('sample', lep_sample),
 ]
 
-lep_payload._fields_ = [
-    ('mass_kg', c_double),
-    ('com_m', (c_double * 3)),
-]
-
-lep_payload_fit._fields_ = [
-    ('payload', lep_payload),
-    ('force_bias_N', (c_double * 3)),
-    ('torque_bias_Nm', (c_double * 3)),
-    ('residual', (c_double * 6)),
-    ('spread', c_double),
-    ('poses', c_size_t),
-]
-
-lep_serial_info._fields_ = [
-    ('low_latency', c_bool),
-    ('ftdi_latency_ms', c_int),
-    ('ftdi_lowered', c_bool),
-]
-
-lep_port_info._fields_ = [
-    ('path', (c_char * 256)),
-    ('by_id', (c_char * 256)),
-    ('description', (c_char * 128)),
-    ('vid', c_uint16),
-    ('pid', c_uint16),
-    ('likely_sensor', c_bool),
-]
-
-lep_sim_options._fields_ = [
-    ('model', (c_char * 32)),
-    ('serial', (c_char * 16)),
-    ('firmware', (c_char * 8)),
-    ('output_rate_field', c_bool),
-    ('rate_hz', c_double),
-    ('filter', c_uint8),
-    ('seed', c_uint64),
-    ('amplitude', c_double),
-    ('noise', c_double),
-    ('constant', c_bool),
-    ('replay_csv', (c_char * 512)),
-    ('overload_every_s', c_double),
-    ('overload_duration_s', c_double),
-    ('p_nak', c_double),
-    ('p_corrupt', c_double),
-    ('p_garbage', c_double),
-    ('p_drop', c_double),
-    ('stall_ms', c_int),
-    ('stall_after_s', c_double),
-    ('hangup_after_s', c_double),
-    ('reopen_after_ms', c_int),
-    ('start_streaming', c_bool),
-    ('link', (c_char * 512)),
-    ('payload', (c_double * 4)),
-    ('gravity', (c_double * 3)),
-]
-
-lep_sim_option_info._fields_ = [
-    ('name', c_char_p),
-    ('type', c_int),
-    ('arg', c_char_p),
-    ('help', c_char_p),
-    ('default_text', c_char_p),
-    ('min', c_double),
-    ('max', c_double),
-    ('min_exclusive', c_bool),
-]
-
-lep_sim_stats._fields_ = [
-    ('samples_sent', c_uint64),
-    ('samples_dropped', c_uint64),
-    ('commands', c_uint64),
-    ('naks', c_uint64),
-    ('bytes_corrupted', c_uint64),
-    ('hangups', c_uint64),
-    ('streaming', c_bool),
-    ('filter', c_uint8),
-    ('filter_pending', c_uint8),
-    ('hung_up', c_bool),
-    ('sequence', c_uint16),
-    ('responses', c_uint64),
-    ('faked_naks', c_uint64),
-    ('samples_skipped', c_uint64),
-    ('samples_blocked', c_uint64),
-    ('garbage_bytes', c_uint64),
-    ('bytes_received', c_uint64),
-    ('reopens', c_uint64),
-    ('power_cycles', c_uint64),
-    ('stalls', c_uint64),
-]
-
-lep_sim_trace_record._fields_ = [
-    ('k', c_uint64),
-    ('t_call_ns', c_int64),
-    ('t_return_ns', c_int64),
-]
-
-lep_session_options._fields_ = [
-    ('port', c_char_p),
-    ('use_sim', c_bool),
-    ('sim', lep_sim_options),
-    ('timeout_ms', c_int),
-    ('sync_quiet_ms', c_int),
-    ('data_timeout_ms', c_int),
-    ('gap_periods', c_double),
-    ('nominal_hz', c_double),
-    ('reconnect', c_bool),
-    ('reconnect_min_ms', c_int),
-    ('reconnect_max_ms', c_int),
-    ('reconnect_give_up_ms', c_int),
-    ('latency_ms', c_int),
-    ('tare_samples', c_uint),
-    ('lowpass_hz', c_double),
-    ('decimate', c_uint),
-    ('rotation', (c_double * 9)),
-    ('shift_m', (c_double * 3)),
-    ('duration_s', c_double),
-    ('count', c_uint64),
-    ('payload', lep_payload),
-    ('gravity', (c_double * 3)),
-    ('limit', (c_double * 6)),
-]
-
-lep_session_batch._fields_ = [
-    ('cap', c_size_t),
-    ('n', c_size_t),
-    ('t_mono', POINTER(c_double)),
-    ('t_utc', POINTER(c_double)),
-    ('raw', POINTER(c_int16)),
-    ('zeroed', POINTER(c_double)),
-    ('si', POINTER(c_double)),
-    ('status', POINTER(c_uint8)),
-    ('flags', POINTER(c_uint8)),
-    ('seq', POINTER(c_uint16)),
-]
-
-lep_session_event._fields_ = [
-    ('type', c_int),
-    ('sample', c_uint64),
-    ('t_mono', c_double),
-    ('t_utc', c_double),
-    ('gap_from', c_double),
-    ('gap_to', c_double),
-    ('lost', c_uint32),
-    ('error', c_int),
-    ('axes', c_uint8),
-    ('status', c_uint8),
-    ('tare', (c_double * 6)),
-    ('wrench', (c_double * 6)),
-]
-
-lep_session_health._fields_ = [
-    ('elapsed_s', c_double),
-    ('nominal_hz', c_double),
-    ('measured_hz', c_double),
-    ('recent_hz', c_double),
-    ('shortfall', c_bool),
-    ('received', c_uint64),
-    ('delivered', c_uint64),
-    ('lost', c_uint64),
-    ('gaps', c_uint64),
-    ('errors', c_uint64),
-    ('overloads', c_uint64),
-    ('limit_episodes', c_uint64),
-    ('disconnects', c_uint64),
-    ('reconnects', c_uint64),
-    ('events_dropped', c_uint64),
-    ('max_gap_s', c_double),
-    ('client', lep_client_stats),
-]
-
-lep_session_metadata._fields_ = [
-    ('info', lep_product_info),
-    ('protocol', (c_char * 24)),
-    ('rated', lep_rated),
-    ('sensor_filter', c_int),
-    ('sensor_filter_label', (c_char * 24)),
-    ('nominal_hz', c_double),
-    ('lowpass_hz', c_double),
-    ('lowpass_name', (c_char * 48)),
-    ('lowpass_delay_s', c_double),
-    ('decimate', c_uint),
-    ('rotation', (c_double * 9)),
-    ('shift_m', (c_double * 3)),
-    ('tared', c_bool),
-    ('tare', (c_double * 6)),
-    ('start_utc', c_double),
-    ('start_mono', c_double),
-    ('port', (c_char * 256)),
-    ('sim', c_bool),
-    ('library_version', (c_char * 16)),
-    ('payload', lep_payload),
-    ('gravity', (c_double * 3)),
-    ('limit', (c_double * 6)),
-]
-
-lep_output_options._fields_ = [
-    ('format', c_int),
-    ('time', c_int),
-    ('columns', c_uint),
-    ('t0_mono', c_double),
-    ('overwrite', c_bool),
-]
-
-lep_record_batch._fields_ = [
-    ('cap', c_size_t),
-    ('n', c_size_t),
-    ('t', POINTER(c_double)),
-    ('si', POINTER(c_double)),
-    ('raw', POINTER(c_int16)),
-    ('status', POINTER(c_uint8)),
-    ('seq', POINTER(c_uint16)),
-]
-
 #: typedef name -> ctypes class, for every struct, union and opaque type.
 STRUCTS: Dict[str, Any] = {
     'lep_frame_event': lep_frame_event,
@@ -524,29 +258,16 @@ STRUCTS: Dict[str, Any] = {
     'lep_client': lep_client,
     'lep_device_event': lep_device_event,
     'lep_device': lep_device,
-    'lep_payload': lep_payload,
-    'lep_payload_fit': lep_payload_fit,
+    'lep_options': lep_options,
     'lep_serial': lep_serial,
-    'lep_serial_info': lep_serial_info,
-    'lep_port_info': lep_port_info,
+    'lep_port_list': lep_port_list,
     'lep_sim': lep_sim,
-    'lep_sim_options': lep_sim_options,
-    'lep_sim_option_info': lep_sim_option_info,
-    'lep_sim_stats': lep_sim_stats,
-    'lep_sim_trace_record': lep_sim_trace_record,
     'lep_session': lep_session,
-    'lep_session_options': lep_session_options,
-    'lep_session_batch': lep_session_batch,
-    'lep_session_event': lep_session_event,
-    'lep_session_health': lep_session_health,
-    'lep_session_metadata': lep_session_metadata,
-    'lep_output_options': lep_output_options,
     'lep_output': lep_output,
-    'lep_record_batch': lep_record_batch,
 }
 
 #: Types whose members the headers do not show (allocated by the library).
-OPAQUE = ('lep_serial', 'lep_sim', 'lep_session', 'lep_output')
+OPAQUE = ('lep_options', 'lep_serial', 'lep_port_list', 'lep_sim', 'lep_session', 'lep_output')
 
 #: name -> (restype, argtypes) of every LEP_API function.
 FUNCTIONS: Dict[str, Tuple[Any, List[Any]]] = {
@@ -576,7 +297,7 @@ FUNCTIONS: Dict[str, Tuple[Any, List[Any]]] = {
     'lep_client_init': (c_int, [POINTER(lep_client), POINTER(lep_io)]),
     'lep_client_set_rx': (c_int, [POINTER(lep_client), POINTER(lep_client_rx)]),
     'lep_client_set_timeout': (c_int, [POINTER(lep_client), c_int]),
-    'lep_client_set_retries': (c_int, [POINTER(lep_client), c_uint]),
+    'lep_client_set_retries': (c_int, [POINTER(lep_client), c_int]),
     'lep_client_set_watchdog': (c_int, [POINTER(lep_client), c_uint16]),
     'lep_client_get_stats': (None, [POINTER(lep_client), POINTER(lep_client_stats)]),
     'lep_client_last_result': (c_uint8, [POINTER(lep_client)]),
@@ -611,82 +332,117 @@ FUNCTIONS: Dict[str, Tuple[Any, List[Any]]] = {
     'lep_strerror': (c_char_p, [c_int]),
     'lep_result_str': (c_char_p, [c_uint8]),
     'lep_version': (c_char_p, []),
-    'lep_payload_wrench': (c_int, [POINTER(lep_payload), POINTER(c_double), POINTER(c_double)]),
-    'lep_payload_identify': (c_int, [POINTER(c_double), POINTER(c_double), c_size_t, POINTER(lep_payload_fit), POINTER(c_char), c_size_t]),
-    'lep_payload_pose_read': (c_int, [c_char_p, POINTER(c_double), POINTER(c_uint64), POINTER(c_char), c_size_t]),
+    'lep_options_new': (POINTER(lep_options), []),
+    'lep_options_copy': (POINTER(lep_options), [POINTER(lep_options)]),
+    'lep_options_free': (None, [POINTER(lep_options)]),
+    'lep_options_set': (c_int, [POINTER(lep_options), c_char_p, c_char_p, POINTER(c_char), c_size_t]),
+    'lep_options_set_int': (c_int, [POINTER(lep_options), c_char_p, c_int64, POINTER(c_char), c_size_t]),
+    'lep_options_set_double': (c_int, [POINTER(lep_options), c_char_p, c_double, POINTER(c_char), c_size_t]),
+    'lep_options_set_doubles': (c_int, [POINTER(lep_options), c_char_p, POINTER(c_double), c_size_t, POINTER(c_char), c_size_t]),
+    'lep_options_get': (c_int, [POINTER(lep_options), c_char_p, POINTER(c_char), c_size_t, POINTER(c_size_t)]),
+    'lep_options_get_int': (c_int, [POINTER(lep_options), c_char_p, POINTER(c_int64)]),
+    'lep_options_get_double': (c_int, [POINTER(lep_options), c_char_p, POINTER(c_double)]),
+    'lep_options_get_doubles': (c_int, [POINTER(lep_options), c_char_p, POINTER(c_double), c_size_t, POINTER(c_size_t)]),
+    'lep_options_check': (c_int, [POINTER(lep_options), POINTER(c_char), c_size_t]),
+    'lep_option_count': (c_size_t, []),
+    'lep_option_index': (c_int, [c_char_p]),
+    'lep_option_name': (c_char_p, [c_size_t]),
+    'lep_option_type': (c_int, [c_size_t]),
+    'lep_option_scope': (c_int, [c_size_t]),
+    'lep_option_arg': (c_char_p, [c_size_t]),
+    'lep_option_help': (c_char_p, [c_size_t]),
+    'lep_option_default': (c_char_p, [c_size_t]),
+    'lep_option_min': (c_double, [c_size_t]),
+    'lep_option_max': (c_double, [c_size_t]),
+    'lep_option_min_exclusive': (c_int, [c_size_t]),
+    'lep_option_numbers': (c_size_t, [c_size_t]),
+    'lep_option_choice': (c_char_p, [c_size_t, c_size_t]),
     'lep_serial_open': (c_int, [c_char_p, POINTER(POINTER(lep_serial)), POINTER(c_char), c_size_t]),
     'lep_serial_close': (None, [POINTER(lep_serial)]),
     'lep_serial_get_io': (None, [POINTER(lep_serial), POINTER(lep_io)]),
     'lep_serial_client_init': (c_int, [POINTER(lep_client), POINTER(lep_serial)]),
-    'lep_serial_get_info': (None, [POINTER(lep_serial), POINTER(lep_serial_info)]),
+    'lep_serial_get_info': (c_int, [POINTER(lep_serial), POINTER(c_int), c_size_t]),
     'lep_serial_path': (c_char_p, [POINTER(lep_serial)]),
     'lep_serial_fd': (c_int, [POINTER(lep_serial)]),
     'lep_monotonic_ms': (c_uint32, []),
     'lep_monotonic_seconds': (c_double, []),
-    'lep_serial_list': (c_int, [POINTER(lep_port_info), c_size_t, POINTER(c_size_t)]),
-    'lep_sim_option_count': (c_size_t, []),
-    'lep_sim_option_at': (POINTER(lep_sim_option_info), [c_size_t]),
-    'lep_sim_option_find': (POINTER(lep_sim_option_info), [c_char_p]),
-    'lep_sim_option_set': (c_int, [POINTER(lep_sim_options), c_char_p, c_char_p, POINTER(c_char), c_size_t]),
-    'lep_sim_option_get': (c_int, [POINTER(lep_sim_options), c_char_p, POINTER(c_char), c_size_t]),
-    'lep_sim_options_check': (c_int, [POINTER(lep_sim_options), POINTER(c_char), c_size_t]),
-    'lep_sim_options_init': (None, [POINTER(lep_sim_options)]),
-    'lep_sim_models': (POINTER(c_char_p), []),
-    'lep_sim_model_rated': (c_int, [c_char_p, POINTER(lep_rated)]),
-    'lep_sim_start': (c_int, [POINTER(lep_sim_options), POINTER(POINTER(lep_sim)), POINTER(c_char), c_size_t]),
-    'lep_sim_stream_sample': (c_int, [POINTER(lep_sim), c_uint64, c_uint8, POINTER(lep_sample)]),
+    'lep_port_list_new': (c_int, [POINTER(POINTER(lep_port_list))]),
+    'lep_port_list_free': (None, [POINTER(lep_port_list)]),
+    'lep_port_list_count': (c_size_t, [POINTER(lep_port_list)]),
+    'lep_port_list_path': (c_char_p, [POINTER(lep_port_list), c_size_t]),
+    'lep_port_list_by_id': (c_char_p, [POINTER(lep_port_list), c_size_t]),
+    'lep_port_list_description': (c_char_p, [POINTER(lep_port_list), c_size_t]),
+    'lep_port_list_vid': (c_int, [POINTER(lep_port_list), c_size_t]),
+    'lep_port_list_pid': (c_int, [POINTER(lep_port_list), c_size_t]),
+    'lep_port_list_likely_sensor': (c_int, [POINTER(lep_port_list), c_size_t]),
+    'lep_sim_stats_fields': (c_size_t, []),
+    'lep_sim_stats_field_name': (c_char_p, [c_size_t]),
+    'lep_sim_stats': (c_int, [POINTER(lep_sim), POINTER(c_uint64), c_size_t]),
+    'lep_sim_model_count': (c_size_t, []),
+    'lep_sim_model_name': (c_char_p, [c_size_t]),
+    'lep_sim_model_rated': (c_int, [c_char_p, POINTER(c_double)]),
+    'lep_sim_start': (c_int, [POINTER(lep_options), POINTER(POINTER(lep_sim)), POINTER(c_char), c_size_t]),
+    'lep_sim_stream_sample': (c_int, [POINTER(lep_sim), c_uint64, c_int, POINTER(c_int16), POINTER(c_uint8), POINTER(c_uint16)]),
     'lep_sim_port': (c_char_p, [POINTER(lep_sim)]),
     'lep_sim_pty_path': (c_char_p, [POINTER(lep_sim)]),
     'lep_sim_power_cycle': (None, [POINTER(lep_sim)]),
     'lep_sim_hangup': (None, [POINTER(lep_sim)]),
     'lep_sim_stall': (None, [POINTER(lep_sim), c_int]),
     'lep_sim_hold': (None, [POINTER(lep_sim), c_int]),
-    'lep_sim_get_stats': (None, [POINTER(lep_sim), POINTER(lep_sim_stats)]),
     'lep_sim_trace_writes': (c_int, [POINTER(lep_sim), c_char_p, POINTER(c_char), c_size_t]),
     'lep_sim_stop': (None, [POINTER(lep_sim)]),
-    'lep_session_options_init': (None, [POINTER(lep_session_options)]),
-    'lep_rotation_from_rpy': (None, [c_double, c_double, c_double, POINTER(c_double)]),
-    'lep_session_open': (c_int, [POINTER(lep_session_options), POINTER(POINTER(lep_session)), POINTER(c_char), c_size_t]),
+    'lep_session_open': (c_int, [POINTER(lep_options), POINTER(POINTER(lep_session)), POINTER(c_char), c_size_t]),
     'lep_session_close': (None, [POINTER(lep_session)]),
     'lep_session_start': (c_int, [POINTER(lep_session)]),
     'lep_session_stop': (c_int, [POINTER(lep_session)]),
-    'lep_session_read': (c_int, [POINTER(lep_session), POINTER(lep_session_batch), c_int]),
-    'lep_session_read_one': (c_int, [POINTER(lep_session), POINTER(lep_session_batch)]),
-    'lep_session_next_event': (c_bool, [POINTER(lep_session), POINTER(lep_session_event)]),
-    'lep_session_tare': (c_int, [POINTER(lep_session), c_uint, c_double]),
+    'lep_session_streaming': (c_int, [POINTER(lep_session)]),
+    'lep_session_read': (c_int, [POINTER(lep_session), c_int, c_size_t, POINTER(c_size_t), POINTER(c_double), POINTER(c_double), POINTER(c_double), POINTER(c_int16), POINTER(c_double), POINTER(c_uint8), POINTER(c_uint8), POINTER(c_uint16)]),
+    'lep_session_read_one': (c_int, [POINTER(lep_session), POINTER(c_double), POINTER(c_double), POINTER(c_double), POINTER(c_int16), POINTER(c_double), POINTER(c_uint8), POINTER(c_uint8), POINTER(c_uint16)]),
+    'lep_session_event_fields': (c_size_t, []),
+    'lep_session_next_event': (c_int, [POINTER(lep_session), POINTER(c_double), c_size_t]),
+    'lep_session_tare': (c_int, [POINTER(lep_session), c_int, c_double]),
     'lep_session_untare': (c_int, [POINTER(lep_session)]),
     'lep_session_set_tare': (c_int, [POINTER(lep_session), POINTER(c_double)]),
-    'lep_session_get_tare': (c_bool, [POINTER(lep_session), POINTER(c_double)]),
-    'lep_session_taring': (c_bool, [POINTER(lep_session)]),
-    'lep_session_set_lowpass': (c_int, [POINTER(lep_session), c_double]),
-    'lep_session_set_rotation': (c_int, [POINTER(lep_session), POINTER(c_double), POINTER(c_double)]),
-    'lep_session_set_payload': (c_int, [POINTER(lep_session), POINTER(lep_payload)]),
-    'lep_session_set_gravity': (c_int, [POINTER(lep_session), POINTER(c_double)]),
-    'lep_session_set_limits': (c_int, [POINTER(lep_session), POINTER(c_double)]),
+    'lep_session_get_tare': (c_int, [POINTER(lep_session), POINTER(c_double)]),
+    'lep_session_taring': (c_int, [POINTER(lep_session)]),
+    'lep_session_set': (c_int, [POINTER(lep_session), c_char_p, c_char_p, POINTER(c_char), c_size_t]),
+    'lep_session_set_int': (c_int, [POINTER(lep_session), c_char_p, c_int64, POINTER(c_char), c_size_t]),
+    'lep_session_set_double': (c_int, [POINTER(lep_session), c_char_p, c_double, POINTER(c_char), c_size_t]),
+    'lep_session_set_doubles': (c_int, [POINTER(lep_session), c_char_p, POINTER(c_double), c_size_t, POINTER(c_char), c_size_t]),
+    'lep_session_get': (c_int, [POINTER(lep_session), c_char_p, POINTER(c_char), c_size_t, POINTER(c_size_t)]),
+    'lep_session_get_int': (c_int, [POINTER(lep_session), c_char_p, POINTER(c_int64)]),
+    'lep_session_get_double': (c_int, [POINTER(lep_session), c_char_p, POINTER(c_double)]),
+    'lep_session_get_doubles': (c_int, [POINTER(lep_session), c_char_p, POINTER(c_double), c_size_t, POINTER(c_size_t)]),
     'lep_limits_parse': (c_int, [c_char_p, POINTER(c_double)]),
-    'lep_session_set_latency': (c_int, [POINTER(lep_session), c_int]),
-    'lep_session_latency': (c_int, [POINTER(lep_session)]),
-    'lep_session_get_health': (None, [POINTER(lep_session), POINTER(lep_session_health)]),
-    'lep_session_get_metadata': (None, [POINTER(lep_session), POINTER(lep_session_metadata)]),
-    'lep_session_metadata_json': (c_int, [POINTER(lep_session), POINTER(c_char), c_size_t, POINTER(c_size_t)]),
+    'lep_rotation_from_rpy': (None, [c_double, c_double, c_double, POINTER(c_double)]),
+    'lep_session_info': (c_int, [POINTER(lep_session), c_int, POINTER(c_char), c_size_t, POINTER(c_size_t)]),
+    'lep_session_rated': (c_int, [POINTER(lep_session), POINTER(c_double)]),
+    'lep_session_health_fields': (c_size_t, []),
+    'lep_session_health_field_name': (c_char_p, [c_size_t]),
+    'lep_session_health': (c_int, [POINTER(lep_session), POINTER(c_double), c_size_t]),
+    'lep_session_metadata_fields': (c_size_t, []),
+    'lep_session_metadata': (c_int, [POINTER(lep_session), POINTER(c_double), c_size_t]),
     'lep_session_client': (POINTER(lep_client), [POINTER(lep_session)]),
     'lep_session_sim': (POINTER(lep_sim), [POINTER(lep_session)]),
     'lep_session_port': (c_char_p, [POINTER(lep_session)]),
     'lep_session_fd': (c_int, [POINTER(lep_session)]),
-    'lep_session_serial_info': (c_int, [POINTER(lep_session), POINTER(lep_serial_info)]),
-    'lep_session_streaming': (c_bool, [POINTER(lep_session)]),
-    'lep_output_options_init': (None, [POINTER(lep_output_options)]),
-    'lep_output_open': (c_int, [c_char_p, POINTER(lep_output_options), POINTER(POINTER(lep_output)), POINTER(c_char), c_size_t]),
-    'lep_output_open_fd': (c_int, [c_int, POINTER(lep_output_options), POINTER(POINTER(lep_output)), POINTER(c_char), c_size_t]),
+    'lep_session_serial_info': (c_int, [POINTER(lep_session), POINTER(c_int), c_size_t]),
+    'lep_output_open': (c_int, [c_char_p, c_int, c_int, c_int, c_double, c_int, POINTER(POINTER(lep_output)), POINTER(c_char), c_size_t]),
+    'lep_output_open_fd': (c_int, [c_int, c_int, c_int, c_int, c_double, POINTER(POINTER(lep_output)), POINTER(c_char), c_size_t]),
     'lep_output_add_session': (c_int, [POINTER(lep_output), POINTER(lep_session), c_char_p]),
     'lep_output_add_sensor': (c_int, [POINTER(lep_output), c_char_p, c_char_p, c_double]),
-    'lep_output_write': (c_int, [POINTER(lep_output), c_int, POINTER(lep_session_batch), c_size_t, POINTER(lep_session_event), c_size_t]),
+    'lep_output_write': (c_int, [POINTER(lep_output), c_int, c_size_t, POINTER(c_double), POINTER(c_double), POINTER(c_double), POINTER(c_int16), POINTER(c_double), POINTER(c_uint8), POINTER(c_uint8), POINTER(c_uint16), POINTER(c_double), c_size_t, c_size_t]),
     'lep_output_flush': (c_int, [POINTER(lep_output)]),
     'lep_output_errno': (c_int, [POINTER(lep_output)]),
     'lep_output_close': (c_int, [POINTER(lep_output)]),
+    'lep_standard_gravity': (c_double, []),
+    'lep_payload_min_spread': (c_double, []),
+    'lep_payload_wrench': (c_int, [POINTER(c_double), POINTER(c_double), POINTER(c_double)]),
+    'lep_payload_identify': (c_int, [POINTER(c_double), POINTER(c_double), c_size_t, POINTER(c_double), c_size_t, POINTER(c_char), c_size_t]),
+    'lep_payload_pose_read': (c_int, [c_char_p, POINTER(c_double), POINTER(c_uint64), POINTER(c_char), c_size_t]),
     'lep_exit_code': (c_int, [c_int]),
     'lep_cpu_seconds': (c_double, []),
-    'lep_record_fill': (c_int, [POINTER(lep_client), POINTER(lep_rated), POINTER(lep_record_batch), c_double, c_int]),
+    'lep_record_fill': (c_int, [POINTER(lep_client), POINTER(c_double), c_size_t, POINTER(c_size_t), POINTER(c_double), POINTER(c_double), POINTER(c_int16), POINTER(c_uint8), POINTER(c_uint16), c_double, c_int]),
     'lep_ros_wrench_size': (c_size_t, [c_size_t]),
-    'lep_ros_wrench_cdr': (c_int, [POINTER(lep_session_batch), c_size_t, c_size_t, POINTER(lep_rated), c_char_p, POINTER(c_int64), POINTER(c_uint8), POINTER(c_uint8), c_size_t, POINTER(c_int64)]),
+    'lep_ros_wrench_cdr': (c_int, [c_size_t, POINTER(c_double), POINTER(c_double), POINTER(c_int16), POINTER(c_double), c_char_p, POINTER(c_int64), POINTER(c_uint8), POINTER(c_uint8), c_size_t, POINTER(c_int64)]),
 }

@@ -2,20 +2,23 @@
 Run `python3 tools/gen_python_decls.py` after changing a public header;
 tests/test_declarations.py fails while this file is stale.
 
-The counter structs as frozen dataclasses, one field per member in the
-header's order. from_c(struct) copies a ctypes or cffi struct."""
+The counters as frozen dataclasses, one field per member (of a struct) or
+per enumerator (of an enum indexing a flat array of counters), in the
+header's order. from_fields(mapping) takes the values by field name (the
+names the library's *_field_name() functions give); from_c(struct)
+copies a ctypes or cffi struct."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Mapping
 
 
 @dataclass(frozen=True)
 class FrameStats:
     """Decoder counters; they only grow (wrap at 2^32).
 
-    C: lep_frame_stats (frame.h).
+    C: lep_frame_stats (frame.h, the struct).
     """
 
     messages: int  # messages delivered
@@ -25,6 +28,18 @@ class FrameStats:
     overruns: int  # frames rejected for exceeding 128 bytes
     restarts: int  # partial frames abandoned at a new DLE STX
     bytes_discarded: int  # wire bytes not part of a delivered message or NAK
+
+    @classmethod
+    def from_fields(cls, fields: Mapping[str, Any]) -> "FrameStats":
+        return cls(
+            messages=int(fields["messages"]),
+            naks=int(fields["naks"]),
+            bcc_errors=int(fields["bcc_errors"]),
+            escape_errors=int(fields["escape_errors"]),
+            overruns=int(fields["overruns"]),
+            restarts=int(fields["restarts"]),
+            bytes_discarded=int(fields["bytes_discarded"]),
+        )
 
     @classmethod
     def from_c(cls, c: Any) -> "FrameStats":
@@ -43,7 +58,7 @@ class FrameStats:
 class ClientStats:
     """Client counters; they only grow (wrap at 2^32).
 
-    C: lep_client_stats (client.h).
+    C: lep_client_stats (client.h, the struct).
     """
 
     messages: int  # framed messages with a good BCC
@@ -69,6 +84,26 @@ class ClientStats:
     stalls: int  # stream watchdog expiries (LEP_E_STALLED)
 
     @classmethod
+    def from_fields(cls, fields: Mapping[str, Any]) -> "ClientStats":
+        return cls(
+            messages=int(fields["messages"]),
+            bcc_errors=int(fields["bcc_errors"]),
+            frame_errors=int(fields["frame_errors"]),
+            bytes_discarded=int(fields["bytes_discarded"]),
+            naks=int(fields["naks"]),
+            retries=int(fields["retries"]),
+            unexpected=int(fields["unexpected"]),
+            invalid=int(fields["invalid"]),
+            timeouts=int(fields["timeouts"]),
+            samples=int(fields["samples"]),
+            resent_after_timeout=int(fields["resent_after_timeout"]),
+            resent_confirmed=int(fields["resent_confirmed"]),
+            recoveries=int(fields["recoveries"]),
+            reserved_nonzero=int(fields["reserved_nonzero"]),
+            stalls=int(fields["stalls"]),
+        )
+
+    @classmethod
     def from_c(cls, c: Any) -> "ClientStats":
         return cls(
             messages=int(c.messages),
@@ -91,102 +126,103 @@ class ClientStats:
 
 @dataclass(frozen=True)
 class SimStats:
-    """Counters of what the virtual sensor did (since lep_sim_start).
+    """Counters of what the virtual sensor did (since lep_sim_start), as indices into the array
+    lep_sim_stats fills.
 
-    C: lep_sim_stats (sim.h).
+    C: lep_sim_stat (sim.h, the enum).
     """
 
     samples_sent: int  # continuous data messages queued to the port
-    samples_dropped: int  # data messages dropped by the p_drop fault
+    samples_dropped: int  # data messages dropped by the drop fault
     commands: int  # commands answered (any result code)
-    naks: int  # DLE NAK sent (bad BCC, or the p_nak fault)
-    bytes_corrupted: int  # messages with a byte flipped by the p_corrupt fault
+    naks: int  # DLE NAK sent (bad BCC, or the nak fault)
+    bytes_corrupted: int  # messages with a byte flipped by the corrupt fault
     hangups: int
-    streaming: bool
-    filter: int  # in effect
+    streaming: bool  # 1 while streaming
+    filter: int  # filter code in effect
     filter_pending: int  # takes effect at the next power cycle
-    hung_up: bool  # the pty is closed now (after a hang-up, before a reopen)
+    hung_up: bool  # 1 while the pty is closed (after a hang-up)
     sequence: int  # sequence number the next stream sample will carry
     responses: int  # answers to commands queued to the port
-    faked_naks: int  # of naks: those sent by the p_nak fault
-    samples_skipped: int  # sample periods with nothing sent: a stall, or > 500 ms late
+    faked_naks: int  # of naks: those sent by the nak fault
+    samples_skipped: int  # sample periods with nothing sent: a stall, or late
     samples_blocked: int  # data messages not sent because nobody read the port
-    garbage_bytes: int  # bytes added by the p_garbage fault
+    garbage_bytes: int  # bytes added by the garbage fault
     bytes_received: int  # bytes read from the host
     reopens: int  # new ptys opened after a hang-up
     power_cycles: int  # lep_sim_power_cycle / SIGUSR1 applied
     stalls: int  # stalls begun
 
     @classmethod
-    def from_c(cls, c: Any) -> "SimStats":
+    def from_fields(cls, fields: Mapping[str, Any]) -> "SimStats":
         return cls(
-            samples_sent=int(c.samples_sent),
-            samples_dropped=int(c.samples_dropped),
-            commands=int(c.commands),
-            naks=int(c.naks),
-            bytes_corrupted=int(c.bytes_corrupted),
-            hangups=int(c.hangups),
-            streaming=bool(c.streaming),
-            filter=int(c.filter),
-            filter_pending=int(c.filter_pending),
-            hung_up=bool(c.hung_up),
-            sequence=int(c.sequence),
-            responses=int(c.responses),
-            faked_naks=int(c.faked_naks),
-            samples_skipped=int(c.samples_skipped),
-            samples_blocked=int(c.samples_blocked),
-            garbage_bytes=int(c.garbage_bytes),
-            bytes_received=int(c.bytes_received),
-            reopens=int(c.reopens),
-            power_cycles=int(c.power_cycles),
-            stalls=int(c.stalls),
+            samples_sent=int(fields["samples_sent"]),
+            samples_dropped=int(fields["samples_dropped"]),
+            commands=int(fields["commands"]),
+            naks=int(fields["naks"]),
+            bytes_corrupted=int(fields["bytes_corrupted"]),
+            hangups=int(fields["hangups"]),
+            streaming=bool(fields["streaming"]),
+            filter=int(fields["filter"]),
+            filter_pending=int(fields["filter_pending"]),
+            hung_up=bool(fields["hung_up"]),
+            sequence=int(fields["sequence"]),
+            responses=int(fields["responses"]),
+            faked_naks=int(fields["faked_naks"]),
+            samples_skipped=int(fields["samples_skipped"]),
+            samples_blocked=int(fields["samples_blocked"]),
+            garbage_bytes=int(fields["garbage_bytes"]),
+            bytes_received=int(fields["bytes_received"]),
+            reopens=int(fields["reopens"]),
+            power_cycles=int(fields["power_cycles"]),
+            stalls=int(fields["stalls"]),
         )
 
 
 @dataclass(frozen=True)
 class Health:
-    """Health, since lep_session_start.
+    """Health since lep_session_start, as indices into the array lep_session_health fills (every
+    field a double; counts are exact).
 
-    C: lep_session_health (session.h).
+    C: lep_health_field (session.h, the enum).
     """
 
     elapsed_s: float  # from the first sample to the last
-    nominal_hz: float  # as lep_session_options.nominal_hz says
-    measured_hz: float  # (samples received - 1) / elapsed (decimation not applied)
-    recent_hz: float  # over the last second or so (the run so far in its first second)
-    shortfall: bool  # measured_hz below 98 % of nominal over at least 1 s
+    nominal_hz: float  # the nominal rate ("nominal-rate", else the sensor's)
+    measured_hz: float  # (samples received - 1) / elapsed (before decimation)
+    recent_hz: float  # over the last second or so
+    shortfall: bool  # 1 when measured below 98 % of nominal over >= 1 s
     received: int  # samples received (tare samples included)
     delivered: int  # samples returned by lep_session_read (after decimation)
     lost: int  # samples estimated lost in gaps
     gaps: int
     errors: int  # framing, BCC, invalid messages, timeouts (all connections)
     overloads: int  # overload episodes begun
-    limit_episodes: int  # limit episodes begun (LEP_EV_LIMIT_EXCEEDED queued)
+    limit_episodes: int  # limit episodes begun
     disconnects: int
     reconnects: int
-    events_dropped: int  # events pushed out of the full queue (1024) before lep_session_next_event
-    # took them
+    events_dropped: int  # events pushed out of the full queue
     max_gap_s: float
-    client: ClientStats  # the current connection's counters
+    client: ClientStats  # the lep_client_stats fields messages .. stalls (session.h)
 
     @classmethod
-    def from_c(cls, c: Any) -> "Health":
+    def from_fields(cls, fields: Mapping[str, Any]) -> "Health":
         return cls(
-            elapsed_s=float(c.elapsed_s),
-            nominal_hz=float(c.nominal_hz),
-            measured_hz=float(c.measured_hz),
-            recent_hz=float(c.recent_hz),
-            shortfall=bool(c.shortfall),
-            received=int(c.received),
-            delivered=int(c.delivered),
-            lost=int(c.lost),
-            gaps=int(c.gaps),
-            errors=int(c.errors),
-            overloads=int(c.overloads),
-            limit_episodes=int(c.limit_episodes),
-            disconnects=int(c.disconnects),
-            reconnects=int(c.reconnects),
-            events_dropped=int(c.events_dropped),
-            max_gap_s=float(c.max_gap_s),
-            client=ClientStats.from_c(c.client),
+            elapsed_s=float(fields["elapsed_s"]),
+            nominal_hz=float(fields["nominal_hz"]),
+            measured_hz=float(fields["measured_hz"]),
+            recent_hz=float(fields["recent_hz"]),
+            shortfall=bool(fields["shortfall"]),
+            received=int(fields["received"]),
+            delivered=int(fields["delivered"]),
+            lost=int(fields["lost"]),
+            gaps=int(fields["gaps"]),
+            errors=int(fields["errors"]),
+            overloads=int(fields["overloads"]),
+            limit_episodes=int(fields["limit_episodes"]),
+            disconnects=int(fields["disconnects"]),
+            reconnects=int(fields["reconnects"]),
+            events_dropped=int(fields["events_dropped"]),
+            max_gap_s=float(fields["max_gap_s"]),
+            client=ClientStats.from_fields(fields),
         )

@@ -3,7 +3,7 @@ so a file written from Python has the bytes the `leptrino` tool writes."""
 
 from __future__ import annotations
 
-from typing import Any, List, Optional, Sequence
+from typing import Any, List, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -11,7 +11,7 @@ from . import _args as A
 from . import _constants as K
 from ._backend import get_backend
 from .errors import error_for
-from .values import EVENT_NAMES, Recording
+from .values import EVENT_NAMES, Recording, SessionEvent
 
 #: column name -> LEP_COL_* bit
 COLUMNS = {
@@ -55,16 +55,11 @@ def write_recording(rec: Recording, path: str, *, format: str = "csv",
         raise ValueError(f"time must be one of {', '.join(TIMES)}, not {time!r}")
     be = get_backend(backend)
     lib = be.lib
-    o = be.new("lep_output_options")
-    lib.lep_output_options_init(o)
-    o.format = FORMATS[format]
-    o.time = TIMES[time]
-    o.columns = column_bits(columns)
-    o.overwrite = bool(overwrite)
     keep: List[Any] = []
     out = be.new_handle("lep_output")
     err = be.new_text(512)
-    rc = lib.lep_output_open(be.cstr(path, keep), o, out, err, 512)
+    rc = lib.lep_output_open(be.cstr(path, keep), FORMATS[format], TIMES[time],
+                             column_bits(columns), 0.0, int(overwrite), out, err, 512)
     if rc < 0:
         msg = be.text(err)
         if rc == K.LEP_E_ARG and "exist" in msg:
@@ -78,20 +73,12 @@ def write_recording(rec: Recording, path: str, *, format: str = "csv",
                                        float(rec.start_mono))
         if rc < 0:
             raise error_for(be, rc, f"{path}: adding the sensor")
-        b, arrays = _batch(be, rec)
+        n, ptrs, arrays = _columns(be, rec)
         keep.append(arrays)
-        nev = len(rec.events)
-        evs = be.new_array("lep_session_event", max(1, nev))
-        for i, e in enumerate(rec.events):
-            c = evs[i]
-            c.type = _EVENT_CODES.get(e.type, 0)
-            c.sample, c.t_mono, c.t_utc = e.sample, e.t, e.t_utc
-            c.gap_from, c.gap_to, c.lost, c.error = e.gap_from, e.gap_to, e.lost, e.error
-            c.axes, c.status = e.axes, e.status
-            for j in range(K.LEP_AXES):
-                c.tare[j] = e.tare[j]
-                c.wrench[j] = e.wrench[j]
-        rc = lib.lep_output_write(w, 0, b, 0, evs, nev)
+        evs = event_rows(rec.events)
+        keep.append(evs)
+        rc = lib.lep_output_write(w, 0, n, *ptrs, be.array_ptr(evs, "double"), len(rec.events),
+                                  K.LEP_EVF_COUNT)
         if rc < 0:
             raise error_for(be, rc, f"{path}: writing")
     except BaseException:
@@ -102,30 +89,49 @@ def write_recording(rec: Recording, path: str, *, format: str = "csv",
         raise error_for(be, rc, f"{path}: closing")
 
 
-def _batch(be: Any, rec: Recording) -> Any:
-    """A lep_session_batch over rec's arrays (C-contiguous copies where needed)."""
+def event_rows(events: Sequence[SessionEvent]) -> np.ndarray:
+    """Events as the rows lep_session_next_event fills (LEP_EVF_COUNT doubles
+    each, fields at the LEP_EVF_* indices): what lep_output_write takes."""
+    rows = np.zeros((max(1, len(events)), K.LEP_EVF_COUNT), np.float64)
+    for i, e in enumerate(events):
+        r = rows[i]
+        r[K.LEP_EVF_TYPE] = _EVENT_CODES.get(e.type, 0)
+        r[K.LEP_EVF_SAMPLE] = e.sample
+        r[K.LEP_EVF_T_MONO] = e.t
+        r[K.LEP_EVF_T_UTC] = e.t_utc
+        r[K.LEP_EVF_GAP_FROM] = e.gap_from
+        r[K.LEP_EVF_GAP_TO] = e.gap_to
+        r[K.LEP_EVF_LOST] = e.lost
+        r[K.LEP_EVF_ERROR] = e.error
+        r[K.LEP_EVF_AXES] = e.axes
+        r[K.LEP_EVF_STATUS] = e.status
+        r[K.LEP_EVF_TARE:K.LEP_EVF_TARE + K.LEP_AXES] = e.tare
+        r[K.LEP_EVF_WRENCH:K.LEP_EVF_WRENCH + K.LEP_AXES] = e.wrench
+    return rows
+
+
+def _columns(be: Any, rec: Recording) -> Tuple[int, List[Any], List[np.ndarray]]:
+    """(n, the eight column pointers in lep_output_write's order, the arrays to
+    keep alive): C-contiguous copies of rec's arrays where needed."""
     n = len(rec)
-    cols = {
-        "t_mono": (rec.t, np.float64, "double"),
-        "t_utc": (rec.t_utc if len(rec.t_utc) == n else np.zeros(n), np.float64, "double"),
-        "raw": (rec.raw, np.int16, "int16_t"),
-        "zeroed": (rec.zeroed if len(rec.zeroed) == n else rec.raw.astype(np.float64),
-                   np.float64, "double"),
-        "si": (rec.si, np.float64, "double"),
-        "status": (rec.status, np.uint8, "uint8_t"),
-        "flags": (rec.flags if len(rec.flags) == n else np.zeros(n, np.uint8), np.uint8,
-                  "uint8_t"),
-        "seq": (rec.seq, np.uint16, "uint16_t"),
-    }
-    b = be.new("lep_session_batch")
-    arrays = []
-    for k, (a, dt, ct) in cols.items():
+    cols = [
+        (rec.t, np.float64, "double"),
+        (rec.t_utc if len(rec.t_utc) == n else np.zeros(n), np.float64, "double"),
+        (rec.si, np.float64, "double"),
+        (rec.raw, np.int16, "int16_t"),
+        (rec.zeroed if len(rec.zeroed) == n else rec.raw.astype(np.float64), np.float64,
+         "double"),
+        (rec.status, np.uint8, "uint8_t"),
+        (rec.flags if len(rec.flags) == n else np.zeros(n, np.uint8), np.uint8, "uint8_t"),
+        (rec.seq, np.uint16, "uint16_t"),
+    ]
+    arrays: List[np.ndarray] = []
+    ptrs: List[Any] = []
+    for a, dt, ct in cols:
         arr = np.ascontiguousarray(a, dtype=dt)
         if arr.size == 0:
             arr = np.zeros(max(1, arr.shape[0] if arr.ndim else 1) * (6 if arr.ndim == 2 else 1),
                            dtype=dt)
         arrays.append(arr)
-        setattr(b, k, be.array_ptr(arr, ct))
-    b.cap = n
-    b.n = n
-    return b, arrays
+        ptrs.append(be.array_ptr(arr, ct))
+    return n, ptrs, arrays

@@ -53,7 +53,9 @@ class Payload:
         gravity (sensor frame), N and N·m: lep_payload_wrench. ValueError for
         a negative mass or non-finite values."""
         be = get_backend(backend)
-        p = _c_payload(be, self)
+        p = be.doubles(4)
+        for i, v in enumerate(_payload4(self)):
+            p[i] = v
         g = be.doubles(3)
         gv = _vector(gravity, 3, "gravity")
         for i in range(3):
@@ -73,13 +75,10 @@ def _vector(v: Any, n: int, what: str) -> Any:
     return a
 
 
-def _c_payload(be: Any, p: Payload) -> Any:
-    c = be.new("lep_payload")
-    c.mass_kg = float(p.mass)
+def _payload4(p: Payload) -> Tuple[float, float, float, float]:
+    """(mass, cx, cy, cz): the four doubles of a payload (payload.h)."""
     com = _vector(p.com, 3, "com")
-    for i in range(3):
-        c.com_m[i] = float(com[i])
-    return c
+    return (float(p.mass), float(com[0]), float(com[1]), float(com[2]))
 
 
 def identify_payload(gravity: Any, wrenches: Any, backend: Optional[str] = None) -> Payload:
@@ -89,8 +88,9 @@ def identify_payload(gravity: Any, wrenches: Any, backend: Optional[str] = None)
     mean wrench measured at each pose (fx, fy, fz in N, mx, my, mz in N·m, not
     tared). Linear least squares in C (lep_payload_identify; Kubus, Kröger and
     Wahl, 2008). TypeError for values that are not numbers (strings, bools,
-    None); ValueError with the library's message for arrays of the wrong shape, NaN or infinite values, or poses that do not determine
-    the payload (fewer than 3, gravity in too few distinct directions, a mass
+    None); ValueError with the library's message for arrays of the wrong
+    shape, NaN or infinite values, or poses that do not determine the
+    payload (fewer than 3, gravity in too few distinct directions, a mass
     found not positive): a degenerate set is refused, never answered."""
     be = get_backend(backend)
     # the kind first (leptrino/_args.py: strings, bools, None are TypeError), then the shape
@@ -104,21 +104,26 @@ def identify_payload(gravity: Any, wrenches: Any, backend: Optional[str] = None)
         raise ValueError(f"wrenches: expected an N×6 array, got shape {w.shape}")
     if g.shape[0] != w.shape[0]:
         raise ValueError(f"gravity has {g.shape[0]} poses, wrenches {w.shape[0]}")
-    fit = be.new("lep_payload_fit")
+    fit = be.doubles(K.LEP_FIT_COUNT)
     err = be.new_text(256)
     rc = be.lib.lep_payload_identify(be.array_ptr(g, "double"), be.array_ptr(w, "double"),
-                                     g.shape[0], fit, err, 256)
+                                     g.shape[0], fit, K.LEP_FIT_COUNT, err, 256)
     if rc < 0:
         what = "bad input" if rc == K.LEP_E_ARG else "degenerate poses"
         raise ValueError(be.text(err) or what)
+    f = [float(fit[i]) for i in range(K.LEP_FIT_COUNT)]
+
+    def at(i: int, n: int) -> Any:
+        return tuple(f[i:i + n])
+
     return Payload(
-        mass=float(fit.payload.mass_kg),
-        com=tuple(float(fit.payload.com_m[i]) for i in range(3)),  # type: ignore[arg-type]
-        force_bias=tuple(float(fit.force_bias_N[i]) for i in range(3)),  # type: ignore[arg-type]
-        torque_bias=tuple(float(fit.torque_bias_Nm[i]) for i in range(3)),  # type: ignore
-        residual=tuple(float(fit.residual[i]) for i in range(6)),  # type: ignore[arg-type]
-        spread=float(fit.spread),
-        poses=int(fit.poses),
+        mass=f[K.LEP_FIT_PAYLOAD],
+        com=at(K.LEP_FIT_PAYLOAD + 1, 3),
+        force_bias=at(K.LEP_FIT_FORCE_BIAS_N, 3),
+        torque_bias=at(K.LEP_FIT_TORQUE_BIAS_NM, 3),
+        residual=at(K.LEP_FIT_RESIDUAL, 6),
+        spread=f[K.LEP_FIT_SPREAD],
+        poses=int(f[K.LEP_FIT_POSES]),
     )
 
 

@@ -2,8 +2,10 @@
 
 Everything a session does (start-up recovery, tare, host low-pass,
 decimation, rotation, gap detection, reconnect, health, metadata) runs in C
-(leptrino/session.h); this module moves its batches into numpy arrays and
-turns its structs into Python values.
+(leptrino/session.h): options go in by name (leptrino/options.h), samples
+come out into numpy arrays the session fills directly, and events, health
+and metadata are flat arrays of doubles read by field index or name. No C
+layout is mirrored here.
 
 Threads: one thread at a time drives a Sensor (record, stream, read, start,
 stop, filter, stats, tare with wait); another thread's driving call raises
@@ -27,6 +29,7 @@ import numpy as np
 
 from . import _constants as K
 from . import _args as A
+from . import _options as _opts
 from ._backend import get_backend
 from ._guard import Guard
 from .errors import LeptrinoError, error_for
@@ -80,15 +83,18 @@ class PowerCycleWarning(UserWarning):
     """A setting was stored by the sensor but takes effect only after a power cycle."""
 
 
-def product_info_from(be: Any, c: Any) -> ProductInfo:
-    return ProductInfo(
-        model=be.text(c.model),
-        serial=be.text(c.serial),
-        firmware=be.text(c.firmware),
-        output_rate=be.text(c.output_rate),
-        output_rate_hz=int(c.output_rate_hz) or None,
-        has_output_rate=bool(c.has_output_rate),
-    )
+_health_names_of: Dict[str, List[str]] = {}
+
+
+def _health_names(be: Any) -> List[str]:
+    """The names of the library's health fields (lep_session_health_field_name)."""
+    names = _health_names_of.get(be.name)
+    if names is None:
+        lib = be.lib
+        names = [be.text(lib.lep_session_health_field_name(i))
+                 for i in range(int(lib.lep_session_health_fields()))]
+        _health_names_of[be.name] = names
+    return names
 
 
 def _ms(seconds: float, what: str, lo_exclusive: bool = False) -> int:
@@ -164,42 +170,38 @@ class Sensor:
         sh = None if shift is None else self._vec3(shift, "Sensor")
         self._timeout_ms = max(1, _ms(timeout, "timeout"))
         self._retries = int(retries)  # named by a lost stream's message
-        o = be.new("lep_session_options")
-        lib.lep_session_options_init(o)
-        keep: List[Any] = []
         if port is not None and not isinstance(port, str):
             port = getattr(port, "port", port)  # a Simulator
         if (port is None) == (sim is None or sim is False):
             raise ValueError("give a port, or sim=True / sim={options}, not both")
-        if port is not None:
-            o.port = be.cstr(str(port), keep)
-        else:
-            from .simulator import fill_options
+        data_timeout_ms = max(1, _ms(data_timeout, "data_timeout", lo_exclusive=True))
+        with _opts.Options(be) as o:
+            if port is not None:
+                o.set("port", str(port), "Sensor: ")
+            else:
+                from .simulator import fill_options
 
-            o.use_sim = True
-            fill_options(be, be.field_ptr(o, "sim"), dict(sim) if isinstance(sim, Mapping)
-                         else {})
-        o.timeout_ms = self._timeout_ms
-        o.sync_quiet_ms = max(1, _ms(quiet, "quiet"))
-        o.latency_ms = _ms(latency, "latency")
-        o.tare_samples = int(tare)
-        o.lowpass_hz = float(lowpass)
-        o.decimate = int(decimate)
-        o.reconnect = bool(reconnect)
-        # above 0, as `leptrino --data-timeout` (0 would take every pause for a lost stream)
-        o.data_timeout_ms = max(1, _ms(data_timeout, "data_timeout", lo_exclusive=True))
-        self._data_timeout_s = o.data_timeout_ms / 1000  # named by a lost stream's message
-        o.gap_periods = float(gap_periods)
-        o.nominal_hz = float(nominal_hz)
-        if rot is not None:
-            for i, v in enumerate(rot):
-                o.rotation[i] = v
-        if sh is not None:
-            for i, v in enumerate(sh):
-                o.shift_m[i] = v
-        out = be.new_handle("lep_session")
-        err = be.new_text(512)
-        rc = lib.lep_session_open(o, out, err, 512)
+                o.set("sim", True, "Sensor: ")
+                fill_options(be, o, dict(sim) if isinstance(sim, Mapping) else {})
+            o.set("timeout", self._timeout_ms, "Sensor: ")
+            o.set("sync-quiet", max(1, _ms(quiet, "quiet")), "Sensor: ")
+            o.set("latency", _ms(latency, "latency"), "Sensor: ")
+            o.set("tare-samples", int(tare), "Sensor: ")
+            o.set("lowpass", float(lowpass), "Sensor: ")
+            o.set("decimate", int(decimate), "Sensor: ")
+            o.set("reconnect", bool(reconnect), "Sensor: ")
+            # above 0, as `leptrino --data-timeout` (0 would take every pause for a lost stream)
+            o.set("data-timeout", data_timeout_ms, "Sensor: ")
+            o.set("gap-periods", float(gap_periods), "Sensor: ")
+            o.set("nominal-rate", float(nominal_hz), "Sensor: ")
+            if rot is not None:
+                o.set("rotation", rot, "Sensor: ")
+            if sh is not None:
+                o.set("shift", sh, "Sensor: ")
+            self._data_timeout_s = data_timeout_ms / 1000  # named by a lost stream's message
+            out = be.new_handle("lep_session")
+            err = be.new_text(512)
+            rc = lib.lep_session_open(o.handle, out, err, 512)
         if rc < 0:
             msg = be.text(err)
             if rc == K.LEP_E_ARG:
@@ -212,15 +214,22 @@ class Sensor:
         try:
             client = lib.lep_session_client(self._s)
             self._check(lib.lep_client_set_retries(client, retries))
-            meta = self._metadata_struct()
-            self._info = product_info_from(be, meta.info)
-            self._rated = Rated(*(float(v) for v in meta.rated.axis))
-            self._nominal_hz = float(meta.nominal_hz) or 1200.0
+            md = self._md()
+            rate_text = self._text(K.LEP_INFO_OUTPUT_RATE)
+            rate_hz = int(md[K.LEP_MD_OUTPUT_RATE_HZ])
+            self._info = ProductInfo(
+                model=self._text(K.LEP_INFO_MODEL), serial=self._text(K.LEP_INFO_SERIAL),
+                firmware=self._text(K.LEP_INFO_FIRMWARE), output_rate=rate_text,
+                output_rate_hz=rate_hz or None,
+                # the 38-byte form carries the field; the 32-byte form gives ""
+                has_output_rate=bool(rate_text) or rate_hz > 0)
+            self._rated = Rated(*md[K.LEP_MD_RATED:K.LEP_MD_RATED + K.LEP_AXES])
+            self._nominal_hz = md[K.LEP_MD_NOMINAL_HZ] or float(K.LEP_SESSION_NOMINAL_HZ)
         except BaseException:
             self.close()
             raise
         self._one = _Arrays(be, 1)  # read()'s batch
-        self._ev = be.new("lep_session_event")
+        self._ev = be.doubles(K.LEP_EVF_COUNT)
         self._offsets = be.doubles(K.LEP_AXES)
         #: events read by tare(wait=True) in a stream of its own (not a recording's)
         self.events: List[SessionEvent] = []
@@ -292,10 +301,32 @@ class Sensor:
         return rc
 
     @_any_thread
-    def _metadata_struct(self) -> Any:
-        m = self._be.new("lep_session_metadata")
-        self._be.lib.lep_session_get_metadata(self._live(), m)
-        return m
+    def _md(self) -> List[float]:
+        """The session's metadata numbers (lep_session_metadata; LEP_MD_* index them)."""
+        m = self._be.doubles(K.LEP_MD_COUNT)
+        self._check(self._be.lib.lep_session_metadata(self._live(), m, K.LEP_MD_COUNT), None,
+                    f"{self.port}: metadata")
+        return [float(m[i]) for i in range(K.LEP_MD_COUNT)]
+
+    @_any_thread
+    def _text(self, which: int) -> str:
+        """A text of the session (lep_session_info, LEP_INFO_*), whatever its length."""
+        be, s = self._be, self._live()
+        return _opts.text_result(be, lambda buf, cap, n: be.lib.lep_session_info(
+            s, which, buf, cap, n))
+
+    def _set(self, name: str, value: Any, where: str) -> None:
+        """Change a live option of the open session (lep_session_set*, by name)."""
+        _opts.set_value(self._be, self._live(), name, value, session=True, where=f"{where}: ")
+
+    def _latency_ms(self) -> int:
+        v = self._be.new_scalar("int64_t")
+        self._check(self._be.lib.lep_session_get_int(self._live(), b"latency", v))
+        return int(self._be.value(v))
+
+    def _set_latency_ms(self, ms: int) -> None:
+        """The latency budget (a driving call: from the thread that reads)."""
+        self._set("latency", int(ms), "latency")
 
     def _matrix(self, rotation: Any, degrees: bool, where: str) -> List[float]:
         what = "(roll, pitch, yaw) or a 3x3 rotation matrix"
@@ -333,18 +364,22 @@ class Sensor:
         """The queued events, .sample counted from the stream's sample base."""
         be, ev, s = self._be, self._ev, self._s
         out: List[SessionEvent] = []
-        while s is not None and be.lib.lep_session_next_event(s, ev):
+        while s is not None and be.lib.lep_session_next_event(s, ev, K.LEP_EVF_COUNT) == 1:
+            f = [float(ev[i]) for i in range(K.LEP_EVF_COUNT)]
+            typ = int(f[K.LEP_EVF_TYPE])
+            t_mono = f[K.LEP_EVF_T_MONO]
             out.append(SessionEvent(
-                type=EVENT_NAMES.get(int(ev.type), str(int(ev.type))),
+                type=EVENT_NAMES.get(typ, str(typ)),
                 # queued before this stream started (an untare while stopped): at its start
-                sample=(max(0, int(ev.sample) - base) if float(ev.t_mono) >= self._start_mono
+                sample=(max(0, int(f[K.LEP_EVF_SAMPLE]) - base) if t_mono >= self._start_mono
                         else 0),
-                t=float(ev.t_mono), t_utc=float(ev.t_utc),
-                gap_from=float(ev.gap_from), gap_to=float(ev.gap_to), lost=int(ev.lost),
-                error=int(ev.error), axes=int(ev.axes), status=int(ev.status),
-                tare=tuple(float(ev.tare[i]) for i in range(K.LEP_AXES)),  # type: ignore[arg-type]
-                wrench=tuple(float(ev.wrench[i])  # type: ignore[arg-type]
-                             for i in range(K.LEP_AXES)),
+                t=t_mono, t_utc=f[K.LEP_EVF_T_UTC],
+                gap_from=f[K.LEP_EVF_GAP_FROM], gap_to=f[K.LEP_EVF_GAP_TO],
+                lost=int(f[K.LEP_EVF_LOST]), error=int(f[K.LEP_EVF_ERROR]),
+                axes=int(f[K.LEP_EVF_AXES]), status=int(f[K.LEP_EVF_STATUS]),
+                tare=tuple(f[K.LEP_EVF_TARE:K.LEP_EVF_TARE + K.LEP_AXES]),  # type: ignore[arg-type]
+                wrench=tuple(f[K.LEP_EVF_WRENCH:K.LEP_EVF_WRENCH  # type: ignore[arg-type]
+                               + K.LEP_AXES]),
             ))
         return out
 
@@ -363,33 +398,26 @@ class Sensor:
     def metadata(self) -> Dict[str, Any]:
         """What a recording says about itself: model, serial, firmware, protocol,
         rated values, filters, tare, frame, start time (UTC), library version.
-        The library's own JSON object (lep_session_metadata_json), as a dict."""
+        The library's own JSON object (lep_session_info, LEP_INFO_METADATA_JSON), as
+        a dict."""
         return dict(json.loads(self.metadata_json()))
 
     @_any_thread
     def metadata_json(self) -> str:
         """The metadata as the library writes it (one JSON object)."""
-        be = self._be
-        cap = 4096
-        while True:
-            buf = be.new_text(cap)
-            n = be.new_scalar("size_t")
-            rc = be.lib.lep_session_metadata_json(self._live(), buf, cap, n)
-            if rc == K.LEP_E_BUFFER and cap < 1 << 20:
-                cap *= 4
-                continue
-            self._check(rc, None, f"{self.port}: metadata")
-            return str(be.bytes_at(buf, int(be.value(n))).decode("utf-8"))
+        return self._text(K.LEP_INFO_METADATA_JSON)
 
     @property
     @_any_thread
     def health(self) -> Health:
         """Measured against nominal rate, samples lost, gaps, errors, overloads,
-        reconnects, since the stream started."""
+        reconnects, since the stream started (lep_session_health, by field name)."""
         be = self._be
-        h = be.new("lep_session_health")
-        be.lib.lep_session_get_health(self._live(), h)
-        return Health.from_c(h)
+        names = _health_names(be)
+        h = be.doubles(max(1, len(names)))
+        self._check(be.lib.lep_session_health(self._live(), h, len(names)), None,
+                    f"{self.port}: health")
+        return Health.from_fields({k: float(h[i]) for i, k in enumerate(names)})
 
     @property
     @_driving
@@ -468,8 +496,7 @@ class Sensor:
                 started = True
             arrays = _Arrays(self._be, _ITER_BATCH)
             while lib.lep_session_taring(s):
-                arrays.c.n = 0
-                rc = lib.lep_session_read(s, arrays.c, self._timeout_ms)
+                rc = arrays.read(s, self._timeout_ms, _ITER_BATCH)
                 self._guard.check(self.port)
                 self._delivered += arrays.n
                 if rc < 0 and rc != K.LEP_E_END:
@@ -519,7 +546,7 @@ class Sensor:
     @_any_thread
     def lowpass(self) -> float:
         """Host low-pass cut-off in Hz (0 off); settable at any time."""
-        return float(self._metadata_struct().lowpass_hz)
+        return self._md()[K.LEP_MD_LOWPASS_HZ]
 
     @lowpass.setter
     @_any_thread
@@ -529,25 +556,21 @@ class Sensor:
             raise ValueError(f"lowpass: cutoff_hz: {cutoff_hz!r} is out of range (from 0 .. "
                              f"{top:g}: a low-pass cut-off is at most 0.45 x the "
                              f"{self._nominal_hz:g} Hz output rate)")
-        rc = self._be.lib.lep_session_set_lowpass(self._live(), float(cutoff_hz))
-        if rc == K.LEP_E_VALUE:
-            raise ValueError(f"low-pass cut-off {cutoff_hz!r} Hz: must be >= 0 and at most "
-                             f"0.45 x the rate ({0.45 * self._nominal_hz:g} Hz)")
-        self._check(rc)
+        self._set("lowpass", float(cutoff_hz), "lowpass")
 
     @property
     @_any_thread
     def rotation(self) -> np.ndarray:
         """The output frame's rotation matrix (3x3)."""
-        m = self._metadata_struct()
-        return np.array([float(m.rotation[i]) for i in range(9)]).reshape(3, 3)
+        m = self._md()
+        return np.array(m[K.LEP_MD_ROTATION:K.LEP_MD_ROTATION + 9]).reshape(3, 3)
 
     @property
     @_any_thread
     def shift(self) -> Tuple[float, float, float]:
         """The moment reference point (x, y, z), metres, in the output frame."""
-        m = self._metadata_struct()
-        return (float(m.shift_m[0]), float(m.shift_m[1]), float(m.shift_m[2]))
+        m = self._md()
+        return (m[K.LEP_MD_SHIFT_M], m[K.LEP_MD_SHIFT_M + 1], m[K.LEP_MD_SHIFT_M + 2])
 
     @_any_thread
     def set_frame(self, rotation: Optional[Sequence[Any]] = None,
@@ -556,17 +579,11 @@ class Sensor:
         (as `leptrino --rotate`; degrees=False: radians) or a 3x3 matrix (None:
         identity), shift the moment reference point (metres, None: origin).
         Takes effect from the next sample."""
-        be = self._be
         degrees = A.flag("set_frame", "degrees", degrees)
         m = self._matrix(rotation if rotation is not None else np.eye(3), degrees, "set_frame")
         v = self._vec3(shift if shift is not None else (0.0, 0.0, 0.0), "set_frame")
-        r = be.doubles(9)
-        for i, x in enumerate(m):
-            r[i] = x
-        sh = be.doubles(3)
-        for i, x in enumerate(v):
-            sh[i] = x
-        self._check(be.lib.lep_session_set_rotation(self._live(), r, sh))
+        self._set("rotation", m, "set_frame")
+        self._set("shift", v, "set_frame")
 
     # -- payload and limits (leptrino/payload.h; docs/session.md) ------------
     @_any_thread
@@ -577,8 +594,7 @@ class Sensor:
         taken while a payload is set removes the bias only. ValueError for a
         negative mass, non-finite values or not four numbers, TypeError for
         the wrong kind (leptrino/_args.py). Takes effect from the next sample."""
-        be = self._be
-        c = be.new("lep_payload")
+        v = [0.0, 0.0, 0.0, 0.0]
         if payload is not None:
             if isinstance(payload, Payload):
                 payload = tuple(payload)
@@ -586,24 +602,15 @@ class Sensor:
                              "(mass kg, cx, cy, cz m)")
             if v[0] < 0:
                 raise ValueError(f"set_payload: payload: the mass {v[0]:g} kg is negative")
-            c.mass_kg = v[0]
-            for i in range(3):
-                c.com_m[i] = v[1 + i]
-        if be.lib.lep_session_set_payload(self._live(), c) < 0:
-            raise ValueError(f"payload {payload!r}: a mass >= 0 and finite numbers expected")
+        self._set("payload", v, "set_payload")
 
     @_any_thread
     def set_gravity(self, gravity: Sequence[float]) -> None:
         """Gravity in the sensor frame, m/s² ((0, 0, -9.80665) when the z axis
         points up); call it as often as the robot moves. ValueError when not
         three finite numbers, TypeError for the wrong kind."""
-        be = self._be
         a = A.numbers_of("set_gravity", "gravity", gravity, (3,), "(gx, gy, gz) in m/s²")
-        g = be.doubles(3)
-        for i in range(3):
-            g[i] = a[i]
-        if be.lib.lep_session_set_gravity(self._live(), g) < 0:
-            raise ValueError(f"gravity {gravity!r}: three finite numbers expected")
+        self._set("gravity", a, "set_gravity")
 
     @_any_thread
     def set_limits(self, limits: Optional[Any] = None, **axes: float) -> None:
@@ -627,12 +634,7 @@ class Sensor:
             v[names.index(name)] = A.number("set_limits", name, value, 0.0, math.inf)
         for name, value in zip(names, v):
             A.number("set_limits", name, value, 0.0, math.inf)  # six numbers: each >= 0
-        be = self._be
-        c = be.doubles(K.LEP_AXES)
-        for i in range(K.LEP_AXES):
-            c[i] = v[i]
-        if be.lib.lep_session_set_limits(self._live(), c) < 0:
-            raise ValueError(f"limits {v}: each must be 0 (none) or > 0, finite")
+        self._set("limit", v, "set_limits")
 
     # -- data ----------------------------------------------------------------
     @_driving
@@ -642,9 +644,8 @@ class Sensor:
         the tare and the frame in force (the low-pass and decimation are the
         stream's). StateError while streaming."""
         a = self._one
-        a.c.n = 0
-        a.c.cap = 1
-        self._check(self._be.lib.lep_session_read_one(self._live(), a.c), K.LEP_CMD_SAMPLE)
+        self._check(self._be.lib.lep_session_read_one(self._live(), *a.pointers(0)),
+                    K.LEP_CMD_SAMPLE)
         return a.samples(1)[0]
 
     @_driving
@@ -652,7 +653,7 @@ class Sensor:
         """Start the stream (stream(), record() and tare() do it themselves)."""
         self._check(self._be.lib.lep_session_start(self._live()), K.LEP_CMD_START)
         self._delivered = 0  # samples read since the start: the events' .sample base
-        self._start_mono = float(self._metadata_struct().start_mono)
+        self._start_mono = self._md()[K.LEP_MD_START_MONO]
 
     @_driving
     def stop(self) -> None:
@@ -704,9 +705,9 @@ class Sensor:
             self.start()
             started = True
         base = self._delivered
-        latency_before = int(lib.lep_session_latency(s))
+        latency_before = self._latency_ms()
         if latency_before < _RECORD_LATENCY_MS:
-            lib.lep_session_set_latency(s, _RECORD_LATENCY_MS)
+            self._set_latency_ms(_RECORD_LATENCY_MS)
         try:
             now = float(lib.lep_monotonic_seconds())
             # seconds count from the first row's arrival, as `leptrino stream
@@ -733,13 +734,12 @@ class Sensor:
                         if final_reads >= _RECORD_FINAL_READS:
                             break
                         if final_reads == 0:
-                            lib.lep_session_set_latency(s, 0)
+                            self._set_latency_ms(0)
                         final_reads += 1
                     room = max(64, int(math.ceil(max(left, 0.0) * rate)))
                     wait_s = min(_RECORD_SLICE_S, max(left, 0.001), self._timeout_ms / 1000)
                 arrays.reserve(n + room)
-                arrays.c.cap = n + room
-                rc = lib.lep_session_read(s, arrays.c, max(1, int(wait_s * 1000)))
+                rc = arrays.read(s, max(1, int(wait_s * 1000)), room, at=n)
                 self._guard.check(self.port)
                 if seconds is not None and n == 0 and arrays.n > 0:
                     end = float(arrays.t_mono[0]) + seconds
@@ -766,7 +766,10 @@ class Sensor:
             raise
         finally:
             if self._s is not None:
-                lib.lep_session_set_latency(self._s, latency_before)
+                try:  # the session's own budget back (refused once close() has begun)
+                    _opts.set_value(be, self._s, "latency", latency_before, session=True)
+                except (LeptrinoError, ValueError):
+                    pass
             if started and self._s is not None:
                 try:
                     lib.lep_session_stop(self._s)
@@ -776,7 +779,7 @@ class Sensor:
 
 
 class _Arrays:
-    """numpy arrays and the lep_session_batch that points into them."""
+    """numpy arrays that lep_session_read fills directly (every column)."""
 
     t_mono: np.ndarray
     t_utc: np.ndarray
@@ -787,40 +790,48 @@ class _Arrays:
     flags: np.ndarray
     seq: np.ndarray
 
+    #: column -> (dtype, C element type), in lep_session_read's order
+    COLUMNS = (("t_mono", np.float64, "double"), ("t_utc", np.float64, "double"),
+               ("si", np.float64, "double"), ("raw", np.int16, "int16_t"),
+               ("zeroed", np.float64, "double"), ("status", np.uint8, "uint8_t"),
+               ("flags", np.uint8, "uint8_t"), ("seq", np.uint16, "uint16_t"))
+
     def __init__(self, be: Any, cap: int) -> None:
         self.be = be
-        self.c = be.new("lep_session_batch")
+        self.lib = be.lib
         self.cap = 0
+        #: rows filled (by read(): at + what the last read wrote)
+        self.n = 0
+        self._got = be.new_scalar("size_t")
+        self._p0: Tuple[Any, ...] = ()
         self._alloc(max(1, cap), 0)
 
-    @property
-    def n(self) -> int:
-        return int(self.c.n)
-
     def _alloc(self, cap: int, keep: int) -> None:
-        new: Dict[str, np.ndarray] = {
-            "t_mono": np.empty(cap, np.float64),
-            "t_utc": np.empty(cap, np.float64),
-            "raw": np.empty((cap, K.LEP_AXES), np.int16),
-            "zeroed": np.empty((cap, K.LEP_AXES), np.float64),
-            "si": np.empty((cap, K.LEP_AXES), np.float64),
-            "status": np.empty(cap, np.uint8),
-            "flags": np.empty(cap, np.uint8),
-            "seq": np.empty(cap, np.uint16),
-        }
-        if keep:
-            for k, a in new.items():
+        for k, dt, _ in self.COLUMNS:
+            shape = (cap, K.LEP_AXES) if k in ("si", "raw", "zeroed") else (cap,)
+            a = np.empty(shape, dt)
+            if keep:
                 a[:keep] = getattr(self, k)[:keep]
-        ctypes_of = {"t_mono": "double", "t_utc": "double", "raw": "int16_t",
-                     "zeroed": "double", "si": "double", "status": "uint8_t",
-                     "flags": "uint8_t", "seq": "uint16_t"}
-        be, c = self.be, self.c
-        for k, a in new.items():
             setattr(self, k, a)
-            setattr(c, k, be.array_ptr(a, ctypes_of[k]))
         self.cap = cap
-        c.n = keep
-        c.cap = cap
+        self.n = keep
+        self._p0 = self.pointers(0)
+
+    def pointers(self, at: int) -> Tuple[Any, ...]:
+        """The eight column pointers at row at, in lep_session_read's order."""
+        if at == 0 and self._p0:
+            return self._p0
+        be = self.be
+        return tuple(be.array_ptr(getattr(self, k)[at:], ct) for k, _, ct in self.COLUMNS)
+
+    def read(self, s: Any, timeout_ms: int, room: int, at: int = 0) -> int:
+        """lep_session_read of up to room samples into rows [at, at + room)
+        (room clipped to the arrays); self.n becomes at + the samples written."""
+        room = max(0, min(room, self.cap - at))
+        rc = int(self.lib.lep_session_read(s, int(timeout_ms), room, self._got,
+                                           *self.pointers(at)))
+        self.n = at + int(self.be.value(self._got))
+        return rc
 
     def samples(self, n: int) -> List[Sample]:
         """The first n rows as Samples."""
@@ -840,7 +851,7 @@ class _Arrays:
         if sensor is not None and not sensor.closed:
             try:
                 meta = sensor.metadata_json()
-                start = float(sensor._metadata_struct().start_mono)
+                start = sensor._md()[K.LEP_MD_START_MONO]
             except LeptrinoError:
                 pass
         return Recording(
@@ -949,14 +960,12 @@ class Stream:
         if self._count is not None:
             room = max(1, min(room, self._count - self._n))
         while True:
-            a.c.n = 0
-            a.c.cap = room
             wait = s._timeout_ms
             left = math.inf
             if self._end is not None:
                 left = self._end - float(lib.lep_monotonic_seconds())
                 wait = max(1, min(wait, int(math.ceil(left * 1000))))
-            rc = lib.lep_session_read(s._live(), a.c, wait)
+            rc = a.read(s._live(), wait, room)
             s._guard.check(s.port)
             if a.n == 0 and left <= 0:
                 self.close()  # past the end and nothing more arrived before it
@@ -991,22 +1000,19 @@ def list_ports(backend: Optional[str] = None) -> List[Any]:
     from .values import PortInfo
 
     be = get_backend(backend)
-    n = be.new_scalar("size_t")
-    rc = be.lib.lep_serial_list(be.new("lep_port_info"), 0, n)
+    lib = be.lib
+    out = be.new_handle("lep_port_list")
+    rc = lib.lep_port_list_new(out)
     if rc < 0:
         raise error_for(be, rc, "listing serial ports")
-    total = int(be.value(n))
-    if total == 0:
-        return []
-    arr = be.new_array("lep_port_info", total)
-    rc = be.lib.lep_serial_list(arr, total, n)
-    if rc < 0:
-        raise error_for(be, rc, "listing serial ports")
-    out = []
-    for i in range(min(total, int(be.value(n)))):
-        p = arr[i]
-        out.append(PortInfo(path=be.text(p.path), by_id=be.text(p.by_id),
-                            description=be.text(p.description), vid=int(p.vid),
-                            pid=int(p.pid), likely_sensor=bool(p.likely_sensor)))
-    return out
-
+    lst = be.handle(out)
+    try:
+        return [PortInfo(path=be.text(lib.lep_port_list_path(lst, i)),
+                         by_id=be.text(lib.lep_port_list_by_id(lst, i)),
+                         description=be.text(lib.lep_port_list_description(lst, i)),
+                         vid=int(lib.lep_port_list_vid(lst, i)),
+                         pid=int(lib.lep_port_list_pid(lst, i)),
+                         likely_sensor=bool(lib.lep_port_list_likely_sensor(lst, i)))
+                for i in range(int(lib.lep_port_list_count(lst)))]
+    finally:
+        lib.lep_port_list_free(lst)

@@ -7,28 +7,23 @@ from dataclasses import dataclass
 from typing import Any, Dict, List, Optional
 
 from . import _constants as K
+from . import _options as _opts
 from ._backend import get_backend
 from .errors import LeptrinoError, error_for
 from .values import Rated, SimStats
 
-_TYPES = {
-    K.LEP_SIM_OPT_FLAG: "flag",
-    K.LEP_SIM_OPT_INT: "int",
-    K.LEP_SIM_OPT_UINT: "uint",
-    K.LEP_SIM_OPT_DOUBLE: "float",
-    K.LEP_SIM_OPT_STRING: "str",
-    K.LEP_SIM_OPT_CHOICE: "choice",
-    K.LEP_SIM_OPT_NUMBERS: "numbers",
-}
+#: The virtual sensor's options are the table's rows named "sim-...".
+_PREFIX = "sim-"
 
 
 @dataclass(frozen=True)
 class SimOption:
-    """One row of the C table of the virtual sensor's options (lep_sim_option_at)."""
+    """One of the virtual sensor's options: a row of the library's option
+    table (leptrino/options.h) whose name begins with "sim-"."""
 
     name: str  # as a Python keyword: "output_rate_field"
     flag: str  # as on a command line, without the prefix: "output-rate-field"
-    type: str  # "flag", "int", "uint", "float", "str", "choice" or "numbers"
+    type: str  # "flag", "int", "float", "str", "choice" or "numbers"
     arg: Optional[str]  # the argument's name for help ("HZ"); None for flags
     help: str
     default: Optional[str]  # the default as text; None when off or empty
@@ -39,7 +34,7 @@ class SimOption:
     def describe(self) -> str:
         """help, range and default in one line, as leptrino-sim prints them."""
         text = self.help
-        if self.type in ("int", "uint", "float", "numbers"):
+        if self.type in ("int", "float", "numbers"):
             lo = "(" if self.min_exclusive else "["
             text += f" {lo}{self.min:g}, {self.max:g}]"
         if self.default is not None:
@@ -47,61 +42,34 @@ class SimOption:
         return text
 
 
-def _row(be: Any, info: Any) -> SimOption:
-    flag = be.text(info.name)
-    return SimOption(
-        name=flag.replace("-", "_"),
-        flag=flag,
-        type=_TYPES.get(int(info.type), str(int(info.type))),
-        arg=be.text(info.arg) or None,
-        help=be.text(info.help),
-        default=be.text(info.default_text) if be.text(info.default_text) else None,
-        min=float(info.min),
-        max=float(info.max),
-        min_exclusive=bool(info.min_exclusive),
-    )
-
-
 def sim_options(backend: Optional[str] = None) -> List[SimOption]:
     """The virtual sensor's options, read from the C table every program uses."""
     be = get_backend(backend)
-    lib = be.lib
-    return [_row(be, be.deref(lib.lep_sim_option_at(i)))
-            for i in range(int(lib.lep_sim_option_count()))]
+    out = []
+    for r in _opts.table(be):
+        if r.scope != K.LEP_SCOPE_SIM or not r.name.startswith(_PREFIX):
+            continue
+        flag = r.name[len(_PREFIX):]
+        out.append(SimOption(
+            name=flag.replace("-", "_"), flag=flag,
+            type=_opts.TYPES.get(r.type, str(r.type)), arg=r.arg or None, help=r.help,
+            default=r.default or None, min=r.min, max=r.max, min_exclusive=r.min_exclusive))
+    return out
 
 
-def _text(value: Any, is_flag: bool) -> str:
-    """A Python value as the text lep_sim_option_set parses. True/False are
-    "1"/"0" for a flag only; elsewhere they stay "True"/"False" (refused)."""
-    if is_flag and isinstance(value, bool):
-        return "1" if value else "0"
-    if isinstance(value, float):
-        return repr(value)
-    if not isinstance(value, (str, bytes)) and hasattr(value, "__iter__"):
-        # payload=(m, cx, cy, cz), gravity=(gx, gy, gz): "M,CX,CY,CZ"
-        return ",".join(repr(float(v)) for v in value)
-    return str(value)
-
-
-def fill_options(be: Any, opts: Any, options: Dict[str, Any]) -> None:
-    """Set options (name -> value) in the lep_sim_options opts through the C
-    table: TypeError for an unknown name (listing the known ones), ValueError
-    with the library's message for a value leptrino-sim would refuse. A value
-    of None leaves the default."""
-    lib = be.lib
-    err = be.new_text(256)
+def fill_options(be: Any, opts: _opts.Options, options: Dict[str, Any]) -> None:
+    """Set the virtual sensor's options (name -> value, without the "sim-"
+    prefix) on an options handle by name: TypeError for an unknown name
+    (listing the known ones), ValueError with the library's message for a
+    value leptrino-sim would refuse. A value of None leaves the default."""
     for name, value in options.items():
         if value is None:
             continue
-        key = str(name).encode()
-        info = lib.lep_sim_option_find(key)
-        if not info:
+        full = _PREFIX + str(name).replace("_", "-")
+        if str(name).startswith(("sim-", "sim_")) or _opts.option_type(be, full) is None:
             known = ", ".join(o.name for o in sim_options(be))
             raise TypeError(f"unknown virtual sensor option {name!r}; known: {known}")
-        is_flag = int(be.deref(info).type) == K.LEP_SIM_OPT_FLAG
-        rc = lib.lep_sim_option_set(opts, key, _text(value, is_flag).encode(), err, 256)
-        if rc < 0:
-            raise ValueError(be.text(err) or f"{name}={value!r}: not accepted")
+        opts.set(full, value)
 
 
 class Simulator:
@@ -111,10 +79,10 @@ class Simulator:
             with leptrino.Sensor(port) as sensor: ...
 
     Options are those of `leptrino-sim` (and the `--sim-*` options of the
-    `leptrino` tool), from the same C table: the name with underscores for
-    dashes (output_rate_field, overload_every, stall_after, ...; the C field
-    names rate_hz, p_nak, replay_csv... are accepted too), values checked by
-    the library exactly as leptrino-sim checks them. Simulator.options()
+    `leptrino` tool), from the same C table (leptrino/options.h, the rows
+    "sim-..."): the name with underscores for dashes (output_rate_field,
+    overload_every, stall_after, ...), values checked by the library exactly
+    as leptrino-sim checks them. Simulator.options()
     lists them with help, range and default. An unknown name is a
     TypeError, a bad value a ValueError. The virtual sensor starts in the
     constructor; stop() (or leaving the with block) ends it.
@@ -123,13 +91,12 @@ class Simulator:
     def __init__(self, *, backend: Optional[str] = None, **options: Any) -> None:
         self._be = be = get_backend(backend)
         self._sim: Any = None
-        opts = be.new("lep_sim_options")
-        be.lib.lep_sim_options_init(opts)
-        fill_options(be, opts, options)
-        self.options: Dict[str, Any] = dict(options)
-        out = be.new_handle("lep_sim")
-        err = be.new_text(512)
-        rc = be.lib.lep_sim_start(opts, out, err, 512)
+        with _opts.Options(be) as opts:
+            fill_options(be, opts, options)
+            self.options: Dict[str, Any] = dict(options)
+            out = be.new_handle("lep_sim")
+            err = be.new_text(512)
+            rc = be.lib.lep_sim_start(opts.handle, out, err, 512)
         if rc < 0:
             msg = be.text(err)
             if rc == K.LEP_E_ARG:
@@ -197,22 +164,27 @@ class Simulator:
 
     @property
     def stats(self) -> SimStats:
-        st = self._be.new("lep_sim_stats")
-        self._be.lib.lep_sim_get_stats(self._live(), st)
-        return SimStats.from_c(st)
+        """What the virtual sensor did since it started (lep_sim_stats, by field name)."""
+        be = self._be
+        n = int(be.lib.lep_sim_stats_fields())
+        out = be.new_array("uint64_t", max(1, n))
+        be.lib.lep_sim_stats(self._live(), out, n)
+        names = [be.text(be.lib.lep_sim_stats_field_name(i)) for i in range(n)]
+        return SimStats.from_fields({k: int(out[i]) for i, k in enumerate(names)})
 
     @staticmethod
     def models(backend: Optional[str] = None) -> List[str]:
         """Names of the model presets."""
         be = get_backend(backend)
-        return list(be.string_list(be.lib.lep_sim_models()))
+        return [be.text(be.lib.lep_sim_model_name(i))
+                for i in range(int(be.lib.lep_sim_model_count()))]
 
     @staticmethod
     def model_rated(model: str, backend: Optional[str] = None) -> Rated:
         """Published rated values of a model preset."""
         be = get_backend(backend)
-        r = be.new("lep_rated")
+        r = be.doubles(6)
         rc = be.lib.lep_sim_model_rated(model.encode(), r)
         if rc < 0:
             raise error_for(be, rc, f"unknown model {model!r}")
-        return Rated(*(float(v) for v in r.axis))
+        return Rated(*(float(r[i]) for i in range(6)))

@@ -140,7 +140,8 @@ EVENT_NAMES = {v: k[len("LEP_EV_"):].lower() for k, v in vars(K).items()
 
 @dataclass(frozen=True)
 class SessionEvent:
-    """Something the session noticed beside the data (lep_session_event)."""
+    """Something the session noticed beside the data (lep_session_next_event: the
+    fields LEP_EVF_*)."""
 
     type: str  # gap, disconnected, reconnected, tare, overload_begin, overload_end,
     #            limit_exceeded, limit_cleared
@@ -183,7 +184,7 @@ class Recording:
     @property
     def metadata(self) -> Dict[str, Any]:
         """Model, serial, firmware, rated values, filters, tare, frame, start
-        time, library version (lep_session_metadata_json)."""
+        time, library version (lep_session_info, LEP_INFO_METADATA_JSON)."""
         return dict(json.loads(self.metadata_json or "{}"))
 
     @property

@@ -86,7 +86,7 @@ def _wrench_batch(frame, t_utc, si, raw=None, rated=(200, 200, 400, 4, 4, 4)):
     wb.arrays.t_utc[:n] = t_utc
     wb.arrays.si[:n] = si
     wb.arrays.raw[:n] = raw if raw is not None else [[0] * 6] * n
-    wb.arrays.c.n = n
+    wb.arrays.n = n
     return wb.encode()
 
 

@@ -102,8 +102,10 @@ def compiled(tmp_path_factory: pytest.TempPathFactory) -> Tuple[Layout, Layout, 
         pytest.skip("not run from a leptrino checkout (set LEPTRINO_SOURCE_DIR)")
     assert ROOT is not None
     view = compiler_view(ROOT, tmp_path_factory.mktemp("layout"))
-    assert {"lep_client_stats", "lep_session_health", "lep_response"} <= set(view[0])
+    assert {"lep_client_stats", "lep_frame_stats", "lep_response"} <= set(view[0])
     assert "lep_response.u.sample.raw" in view[1] and "LEP_E_STALLED" in view[2]
+    # the host API's sizes and indices are enumerators now: the compiler says them too
+    assert {"LEP_EVF_COUNT", "LEP_H_COUNT", "LEP_MD_COUNT", "LEP_SIMST_COUNT"} <= set(view[2])
     return view
 
 

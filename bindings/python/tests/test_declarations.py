@@ -38,7 +38,12 @@ def headers() -> cheaders.Headers:
     h = cheaders.parse(ROOT / "include" / "leptrino")
     # the reader must actually see the headers, or the check is vacuous
     assert len(h.functions) >= 60 and "lep_record_fill" in h.functions
-    assert {"lep_sample", "lep_sim_options", "lep_response"} <= set(h.structs)
+    assert {"lep_sample", "lep_client_stats", "lep_response"} <= set(h.structs)
+    # the host API mirrors no layout: options, batches, events, health and
+    # metadata are handles and flat arrays
+    assert not {"lep_session_options", "lep_sim_options", "lep_session_batch",
+                "lep_session_event", "lep_session_health", "lep_session_metadata",
+                "lep_sim_stats"} & set(h.structs)
     return h
 
 
@@ -420,56 +425,106 @@ def _counter_structs(h: cheaders.Headers) -> List[str]:
     return [n for n in h.structs if n.endswith("_stats") or n.endswith("_health")]
 
 
-def test_every_counter_struct_has_its_dataclass(headers: cheaders.Headers) -> None:
-    """Each *_stats / *_health struct of the headers is a dataclass of
-    leptrino with exactly its members, in order (nested counter structs as
-    their own dataclass)."""
-    import leptrino
+#: enums that index a flat array of counters, and the library's name function
+_COUNTER_ENUMS = {"lep_health_field": "lep_session_health_field_name",
+                  "lep_sim_stat": "lep_sim_stats_field_name"}
 
-    structs = _counter_structs(headers)
-    assert {"lep_client_stats", "lep_sim_stats", "lep_session_health"} <= set(structs)
+
+def _dataclasses_by_c_name() -> Dict[str, Any]:
     by_doc = {}
     for cls in vars(_stats).values():
         if dataclasses.is_dataclass(cls):
             m = re.search(r"C: (lep_\w+) \(", cls.__doc__ or "")
             assert m, cls
             by_doc[m.group(1)] = cls
-    assert set(by_doc) == set(structs)
+    return by_doc
+
+
+def _flat_names(cls: Any) -> List[str]:
+    """A dataclass's fields as flat names (a nested counter dataclass: its own)."""
+    out: List[str] = []
+    for f in dataclasses.fields(cls):
+        sub = getattr(_stats, str(f.type), None)
+        out += _flat_names(sub) if dataclasses.is_dataclass(sub) else [f.name]
+    return out
+
+
+def test_every_counter_struct_has_its_dataclass(headers: cheaders.Headers) -> None:
+    """Each *_stats / *_health struct of the headers is a dataclass of
+    leptrino with exactly its members, in order; each enum of a flat counter
+    array (health, the virtual sensor's counters) is one with a field per
+    enumerator (its name without the prefix, lower case; a nested counter
+    struct as its own dataclass)."""
+    import leptrino
+
+    structs = _counter_structs(headers)
+    assert {"lep_client_stats", "lep_frame_stats"} <= set(structs)
+    by_doc = _dataclasses_by_c_name()
+    assert set(by_doc) == set(structs) | set(_COUNTER_ENUMS)
     for name in structs:
         cls = by_doc[name]
         assert getattr(leptrino, cls.__name__) is cls  # exported
         want = [f[0] for f in headers.structs[name].fields]
         assert [f.name for f in dataclasses.fields(cls)] == want, name
+    for name in _COUNTER_ENUMS:
+        cls = by_doc[name]
+        assert getattr(leptrino, cls.__name__) is cls
+        items = [e for e in headers.enums[name] if not e.endswith("_COUNT")]
+        prefix = items[0][:items[0].index("_", 4) + 1]  # LEP_H_, LEP_SIMST_
+        assert _flat_names(cls) == [e[len(prefix):].lower() for e in items], name
     assert [f.name for f in dataclasses.fields(leptrino.ClientStats)][-5:] == [
         "resent_after_timeout", "resent_confirmed", "recoveries", "reserved_nonzero", "stalls"]
+    assert [f.name for f in dataclasses.fields(leptrino.Health)][-1] == "client"
 
 
-def test_counters_are_copied_from_c(backend: str) -> None:
-    """from_c reads every member: distinct values in, the same values out."""
+def test_counter_names_are_the_librarys(backend: str) -> None:
+    """The library names its flat counters (lep_*_field_name) exactly as the
+    dataclasses' fields, in the order of the array it fills."""
     import leptrino
 
     be = leptrino.get_backend(backend)
-    for cname, cls in (("lep_client_stats", leptrino.ClientStats),
-                       ("lep_sim_stats", leptrino.SimStats),
-                       ("lep_session_health", leptrino.Health)):
+    lib = be.lib
+    for cls, count, name_of in (
+            (leptrino.Health, lib.lep_session_health_fields, lib.lep_session_health_field_name),
+            (leptrino.SimStats, lib.lep_sim_stats_fields, lib.lep_sim_stats_field_name)):
+        names = [be.text(name_of(i)) for i in range(int(count()))]
+        assert names == _flat_names(cls), cls
+        assert be.text(name_of(len(names))) == ""  # NULL past the end
+
+
+def test_counters_are_copied_from_c(backend: str) -> None:
+    """from_c reads every member of a struct, from_fields every name: distinct
+    values in, the same values out."""
+    import leptrino
+
+    be = leptrino.get_backend(backend)
+    structs: List[Tuple[str, Any]] = [("lep_client_stats", leptrino.ClientStats),
+                                      ("lep_frame_stats", leptrino.FrameStats)]
+    for cname, cls in structs:
         c = be.new(cname)
         want: Dict[str, Any] = {}
         for i, f in enumerate(dataclasses.fields(cls)):
-            if f.type in ("int", int):  # 1..40: fits every member, uint8_t too
-                setattr(c, f.name, 1 + i)
-                want[f.name] = 1 + i
-            elif f.type in ("float", float):
-                setattr(c, f.name, 0.5 + i)
-                want[f.name] = 0.5 + i
-            elif f.type in ("bool", bool):
-                setattr(c, f.name, True)
-                want[f.name] = True
+            setattr(c, f.name, 1 + i)
+            want[f.name] = 1 + i
         got = cls.from_c(c)
         assert {k: getattr(got, k) for k in want} == want, cname
-    h = be.new("lep_session_health")
-    sub = h.client
-    sub.stalls = 7
-    assert leptrino.Health.from_c(h).client.stalls == 7
+    flats: List[Any] = [leptrino.Health, leptrino.SimStats, leptrino.ClientStats]
+    for cls in flats:
+        names = _flat_names(cls)
+        values = {n: float(1 + i) for i, n in enumerate(names)}
+        made: Any = cls.from_fields(values)
+        flat: Dict[str, Any] = {}
+        for f in dataclasses.fields(made):
+            v: Any = getattr(made, f.name)
+            if dataclasses.is_dataclass(v) and not isinstance(v, type):
+                flat.update(dataclasses.asdict(v))
+            else:
+                flat[f.name] = v
+        assert flat == {n: (True if isinstance(flat[n], bool) else v)
+                        for n, v in values.items()}, cls
+    h = leptrino.Health.from_fields({n: 7.0 for n in _flat_names(leptrino.Health)})
+    assert h.client.stalls == 7 and isinstance(h.client.stalls, int)
+    assert isinstance(h.shortfall, bool) and isinstance(h.elapsed_s, float)
 
 
 # ---- the generated files and the library ---------------------------------

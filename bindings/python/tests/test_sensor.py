@@ -180,7 +180,7 @@ def test_record_count_and_running_stream(backend: str) -> None:
 
 
 def test_record_grows_past_its_estimate(backend: str) -> None:
-    with leptrino.Simulator(rate_hz=3000, backend=backend) as port:
+    with leptrino.Simulator(rate=3000, backend=backend) as port:
         with leptrino.Sensor(port, backend=backend) as s:
             rec = s.record(seconds=0.5)  # no output-rate field: sized for 1200 Hz
             # The arrays start sized for 0.5 s at 1200 Hz (694 rows) and must grow;
@@ -221,7 +221,7 @@ def test_stale_stream_at_start_up(backend: str) -> None:
 
 
 def test_nak_retries_then_success(backend: str) -> None:
-    sim = leptrino.Simulator(p_nak=0.3, seed=11, backend=backend)
+    sim = leptrino.Simulator(nak=0.3, seed=11, backend=backend)
     with sim as port, leptrino.Sensor(port, retries=10, backend=backend) as s:
         for _ in range(20):
             assert s.filter == 0
@@ -232,7 +232,7 @@ def test_nak_retries_then_success(backend: str) -> None:
 
 
 def test_nak_past_the_limit(backend: str) -> None:
-    with leptrino.Simulator(p_nak=1.0, backend=backend) as port:
+    with leptrino.Simulator(nak=1.0, backend=backend) as port:
         with pytest.raises(leptrino.NakError) as info:
             leptrino.Sensor(port, retries=2, backend=backend)
         assert info.value.error == K.LEP_E_NAK
@@ -296,7 +296,7 @@ def test_ctrl_c_during_record_keeps_the_samples(backend: str) -> None:
 def test_disconnect_while_streaming(backend: str) -> None:
     # the hang-up counts from the virtual sensor's start: late enough that
     # opening (start-up recovery, identity) is over on a loaded machine
-    sim = leptrino.Simulator(hangup_after_s=1.5, backend=backend)
+    sim = leptrino.Simulator(hangup_after=1.5, backend=backend)
     with sim as port, leptrino.Sensor(port, backend=backend) as s:
         with pytest.raises(leptrino.DisconnectedError):
             with s.stream() as st:
@@ -347,11 +347,11 @@ def test_simulator_options(backend: str) -> None:
     with pytest.raises(TypeError, match="no_such"):
         leptrino.Simulator(no_such=1, backend=backend)
     with pytest.raises(ValueError, match="rate"):
-        leptrino.Simulator(rate_hz=0, backend=backend)
+        leptrino.Simulator(rate=0, backend=backend)
     with pytest.raises(leptrino.LeptrinoError):
         leptrino.Simulator.model_rated("NOPE", backend=backend)
-    sim = leptrino.Simulator(p_drop=0.05, p_garbage=0.1, seed=3, overload_every_s=0.3,
-                             overload_duration_s=0.1, backend=backend)
+    sim = leptrino.Simulator(drop=0.05, garbage=0.1, seed=3, overload_every=0.3,
+                             overload_duration=0.1, backend=backend)
     with sim as port, leptrino.Sensor(port, backend=backend) as s:
         rec = s.record(count=600)
         assert rec.missing() > 0  # dropped messages leave gaps in the sequence

@@ -379,7 +379,7 @@ class SensorNode:
         sensor = self.sensor
         lib = sensor._be.lib
         wb = self._batch
-        c_batch = wb.arrays.c
+        arrays = wb.arrays
         t_mono = wb.t_mono
         wrench, wrench_raw, c = self.wrench, self.wrench_raw, self.counters
         assert wrench is not None and wrench_raw is not None
@@ -388,12 +388,11 @@ class SensorNode:
         failing = False
         silent_since = next_events = time.monotonic()
         while not self._stop.is_set():
-            c_batch.n = 0
             try:
-                rc = int(lib.lep_session_read(sensor._live(), c_batch, timeout_ms))
+                rc = arrays.read(sensor._live(), timeout_ms, wb.cap)
             except LeptrinoError:  # closed under us
                 break
-            n = int(c_batch.n)
+            n = arrays.n
             sensor._delivered += n
             now = time.monotonic()
             if n:

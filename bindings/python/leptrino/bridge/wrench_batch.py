@@ -37,9 +37,9 @@ class WrenchBatch:
                              f"{K.LEP_ROS_FRAME_ID_MAX} bytes")
         self._be = be
         self._fn = be.lib.lep_ros_wrench_cdr
-        self._rated = be.new("lep_rated")
+        self._rated = be.doubles(6)
         for i, v in enumerate(rated):
-            self._rated.axis[i] = float(v)
+            self._rated[i] = float(v)
         self._fid = fid
         self.cap = cap
         self.size = int(be.lib.lep_ros_wrench_size(len(fid)))
@@ -56,7 +56,10 @@ class WrenchBatch:
         # sleep in the session's read, so the code it runs starts cold
         # (docs/bridge.md, "Where the time goes"): plain memoryviews and
         # slices rather than numpy calls, the byte ranges precomputed.
-        self._c = self.arrays.c
+        a = self.arrays
+        self._pt = be.array_ptr(a.t_utc, "double")
+        self._psi = be.array_ptr(a.si, "double")
+        self._praw = be.array_ptr(a.raw, "int16_t")
         self._nbytes = cap * self.size
         self._mw, self._mr = memoryview(self._w), memoryview(self._r)
         self._mst = memoryview(self._st)
@@ -68,11 +71,11 @@ class WrenchBatch:
         """The arrays' samples [0, n) as (wrench payloads, wrench_raw
         payloads, stamps in ns); stamps never go back, across calls too.
         LeptrinoError for a time the message cannot hold."""
-        n = int(self._c.n)
+        n = self.arrays.n
         if n == 0:
             return [], [], []
-        rc = self._fn(self._c, 0, n, self._rated, self._fid, self._plast, self._pw, self._pr,
-                      self._nbytes, self._pst)
+        rc = self._fn(n, self._pt, self._psi, self._praw, self._rated, self._fid, self._plast,
+                      self._pw, self._pr, self._nbytes, self._pst)
         if rc != 0:
             raise LeptrinoError(f"serializing WrenchStamped: error {int(rc)}", int(rc))
         end = n * self.size
