@@ -348,17 +348,19 @@ enum lep_metadata_field {
     LEP_MD_LOWPASS_HZ = 9,       /* host low-pass cut-off, 0 off */
     LEP_MD_LOWPASS_DELAY_S = 10, /* its group delay at low frequency */
     LEP_MD_DECIMATE = 11,
-    LEP_MD_ROTATION = 12,   /* 9 fields, row-major */
-    LEP_MD_SHIFT_M = 21,    /* 3 fields */
-    LEP_MD_TARED = 24,      /* 1 when a tare is in force */
-    LEP_MD_TARE = 25,       /* 6 fields, counts */
-    LEP_MD_START_UTC = 31,  /* UTC s of the last start (of open before one) */
-    LEP_MD_START_MONO = 32, /* monotonic s of the same instant */
-    LEP_MD_SIM = 33,        /* 1 for an in-process virtual sensor */
-    LEP_MD_PAYLOAD = 34,    /* 4 fields: mass kg, centre of mass x y z m; mass 0: none */
-    LEP_MD_GRAVITY = 38,    /* 3 fields, m/s^2, sensor frame */
-    LEP_MD_LIMIT = 41,      /* 6 fields, N and N m, 0: none */
-    LEP_MD_COUNT = 47
+    LEP_MD_ROTATION = 12,          /* 9 fields, row-major */
+    LEP_MD_SHIFT_M = 21,           /* 3 fields */
+    LEP_MD_TARED = 24,             /* 1 when a tare is in force */
+    LEP_MD_TARE = 25,              /* 6 fields, counts */
+    LEP_MD_START_UTC = 31,         /* UTC s of the last start (of open before one) */
+    LEP_MD_START_MONO = 32,        /* monotonic s of the same instant */
+    LEP_MD_SIM = 33,               /* 1 for an in-process virtual sensor */
+    LEP_MD_PAYLOAD = 34,           /* 4 fields: mass kg, centre of mass x y z m; mass 0: none */
+    LEP_MD_GRAVITY = 38,           /* 3 fields, m/s^2, sensor frame */
+    LEP_MD_LIMIT = 41,             /* 6 fields, N and N m, 0: none */
+    LEP_MD_OUTPUT_RATE_FIELD = 47, /* 1 when the sensor answered product info in the 38-byte
+                                      form (with the output-rate field), 0 in the 32-byte */
+    LEP_MD_COUNT = 48
 };
 
 /* Number of metadata fields this library fills. */

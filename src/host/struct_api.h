@@ -310,6 +310,9 @@ typedef struct lep_session_options {
     double gravity[3];      /* gravity in the sensor frame, m/s^2, default (0, 0, -9.80665) */
     double limit[LEP_AXES]; /* per axis, N and N m: an SI value (compensated, in the output
                                frame) beyond +/- limit is a limit episode; 0 (default): none */
+    /* ---- added with the flat API ---- */
+    int retries; /* a command is sent again this many times after a NAK or a timeout, on
+                    every connection (0..255, default LEP_CLIENT_DEFAULT_RETRIES) */
 } lep_session_options;
 
 /* Destination arrays, caller-owned. Every pointer may be NULL to skip that

@@ -108,6 +108,7 @@ static void test_identity_and_texts_by_key(void)
     TEST_ASSERT_EQUAL_DOUBLE(1200.0, md[LEP_MD_NOMINAL_HZ]);
     TEST_ASSERT_EQUAL_DOUBLE(1.0, md[LEP_MD_ROTATION]);
     TEST_ASSERT_EQUAL_DOUBLE(-9.80665, md[LEP_MD_GRAVITY + 2]);
+    TEST_ASSERT_EQUAL_DOUBLE(0.0, md[LEP_MD_OUTPUT_RATE_FIELD]); /* the 32-byte v1.13 form */
     TEST_ASSERT_EQUAL_size_t(LEP_MD_COUNT, lep_session_metadata_fields());
 }
 
@@ -242,6 +243,27 @@ static void test_live_options_by_name(void)
     TEST_ASSERT_EQUAL_STRING(lep_session_port(s), buf);
     lep_rotation_from_rpy(0, 0, 0, r);
     TEST_ASSERT_EQUAL_DOUBLE(1.0, r[0]);
+}
+
+/* The 38-byte product info shows in the metadata; the resend budget is an
+ * option of its own, kept by the session. */
+static void test_product_info_form_and_retries(void)
+{
+    double md[LEP_MD_COUNT];
+    int64_t v = 0;
+    char buf[16];
+    TEST_ASSERT_EQUAL_INT(LEP_OK,
+                          lep_options_set_int(o, "sim-output-rate-field", 1, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_options_set_int(o, "retries", 7, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_options_set_int(o, "retries", 256, err, sizeof err));
+    open_session();
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_metadata(s, md, LEP_MD_COUNT));
+    TEST_ASSERT_EQUAL_DOUBLE(1.0, md[LEP_MD_OUTPUT_RATE_FIELD]);
+    TEST_ASSERT_EQUAL_DOUBLE(1200.0, md[LEP_MD_OUTPUT_RATE_HZ]);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_info(s, LEP_INFO_OUTPUT_RATE, buf, sizeof buf, NULL));
+    TEST_ASSERT_EQUAL_STRING("1200", buf);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_get_int(s, "retries", &v));
+    TEST_ASSERT_EQUAL_INT64(7, v);
 }
 
 static void test_missing_port_says_which(void)
@@ -448,6 +470,7 @@ int main(void)
     RUN_TEST(test_short_arrays_get_the_fields_they_know);
     RUN_TEST(test_tare_comes_back_as_an_event_with_its_offsets);
     RUN_TEST(test_live_options_by_name);
+    RUN_TEST(test_product_info_form_and_retries);
     RUN_TEST(test_missing_port_says_which);
     RUN_TEST(test_sim_by_options_stats_and_models);
     RUN_TEST(test_port_list_is_a_handle);

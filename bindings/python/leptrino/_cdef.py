@@ -604,7 +604,8 @@ enum lep_metadata_field
   LEP_MD_PAYLOAD = 34,
   LEP_MD_GRAVITY = 38,
   LEP_MD_LIMIT = 41,
-  LEP_MD_COUNT = 47
+  LEP_MD_OUTPUT_RATE_FIELD = 47,
+  LEP_MD_COUNT = 48
 };
 size_t lep_session_metadata_fields(void);
 int lep_session_metadata(lep_session *s, double *out, size_t n);

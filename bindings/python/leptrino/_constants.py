@@ -257,7 +257,9 @@ LEP_MD_SIM = 33  # 1 for an in-process virtual sensor
 LEP_MD_PAYLOAD = 34  # 4 fields: mass kg, centre of mass x y z m; mass 0: none
 LEP_MD_GRAVITY = 38  # 3 fields, m/s^2, sensor frame
 LEP_MD_LIMIT = 41  # 6 fields, N and N m, 0: none
-LEP_MD_COUNT = 47
+LEP_MD_OUTPUT_RATE_FIELD = 47  # 1 when the sensor answered product info in the 38-byte form (with
+# the output-rate field), 0 in the 32-byte
+LEP_MD_COUNT = 48
 
 # sim.h
 LEP_SIMST_SAMPLES_SENT = 0  # continuous data messages queued to the port

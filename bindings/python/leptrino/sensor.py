@@ -184,6 +184,7 @@ class Sensor:
                 o.set("sim", True, "Sensor: ")
                 fill_options(be, o, dict(sim) if isinstance(sim, Mapping) else {})
             o.set("timeout", self._timeout_ms, "Sensor: ")
+            o.set("retries", int(retries), "Sensor: ")
             o.set("sync-quiet", max(1, _ms(quiet, "quiet")), "Sensor: ")
             o.set("latency", _ms(latency, "latency"), "Sensor: ")
             o.set("tare-samples", int(tare), "Sensor: ")
@@ -212,8 +213,6 @@ class Sensor:
         if be.text(err):  # opened, with the virtual sensor's warning (a replay file cut short)
             warnings.warn(be.text(err), RuntimeWarning, stacklevel=2)
         try:
-            client = lib.lep_session_client(self._s)
-            self._check(lib.lep_client_set_retries(client, retries))
             md = self._md()
             rate_text = self._text(K.LEP_INFO_OUTPUT_RATE)
             rate_hz = int(md[K.LEP_MD_OUTPUT_RATE_HZ])
@@ -221,8 +220,7 @@ class Sensor:
                 model=self._text(K.LEP_INFO_MODEL), serial=self._text(K.LEP_INFO_SERIAL),
                 firmware=self._text(K.LEP_INFO_FIRMWARE), output_rate=rate_text,
                 output_rate_hz=rate_hz or None,
-                # the 38-byte form carries the field; the 32-byte form gives ""
-                has_output_rate=bool(rate_text) or rate_hz > 0)
+                has_output_rate=bool(md[K.LEP_MD_OUTPUT_RATE_FIELD]))
             self._rated = Rated(*md[K.LEP_MD_RATED:K.LEP_MD_RATED + K.LEP_AXES])
             self._nominal_hz = md[K.LEP_MD_NOMINAL_HZ] or float(K.LEP_SESSION_NOMINAL_HZ)
         except BaseException:

@@ -33,6 +33,7 @@ void lep_session_options_init(lep_session_options *o)
     o->reconnect_max_ms = 1000;
     o->reconnect_give_up_ms = -1;
     o->decimate = 1;
+    o->retries = LEP_CLIENT_DEFAULT_RETRIES;
     o->rotation[0] = o->rotation[4] = o->rotation[8] = 1.0;
     o->gravity[2] = -LEP_STANDARD_GRAVITY;
 }
@@ -80,6 +81,10 @@ int lep_priv_session_options_check(const lep_session_options *o, char *err, size
     if (o->latency_ms < 0 || o->latency_ms > 10000) {
         lep_priv_set_err(err, errlen, "session: latency_ms must be 0..10000 (got %d)",
                          o->latency_ms);
+        return LEP_E_ARG;
+    }
+    if (o->retries < 0 || o->retries > 255) {
+        lep_priv_set_err(err, errlen, "session: retries must be 0..255 (got %d)", o->retries);
         return LEP_E_ARG;
     }
     if (o->decimate == 0) {

@@ -510,6 +510,7 @@ int lep_session_metadata(lep_session *s, double *out, size_t n)
     f[LEP_MD_START_UTC] = m.start_utc;
     f[LEP_MD_START_MONO] = m.start_mono;
     f[LEP_MD_SIM] = m.sim ? 1.0 : 0.0;
+    f[LEP_MD_OUTPUT_RATE_FIELD] = m.info.has_output_rate ? 1.0 : 0.0;
     memcpy(out, f, sizeof(double) * (n < LEP_MD_COUNT ? n : LEP_MD_COUNT));
     return LEP_OK;
 }

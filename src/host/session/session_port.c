@@ -24,6 +24,8 @@ int lep_priv_session_connect(lep_session *s, char *err, size_t errlen)
     if (rc == LEP_OK)
         rc = lep_client_set_timeout(&s->client, s->opt.timeout_ms);
     if (rc == LEP_OK)
+        rc = lep_client_set_retries(&s->client, s->opt.retries);
+    if (rc == LEP_OK)
         rc =
             lep_client_sync(&s->client, s->opt.sync_quiet_ms > 0 ? s->opt.sync_quiet_ms : 1, &info);
     if (rc != LEP_OK) {
