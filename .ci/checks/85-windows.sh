@@ -28,7 +28,7 @@ if ! [ -x "$sim" ]; then
   cmake --preset dev >/dev/null && cmake --build --preset dev -j2 --target leptrino_sim >/dev/null
 fi
 exe=$build/tools/leptrino/leptrino.exe
-wineserver -p 60 >/dev/null 2>&1 || true   # one server for every wine start below
+wineserver -p 60 >/dev/null 2>&1 </dev/null || true   # one server for every wine start below
 simlog=$(mktemp)
 "$sim" >"$simlog" 2>&1 &
 simpid=$!
@@ -43,18 +43,30 @@ pty=$(head -n 1 "$simlog")
 case "$pty" in /dev/*) ;; *) echo "windows: leptrino-sim printed no port: $pty"; exit 1 ;; esac
 ln -sfn "$pty" "$WINEPREFIX/dosdevices/com5"
 fail=0
+# wine's output goes to files, never through $(...): the Wine services it
+# starts keep a pipe open long after the program has ended.
+tmp=$(mktemp -d)
+w() { # NAME ARGS...: run leptrino.exe ARGS under Wine, stdout/stderr in $tmp/NAME.{out,err}
+  local name=$1
+  shift
+  set +e
+  wine "$exe" "$@" >"$tmp/$name.out" 2>"$tmp/$name.err" </dev/null
+  local rc=$?
+  set -e
+  tr -d '\r' <"$tmp/$name.err" >"$tmp/$name.txt"
+  return $rc
+}
+wine cmd /c exit >/dev/null 2>&1 </dev/null || true   # start Wine's services once
 
-out=$(wine "$exe" info COM5 2>&1) || { echo "$out"; echo "windows: info COM5 FAILED"; fail=1; }
-grep -E "^(model|serial|firmware):" <<<"$out" || true
-grep -q "PFS055YA501U6" <<<"$out" || { echo "windows: info COM5: no model"; fail=1; }
+w info info COM5 || { cat "$tmp/info.txt"; echo "windows: info COM5 FAILED"; fail=1; }
+tr -d '\r' <"$tmp/info.out" | grep -E "^(model|serial|firmware):" || true
+grep -q "PFS055YA501U6" "$tmp/info.out" || { echo "windows: info COM5: no model"; fail=1; }
 
-csv=$(mktemp)
-err=$(wine "$exe" stream COM5 --duration 2 2>&1 >"$csv") || { echo "$err"; echo "windows: stream FAILED"; fail=1; }
-echo "$err" | tr -d '\r'
-rows=$(grep -c '^[0-9]' "$csv" || true)
-rm -f "$csv"
-hz=$(sed -nE 's/.* ([0-9.]+) Hz measured.*/\1/p' <<<"$err" | head -n 1)
-gaps=$(sed -nE 's/.*, ([0-9]+) gaps.*/\1/p' <<<"$err" | head -n 1)
+w stream stream COM5 --duration 2 || { echo "windows: stream FAILED"; fail=1; }
+cat "$tmp/stream.txt"
+rows=$(grep -c '^[0-9]' "$tmp/stream.out" || true)
+hz=$(sed -nE 's/.* ([0-9.]+) Hz measured.*/\1/p' "$tmp/stream.txt" | head -n 1)
+gaps=$(sed -nE 's/.*, ([0-9]+) gaps.*/\1/p' "$tmp/stream.txt" | head -n 1)
 echo "windows: stream COM5 2 s: $rows rows, ${hz:-?} Hz, ${gaps:-?} gaps"
 if [ "${gaps:-x}" != 0 ] || ! awk -v h="${hz:-0}" 'BEGIN { exit !(h >= 1180 && h <= 1220) }' ||
    [ "$rows" -lt 2300 ]; then
@@ -62,20 +74,17 @@ if [ "${gaps:-x}" != 0 ] || ! awk -v h="${hz:-0}" 'BEGIN { exit !(h >= 1180 && h
   fail=1
 fi
 
-set +e
-wine "$exe" info COM9 >/dev/null 2>&1
-rc=$?
-set -e
-echo "windows: info COM9 (no such port): exit $rc"
+rc=0
+w missing info COM9 || rc=$?
+echo "windows: info COM9 (no such port): exit $rc: $(head -n 1 "$tmp/missing.txt")"
 [ "$rc" = 6 ] || { echo "windows: want exit 6 (port not found)"; fail=1; }
 
-set +e
-msg=$(wine "$exe" stream --sim --duration 1 2>&1 >/dev/null)
-rc=$?
-set -e
-echo "windows: stream --sim: exit $rc: $(tr -d '\r' <<<"$msg" | head -n 1)"
-grep -q "not available on Windows" <<<"$msg" && [ "$rc" = 1 ] ||
+rc=0
+w sim stream --sim --duration 1 || rc=$?
+echo "windows: stream --sim: exit $rc: $(head -n 1 "$tmp/sim.txt")"
+grep -q "not available on Windows" "$tmp/sim.txt" && [ "$rc" = 1 ] ||
   { echo "windows: stream --sim: want the clear message and exit 1"; fail=1; }
+rm -rf "$tmp"
 
 echo "windows: done in $(( $(date +%s) - start )) s"
 exit "$fail"
