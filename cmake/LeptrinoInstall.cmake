@@ -76,7 +76,7 @@ endif()
 # else beside the other data, for an administrator to copy to /etc/udev/rules.d.
 # -DLEPTRINO_UDEV_RULES_DIR=... (relative to the prefix) chooses another place.
 set(_lep_udev_rule ${PROJECT_SOURCE_DIR}/packaging/udev/60-leptrino.rules)
-if(NOT LEPTRINO_CORE_ONLY AND EXISTS ${_lep_udev_rule})
+if(NOT LEPTRINO_CORE_ONLY AND NOT WIN32 AND EXISTS ${_lep_udev_rule})
   if(DEFINED LEPTRINO_UDEV_RULES_DIR)
     set(_lep_udev_dir ${LEPTRINO_UDEV_RULES_DIR})
   elseif(CMAKE_INSTALL_PREFIX STREQUAL "/usr")

@@ -70,7 +70,14 @@ set(CPACK_DEBIAN_PACKAGE_CONTROL_STRICT_PERMISSION ON)
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS "pkg-config")
 
 find_program(LEPTRINO_DPKG_DEB dpkg-deb)
-if(LEPTRINO_DPKG_DEB)
+if(WIN32)
+  # Windows: a zip of the install tree (bin/leptrino.dll, bin/leptrino.exe,
+  # lib/libleptrino.dll.a, lib/libleptrino.a, include/, lib/pkgconfig,
+  # lib/cmake/leptrino): leptrino-<version>-win64.zip.
+  set(CPACK_GENERATOR ZIP)
+  set(CPACK_SYSTEM_NAME win64)
+  set(CPACK_PACKAGING_INSTALL_PREFIX "")
+elseif(LEPTRINO_DPKG_DEB)
   set(CPACK_GENERATOR DEB)
 else()
   set(CPACK_GENERATOR TGZ)

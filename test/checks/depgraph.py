@@ -31,7 +31,7 @@ def file_name(obj: str) -> str:
     obj = os.path.normpath(obj)
     base = os.path.basename(obj)
     parent = os.path.basename(os.path.dirname(obj))
-    name = base[:-2] if base.endswith(".o") else base
+    name = base[:-2] if base.endswith(".o") else base[:-4] if base.endswith(".obj") else base
     if parent and not parent.endswith(".dir"):
         return f"{parent}/{name}"
     return name

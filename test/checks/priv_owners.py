@@ -44,7 +44,7 @@ def prototypes(header: str) -> List[Tuple[str, str, int]]:
 
 
 def defined_by(nm: str, objs: Sequence[str]) -> Dict[str, Set[str]]:
-    """Source file name (x.c, from x.c.o or x.o) -> global symbols it defines."""
+    """Source file name (x.c, from x.c.o, x.c.obj or x.o) -> global symbols it defines."""
     out: Dict[str, Set[str]] = {}
     for obj in objs:
         try:
@@ -54,6 +54,8 @@ def defined_by(nm: str, objs: Sequence[str]) -> Dict[str, Set[str]]:
             print(f"priv_owners: {nm} -P {obj}: {exc}", file=sys.stderr)
             raise SystemExit(2) from exc
         base = os.path.basename(obj)
+        if base.endswith(".obj"):  # CMake's object suffix for Windows targets
+            base = base[:-2]
         name = base[:-2] if base.endswith(".c.o") else base[:-2] + ".c"
         syms = out.setdefault(name, set())
         for line in text.splitlines():

@@ -1,7 +1,6 @@
 /* Engine of leptrino's Unity-compatible test harness (see unity.h). */
 #include "unity.h"
 
-#include <math.h>
 #include <setjmp.h>
 #include <stdio.h>
 #include <string.h>
@@ -592,15 +591,29 @@ void UnityAssertEqualArray(const void *expected, const void *actual, size_t coun
 
 /* ---- floating point ---------------------------------------------------- */
 
+/* NaN and infinity tests on a double without <math.h>'s isnan/isinf: those are
+ * type-generic macros, and mingw-w64's convert a double to float in one branch
+ * (-Werror=float-conversion). NaN is the one value unequal to itself; x - x is
+ * NaN only for an infinity. */
+static int double_is_nan(double x)
+{
+    return x != x;
+}
+
+static int double_is_inf(double x)
+{
+    return !double_is_nan(x) && double_is_nan(x - x);
+}
+
 /* 1 when actual is within delta of expected; equal infinities match, NaN never does. */
 static int within_double(double delta, double expected, double actual)
 {
     double diff;
-    if (isnan(expected) || isnan(actual)) {
+    if (double_is_nan(expected) || double_is_nan(actual)) {
         return 0;
     }
-    if (isinf(expected) || isinf(actual)) {
-        return isinf(expected) && isinf(actual) && (expected > 0) == (actual > 0);
+    if (double_is_inf(expected) || double_is_inf(actual)) {
+        return double_is_inf(expected) && double_is_inf(actual) && (expected > 0) == (actual > 0);
     }
     diff = actual - expected;
     if (diff < 0) {
@@ -668,9 +681,9 @@ void UnityAssertFloatSpecial(double value, int want_nan, int want_inf, int negat
 {
     int is = 0;
     if (want_nan) {
-        is = isnan(value) ? 1 : 0;
+        is = double_is_nan(value);
     } else if (want_inf) {
-        is = isinf(value) ? 1 : 0;
+        is = double_is_inf(value);
     }
     if (is != negate) {
         return;

@@ -6,7 +6,8 @@
  * load_opts.c the options about the tool on the sensor and the limits,
  * sensors.c turns PORT / --sim / --sim-* into sessions (leptrino/session.h:
  * the one place that starts a sensor up) and reports their errors,
- * term.c and signals.c deal with the terminal and signals, status.c draws
+ * term_*.c and signals_*.c (one per OS) deal with the terminal and signals,
+ * safe_text.c with sensor text on it, status.c draws
  * the live status line, watch_view.c the screen of `leptrino watch`.
  * No sensor logic lives here: tare, units, filtering, gaps, reconnection
  * and the formatting of samples belong to the session and its writer.
@@ -18,6 +19,14 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
+
+/* The printf archetype of format attributes: mingw-w64's gcc reads plain
+ * "printf" as msvcrt's (no %zu); the build uses its C99 stdio, gnu_printf's. */
+#if defined(__MINGW32__)
+#define CLI_PRINTF gnu_printf
+#else
+#define CLI_PRINTF printf
+#endif
 
 #include <leptrino/leptrino.h>
 #include <leptrino/output.h>
@@ -92,7 +101,7 @@ void cli_args_unknown(cli_args *a);
 /* Print "leptrino: CMD: <message>" and set failed. */
 void cli_args_error(cli_args *a, const char *fmt, ...)
 #if defined(__GNUC__)
-    __attribute__((format(printf, 2, 3)))
+    __attribute__((format(CLI_PRINTF, 2, 3)))
 #endif
     ;
 
@@ -141,7 +150,7 @@ void cli_sensors_close(cli_port_opts *po);
 void cli_sim_help(FILE *f);
 int cli_session_fail(lep_session *s, const char *cmd, const char *port, const char *what, int err);
 
-/* ---- term.c: the user's terminal ---- */
+/* ---- term_posix.c / term_win32.c: the user's terminal ---- */
 /* Single keys from stdin without echo when stdin is a terminal and we are in
  * its foreground process group; false otherwise (no change made). */
 bool cli_term_keys_begin(void);
@@ -155,6 +164,9 @@ void cli_term_screen_end(void);
 void cli_term_restore_from_signal(void);
 /* Both fds are the same terminal. */
 bool cli_term_same_tty(int fd_a, int fd_b);
+/* A status line may be drawn on stderr: a terminal, ours (not a background
+ * job's), and not the one the data (out_fd, -1 for a file) goes to. */
+bool cli_term_status_ok(int out_fd);
 /* Window size of the terminal on fd (80x24 when unknown). */
 void cli_term_size(int fd, int *cols, int *rows);
 /* poll() for input on fds[0..n) (n <= CLI_MAX_SENSORS + 1; fd < 0 ignored);
@@ -180,7 +192,7 @@ void cli_status_update(cli_status *st, double now, const char *text);
 /* Erase the line so that a message can be printed. */
 void cli_status_clear(cli_status *st);
 
-/* ---- signals.c ---- */
+/* ---- signals_posix.c / signals_win32.c ---- */
 /* Stop on SIGINT/SIGTERM/SIGHUP (a second SIGINT/SIGTERM ends the program
  * after restoring the terminal); SIGUSR1 / SIGUSR2 request tare / untare;
  * SIGWINCH notes a resize; SIGPIPE is ignored so a closed output is a write

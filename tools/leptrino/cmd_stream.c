@@ -353,7 +353,7 @@ static void batch_init(stream_state *st, lep_session_batch *b)
 
 static void note(stream_state *st, const sensor_run *r, const char *fmt, ...)
 #if defined(__GNUC__)
-    __attribute__((format(printf, 3, 4)))
+    __attribute__((format(CLI_PRINTF, 3, 4)))
 #endif
     ;
 

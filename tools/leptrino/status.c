@@ -6,19 +6,13 @@
  * rewritten with \r would land in the middle of the data rows, so there is
  * none, and only the summary is printed after the last row. Nor is there
  * one for a background job, which would draw over the shell's prompt. */
-#define _POSIX_C_SOURCE 200809L
-
-#include <unistd.h>
-
 #include "cli.h"
 
 #define CLI_STATUS_PERIOD_S 0.25
 
 void cli_status_init(cli_status *st, int out_fd)
 {
-    pid_t fg = tcgetpgrp(STDERR_FILENO); /* -1: not our controlling terminal */
-    st->enabled = isatty(STDERR_FILENO) == 1 && (fg < 0 || fg == getpgrp()) &&
-                  (out_fd < 0 || !cli_term_same_tty(out_fd, STDERR_FILENO));
+    st->enabled = cli_term_status_ok(out_fd);
     st->drawn = false;
     st->last_draw = -1.0;
 }

@@ -6,13 +6,10 @@
 #endif
 
 #include <errno.h>
-#include <fcntl.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include "errmsg.h"
 #include "fd_write.h"
@@ -85,7 +82,7 @@ static int flush_buf(lep_output *w)
 
 static void put(lep_output *w, const char *fmt, ...)
 #if defined(__GNUC__)
-    __attribute__((format(printf, 2, 3)))
+    __attribute__((format(LEP_PRIV_PRINTF, 2, 3)))
 #endif
     ;
 
@@ -150,10 +147,7 @@ static int new_writer(int fd, bool own, const lep_output_options *o, lep_output 
     }
     w->fd = fd;
     w->own_fd = own;
-    {
-        struct stat sb;
-        w->regular = fstat(fd, &sb) == 0 && S_ISREG(sb.st_mode);
-    }
+    w->regular = lep_priv_fd_is_regular(fd) != 0;
     w->o = *o;
     *out = w;
     return LEP_OK;
@@ -174,7 +168,7 @@ int lep_output_open_fd_opts(int fd, const lep_output_options *o, lep_output **ou
 int lep_output_open_opts(const char *path, const lep_output_options *o, lep_output **out, char *err,
                          size_t errlen)
 {
-    int fd, flags, rc;
+    int fd, rc;
     if (out != NULL)
         *out = NULL;
     if (out == NULL) {
@@ -182,15 +176,14 @@ int lep_output_open_opts(const char *path, const lep_output_options *o, lep_outp
         return LEP_E_ARG;
     }
     if (path == NULL || strcmp(path, "-") == 0)
-        return new_writer(STDOUT_FILENO, false, o, out, err, errlen);
+        return new_writer(1, false, o, out, err, errlen); /* standard output */
     if (!options_ok(o, err, errlen))
         return LEP_E_ARG; /* before anything is created */
     if (path[0] == '\0') {
         lep_priv_set_err(err, errlen, "output: empty file name");
         return LEP_E_ARG;
     }
-    flags = O_WRONLY | O_CREAT | O_CLOEXEC | (o != NULL && o->overwrite ? O_TRUNC : O_EXCL);
-    fd = open(path, flags, 0666);
+    fd = lep_priv_fd_create(path, o != NULL && o->overwrite);
     if (fd < 0) {
         int e = errno;
         switch (e) {
@@ -219,7 +212,7 @@ int lep_output_open_opts(const char *path, const lep_output_options *o, lep_outp
     }
     rc = new_writer(fd, true, o, out, err, errlen);
     if (rc != LEP_OK)
-        close(fd);
+        (void)lep_priv_fd_close(fd);
     return rc;
 }
 
@@ -588,7 +581,7 @@ int lep_output_close(lep_output *w)
     if (!w->header_done && w->err_no == 0)
         write_header(w);
     rc = flush_buf(w);
-    if (w->own_fd && close(w->fd) != 0 && rc == LEP_OK) {
+    if (w->own_fd && lep_priv_fd_close(w->fd) != 0 && rc == LEP_OK) {
         w->err_no = errno;
         rc = LEP_E_IO;
     }

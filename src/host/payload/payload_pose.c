@@ -18,6 +18,7 @@
 #include "errmsg.h"
 #include "leptrino/error.h"
 #include "leptrino/payload.h"
+#include "line_read.h"
 #include "struct_api.h"
 
 #define META_PREFIX "# leptrino-metadata: "
@@ -294,7 +295,7 @@ int lep_payload_pose_read(const char *path, double mean[LEP_AXES], uint64_t *sam
         return e == ENOENT ? LEP_E_NOT_FOUND : LEP_E_IO;
     }
     while (rc == LEP_OK) {
-        ssize_t len = getline(&line, &cap, f);
+        long len = lep_priv_getline(&line, &cap, f);
         if (len < 0)
             break;
         r.line++;

@@ -13,11 +13,21 @@ enum lep_priv_write_result {
     LEP_PRIV_WRITE_POLL_FAILED /* poll() failed (errno is its error) or reported POLLNVAL (EBADF) */
 };
 
-/* Write data[0..len) to fd. Retries after EINTR; after EAGAIN/EWOULDBLOCK it
+/* Write data[0..len) to fd (fd_write_posix.c, fd_write_win32.c). Retries after EINTR; after EAGAIN/EWOULDBLOCK it
  * waits in poll() for POLLOUT, until deadline_ns (CLOCK_MONOTONIC, as
  * lep_priv_monotonic_ns) or without end when deadline_ns is negative. Blocks
  * at most until the deadline. On failure some bytes may have been written.
  * Returns an enum lep_priv_write_result; errno is set as stated there. */
 int lep_priv_write_all(int fd, const void *data, size_t len, int64_t deadline_ns);
+
+/* Create path for writing, not inherited by child processes, bytes written as
+ * given (binary on Windows): a new file, never an existing one (errno EEXIST),
+ * unless overwrite is non-zero (then it is truncated). Returns the descriptor,
+ * or -1 with errno set. */
+int lep_priv_fd_create(const char *path, int overwrite);
+/* 1 when fd is a regular file, else 0. */
+int lep_priv_fd_is_regular(int fd);
+/* Close fd: 0, or -1 with errno set. */
+int lep_priv_fd_close(int fd);
 
 #endif

@@ -1,13 +1,6 @@
 /* The process-level helpers of leptrino/process.h: the one table from
- * LEP_E_* codes to exit statuses, and the process's CPU time. */
-#if defined(__APPLE__)
-#define _DARWIN_C_SOURCE
-#else
-#define _DEFAULT_SOURCE
-#endif
-
-#include <sys/resource.h>
-
+ * LEP_E_* codes to exit statuses (the process's CPU time is in
+ * cpu_time_posix.c / cpu_time_win32.c). */
 #include "leptrino/process.h"
 
 int lep_exit_code(int err)
@@ -36,13 +29,4 @@ int lep_exit_code(int err)
     default:
         return LEP_EXIT_FAIL;
     }
-}
-
-double lep_cpu_seconds(void)
-{
-    struct rusage ru;
-    if (getrusage(RUSAGE_SELF, &ru) != 0)
-        return 0.0;
-    return (double)ru.ru_utime.tv_sec + (double)ru.ru_utime.tv_usec * 1e-6 +
-           (double)ru.ru_stime.tv_sec + (double)ru.ru_stime.tv_usec * 1e-6;
 }

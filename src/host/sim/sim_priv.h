@@ -3,6 +3,7 @@
  * Each file calls only the files listed after it (test/checks/depgraph.py
  * fails the build on a cycle):
  *
+ *   sim_flat.c      the flat public functions over the struct ones (no state)
  *   sim_api.c       lep_sim_start/stop, requests from callers, stats (public)
  *   sim_serve.c     the serving thread: waits for input, deadlines and
  *                   requests; stalls, hang-up and reopen; publishing counters
@@ -15,6 +16,9 @@
  *   sim_link.c      ownership of the link path; sim_trace.c the write trace
  *   sim_filter.c, sim_signal.c, sim_replay.c, sim_models.c, sim_options.c:
  *                   the signal, the sensor's filter, the options (no state here)
+ *   sim_win32.c     on Windows, instead of sim_api.c .. sim_trace.c (which serve
+ *                   a pseudo-terminal): lep_sim_start says the virtual sensor is
+ *                   not available there yet (docs/windows.md)
  *
  * struct lep_sim is shared; each field group below says which file writes it. */
 #ifndef LEPTRINO_SIM_PRIV_H

@@ -1,13 +1,14 @@
 #!/usr/bin/env python3
 """Check libleptrino's frames with an independent decoder.
 
-Runs emit_frames (path given as the only argument), which prints one frame
-per line as "<name>\\t<hex>". Each frame is decoded here by an implementation
-written from the protocol text alone (stdlib only, nothing imported from the
-repository): DLE STX start, DLE DLE unstuffing, DLE ETX end, BCC = XOR of the
-message bytes and ETX, the BCC byte raw after DLE ETX; then the Length field and
-the reserved byte are checked, and the message is compared with the one built
-here from the spec's tables for the same inputs.
+Runs emit_frames (its path the last argument, after an emulator such as wine
+when one is given), which prints one frame per line as "<name>\\t<hex>". Each
+frame is decoded here by an implementation written from the protocol text alone
+(stdlib only, nothing imported from the repository): DLE STX start, DLE DLE
+unstuffing, DLE ETX end, BCC = XOR of the message bytes and ETX, the BCC byte
+raw after DLE ETX; then the Length field and the reserved byte are checked, and
+the message is compared with the one built here from the spec's tables for the
+same inputs.
 """
 
 from __future__ import annotations
@@ -137,10 +138,10 @@ SPEC_WORKED = {
 
 
 def main() -> int:
-    if len(sys.argv) != 2:
-        print("usage: check_frames.py <emit_frames executable>", file=sys.stderr)
+    if len(sys.argv) < 2:
+        print("usage: check_frames.py [EMULATOR...] <emit_frames executable>", file=sys.stderr)
         return 2
-    run = subprocess.run([sys.argv[1]], capture_output=True, text=True, check=False)
+    run = subprocess.run(sys.argv[1:], capture_output=True, text=True, check=False)
     if run.returncode != 0:
         print(f"emit_frames failed ({run.returncode}): {run.stderr}", file=sys.stderr)
         return 1

@@ -92,6 +92,13 @@ int cli_term_read_key(void)
     return n == 1 ? (int)c : -1;
 }
 
+bool cli_term_status_ok(int out_fd)
+{
+    pid_t fg = tcgetpgrp(STDERR_FILENO); /* -1: not our controlling terminal */
+    return isatty(STDERR_FILENO) == 1 && (fg < 0 || fg == getpgrp()) &&
+           (out_fd < 0 || !cli_term_same_tty(out_fd, STDERR_FILENO));
+}
+
 bool cli_term_same_tty(int fd_a, int fd_b)
 {
     struct stat a, b;
@@ -129,36 +136,4 @@ int cli_wait_input(const int *fds, size_t n, bool *ready, int timeout_ms)
     for (i = 0; i < n; ++i)
         ready[i] = rc > 0 && p[i].fd >= 0 && p[i].revents != 0;
     return rc < 0 && errno != EINTR ? -1 : (rc < 0 ? 0 : rc);
-}
-
-size_t cli_safe_text(const char *s, char *out, size_t cap)
-{
-    static const char hex[] = "0123456789abcdef";
-    size_t used = 0;
-    if (cap == 0)
-        return 0;
-    for (; *s != '\0'; ++s) {
-        unsigned char c = (unsigned char)*s;
-        if (c >= 0x20 && c < 0x7f && c != '\\') {
-            if (used + 1 >= cap)
-                break;
-            out[used++] = (char)c;
-        } else if (c == '\\') {
-            if (used + 2 >= cap)
-                break;
-            out[used++] = '\\';
-            out[used++] = '\\';
-        } else {
-            /* A control byte (ESC starts a terminal command) or a non-ASCII
-             * byte: shown as \xNN, never written as is. */
-            if (used + 4 >= cap)
-                break;
-            out[used++] = '\\';
-            out[used++] = 'x';
-            out[used++] = hex[c >> 4];
-            out[used++] = hex[c & 0x0f];
-        }
-    }
-    out[used] = '\0';
-    return used;
 }

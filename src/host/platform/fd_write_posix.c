@@ -8,7 +8,9 @@
 #include "fd_write.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <poll.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "posix_clock.h"
@@ -53,4 +55,20 @@ int lep_priv_write_all(int fd, const void *data, size_t len, int64_t deadline_ns
         return LEP_PRIV_WRITE_FAILED;
     }
     return LEP_PRIV_WRITE_OK;
+}
+
+int lep_priv_fd_create(const char *path, int overwrite)
+{
+    return open(path, O_WRONLY | O_CREAT | O_CLOEXEC | (overwrite ? O_TRUNC : O_EXCL), 0666);
+}
+
+int lep_priv_fd_is_regular(int fd)
+{
+    struct stat sb;
+    return fstat(fd, &sb) == 0 && S_ISREG(sb.st_mode) ? 1 : 0;
+}
+
+int lep_priv_fd_close(int fd)
+{
+    return close(fd);
 }
