@@ -13,7 +13,8 @@ import os
 import threading
 from typing import IO, Dict, List, Optional, Sequence
 
-from .typehash import MESSAGES, type_description
+from .transport import Endpoint, Publisher, Transport
+from .typehash import MESSAGES, SERVICES, type_description
 
 _SEPARATOR = "=" * 80
 
@@ -48,11 +49,16 @@ def ros2msg_schema(ros_type: str) -> bytes:
     """The ros2msg schema text of a message type: its definition, then each
     type it references (by full name, sorted), as rosbag2 writes them."""
     desc = type_description(ros_type)
-    parts: List[str] = [MESSAGES[ros_type].rstrip("\n")]
+    base, _, part = ros_type.rpartition("_")
+    if ros_type not in MESSAGES and base in SERVICES and part in ("Request", "Response"):
+        text = SERVICES[base].partition("---")[0 if part == "Request" else 2]
+    else:
+        text = MESSAGES[ros_type]
+    parts: List[str] = [text.strip("\n")] if text.strip() else []
     for ref in desc["referenced_type_descriptions"]:
         name = ref["type_name"]
         parts.append(f"{_SEPARATOR}\nMSG: {name}\n{MESSAGES[name].rstrip(chr(10))}")
-    return ("\n".join(parts) + "\n").encode("utf-8")
+    return ("\n".join(parts) + "\n").encode("utf-8") if parts else b""
 
 
 class McapRecorder:
@@ -128,3 +134,36 @@ class McapRecorder:
             finally:
                 self._f.close()
                 self._f = None
+
+
+class McapPublisher(Publisher):
+    """A channel of the recording: always listening while the file is open."""
+
+    def __init__(self, rec: McapRecorder, channel_id: int) -> None:
+        self._rec = rec
+        self._cid = channel_id
+
+    @property
+    def listening(self) -> bool:
+        return self._rec._f is not None
+
+    def publish(self, payloads: Sequence[bytes], stamps: Sequence[int], now_ns: int) -> None:
+        self._rec.write_batch(self._cid, payloads, stamps, now_ns)
+
+
+class McapTransport(Transport):
+    """The recording as a transport: topics only (no services, no inputs)."""
+
+    name = "mcap"
+    interactive = False
+
+    def __init__(self, rec: McapRecorder) -> None:
+        self.recorder = rec
+
+    def advertise(self, endpoint: Endpoint) -> Publisher:
+        return McapPublisher(self.recorder,
+                             self.recorder.channel(endpoint.name, endpoint.ros_type,
+                                                   endpoint.qos_depth))
+
+    def close(self) -> None:
+        self.recorder.close()

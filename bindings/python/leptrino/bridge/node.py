@@ -22,7 +22,7 @@ import math
 import threading
 import time
 from dataclasses import dataclass, field
-from typing import Any, Callable, Dict, List, Optional, Protocol, Sequence, Tuple
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
 from .. import _constants as K
 from ..errors import LeptrinoError
@@ -31,9 +31,8 @@ from . import cdr
 from . import rmw_zenoh as rz
 from .gravity_in import VECTOR3_STAMPED, GravityInput
 from .commands import CommandRunner
-from .mcap_out import McapRecorder
 from .ratelog import RateLimitedLog
-from .typehash import rihs01
+from .transport import Endpoint, NodeRef, Publisher, Request, Transport
 from .wrench_batch import WrenchBatch
 
 log = logging.getLogger("leptrino.bridge")
@@ -98,73 +97,50 @@ def axis_names(bits: int) -> str:
     return ",".join(a for i, a in enumerate(AXES) if bits >> i & 1)
 
 
-class Output(Protocol):
-    """Another transport of a topic (dds.DdsWriter, foxglove_out.FoxgloveChannel):
-    publish() gets a batch of payloads with their stamps (ns) and the
-    publication time (ns); close() withdraws it."""
-
-    def publish(self, payloads: Sequence[bytes], stamps: Sequence[int], now_ns: int) -> None:
-        ...
-
-    def close(self) -> None:
-        ...
-
-
 class Topic:
-    """One publisher: its graph entity, its Zenoh publisher and/or MCAP
-    channel, further outputs, and its sequence number."""
+    """One topic of a node on every transport: its publishers; a batch goes
+    to those with someone listening, the others count it as skipped."""
 
-    __slots__ = ("entity", "gid", "pub", "cid", "mcap", "seq", "name", "outputs")
+    __slots__ = ("name", "ros_type", "pubs", "skipped")
 
-    def __init__(self, entity: rz.Entity, session: Any, mcap: Optional[McapRecorder],
-                 qos_depth: int = 10) -> None:
-        self.entity = entity
-        self.name = entity.name
-        self.gid = entity.gid()
-        self.seq = 0
-        self.pub: Any = None
-        self.mcap = mcap
-        self.outputs: List[Output] = []
-        self.cid = (mcap.channel(entity.name, entity.ros_type, qos_depth) if mcap is not None
-                    else -1)
-        if session is not None:
-            import zenoh
+    def __init__(self, name: str, ros_type: str, pubs: Sequence[Tuple[str, Publisher]]) -> None:
+        self.name = name
+        self.ros_type = ros_type
+        self.pubs = list(pubs)  # (transport name, publisher)
+        self.skipped: Dict[str, int] = {t: 0 for t, _ in pubs}
 
-            self.pub = session.declare_publisher(
-                entity.key(), congestion_control=zenoh.CongestionControl.DROP,
-                reliability=zenoh.Reliability.RELIABLE)
+    @property
+    def listening(self) -> bool:
+        """Whether any transport has someone listening now."""
+        for _, p in self.pubs:
+            if p.listening:
+                return True
+        return False
+
+    def skip(self, n: int) -> None:
+        """n messages nobody listens to on any transport (not serialized)."""
+        for t in self.skipped:
+            self.skipped[t] += n
 
     def send(self, payload: bytes, stamp_ns: int) -> None:
         self.send_batch((payload,), (stamp_ns,))
 
     def send_batch(self, payloads: Sequence[bytes], stamps: Sequence[int]) -> None:
-        """Publish a batch: one time of publication, sequence numbers on."""
-        seq = self.seq
-        self.seq = seq + len(payloads)
+        """Publish a batch where someone listens: one time of publication."""
         now = time.time_ns()
-        if self.pub is not None:
-            put, pack, gid, glen = self.pub.put, rz.ATTACHMENT.pack, self.gid, rz.GID_SIZE
-            for p in payloads:
-                seq += 1
-                put(p, attachment=pack(seq, now, glen, gid))
-        if self.mcap is not None:
-            self.mcap.write_batch(self.cid, payloads, stamps, now)
-        for out in self.outputs:
-            out.publish(payloads, stamps, now)
+        for t, p in self.pubs:
+            if p.listening:
+                p.publish(payloads, stamps, now)
+            else:
+                self.skipped[t] += len(payloads)
 
     def close(self) -> None:
-        if self.pub is not None:
+        for _, p in self.pubs:
             try:
-                self.pub.undeclare()
-            except Exception:  # the session may be closing
+                p.close()
+            except Exception:  # the transport may be closing
                 pass
-            self.pub = None
-        for out in self.outputs:
-            try:
-                out.close()
-            except Exception:
-                pass
-        self.outputs = []
+        self.pubs = []
 
 
 #: The answer to a tare or untare that comes while another is being served.
@@ -186,6 +162,12 @@ class Counters:
     limit_axes: int = 0  # bit i: axis i beyond its limit in the current episode
     last_limit_axes: int = 0  # the axes of the last episode begun
     last_request: str = ""  # the last tare/untare from the network: what, who, when, result
+    lock: threading.Lock = field(default_factory=threading.Lock, repr=False, compare=False)
+
+    def bump(self, name: str, n: int = 1) -> None:
+        """Add n to a counter that several threads update (under the lock)."""
+        with self.lock:
+            setattr(self, name, getattr(self, name) + n)
 
 
 class SensorNode:
@@ -205,10 +187,13 @@ class SensorNode:
         self._stop = threading.Event()
         self._thread: Optional[threading.Thread] = None
         self._lock = threading.Lock()  # tare/untare from service threads
-        self._tokens: List[Any] = []
-        self._queryables: List[Any] = []
-        self._zenoh_requests: Optional[CommandRunner] = None  # the Zenoh services' thread
-        self._dds_services: List[Any] = []  # dds.TriggerService
+        # requests from the network: one served at a time (in this thread), the others
+        # answered busy at once, on every transport
+        self._requests: Optional[CommandRunner] = None
+        self._gate = threading.Lock()
+        self._in_flight = False
+        self._transports: List[Transport] = []
+        self.node_ref: Optional[NodeRef] = None
         self.wrench: Optional[Topic] = None
         self.wrench_raw: Optional[Topic] = None
         self.diagnostics: Optional[Topic] = None
@@ -223,7 +208,6 @@ class SensorNode:
             self.sensor.close()
             raise
         self._diag_lock = threading.Lock()  # diagnostics from two threads
-        self._subscribers: List[Any] = []
 
     def _set_load(self) -> GravityInput:
         """Payload, initial gravity and limits into the session (ValueError
@@ -238,84 +222,43 @@ class SensorNode:
         s.set_limits(self.opts.limits)
         return GravityInput(spec.name, s.set_gravity, g)  # type: ignore[arg-type]
 
-    def declare(self, node_id: int, next_entity_id: Callable[[], int], session: Any = None,
-                mcap: Optional[McapRecorder] = None, dds: Any = None, fox: Any = None) -> None:
-        """Declare the node, its topics and services on session (a
-        zenoh.Session, or None), its channels in mcap (or None), its writers
-        and command topics on dds (a DdsParticipant, or None) and its
-        channels and services on fox (a FoxgloveServer, or None)."""
+    def declare(self, node_id: int, next_entity_id: Callable[[], int],
+                transports: Sequence[Transport]) -> None:
+        """Declare the node, its topics (`wrench`, `wrench_raw`,
+        `diagnostics`), its services (`tare`, `untare`) and its input
+        (`gravity`) on each transport; read-only: no service or input at all."""
         spec, opts = self.spec, self.opts
         ns = rz.normalize_namespace(opts.namespace)
-        zid = str(session.zid()) if session is not None else "0"
-        qos = rz.qos_keyexpr(True, opts.qos_depth)
+        node = NodeRef(ns, spec.name, node_id)
+        self.node_ref = node
+        self._transports = list(transports)
 
-        def entity(kind: str, topic: str = "", ros_type: str = "") -> rz.Entity:
-            eid = node_id if kind == rz.NODE else next_entity_id()
-            name = rz.fully_qualified(ns, spec.name, topic) if topic else ""
-            return rz.Entity(opts.domain, zid, node_id, eid, kind, ns, spec.name, name,
-                             ros_type, rihs01(ros_type) if ros_type else "",
-                             qos if ros_type else "")
+        def endpoint(topic: str, ros_type: str) -> Endpoint:
+            return Endpoint(node, rz.fully_qualified(ns, spec.name, topic), ros_type,
+                            next_entity_id(), opts.qos_depth)
 
-        self.node_entity = entity(rz.NODE)
-        d = opts.qos_depth
-        self.wrench = Topic(entity(rz.PUBLISHER, "wrench", WRENCH), session, mcap, d)
-        self.wrench_raw = Topic(entity(rz.PUBLISHER, "wrench_raw", WRENCH), session, mcap, d)
-        self.diagnostics = Topic(entity(rz.PUBLISHER, "diagnostics", DIAGNOSTICS),
-                                 session, mcap, d)
-        node = (ns, spec.name)
-        # read-only: no service, command topic or input is declared at all
-        self.services = {} if opts.read_only else {
-            "tare": entity(rz.SERVICE, "tare", TRIGGER),
-            "untare": entity(rz.SERVICE, "untare", TRIGGER),
-        }
-        inputs: List[rz.Entity] = []
-        if not opts.read_only:
-            self.gravity_entity = entity(rz.SUBSCRIPTION, "gravity", VECTOR3_STAMPED)
-            inputs.append(self.gravity_entity)
-            self._declare_gravity(session, dds, fox, node)
-        for t in self.wrench, self.wrench_raw, self.diagnostics:
-            if dds is not None:
-                t.outputs.append(dds.writer(node, t.name, t.entity.ros_type))
-            if fox is not None:
-                t.outputs.append(fox.channel(t.name, t.entity.ros_type))
-        calls = {"tare": self.tare, "untare": self.untare}
-        for svc, ent in self.services.items():
-            if dds is not None:  # a command topic and an rmw_cyclonedds service
-                dds.command(node, ent.name, calls[svc])
-                self._dds_services.append(
-                    dds.service(node, ent.name, calls[svc], self._rejected_request))
-            if fox is not None:
-                fox.service(ent.name, calls[svc], self._rejected_request)
-        if session is not None:
-            if self.services:  # one request served, one waiting; the others: busy at once
-                self._zenoh_requests = CommandRunner(f"bridge-{self.spec.name}-zenoh-requests", 1)
-            for svc, ent in self.services.items():
-                self._queryables.append(session.declare_queryable(
-                    ent.key(), self._service_handler(svc), complete=True))
-            for ent in [self.node_entity, self.wrench.entity, self.wrench_raw.entity,
-                        self.diagnostics.entity, *self.services.values(), *inputs]:
-                self._tokens.append(session.liveliness().declare_token(ent.token()))
+        for t in transports:
+            t.declare_node(node)
 
-    def _declare_gravity(self, session: Any, dds: Any, fox: Any, node: Tuple[str, str]) -> None:
-        """The `gravity` input on each transport: a Zenoh subscriber on the
-        topic's key (its liveliness token is declared with the others), a
-        DDS reader, a Foxglove client-publish topic; all feed self.gravity."""
-        ent, receive = self.gravity_entity, self.gravity.receive
-        if session is not None:
-            def on_sample(sample: Any) -> None:
-                try:
-                    payload = bytes(sample.payload.to_bytes())
-                except Exception as e:  # nothing a peer sends may reach zenoh's thread
-                    receive(b"", "zenoh", f"unreadable payload: {e}")
-                    return
-                receive(payload, "zenoh")
-            self._subscribers.append(session.declare_subscriber(ent.key(), on_sample))
-        if dds is not None:
-            dds.subscription(node, ent.name, VECTOR3_STAMPED,
-                             lambda p: receive(p, "dds"))
-        if fox is not None:
-            fox.client_topic(ent.name, VECTOR3_STAMPED,
-                             lambda p, wrong: receive(p, "foxglove", wrong))
+        def topic(name: str, ros_type: str) -> Topic:
+            ep = endpoint(name, ros_type)
+            return Topic(ep.name, ros_type, [(t.name, t.advertise(ep)) for t in transports])
+
+        self.wrench = topic("wrench", WRENCH)
+        self.wrench_raw = topic("wrench_raw", WRENCH)
+        self.diagnostics = topic("diagnostics", DIAGNOSTICS)
+        if opts.read_only:
+            return
+        interactive = [t for t in transports if t.interactive]
+        if interactive:
+            self._requests = CommandRunner(f"bridge-{spec.name}-requests", 1)
+        for which in ("tare", "untare"):
+            ep = endpoint(which, TRIGGER)
+            for t in interactive:
+                t.serve(ep, lambda req, w=which: self.on_request(w, req))
+        ep = endpoint("gravity", VECTOR3_STAMPED)
+        for t in interactive:
+            t.take(ep, lambda p, refuse, name=t.name: self.gravity.receive(p, name, refuse))
 
     # -- life cycle ----------------------------------------------------------
     def start(self) -> None:
@@ -334,32 +277,15 @@ class SensorNode:
             self._thread.join(timeout)
 
     def close(self) -> None:
-        """Undeclare the services, topics and tokens; stop and close the sensor."""
+        """Withdraw the topics, stop the request thread; stop and close the
+        sensor (the transports, shared by the nodes, are the bridge's to close)."""
         self._stop.set()
-        for q in self._queryables:
-            try:
-                q.undeclare()
-            except Exception:
-                pass
-        self._queryables = []
-        if self._zenoh_requests is not None:
-            self._zenoh_requests.stop()
-            self._zenoh_requests = None
-        for sub in self._subscribers:
-            try:
-                sub.undeclare()
-            except Exception:
-                pass
-        self._subscribers = []
+        if self._requests is not None:
+            self._requests.stop()
+            self._requests = None
         for t in self.wrench, self.wrench_raw, self.diagnostics:
             if t is not None:
                 t.close()
-        for tok in self._tokens:
-            try:
-                tok.undeclare()
-            except Exception:
-                pass
-        self._tokens = []
         try:
             if not self.sensor.closed and self.sensor.streaming:
                 self.sensor.stop()
@@ -486,9 +412,13 @@ class SensorNode:
         values += [(f"tare_offset_{a}", f"{v:g}") for a, v in
                    zip(("fx", "fy", "fz", "mx", "my", "mz"), offsets)]
         values.append(("rejected_requests", str(c.rejected_requests)))
-        if self._dds_services:  # clients whose requests DDS drops (dds.TriggerService)
-            values.append(("dds_headerless_clients",
-                           str(sum(s.headerless_clients for s in self._dds_services))))
+        for topic in self.wrench, self.wrench_raw, self.diagnostics:
+            if topic is not None:  # messages nobody listened to: not serialized nor sent
+                values += [(f"skipped_{t}_{topic.name.rsplit('/', 1)[-1]}", str(n))
+                           for t, n in topic.skipped.items()]
+        if self.node_ref is not None:
+            for t in self._transports:
+                values += t.diagnostics(self.node_ref)
         values += self._load_values(h)
         values += [("model", info.model), ("serial", info.serial),
                    ("firmware", info.firmware), ("port", self.sensor.port)]
@@ -530,7 +460,7 @@ class SensorNode:
         if not self._serve_one("tare", requester):
             return False, BUSY
         try:
-            self.counters.tare_requests += 1
+            self.counters.bump("tare_requests")
             result = self._tare_locked()
         finally:
             self._lock.release()
@@ -577,7 +507,7 @@ class SensorNode:
         counted (tare_busy) and logged at most every 5 s, not recorded."""
         if self._lock.acquire(blocking=False):
             return True
-        self.counters.tare_busy += 1
+        self.counters.bump("tare_busy")
         self._refusal_log.warning("%s/%s by %s refused: busy with another", self.spec.name, what,
                                   requester or "the bridge")
         return False
@@ -593,49 +523,54 @@ class SensorNode:
         when = time.strftime("%Y-%m-%dT%H:%M:%S", time.gmtime(t_ns // 1_000_000_000))
         when += f".{t_ns // 1_000_000 % 1000:03d}Z"
         text = f"{what} by {requester} at {when}: {'done' if result[0] else 'failed'}"
-        self.counters.last_request = text
+        with self.counters.lock:
+            self.counters.last_request = text
         audit.info("%s: %s (%s)", self.spec.name, text, result[1])
         try:
             self.publish_diagnostics(t_ns)
         except Exception as e:  # the outputs may be closing
             log.warning("%s: diagnostics: %s", self.spec.name, e)
 
-    def _rejected_request(self) -> None:
-        self.counters.rejected_requests += 1  # (the caller logs, rate-limited)
-
-    def _service_handler(self, which: str) -> Callable[[Any], None]:
-        def handle(query: Any) -> None:
+    def on_request(self, which: str, req: Request) -> None:
+        """A tare or untare request from a transport (its thread): a request
+        that cannot be read is counted and refused; while another is served
+        it is answered busy at once (counted); else served in this node's
+        request thread, then answered."""
+        why = req.error
+        if not why:
             try:
-                att = query.attachment
-                seq, _ts, client_gid = rz.parse_attachment(
-                    bytes(att.to_bytes()) if att is not None else b"")
-                payload = query.payload
-                if payload is not None:
-                    cdr.check_encapsulation(bytes(payload.to_bytes()))
+                cdr.check_encapsulation(req.payload)
             except ValueError as e:
-                self._refusal_log.warning("%s/%s: request refused: %s", self.spec.name, which, e)
-                self._rejected_request()
-                query.reply_err(f"malformed request: {e}".encode())
-                return
-            who = f"zenoh client {client_gid.hex()}"
-            src = getattr(query, "source_info", None)
-            sid = getattr(src, "source_id", None) if src is not None else None
-            if sid is not None:
-                who += f" (source {sid.zid}/{sid.eid})"
+                why = str(e)
+        if why:
+            self._refusal_log.warning("%s/%s: request refused: %s", self.spec.name, which, why)
+            self._rejected_request()
+            req.refuse(why)
+            return
+        who = req.requester
+        with self._gate:
+            busy, self._in_flight = self._in_flight, True
+        runner = self._requests
+        if not busy and (runner is None or not runner.submit(
+                f"{self.spec.name}/{which}", lambda: self._serve(which, req))):
+            with self._gate:
+                self._in_flight = False
+            busy = True
+        if busy:
+            self.counters.bump("tare_busy")
+            self._refusal_log.warning("%s/%s by %s refused: busy with another",
+                                      self.spec.name, which, who or "the bridge")
+            req.reply(cdr.encode_trigger_response(False, BUSY))
 
-            def serve(q: Any = query) -> None:  # in the runner's thread; q kept till then
-                try:
-                    ok, message = self.tare(who) if which == "tare" else self.untare(who)
-                    q.reply(q.key_expr, cdr.encode_trigger_response(ok, message),
-                            attachment=rz.attachment(seq, time.time_ns(), client_gid))
-                finally:
-                    q.drop()  # the query is complete: the requester stops waiting now
+    def _serve(self, which: str, req: Request) -> str:
+        try:
+            ok, message = self.tare(req.requester) if which == "tare" else \
+                self.untare(req.requester)
+        finally:
+            with self._gate:
+                self._in_flight = False
+        req.reply(cdr.encode_trigger_response(ok, message))
+        return message
 
-            runner = self._zenoh_requests
-            if runner is None or not runner.submit(f"{self.spec.name}/{which}", serve):
-                self.counters.tare_busy += 1
-                self._refusal_log.warning("%s/%s by %s refused: busy with another",
-                                          self.spec.name, which, who)
-                query.reply(query.key_expr, cdr.encode_trigger_response(False, BUSY),
-                            attachment=rz.attachment(seq, time.time_ns(), client_gid))
-        return handle
+    def _rejected_request(self) -> None:
+        self.counters.bump("rejected_requests")  # (the caller logs, rate-limited)
