@@ -1,7 +1,7 @@
 """Figures of leptrino-bridge on this machine (loopback only, bounded).
 
-    python -m leptrino.bridge.bench                 # all figures (about 2 min)
-    python -m leptrino.bridge.bench --quick         # a smoke run (about 20 s)
+    python bench/bridge_bench.py            # all figures (about 2 min)
+    python bench/bridge_bench.py --quick    # a smoke run (about 20 s)
 
 The virtual sensors run in this process (leptrino.Simulator, each on its
 pty); the bridge runs as its own process (`python -m leptrino.bridge
@@ -32,7 +32,7 @@ import threading
 import time
 from typing import Any, Dict, List, Optional
 
-from .rmw_zenoh import parse_attachment
+from leptrino.bridge.rmw_zenoh import parse_attachment
 
 
 def _free_port() -> int:
@@ -106,7 +106,7 @@ STREAM_MAX_SENSORS = 8
 def _stream_args(ports: List[str], latency_s: str) -> List[str]:
     """`leptrino stream` writing CSV for the same kind of sensors, as the
     reference the bridge's cost is compared with."""
-    from .._tools import program_path
+    from leptrino._tools import program_path
 
     args = [str(program_path("leptrino")), "stream", *ports, "--reconnect", "--latency",
             str(max(0, int(round(float(latency_s) * 1000)))), "-o", os.devnull]
@@ -123,7 +123,7 @@ def dds_reader(domain: int, n: int, seconds: float) -> int:
     from cyclonedds.sub import DataReader
     from cyclonedds.topic import Topic
 
-    from .dds import _Types, config_xml
+    from leptrino.bridge.dds import _Types, config_xml
 
     dom = Domain(domain, config_xml("127.0.0.1"))
     p = DomainParticipant(domain)
@@ -226,7 +226,7 @@ def run(n: int, seconds: float, zenoh_mod: Any, extra: Optional[List[str]] = Non
             fport = _free_port()
             args += ["--dds", "--dds-interface", "127.0.0.1", "--foxglove", f"127.0.0.1:{fport}"]
             reader = subprocess.Popen(
-                [sys.executable, "-m", "leptrino.bridge.bench", "--dds-reader",
+                [sys.executable, os.path.abspath(__file__), "--dds-reader",
                  f"{domain},{n},{seconds + 6}"], stdout=subprocess.PIPE, text=True)
             fox = _FoxgloveCounter(fport)
         for i, sim in enumerate(sims):
@@ -312,7 +312,7 @@ def run(n: int, seconds: float, zenoh_mod: Any, extra: Optional[List[str]] = Non
 def main(argv: Optional[List[str]] = None) -> int:
     import zenoh
 
-    p = argparse.ArgumentParser(prog="python -m leptrino.bridge.bench")
+    p = argparse.ArgumentParser(prog="python bench/bridge_bench.py")
     p.add_argument("--quick", action="store_true", help="a smoke run: 1 and 2 sensors, 3 s")
     p.add_argument("--seconds", type=float, default=10.0)
     p.add_argument("--max-sensors", type=int, default=16)
