@@ -381,6 +381,36 @@ class Sensor:
             ))
         return out
 
+    # -- batches and events, for a program with its own reading loop ---------
+    def sample_buffer(self, capacity: int = 256) -> "SampleBuffer":
+        """Arrays for read_batch(): up to capacity samples, every column of
+        lep_session_read (t_mono, t_utc, si, raw, zeroed, status, flags, seq)."""
+        return SampleBuffer(self._be, A.whole("sample_buffer", "capacity", capacity, 1, 1 << 20))
+
+    @_driving
+    def read_batch(self, buffer: "SampleBuffer", timeout: float) -> int:
+        """Read what the session has, up to buffer.cap samples, into buffer's
+        arrays (rows [0, buffer.n)), waiting at most timeout s for the first.
+
+        Returns the session's status without raising for it: 0 (samples or
+        not), or a negative LEP_E_* code: LEP_E_TIMEOUT (nothing came),
+        LEP_E_END (the stream ended), another error while the session
+        reconnects (status_text() says it). LeptrinoError when the sensor is
+        closed. The samples count for the events' .sample (take_events())."""
+        rc = buffer.read(self._live(), max(0, int(timeout * 1000)), buffer.cap)
+        self._delivered += buffer.n
+        return rc
+
+    @_any_thread
+    def take_events(self) -> List[SessionEvent]:
+        """The session's events queued since the last call (gaps, reconnects,
+        tare done, limits...), .sample counted from the stream's start."""
+        return self._drain_events(0)
+
+    def status_text(self, rc: int) -> str:
+        """The library's text for a status code (read_batch's)."""
+        return str(self._be.text(self._be.lib.lep_strerror(int(rc))))
+
     # -- what the sensor is --------------------------------------------------
     @property
     def product_info(self) -> ProductInfo:
@@ -776,8 +806,9 @@ class Sensor:
         return arrays.result(events, self)
 
 
-class _Arrays:
-    """numpy arrays that lep_session_read fills directly (every column)."""
+class SampleBuffer:
+    """numpy arrays that lep_session_read fills directly (every column);
+    Sensor.sample_buffer() makes one, Sensor.read_batch() fills it: n rows."""
 
     t_mono: np.ndarray
     t_utc: np.ndarray
@@ -859,6 +890,9 @@ class _Arrays:
             flags=self.flags[:n].copy(), events=list(events), metadata_json=meta,
             start_mono=start,
         )
+
+
+_Arrays = SampleBuffer  # the name inside this module
 
 
 class Stream:

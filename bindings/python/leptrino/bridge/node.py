@@ -17,6 +17,7 @@ show in the diagnostics, published at once when one begins or ends.
 
 from __future__ import annotations
 
+import functools
 import logging
 import math
 import threading
@@ -25,6 +26,7 @@ from dataclasses import dataclass, field
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
 from .. import _constants as K
+from .._backend import get_backend
 from ..errors import LeptrinoError
 from ..sensor import Sensor
 from . import cdr
@@ -202,12 +204,15 @@ class SensorNode:
             lowpass=opts.lowpass_hz, rotation=opts.rotation, degrees=False, reconnect=True,
             latency=opts.latency_s, data_timeout=opts.data_timeout_s)
         try:
-            self._batch = WrenchBatch(self.sensor._be, self.sensor.rated, spec.frame_id)
+            self._batch = WrenchBatch(get_backend(self.sensor.backend), self.sensor.rated,
+                                     spec.frame_id)
             self.gravity = self._set_load()
         except ValueError:
             self.sensor.close()
             raise
         self._diag_lock = threading.Lock()  # diagnostics from two threads
+        self._tare_done = threading.Event()  # set when the reading thread reads a TARE event
+        self._tare_wanted = False
 
     def _set_load(self) -> GravityInput:
         """Payload, initial gravity and limits into the session (ValueError
@@ -220,7 +225,7 @@ class SensorNode:
         s.set_gravity(g)
         s.set_payload(spec.payload)
         s.set_limits(self.opts.limits)
-        return GravityInput(spec.name, s.set_gravity, g)  # type: ignore[arg-type]
+        return GravityInput(spec.name, s.set_gravity, g)
 
     def declare(self, node_id: int, next_entity_id: Callable[[], int],
                 transports: Sequence[Transport]) -> None:
@@ -255,10 +260,10 @@ class SensorNode:
         for which in ("tare", "untare"):
             ep = endpoint(which, TRIGGER)
             for t in interactive:
-                t.serve(ep, lambda req, w=which: self.on_request(w, req))
+                t.serve(ep, functools.partial(self.on_request, which))
         ep = endpoint("gravity", VECTOR3_STAMPED)
         for t in interactive:
-            t.take(ep, lambda p, refuse, name=t.name: self.gravity.receive(p, name, refuse))
+            t.take(ep, self._gravity_handler(t.name))
 
     # -- life cycle ----------------------------------------------------------
     def start(self) -> None:
@@ -299,42 +304,46 @@ class SensorNode:
 
     # -- data ----------------------------------------------------------------
     def _run(self) -> None:
-        """Read the session in batches; each batch is serialized in one C
-        call and published topic by topic (no Python object per sample
-        but the payloads the transports take)."""
+        """Read the session in batches (Sensor.read_batch); while anyone
+        listens to `wrench` or `wrench_raw` on a transport, each batch is
+        serialized in one C call and published topic by topic (no Python
+        object per sample but the payloads the transports take); while
+        nobody does, it is only counted (skipped)."""
         sensor = self.sensor
-        lib = sensor._be.lib
         wb = self._batch
-        arrays = wb.arrays
+        buf = wb.arrays
         t_mono = wb.t_mono
         wrench, wrench_raw, c = self.wrench, self.wrench_raw, self.counters
         assert wrench is not None and wrench_raw is not None
-        base = sensor._delivered
-        timeout_ms = max(1, int(self.opts.timeout_s * 1000))
+        timeout = max(0.001, self.opts.timeout_s)
         failing = False
         silent_since = next_events = time.monotonic()
         while not self._stop.is_set():
             try:
-                rc = arrays.read(sensor._live(), timeout_ms, wb.cap)
+                rc = sensor.read_batch(buf, timeout)
             except LeptrinoError:  # closed under us
                 break
-            n = arrays.n
-            sensor._delivered += n
+            n = buf.n
             now = time.monotonic()
             if n:
                 if failing:
                     log.warning("%s: data again", self.spec.name)
                     failing = False
-                w, r, stamps = wb.encode()
-                wrench.send_batch(w, stamps)
-                wrench_raw.send_batch(r, stamps)
+                if wrench.listening or wrench_raw.listening:
+                    w, r, stamps = wb.encode()
+                    wrench.send_batch(w, stamps)
+                    wrench_raw.send_batch(r, stamps)
+                else:
+                    wrench.skip(n)
+                    wrench_raw.skip(n)
                 c.samples += n
                 c.last_sample_mono = t_mono[n - 1]
                 silent_since = now
             # after the batch is counted: a limit event's diagnostics (published at once)
-            # must see the samples that came with it, not "no data"
-            if not n or now >= next_events:  # the events feed counters and logs only
-                self._take_events(sensor._drain_events(base))
+            # must see the samples that came with it, not "no data"; while a tare is
+            # served, every batch (its end is the TARE event)
+            if not n or now >= next_events or self._tare_wanted:
+                self._take_events(sensor.take_events())
                 next_events = now + EVENTS_PERIOD_S
             if n:
                 continue
@@ -345,8 +354,7 @@ class SensorNode:
             # The session reconnects inside its reads; until it is back each
             # read fails or times out. Count it, say it once, go on.
             c.read_errors += 1
-            c.last_error = (sensor._be.text(lib.lep_strerror(rc)) if rc != K.LEP_E_TIMEOUT
-                            else "no data")
+            c.last_error = sensor.status_text(rc) if rc != K.LEP_E_TIMEOUT else "no data"
             if not failing:
                 log.warning("%s: %s (the session keeps trying)", self.spec.name, c.last_error)
                 failing = True
@@ -356,7 +364,9 @@ class SensorNode:
     def _take_events(self, evs: Sequence[Any]) -> None:
         for ev in evs:
             self.counters.events[ev.type] = self.counters.events.get(ev.type, 0) + 1
-            if ev.type in ("disconnected", "reconnected"):
+            if ev.type == "tare":
+                self._tare_done.set()
+            elif ev.type in ("disconnected", "reconnected"):
                 log.warning("%s: %s", self.spec.name, ev.type)
             elif ev.type in ("limit_exceeded", "limit_cleared"):
                 self._limit_event(ev)
@@ -444,6 +454,10 @@ class SensorNode:
         bridge's 1 Hz thread and from the reading thread at a limit event."""
         ns = time.time_ns() if stamp_ns is None else stamp_ns
         sec, nsec = divmod(ns, 1_000_000_000)
+        topic = self.diagnostics
+        if topic is not None and not topic.listening:
+            topic.skip(1)  # nobody listens on any transport: not even made
+            return
         with self._diag_lock:
             payload = cdr.encode_diagnostic_array(sec, nsec, self.spec.frame_id,
                                                   [self.diagnostic_status()])
@@ -470,16 +484,24 @@ class SensorNode:
     def _tare_locked(self) -> Tuple[bool, str]:
         if not self.alive:
             return False, "the sensor is not streaming"
+        self._tare_done.clear()
+        self._tare_wanted = True  # the reading thread takes the events every batch
         try:
-            self.sensor.tare(self.opts.tare_samples, wait=False)
-        except (LeptrinoError, ValueError) as e:
-            return False, f"tare failed: {e}"
-        end = time.monotonic() + 3.0
-        try:
-            while self.sensor.taring and time.monotonic() < end:
-                time.sleep(0.005)
+            try:
+                self.sensor.tare(self.opts.tare_samples, wait=False)
+            except (LeptrinoError, ValueError) as e:
+                return False, f"tare failed: {e}"
+            # its end is the session's TARE event, read by the reading thread (an
+            # event of an earlier untare, read meanwhile, is not it: taring still)
+            end = time.monotonic() + 3.0
+            while self._tare_done.wait(max(0.0, end - time.monotonic())) and \
+                    self.sensor.taring:
+                self._tare_done.clear()
             if self.sensor.taring:
                 return False, "tare started but no samples came within 3 s"
+        finally:
+            self._tare_wanted = False
+        try:
             offs = ", ".join(f"{v:g}" for v in self.sensor.tare_offsets)
         except LeptrinoError as e:  # the bridge is closing the sensor meanwhile
             return False, f"tare not finished: {e}"
@@ -530,6 +552,11 @@ class SensorNode:
             self.publish_diagnostics(t_ns)
         except Exception as e:  # the outputs may be closing
             log.warning("%s: diagnostics: %s", self.spec.name, e)
+
+    def _gravity_handler(self, transport: str) -> Callable[[bytes, str], None]:
+        def on_payload(payload: bytes, refuse: str) -> None:
+            self.gravity.receive(payload, transport, refuse)
+        return on_payload
 
     def on_request(self, which: str, req: Request) -> None:
         """A tare or untare request from a transport (its thread): a request

@@ -14,7 +14,7 @@ import numpy as np
 
 from .. import _constants as K
 from ..errors import LeptrinoError
-from ..sensor import _Arrays
+from ..sensor import SampleBuffer
 
 #: Samples per lep_session_read (a 2 ms latency budget brings 2-3 at 1.2 kHz;
 #: a stalled reader catches up in batches of this many).
@@ -43,7 +43,7 @@ class WrenchBatch:
         self._fid = fid
         self.cap = cap
         self.size = int(be.lib.lep_ros_wrench_size(len(fid)))
-        self.arrays = _Arrays(be, cap)
+        self.arrays = SampleBuffer(be, cap)
         self._w = np.zeros(cap * self.size, np.uint8)
         self._r = np.zeros(cap * self.size, np.uint8)
         self._st = np.zeros(cap, np.int64)
