@@ -309,6 +309,63 @@ def run(n: int, seconds: float, zenoh_mod: Any, extra: Optional[List[str]] = Non
             "lost": lost, "gaps": gaps, "rates": rates, "no_loss": ok}
 
 
+def cost(seconds: float, zenoh_mod: Any, latency_s: str = "0.002") -> List[Dict[str, Any]]:
+    """One sensor over Zenoh beside `leptrino stream` on another virtual
+    sensor, in one run, in two phases of `seconds` each: nobody subscribed
+    (no subscriber anywhere: the bridge publishes nothing), then one
+    subscriber on NAME/wrench only. CPU of each process, the bridge's by thread."""
+    import leptrino
+
+    ep = f"tcp/127.0.0.1:{_free_port()}"
+    conf = zenoh_mod.Config()
+    conf.insert_json5("mode", '"router"')
+    conf.insert_json5("listen/endpoints", json.dumps([ep]))
+    conf.insert_json5("scouting/multicast/enabled", "false")
+    router = zenoh_mod.open(conf)
+    domain = 1 + os.getpid() % 99
+    sim, ref_sim = leptrino.Simulator(), leptrino.Simulator()
+    got = [0]
+    out: List[Dict[str, Any]] = []
+    child = ref = None
+    try:
+        child = subprocess.Popen(
+            [sys.executable, "-m", "leptrino.bridge", "--connect", ep, "--latency", latency_s,
+             "--domain", str(domain), "--sensor", f"s0={sim.port}"],
+            stderr=subprocess.PIPE, text=True)
+        ref = subprocess.Popen(_stream_args([ref_sim.port], latency_s),
+                               stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        time.sleep(3.0)
+        for phase in ("nobody subscribed", "one subscriber on s0/wrench"):
+            sub = None
+            if phase != "nobody subscribed":
+                sub = router.declare_subscriber(f"{domain}/s0/wrench/**",
+                                                lambda _s: got.__setitem__(0, got[0] + 1))
+                time.sleep(1.0)
+            g0 = got[0]
+            c0, r0, t0 = _cpu_seconds(child.pid), _cpu_seconds(ref.pid), time.monotonic()
+            th0 = _thread_cpu(child.pid)
+            time.sleep(seconds)
+            c1, r1, t1 = _cpu_seconds(child.pid), _cpu_seconds(ref.pid), time.monotonic()
+            th1 = _thread_cpu(child.pid)
+            dt = t1 - t0
+            out.append({"phase": phase, "bridge": (c1 - c0) / dt, "stream": (r1 - r0) / dt,
+                        "ratio": (c1 - c0) / max(r1 - r0, 1e-9),
+                        "messages_per_s": (got[0] - g0) / dt,
+                        "threads": {k: (th1.get(k, 0.0) - th0.get(k, 0.0)) / dt
+                                    for k in th1}})
+            if sub is not None:
+                sub.undeclare()
+    finally:
+        for proc in (child, ref):
+            if proc is not None:
+                proc.terminate()
+                proc.communicate(timeout=20)
+        sim.stop()
+        ref_sim.stop()
+        router.close()
+    return out
+
+
 def main(argv: Optional[List[str]] = None) -> int:
     import zenoh
 
@@ -319,8 +376,22 @@ def main(argv: Optional[List[str]] = None) -> int:
     p.add_argument("--latency", default="0.002", help="the bridge's --latency")
     p.add_argument("--all", action="store_true",
                    help="also DDS (with a Cyclone DDS reader) and Foxglove (with a client)")
+    p.add_argument("--cost", action="store_true",
+                   help="one sensor: nobody subscribed, then one subscriber on NAME/wrench, "
+                        "beside `leptrino stream` (the targets: 1.2x and 2x)")
     p.add_argument("--dds-reader", metavar="DOMAIN,N,SECONDS", help=argparse.SUPPRESS)
     a = p.parse_args(argv)
+    if a.cost or a.quick:
+        print(f"cost of one sensor over Zenoh beside `leptrino stream` (load average "
+              f"{os.getloadavg()[0]:.1f}, --latency {a.latency}):")
+        for r in cost(3.0 if a.quick else a.seconds, __import__("zenoh"), a.latency):
+            print(f"  {r['phase']}: bridge {100 * r['bridge']:.1f} % of a core, `leptrino "
+                  f"stream` {100 * r['stream']:.1f} %, ratio {r['ratio']:.2f}, "
+                  f"{r['messages_per_s']:.0f} messages/s received; threads (% of a core) "
+                  + ", ".join(f"{k} {100 * v:.1f}" for k, v in sorted(r["threads"].items())
+                              if v >= 0.0005), flush=True)
+        if a.cost:
+            return 0
     if a.dds_reader:
         d, n_, secs_ = a.dds_reader.split(",")
         return dds_reader(int(d), int(n_), float(secs_))

@@ -401,6 +401,16 @@ class Sensor:
         self._delivered += buffer.n
         return rc
 
+    @property
+    def latency(self) -> float:
+        """How long the library may hold samples back to save wake-ups (s);
+        settable by the thread that reads (0 .. 1 s, as Sensor(latency=))."""
+        return self._latency_ms() / 1000.0
+
+    @latency.setter
+    def latency(self, seconds: float) -> None:
+        self._set_latency_ms(_ms(seconds, "latency"))
+
     @_any_thread
     def take_events(self) -> List[SessionEvent]:
         """The session's events queued since the last call (gaps, reconnects,

@@ -48,6 +48,10 @@ WRENCH = "geometry_msgs/msg/WrenchStamped"
 #: (they feed the counters and the log; the session queues them meanwhile).
 EVENTS_PERIOD_S = 0.1
 DIAGNOSTICS = "diagnostic_msgs/msg/DiagnosticArray"
+#: The session's latency budget while nobody listens to `wrench` or `wrench_raw`
+#: on any transport (s): fewer wake-ups; limit events and a tare's end are then
+#: seen up to this much later.
+IDLE_LATENCY_S = 0.05
 TRIGGER = "std_srvs/srv/Trigger"
 
 
@@ -316,6 +320,12 @@ class SensorNode:
         wrench, wrench_raw, c = self.wrench, self.wrench_raw, self.counters
         assert wrench is not None and wrench_raw is not None
         timeout = max(0.001, self.opts.timeout_s)
+        # While nobody listens to the wrench topics nothing is waiting for a sample:
+        # the session may hold them longer (fewer wake-ups); back to the latency
+        # asked for at the first batch after someone listens again.
+        busy_latency = self.opts.latency_s
+        idle_latency = max(busy_latency, IDLE_LATENCY_S)
+        idle = False
         failing = False
         silent_since = next_events = time.monotonic()
         while not self._stop.is_set():
@@ -329,7 +339,14 @@ class SensorNode:
                 if failing:
                     log.warning("%s: data again", self.spec.name)
                     failing = False
-                if wrench.listening or wrench_raw.listening:
+                listening = wrench.listening or wrench_raw.listening
+                if listening == idle:
+                    idle = not listening
+                    try:
+                        sensor.latency = idle_latency if idle else busy_latency
+                    except (LeptrinoError, ValueError) as e:
+                        log.debug("%s: latency: %s", self.spec.name, e)
+                if listening:
                     w, r, stamps = wb.encode()
                     wrench.send_batch(w, stamps)
                     wrench_raw.send_batch(r, stamps)
