@@ -19,7 +19,6 @@ Every wait is bounded."""
 import os
 import subprocess
 import time
-from dataclasses import dataclass
 from typing import Any, Dict, Iterator, List
 
 import pytest
@@ -28,8 +27,6 @@ cyclonedds = pytest.importorskip("cyclonedds")  # the "bridge" extra
 
 from cyclonedds.core import Qos  # noqa: E402
 from cyclonedds.domain import Domain, DomainParticipant  # noqa: E402
-from cyclonedds.idl import IdlStruct  # noqa: E402
-from cyclonedds.idl import types as t  # noqa: E402
 from cyclonedds.pub import DataWriter  # noqa: E402
 from cyclonedds.qos import Policy  # noqa: E402
 from cyclonedds.sub import DataReader  # noqa: E402
@@ -37,25 +34,11 @@ from cyclonedds.topic import Topic  # noqa: E402
 from test_bridge_dds import (LOOPBACK, DiagnosticArray_, ParticipantEntitiesInfo_,  # noqa: E402
                              WrenchStamped_, reader_qos, start_bridge, stop)
 from test_bridge_fastdds import peer  # noqa: E402,F401 (the Fast DDS peer, a fixture)
+from ros_dds_types import TriggerRequest_, TriggerResponse_  # noqa: E402
 
 from leptrino.bridge import dds  # noqa: E402
 
 TRIGGER_HASH = "RIHS01_eeff2cd6fa5ad9d27cdf4dec64818317839b62f212a91e6b5304b634b2062c5f"
-
-
-@dataclass
-class TriggerRequest_(IdlStruct, typename="std_srvs::srv::dds_::Trigger_Request_"):
-    client_guid: t.uint64  # rmw_cyclonedds' request header ...
-    sequence_number: t.int64  # ... then the request
-    structure_needs_at_least_one_member: t.uint8
-
-
-@dataclass
-class TriggerResponse_(IdlStruct, typename="std_srvs::srv::dds_::Trigger_Response_"):
-    client_guid: t.uint64
-    sequence_number: t.int64
-    success: bool
-    message: str
 
 
 @pytest.fixture(scope="module")

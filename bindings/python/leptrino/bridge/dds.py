@@ -1,6 +1,3 @@
-# cyclonedds' IDL annotations (types.sequence[T], types.array[T, N], bounded_str)
-# are its own runtime markers, not PEP 484 types:
-# mypy: disable-error-code="type-arg, arg-type, var-annotated, valid-type"
 """ROS 2 on DDS: the bridge's topics as a ROS 2 node on Cyclone DDS would
 publish them, for ROS 2 nodes on Fast DDS (rmw_fastrtps_cpp, the default
 middleware) and Cyclone DDS (rmw_cyclonedds_cpp). Needs the PyPI
@@ -27,8 +24,7 @@ The conventions (docs/bridge.md, "DDS", cites the sources):
   (subscription()), never trusted to deserialize.
 """
 
-# no "from __future__ import annotations": the IDL classes below are made
-# in a function and cyclonedds resolves their annotations as objects
+from __future__ import annotations
 
 import logging
 import os
@@ -45,6 +41,10 @@ from .transport import Endpoint, InputHandler, NodeRef, Publisher, Request, Tran
 from .typehash import rihs01
 
 TRIGGER = "std_srvs/srv/Trigger"
+EMPTY = "std_msgs/msg/Empty"
+WRENCH_STAMPED = "geometry_msgs/msg/WrenchStamped"
+VECTOR3_STAMPED = "geometry_msgs/msg/Vector3Stamped"
+DIAGNOSTIC_ARRAY = "diagnostic_msgs/msg/DiagnosticArray"
 
 log = logging.getLogger("leptrino.bridge")
 
@@ -95,116 +95,38 @@ class DdsOptions:
 
 
 class _Types:
-    """The IDL types, named as rosidl names them for DDS."""
+    """The DDS types, made from the one description of each message
+    (schema.idl_types), named as rosidl names them for DDS. rmw_cyclonedds'
+    request header (the client's writer instance handle, the request's
+    sequence number) is put before the fields of a service's request and
+    reply: the request/reply addressing, here and in split_request /
+    reply_payload only."""
 
     def __init__(self, gid_len: int) -> None:
-        from dataclasses import dataclass as dc
+        from . import schema
+        from .typehash import parse_fields
 
-        from cyclonedds.idl import IdlStruct
-        from cyclonedds.idl import types as t
+        header = parse_fields("uint64 client_guid\nint64 sequence_number\n", "std_srvs")
+        by_ros = schema.idl_types(
+            [WRENCH_STAMPED, DIAGNOSTIC_ARRAY, EMPTY, VECTOR3_STAMPED, TRIGGER + "_Request",
+             TRIGGER + "_Response", "rmw_dds_common/msg/ParticipantEntitiesInfo"],
+            overrides={"rmw_dds_common/msg/Gid": f"char[{gid_len}] data\n"},
+            extra_fields={TRIGGER + "_Request": header, TRIGGER + "_Response": header})
+        self.by_ros: Dict[str, Any] = by_ros
+        self.WrenchStamped = by_ros[WRENCH_STAMPED]
+        self.Empty = by_ros[EMPTY]
+        self.TriggerRequest = by_ros[TRIGGER + "_Request"]
+        self.TriggerResponse = by_ros[TRIGGER + "_Response"]
+        self.ParticipantEntitiesInfo = by_ros["rmw_dds_common/msg/ParticipantEntitiesInfo"]
+        # the nested types, made with it
+        ann = self.ParticipantEntitiesInfo.__annotations__
+        self.Gid = ann["gid"]
+        self.NodeEntitiesInfo = _element(ann["node_entities_info_seq"])
 
-        @dc
-        class Time(IdlStruct, typename="builtin_interfaces::msg::dds_::Time_"):
-            sec: t.int32
-            nanosec: t.uint32
 
-        @dc
-        class Header(IdlStruct, typename="std_msgs::msg::dds_::Header_"):
-            stamp: Time
-            frame_id: str
-
-        @dc
-        class Vector3(IdlStruct, typename="geometry_msgs::msg::dds_::Vector3_"):
-            x: t.float64
-            y: t.float64
-            z: t.float64
-
-        @dc
-        class Wrench(IdlStruct, typename="geometry_msgs::msg::dds_::Wrench_"):
-            force: Vector3
-            torque: Vector3
-
-        @dc
-        class WrenchStamped(IdlStruct, typename="geometry_msgs::msg::dds_::WrenchStamped_"):
-            header: Header
-            wrench: Wrench
-
-        @dc
-        class Vector3Stamped(IdlStruct, typename="geometry_msgs::msg::dds_::Vector3Stamped_"):
-            header: Header
-            vector: Vector3
-
-        @dc
-        class KeyValue(IdlStruct, typename="diagnostic_msgs::msg::dds_::KeyValue_"):
-            key: str
-            value: str
-
-        @dc
-        class DiagnosticStatus(IdlStruct,
-                               typename="diagnostic_msgs::msg::dds_::DiagnosticStatus_"):
-            level: t.uint8
-            name: str
-            message: str
-            hardware_id: str
-            values: t.sequence[KeyValue]
-
-        @dc
-        class DiagnosticArray(IdlStruct,
-                              typename="diagnostic_msgs::msg::dds_::DiagnosticArray_"):
-            header: Header
-            status: t.sequence[DiagnosticStatus]
-
-        @dc
-        class Empty(IdlStruct, typename="std_msgs::msg::dds_::Empty_"):
-            structure_needs_at_least_one_member: t.uint8
-
-        # rmw_cyclonedds' service payloads: its request header (the client's
-        # writer instance handle, the request's sequence number) then the
-        # message; the bridge reads and writes them raw (TriggerService)
-        @dc
-        class TriggerRequest(IdlStruct, typename="std_srvs::srv::dds_::Trigger_Request_"):
-            client_guid: t.uint64
-            sequence_number: t.int64
-            structure_needs_at_least_one_member: t.uint8
-
-        @dc
-        class TriggerResponse(IdlStruct, typename="std_srvs::srv::dds_::Trigger_Response_"):
-            client_guid: t.uint64
-            sequence_number: t.int64
-            success: bool
-            message: str
-
-        @dc
-        class Gid(IdlStruct, typename="rmw_dds_common::msg::dds_::Gid_"):
-            data: t.array[t.uint8, gid_len]
-
-        @dc
-        class NodeEntitiesInfo(IdlStruct,
-                               typename="rmw_dds_common::msg::dds_::NodeEntitiesInfo_"):
-            node_namespace: t.bounded_str[256]
-            node_name: t.bounded_str[256]
-            reader_gid_seq: t.sequence[Gid]
-            writer_gid_seq: t.sequence[Gid]
-
-        @dc
-        class ParticipantEntitiesInfo(
-                IdlStruct, typename="rmw_dds_common::msg::dds_::ParticipantEntitiesInfo_"):
-            gid: Gid
-            node_entities_info_seq: t.sequence[NodeEntitiesInfo]
-
-        self.Time, self.Header, self.Vector3, self.Wrench = Time, Header, Vector3, Wrench
-        self.WrenchStamped, self.KeyValue = WrenchStamped, KeyValue
-        self.DiagnosticStatus, self.DiagnosticArray = DiagnosticStatus, DiagnosticArray
-        self.Empty, self.Gid, self.NodeEntitiesInfo = Empty, Gid, NodeEntitiesInfo
-        self.ParticipantEntitiesInfo = ParticipantEntitiesInfo
-        self.TriggerRequest, self.TriggerResponse = TriggerRequest, TriggerResponse
-        self.by_ros = {
-            "geometry_msgs/msg/WrenchStamped": WrenchStamped,
-            "diagnostic_msgs/msg/DiagnosticArray": DiagnosticArray,
-            "std_msgs/msg/Empty": Empty,
-            "geometry_msgs/msg/Vector3Stamped": Vector3Stamped,
-            "std_srvs/srv/Trigger_Request": TriggerRequest,
-        }
+def _element(seq_type: Any) -> Any:
+    """The element type of a cyclonedds types.sequence[T]."""
+    return seq_type.__metadata__[0].subtype
 
 
 class DdsWriter(Publisher):
@@ -444,8 +366,6 @@ class DdsTransport(Transport):
 
 
 DdsParticipant = DdsTransport  # the name before the transport interface
-
-EMPTY = "std_msgs/msg/Empty"
 
 
 class _CommandRequest(Request):

@@ -16,7 +16,7 @@ import logging
 import threading
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
-from .mcap_out import ros2msg_schema
+from .schema import ros2msg_schema
 from .transport import Endpoint, InputHandler, Publisher, Request, Transport
 
 log = logging.getLogger("leptrino.bridge")

@@ -11,13 +11,10 @@ from __future__ import annotations
 
 import os
 import threading
-from typing import IO, Dict, List, Optional, Sequence
+from typing import IO, Dict, Optional, Sequence
 
 from .transport import Endpoint, Publisher, Transport
-from .typehash import MESSAGES, SERVICES, type_description
-
-_SEPARATOR = "=" * 80
-
+from .schema import ros2msg_schema
 
 #: rmw's RMW_DURATION_INFINITE (rmw/time.h), as rosbag2 writes it
 _INFINITE = "\n    sec: 9223372036\n    nsec: 854775807"
@@ -43,22 +40,6 @@ def offered_qos_profiles(depth: int = 10, reliable: bool = True) -> str:
 
 class FileExistsRefused(FileExistsError):
     """The output path already holds a file and --overwrite was not given."""
-
-
-def ros2msg_schema(ros_type: str) -> bytes:
-    """The ros2msg schema text of a message type: its definition, then each
-    type it references (by full name, sorted), as rosbag2 writes them."""
-    desc = type_description(ros_type)
-    base, _, part = ros_type.rpartition("_")
-    if ros_type not in MESSAGES and base in SERVICES and part in ("Request", "Response"):
-        text = SERVICES[base].partition("---")[0 if part == "Request" else 2]
-    else:
-        text = MESSAGES[ros_type]
-    parts: List[str] = [text.strip("\n")] if text.strip() else []
-    for ref in desc["referenced_type_descriptions"]:
-        name = ref["type_name"]
-        parts.append(f"{_SEPARATOR}\nMSG: {name}\n{MESSAGES[name].rstrip(chr(10))}")
-    return ("\n".join(parts) + "\n").encode("utf-8") if parts else b""
 
 
 class McapRecorder:
