@@ -35,6 +35,7 @@ from ._guard import Guard
 from .errors import LeptrinoError, error_for
 from .payload import Payload
 from .values import (
+    Six,
     EVENT_NAMES,
     ClientStats,
     Health,
@@ -64,7 +65,7 @@ _F = TypeVar("_F", bound=Callable[..., Any])
 def _driving(fn: _F) -> _F:
     """A call only the driving thread makes (StateError from another thread)."""
     @functools.wraps(fn)
-    def wrap(self: "Sensor", *a: Any, **k: Any) -> Any:
+    def wrap(self: Sensor, *a: Any, **k: Any) -> Any:
         with self._guard.drive(self.port):
             return fn(self, *a, **k)
     return cast(_F, wrap)
@@ -73,7 +74,7 @@ def _driving(fn: _F) -> _F:
 def _any_thread(fn: _F) -> _F:
     """A call any thread may make (close() waits for it)."""
     @functools.wraps(fn)
-    def wrap(self: "Sensor", *a: Any, **k: Any) -> Any:
+    def wrap(self: Sensor, *a: Any, **k: Any) -> Any:
         with self._guard.call(self.port):
             return fn(self, *a, **k)
     return cast(_F, wrap)
@@ -236,7 +237,7 @@ class Sensor:
         self._decimate = int(decimate)
 
     # -- life cycle ----------------------------------------------------------
-    def __enter__(self) -> "Sensor":
+    def __enter__(self) -> Sensor:
         return self
 
     def __exit__(self, *exc: Any) -> None:
@@ -375,20 +376,19 @@ class Sensor:
                 gap_from=f[K.LEP_EVF_GAP_FROM], gap_to=f[K.LEP_EVF_GAP_TO],
                 lost=int(f[K.LEP_EVF_LOST]), error=int(f[K.LEP_EVF_ERROR]),
                 axes=int(f[K.LEP_EVF_AXES]), status=int(f[K.LEP_EVF_STATUS]),
-                tare=tuple(f[K.LEP_EVF_TARE:K.LEP_EVF_TARE + K.LEP_AXES]),  # type: ignore[arg-type]
-                wrench=tuple(f[K.LEP_EVF_WRENCH:K.LEP_EVF_WRENCH  # type: ignore[arg-type]
-                               + K.LEP_AXES]),
+                tare=cast(Six, tuple(f[K.LEP_EVF_TARE:K.LEP_EVF_TARE + K.LEP_AXES])),
+                wrench=cast(Six, tuple(f[K.LEP_EVF_WRENCH:K.LEP_EVF_WRENCH + K.LEP_AXES])),
             ))
         return out
 
     # -- batches and events, for a program with its own reading loop ---------
-    def sample_buffer(self, capacity: int = 256) -> "SampleBuffer":
+    def sample_buffer(self, capacity: int = 256) -> SampleBuffer:
         """Arrays for read_batch(): up to capacity samples, every column of
         lep_session_read (t_mono, t_utc, si, raw, zeroed, status, flags, seq)."""
         return SampleBuffer(self._be, A.whole("sample_buffer", "capacity", capacity, 1, 1 << 20))
 
     @_driving
-    def read_batch(self, buffer: "SampleBuffer", timeout: float) -> int:
+    def read_batch(self, buffer: SampleBuffer, timeout: float) -> int:
         """Read what the session has, up to buffer.cap samples, into buffer's
         arrays (rows [0, buffer.n)), waiting at most timeout s for the first.
 
@@ -698,7 +698,7 @@ class Sensor:
         """Stop the stream; samples received and not yet read are dropped."""
         self._check(self._be.lib.lep_session_stop(self._live()), K.LEP_CMD_STOP)
 
-    def stream(self, count: Optional[int] = None, seconds: Optional[float] = None) -> "Stream":
+    def stream(self, count: Optional[int] = None, seconds: Optional[float] = None) -> Stream:
         """The stream as a context manager and iterator of Samples (read in
         batches underneath). Starts the stream if needed and stops it on exit
         (or when count samples / seconds are done) when it started it.
@@ -792,12 +792,13 @@ class Sensor:
                 if rc < 0:
                     exc = error_for(be, rc, self._lost_words("recording", rc),
                                     complete=rc == K.LEP_E_LOST)
+                    # an exception of any kind carries what was recorded (documented)
                     exc.recording = arrays.result(events, self)  # type: ignore[attr-defined]
                     raise exc
         except BaseException as exc:
             # Ctrl-C lands between two reads: keep what was received.
             if not hasattr(exc, "recording"):
-                try:
+                try:  # (as above)
                     exc.recording = arrays.result(events, self)  # type: ignore[attr-defined]
                 except Exception:
                     pass
@@ -925,7 +926,7 @@ class Stream:
         self._base = 0
         self.events: List[SessionEvent] = []
 
-    def __enter__(self) -> "Stream":
+    def __enter__(self) -> Stream:
         self._begin()
         return self
 

@@ -190,7 +190,7 @@ class Bridge:
             self.close()
             raise
 
-    def __enter__(self) -> "Bridge":
+    def __enter__(self) -> Bridge:
         return self
 
     def __exit__(self, *exc: Any) -> None:

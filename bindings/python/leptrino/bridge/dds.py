@@ -134,7 +134,7 @@ class DdsWriter(Publisher):
     bridge's bytes) without making a Python sample of them; `listening`
     while it has matched readers (publication_matched)."""
 
-    def __init__(self, dds: "DdsTransport", fq_name: str, ros_type: str) -> None:
+    def __init__(self, dds: DdsTransport, fq_name: str, ros_type: str) -> None:
         from cyclonedds._clayer import ddspy_write
         from cyclonedds.core import Listener
         from cyclonedds.pub import DataWriter
@@ -455,7 +455,7 @@ class _ServiceRequest(Request):
     it is, else from the transport's reply thread, waiting at most
     TriggerService.MATCH_WAIT_S)."""
 
-    def __init__(self, svc: "TriggerService", raw: bytes, writer_handle: int) -> None:
+    def __init__(self, svc: TriggerService, raw: bytes, writer_handle: int) -> None:
         self._svc = svc
         self._handle = writer_handle
         self.guid = self.seq = 0

@@ -38,7 +38,7 @@ class FoxgloveChannel(Publisher):
     """One topic on the server: logs the payloads while a client subscribes."""
 
     def __init__(self, ctx: Any, topic: str, ros_type: str,
-                 subscribers: "_ClientInputs") -> None:
+                 subscribers: _ClientInputs) -> None:
         import foxglove
 
         self.channel = foxglove.Channel(

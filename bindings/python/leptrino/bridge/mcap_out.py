@@ -80,8 +80,8 @@ class McapRecorder:
             if sid is None:
                 sid = self._w.register_schema(ros_type, "ros2msg", ros2msg_schema(ros_type))
                 self._schemas[ros_type] = sid
-            cid = self._w.register_channel(
-                topic, "cdr", sid, {"offered_qos_profiles": offered_qos_profiles(qos_depth)})
+            cid = int(self._w.register_channel(
+                topic, "cdr", sid, {"offered_qos_profiles": offered_qos_profiles(qos_depth)}))
             self._channels[topic] = cid
             self._seq[cid] = 0
             return cid
@@ -111,7 +111,7 @@ class McapRecorder:
             if self._f is None:
                 return
             try:
-                self._w.finish()  # type: ignore[no-untyped-call]
+                self._w.finish()
             finally:
                 self._f.close()
                 self._f = None

@@ -22,7 +22,7 @@ from __future__ import annotations
 import struct
 import types
 from dataclasses import dataclass as _dataclass
-from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
+from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 #: The message definitions (.msg text; constants and comments do not enter a hash).
 MESSAGES: Dict[str, str] = {
@@ -277,8 +277,9 @@ def idl_types(names: Sequence[str], overrides: Optional[Dict[str, str]] = None,
             annotations[fname] = (et if kind == _SINGLE else t.array[et, cap]
                                   if kind == _ARRAY else t.sequence[et, cap]
                                   if kind == _BOUNDED_SEQ else t.sequence[et])
-        body: Callable[[Dict[str, Any]], None] = \
-            lambda ns: ns.update({"__annotations__": annotations})
+        def body(ns: Dict[str, Any], annotations: Dict[str, Any] = annotations) -> None:
+            ns["__annotations__"] = annotations
+
         cls = types.new_class(name.rsplit("/", 1)[-1], (IdlStruct,),
                               {"typename": dds_type_name(name)}, body)
         made[name] = _dataclass(cls)

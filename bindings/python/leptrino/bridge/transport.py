@@ -63,7 +63,7 @@ class Publisher(abc.ABC):
     def publish(self, payloads: Sequence[bytes], stamps: Sequence[int], now_ns: int) -> None:
         """Messages (CDR) with their stamps (ns) and the time of publication (ns)."""
 
-    def close(self) -> None:
+    def close(self) -> None:  # noqa: B027 (optional: most publishers go with their transport)
         """Withdraw the topic (default: nothing to do)."""
 
 
@@ -105,7 +105,7 @@ class Transport(abc.ABC):
     #: whether it takes services and inputs at all (MCAP: no)
     interactive: bool = True
 
-    def declare_node(self, node: NodeRef) -> None:
+    def declare_node(self, node: NodeRef) -> None:  # noqa: B027 (optional: Zenoh, DDS only)
         """A node before its endpoints (default: nothing to declare)."""
 
     @abc.abstractmethod
@@ -122,7 +122,7 @@ class Transport(abc.ABC):
         transport's thread (it must not raise)."""
         raise NotImplementedError(f"{self.name}: no inputs")
 
-    def ready(self) -> None:
+    def ready(self) -> None:  # noqa: B027 (optional: DDS, Foxglove only)
         """Every node declared (default: nothing to do)."""
 
     def diagnostics(self, node: NodeRef) -> List[Tuple[str, str]]:

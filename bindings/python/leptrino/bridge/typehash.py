@@ -18,6 +18,9 @@ import json
 import re
 from typing import Any, Dict, List, Optional, Set, Tuple
 
+# the definitions: bridge/schema.py, the one description of each message
+from .schema import MESSAGES, SERVICES
+
 Description = Dict[str, Any]
 
 #: Field type ids of type_description_interfaces/msg/FieldType.
@@ -31,9 +34,6 @@ _BOUNDED_STRING = 21
 _BOUNDED_WSTRING = 22
 #: Added to the element's id for a fixed array, a bounded and an unbounded sequence.
 _ARRAY, _BOUNDED_SEQ, _UNBOUNDED_SEQ = 48, 96, 144
-
-#: The definitions: bridge/schema.py, the one description of each message.
-from .schema import MESSAGES, SERVICES  # noqa: E402 (after the type ids it shares)
 
 _TYPE_RE = re.compile(
     r"^(?P<base>[A-Za-z_][\w/]*)(?:<=(?P<strcap>\d+))?(?:\[(?P<seq>(?:<=)?\d*)\])?$")

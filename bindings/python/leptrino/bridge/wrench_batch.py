@@ -61,11 +61,11 @@ class WrenchBatch:
         self._psi = be.array_ptr(a.si, "double")
         self._praw = be.array_ptr(a.raw, "int16_t")
         self._nbytes = cap * self.size
-        self._mw, self._mr = memoryview(self._w), memoryview(self._r)
-        self._mst = memoryview(self._st)
+        self._mw, self._mr = self._w.data, self._r.data
+        self._mst = self._st.data
         self._cuts = [(i * self.size, (i + 1) * self.size) for i in range(cap)]
         #: the arrays' t_mono as a memoryview (the last sample's time, per batch)
-        self.t_mono = memoryview(self.arrays.t_mono)
+        self.t_mono = self.arrays.t_mono.data
 
     def encode(self) -> Tuple[List[bytes], List[bytes], List[int]]:
         """The arrays' samples [0, n) as (wrench payloads, wrench_raw
