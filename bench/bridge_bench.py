@@ -311,9 +311,9 @@ def run(n: int, seconds: float, zenoh_mod: Any, extra: Optional[List[str]] = Non
 
 def cost(seconds: float, zenoh_mod: Any, latency_s: str = "0.002") -> List[Dict[str, Any]]:
     """One sensor over Zenoh beside `leptrino stream` on another virtual
-    sensor, in one run, in two phases of `seconds` each: nobody subscribed
-    (no subscriber anywhere: the bridge publishes nothing), then one
-    subscriber on NAME/wrench only. CPU of each process, the bridge's by thread."""
+    sensor, in one run, in three phases of `seconds` each: nobody subscribed
+    (no subscriber anywhere: the bridge publishes nothing), one subscriber on
+    NAME/wrench only, nobody again. CPU of each process, the bridge's by thread."""
     import leptrino
 
     ep = f"tcp/127.0.0.1:{_free_port()}"
@@ -335,9 +335,12 @@ def cost(seconds: float, zenoh_mod: Any, latency_s: str = "0.002") -> List[Dict[
         ref = subprocess.Popen(_stream_args([ref_sim.port], latency_s),
                                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
         time.sleep(3.0)
-        for phase in ("nobody subscribed", "one subscriber on s0/wrench"):
+        for phase in ("nobody subscribed", "one subscriber on s0/wrench",
+                      "the subscriber gone"):
             sub = None
-            if phase != "nobody subscribed":
+            if phase == "the subscriber gone":
+                time.sleep(1.0)  # its undeclaration reaches the bridge
+            if phase == "one subscriber on s0/wrench":
                 sub = router.declare_subscriber(f"{domain}/s0/wrench/**",
                                                 lambda _s: got.__setitem__(0, got[0] + 1))
                 time.sleep(1.0)
@@ -377,8 +380,8 @@ def main(argv: Optional[List[str]] = None) -> int:
     p.add_argument("--all", action="store_true",
                    help="also DDS (with a Cyclone DDS reader) and Foxglove (with a client)")
     p.add_argument("--cost", action="store_true",
-                   help="one sensor: nobody subscribed, then one subscriber on NAME/wrench, "
-                        "beside `leptrino stream` (the targets: 1.2x and 2x)")
+                   help="one sensor: nobody subscribed, one subscriber on NAME/wrench, nobody "
+                        "again, beside `leptrino stream` (the targets: 1.2x and 2x)")
     p.add_argument("--dds-reader", metavar="DOMAIN,N,SECONDS", help=argparse.SUPPRESS)
     a = p.parse_args(argv)
     if a.cost or a.quick:

@@ -263,3 +263,35 @@ def test_malformed_requests_are_counted_and_ignored(participant: Any, domain: in
     assert len(ignored) == 1, err  # rate-limited: one line for the burst
     assert len([line for line in err.splitlines() if "without rmw_cyclonedds' request header"
                 in line]) == 1, err
+
+
+def test_busy_requests_are_answered_busy(participant: Any, domain: int) -> None:
+    """Requests that come while a tare is served are answered at once with
+    success false and the busy message (not dropped), and counted."""
+    p = participant
+    rd = wrench_reader(p, "/a")
+    drd = DataReader(p, Topic(p, "rt/a/diagnostics", DiagnosticArray_), qos=reader_qos())
+    c = Client(p, "/a/tare", "1.2.3.4.5.6.7.8.9.a.b.c.0.0.0.9")
+    proc = start_bridge(domain, "--sim", "a,constant,amplitude=0.2", "--retare", "600")
+    try:
+        forces(rd, 100)
+        c.wait_matched()
+        for seq in range(1, 9):  # a tare of 600 samples takes 0.5 s: these come meanwhile
+            c.writer.write(TriggerRequest_(client_guid=c.guid, sequence_number=seq,
+                                           structure_needs_at_least_one_member=0))
+        got: Dict[int, Any] = {}
+        end = time.monotonic() + 10
+        while time.monotonic() < end and len(got) < 8:
+            for r in c.reader.take(10):
+                if isinstance(r, TriggerResponse_) and r.client_guid == c.guid:
+                    got[r.sequence_number] = r
+            time.sleep(0.01)
+        assert sorted(got) == list(range(1, 9)), sorted(got)
+        assert got[1].success and got[1].message.startswith("tared over 600"), got[1].message
+        busy = [s for s in range(2, 9) if not got[s].success]
+        assert busy and all(got[s].message.startswith("busy:") for s in busy)
+        kv = diagnostics(drd)
+        assert int(kv["tare_busy"]) == len(busy) and int(kv["tare_requests"]) == 8 - len(busy)
+    finally:
+        err = stop(proc)
+    assert proc.returncode == 0, err

@@ -339,7 +339,8 @@ class SensorNode:
                 if failing:
                     log.warning("%s: data again", self.spec.name)
                     failing = False
-                listening = wrench.listening or wrench_raw.listening
+                lw, lr = wrench.listening, wrench_raw.listening
+                listening = lw or lr
                 if listening == idle:
                     idle = not listening
                     try:
@@ -347,9 +348,15 @@ class SensorNode:
                     except (LeptrinoError, ValueError) as e:
                         log.debug("%s: latency: %s", self.spec.name, e)
                 if listening:
-                    w, r, stamps = wb.encode()
-                    wrench.send_batch(w, stamps)
-                    wrench_raw.send_batch(r, stamps)
+                    w, r, stamps = wb.encode(lw, lr)
+                    if lw:
+                        wrench.send_batch(w, stamps)
+                    else:
+                        wrench.skip(n)
+                    if lr:
+                        wrench_raw.send_batch(r, stamps)
+                    else:
+                        wrench_raw.skip(n)
                 else:
                     wrench.skip(n)
                     wrench_raw.skip(n)

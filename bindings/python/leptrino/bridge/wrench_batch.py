@@ -67,10 +67,13 @@ class WrenchBatch:
         #: the arrays' t_mono as a memoryview (the last sample's time, per batch)
         self.t_mono = self.arrays.t_mono.data
 
-    def encode(self) -> Tuple[List[bytes], List[bytes], List[int]]:
+    def encode(self, wrench: bool = True, wrench_raw: bool = True
+               ) -> Tuple[List[bytes], List[bytes], List[int]]:
         """The arrays' samples [0, n) as (wrench payloads, wrench_raw
-        payloads, stamps in ns); stamps never go back, across calls too.
-        LeptrinoError for a time the message cannot hold."""
+        payloads, stamps in ns); a topic not wanted gets an empty list (its
+        bytes are written by the C call, not cut into payloads). Stamps never
+        go back, across calls too. LeptrinoError for a time the message
+        cannot hold."""
         n = self.arrays.n
         if n == 0:
             return [], [], []
@@ -79,7 +82,11 @@ class WrenchBatch:
         if rc != 0:
             raise LeptrinoError(f"serializing WrenchStamped: error {int(rc)}", int(rc))
         end = n * self.size
-        w = self._mw[:end].tobytes()
-        r = self._mr[:end].tobytes()
         cuts = self._cuts[:n]
-        return [w[i:j] for i, j in cuts], [r[i:j] for i, j in cuts], self._mst[:n].tolist()
+        w = r = b""
+        if wrench:
+            w = self._mw[:end].tobytes()
+        if wrench_raw:
+            r = self._mr[:end].tobytes()
+        return ([w[i:j] for i, j in cuts] if wrench else [],
+                [r[i:j] for i, j in cuts] if wrench_raw else [], self._mst[:n].tolist())
