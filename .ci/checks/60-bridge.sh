@@ -32,7 +32,8 @@ LEPTRINO_FASTDDS_PEER="$PWD/build/fastdds-peer/fastdds_peer" PYTHONDONTWRITEBYTE
   bindings/python/tests/test_bridge_payload.py \
   bindings/python/tests/test_bridge_zenoh_tls.py \
   bindings/python/tests/test_bridge_input_flood.py \
-  bindings/python/tests/test_bridge_readonly.py
+  bindings/python/tests/test_bridge_readonly.py \
+  bindings/python/tests/test_bridge_transport.py
 "$(dirname "$py")/leptrino-bridge" --help >/dev/null   # the console script is installed
-(cd /tmp && timeout 300 "$py" -m leptrino.bridge.bench --quick)
+timeout 300 "$py" bench/bridge_bench.py --quick   # the figures' benchmark (bench/, not the package)
 echo "60-bridge: done in $((SECONDS - t0)) s"

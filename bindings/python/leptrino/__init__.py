@@ -48,7 +48,7 @@ from .errors import (
 )
 from .payload import Payload, identify_payload, read_pose
 from .recording_file import RecordingFile, read_recording
-from .sensor import PowerCycleWarning, Sensor, Stream, list_ports
+from .sensor import PowerCycleWarning, SampleBuffer, Sensor, Stream, list_ports
 from .simulator import SimOption, Simulator
 from .values import (
     ClientStats,
@@ -91,6 +91,7 @@ __all__ = [
     "Rated",
     "Recording",
     "Sample",
+    "SampleBuffer",
     "Sensor",
     "SessionEvent",
     "SimOption",

@@ -36,6 +36,7 @@ def package_version() -> str:
     """This package's version ("0.1.0"): the build's _version.py, else the
     checkout's CMakeLists.txt. ImportError when neither exists."""
     try:
+        # written by setup.py at build time: absent from a checkout (then CMakeLists.txt)
         from ._version import VERSION  # type: ignore[import-not-found,unused-ignore]
 
         return str(VERSION)

@@ -145,7 +145,7 @@ class Options:
         if h:
             self._be.lib.lep_options_free(h)
 
-    def __enter__(self) -> "Options":
+    def __enter__(self) -> Options:
         return self
 
     def __exit__(self, *exc: Any) -> None:

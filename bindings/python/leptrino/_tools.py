@@ -50,7 +50,7 @@ def run(name: str, args: Optional[Sequence[str]] = None) -> NoReturn:
     except OSError as exc:
         print(f"{exc}" if isinstance(exc, FileNotFoundError) else
               f"leptrino: cannot run {name}: {exc}", file=sys.stderr)
-        raise SystemExit(1)
+        raise SystemExit(1) from None
     raise AssertionError("unreachable")  # pragma: no cover
 
 

@@ -51,7 +51,7 @@ class LeptrinoError(Exception):
         return self.message
 
 
-class TimeoutError(LeptrinoError, builtins.TimeoutError):  # noqa: A001 - intended shadow
+class TimeoutError(LeptrinoError, builtins.TimeoutError):
     """No answer (or no sample) within the timeout."""
 
 

@@ -9,7 +9,7 @@ M = c × (m·g) + M_b. Nothing is computed here; this module converts arrays.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any, Iterator, Optional, Sequence, Tuple
+from typing import Any, Iterator, Optional, Sequence, Tuple, cast
 
 import numpy as np
 
@@ -65,7 +65,7 @@ class Payload:
         if rc < 0:
             raise ValueError(f"payload {self.argument} at gravity {tuple(gv)}: "
                              "not finite, or a negative mass")
-        return tuple(float(w[i]) for i in range(6))  # type: ignore[return-value]
+        return cast(Vec6, tuple(float(w[i]) for i in range(6)))
 
 
 def _vector(v: Any, n: int, what: str) -> Any:
@@ -144,7 +144,7 @@ def read_pose(path: str, backend: Optional[str] = None) -> Tuple[Vec6, int]:
         if rc == K.LEP_E_IO:
             raise OSError(msg)
         raise ValueError(msg)
-    return tuple(float(mean[i]) for i in range(6)), int(be.value(n))  # type: ignore[return-value]
+    return cast(Vec6, tuple(float(mean[i]) for i in range(6))), int(be.value(n))
 
 
 def parse_limits(text: str, backend: Optional[str] = None) -> Vec6:
@@ -160,4 +160,4 @@ def parse_limits(text: str, backend: Optional[str] = None) -> Vec6:
     if "\x00" in text or be.lib.lep_limits_parse(text.encode(), out) < 0:
         raise ValueError(f"limits {text!r}: expected AXIS=VALUE,... with AXIS one of fx, fy, "
                          "fz, mx, my, mz and VALUE > 0 (N, N·m)")
-    return tuple(float(out[i]) for i in range(K.LEP_AXES))  # type: ignore[return-value]
+    return cast(Vec6, tuple(float(out[i]) for i in range(K.LEP_AXES)))

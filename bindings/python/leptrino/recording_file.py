@@ -21,9 +21,12 @@ import json
 import os
 import warnings
 from dataclasses import dataclass, field
-from typing import Any, Dict, List, Optional, Union
+from typing import TYPE_CHECKING, Any, Dict, List, Optional, Tuple, Union, cast
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from .values import Recording
 
 METADATA_PREFIX = "# leptrino-metadata: "
 #: numpy dtype of each column the writer knows (the rest are float64)
@@ -207,7 +210,7 @@ def _read_npz(path: str) -> RecordingFile:
     return RecordingFile(path, "npz", cols, rec.metadata, {"": rec.metadata}, events, "t_s")
 
 
-def read_recording(path: Union[str, "os.PathLike[str]"], *, pandas: bool = False) -> Any:
+def read_recording(path: Union[str, os.PathLike[str]], *, pandas: bool = False) -> Any:
     """Read a recording of `leptrino stream` or Recording.save (.csv, .jsonl,
     .npz; the format is told by the content, not the name).
 
@@ -234,18 +237,18 @@ def read_recording(path: Union[str, "os.PathLike[str]"], *, pandas: bool = False
     return out.to_dataframe() if pandas else out
 
 
-def recording_from_file(path: str) -> Any:
+def recording_from_file(path: str) -> Recording:
     """A Recording (values.Recording) from a CSV or JSON-lines file: the
     columns the file has; the others zeros (raw, zeroed, status, flags, seq)
     or NaN (SI, times). t is the file's time column (t_s: seconds from the
     stream's start, start_mono 0)."""
-    from .values import Recording, SessionEvent
+    from .values import Recording, SessionEvent, Six
 
     rf = read_recording(path)
     n = len(rf)
     c = rf.columns
 
-    def six(names: tuple, dtype: Any, fill: Any) -> np.ndarray:
+    def six(names: Tuple[str, ...], dtype: Any, fill: Any) -> np.ndarray:
         if all(k in c for k in names):
             return np.stack([np.asarray(c[k], dtype=dtype) for k in names], axis=1) \
                 if n else np.empty((0, 6), dtype)
@@ -272,7 +275,7 @@ def recording_from_file(path: str) -> Any:
             type=str(e["event"]), sample=int(e["row"]), t=at, t_utc=at + start_utc,
             gap_from=float(e.get("from", 0.0)), gap_to=float(e.get("to", 0.0)),
             lost=int(e.get("lost", 0)), error=0, axes=int(e.get("axes", 0)),
-            status=int(e.get("status", 0)), tare=tuple(float(x) for x in tare)))  # type: ignore
+            status=int(e.get("status", 0)), tare=cast(Six, tuple(float(x) for x in tare))))
     return Recording(t=t, si=six(SI, np.float64, np.nan), raw=six(_COUNTS, np.int16, 0),
                      status=one("status", np.uint8), seq=one("seq", np.uint16), t_utc=t_utc,
                      zeroed=six(ZEROED, np.float64, np.nan), flags=one("flags", np.uint8),

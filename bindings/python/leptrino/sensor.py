@@ -35,6 +35,7 @@ from ._guard import Guard
 from .errors import LeptrinoError, error_for
 from .payload import Payload
 from .values import (
+    Six,
     EVENT_NAMES,
     ClientStats,
     Health,
@@ -64,7 +65,7 @@ _F = TypeVar("_F", bound=Callable[..., Any])
 def _driving(fn: _F) -> _F:
     """A call only the driving thread makes (StateError from another thread)."""
     @functools.wraps(fn)
-    def wrap(self: "Sensor", *a: Any, **k: Any) -> Any:
+    def wrap(self: Sensor, *a: Any, **k: Any) -> Any:
         with self._guard.drive(self.port):
             return fn(self, *a, **k)
     return cast(_F, wrap)
@@ -73,7 +74,7 @@ def _driving(fn: _F) -> _F:
 def _any_thread(fn: _F) -> _F:
     """A call any thread may make (close() waits for it)."""
     @functools.wraps(fn)
-    def wrap(self: "Sensor", *a: Any, **k: Any) -> Any:
+    def wrap(self: Sensor, *a: Any, **k: Any) -> Any:
         with self._guard.call(self.port):
             return fn(self, *a, **k)
     return cast(_F, wrap)
@@ -236,7 +237,7 @@ class Sensor:
         self._decimate = int(decimate)
 
     # -- life cycle ----------------------------------------------------------
-    def __enter__(self) -> "Sensor":
+    def __enter__(self) -> Sensor:
         return self
 
     def __exit__(self, *exc: Any) -> None:
@@ -375,11 +376,50 @@ class Sensor:
                 gap_from=f[K.LEP_EVF_GAP_FROM], gap_to=f[K.LEP_EVF_GAP_TO],
                 lost=int(f[K.LEP_EVF_LOST]), error=int(f[K.LEP_EVF_ERROR]),
                 axes=int(f[K.LEP_EVF_AXES]), status=int(f[K.LEP_EVF_STATUS]),
-                tare=tuple(f[K.LEP_EVF_TARE:K.LEP_EVF_TARE + K.LEP_AXES]),  # type: ignore[arg-type]
-                wrench=tuple(f[K.LEP_EVF_WRENCH:K.LEP_EVF_WRENCH  # type: ignore[arg-type]
-                               + K.LEP_AXES]),
+                tare=cast(Six, tuple(f[K.LEP_EVF_TARE:K.LEP_EVF_TARE + K.LEP_AXES])),
+                wrench=cast(Six, tuple(f[K.LEP_EVF_WRENCH:K.LEP_EVF_WRENCH + K.LEP_AXES])),
             ))
         return out
+
+    # -- batches and events, for a program with its own reading loop ---------
+    def sample_buffer(self, capacity: int = 256) -> SampleBuffer:
+        """Arrays for read_batch(): up to capacity samples, every column of
+        lep_session_read (t_mono, t_utc, si, raw, zeroed, status, flags, seq)."""
+        return SampleBuffer(self._be, A.whole("sample_buffer", "capacity", capacity, 1, 1 << 20))
+
+    @_driving
+    def read_batch(self, buffer: SampleBuffer, timeout: float) -> int:
+        """Read what the session has, up to buffer.cap samples, into buffer's
+        arrays (rows [0, buffer.n)), waiting at most timeout s for the first.
+
+        Returns the session's status without raising for it: 0 (samples or
+        not), or a negative LEP_E_* code: LEP_E_TIMEOUT (nothing came),
+        LEP_E_END (the stream ended), another error while the session
+        reconnects (status_text() says it). LeptrinoError when the sensor is
+        closed. The samples count for the events' .sample (take_events())."""
+        rc = buffer.read(self._live(), max(0, int(timeout * 1000)), buffer.cap)
+        self._delivered += buffer.n
+        return rc
+
+    @property
+    def latency(self) -> float:
+        """How long the library may hold samples back to save wake-ups (s);
+        settable by the thread that reads (0 .. 1 s, as Sensor(latency=))."""
+        return self._latency_ms() / 1000.0
+
+    @latency.setter
+    def latency(self, seconds: float) -> None:
+        self._set_latency_ms(_ms(seconds, "latency"))
+
+    @_any_thread
+    def take_events(self) -> List[SessionEvent]:
+        """The session's events queued since the last call (gaps, reconnects,
+        tare done, limits...), .sample counted from the stream's start."""
+        return self._drain_events(0)
+
+    def status_text(self, rc: int) -> str:
+        """The library's text for a status code (read_batch's)."""
+        return str(self._be.text(self._be.lib.lep_strerror(int(rc))))
 
     # -- what the sensor is --------------------------------------------------
     @property
@@ -658,7 +698,7 @@ class Sensor:
         """Stop the stream; samples received and not yet read are dropped."""
         self._check(self._be.lib.lep_session_stop(self._live()), K.LEP_CMD_STOP)
 
-    def stream(self, count: Optional[int] = None, seconds: Optional[float] = None) -> "Stream":
+    def stream(self, count: Optional[int] = None, seconds: Optional[float] = None) -> Stream:
         """The stream as a context manager and iterator of Samples (read in
         batches underneath). Starts the stream if needed and stops it on exit
         (or when count samples / seconds are done) when it started it.
@@ -752,12 +792,13 @@ class Sensor:
                 if rc < 0:
                     exc = error_for(be, rc, self._lost_words("recording", rc),
                                     complete=rc == K.LEP_E_LOST)
+                    # an exception of any kind carries what was recorded (documented)
                     exc.recording = arrays.result(events, self)  # type: ignore[attr-defined]
                     raise exc
         except BaseException as exc:
             # Ctrl-C lands between two reads: keep what was received.
             if not hasattr(exc, "recording"):
-                try:
+                try:  # (as above)
                     exc.recording = arrays.result(events, self)  # type: ignore[attr-defined]
                 except Exception:
                     pass
@@ -776,8 +817,9 @@ class Sensor:
         return arrays.result(events, self)
 
 
-class _Arrays:
-    """numpy arrays that lep_session_read fills directly (every column)."""
+class SampleBuffer:
+    """numpy arrays that lep_session_read fills directly (every column);
+    Sensor.sample_buffer() makes one, Sensor.read_batch() fills it: n rows."""
 
     t_mono: np.ndarray
     t_utc: np.ndarray
@@ -861,6 +903,9 @@ class _Arrays:
         )
 
 
+_Arrays = SampleBuffer  # the name inside this module
+
+
 class Stream:
     """Iterator of stream samples, read from the session in batches; a
     context manager that stops the stream on exit when it started it.
@@ -881,7 +926,7 @@ class Stream:
         self._base = 0
         self.events: List[SessionEvent] = []
 
-    def __enter__(self) -> "Stream":
+    def __enter__(self) -> Stream:
         self._begin()
         return self
 

@@ -11,10 +11,10 @@ import numpy as np
 
 from . import _constants as K
 # The counter structs' dataclasses are generated from the headers (_stats.py).
-from ._stats import ClientStats as ClientStats  # noqa: F401 - re-exported
-from ._stats import FrameStats as FrameStats  # noqa: F401 - re-exported
-from ._stats import Health as Health  # noqa: F401 - re-exported
-from ._stats import SimStats as SimStats  # noqa: F401 - re-exported
+from ._stats import ClientStats as ClientStats
+from ._stats import FrameStats as FrameStats
+from ._stats import Health as Health
+from ._stats import SimStats as SimStats
 
 Vec3 = Tuple[float, float, float]
 Raw6 = Tuple[int, int, int, int, int, int]
@@ -86,11 +86,11 @@ class Sample:
 
     @property
     def force(self) -> Vec3:
-        return self.si[:3]  # type: ignore[return-value,unused-ignore]
+        return self.si[:3]
 
     @property
     def torque(self) -> Vec3:
-        return self.si[3:]  # type: ignore[return-value,unused-ignore]
+        return self.si[3:]
 
     @property
     def calibration_error(self) -> bool:
@@ -198,7 +198,7 @@ class Recording:
     @property
     def elapsed(self) -> np.ndarray:
         """Seconds since the first sample."""
-        return self.t - self.t[0] if len(self) else self.t.copy()
+        return np.asarray(self.t - self.t[0] if len(self) else self.t.copy())
 
     @property
     def overload(self) -> np.ndarray:
@@ -229,7 +229,7 @@ class Recording:
             return 0.0
         return float((n - 1) / (self.t[-1] - self.t[0]))
 
-    def cut(self, n: int) -> "Recording":
+    def cut(self, n: int) -> Recording:
         """The first n samples (and the events before them)."""
         return Recording(self.t[:n], self.si[:n], self.raw[:n], self.status[:n], self.seq[:n],
                          self.t_utc[:n], self.zeroed[:n], self.flags[:n],
@@ -267,7 +267,7 @@ class Recording:
                         backend=backend)
 
     @classmethod
-    def load(cls, path: Any) -> "Recording":
+    def load(cls, path: Any) -> Recording:
         """Read a recording back: the .npz of save(), or the CSV / JSON lines
         of save() and `leptrino stream -o` (leptrino.read_recording reads
         them; columns the file lacks are zeros, or NaN for SI values)."""
@@ -275,7 +275,7 @@ class Recording:
             if not f.read(2) == b"PK":
                 from .recording_file import recording_from_file
 
-                return recording_from_file(str(path))  # type: ignore[no-any-return]
+                return recording_from_file(str(path))
         with np.load(str(path), allow_pickle=False) as z:
             meta = str(z["metadata"])
             events = [SessionEvent(**{**e, "tare": tuple(e["tare"]),

@@ -15,7 +15,6 @@ import os
 import subprocess
 import sys
 import time
-from dataclasses import dataclass
 from typing import Any, Dict, Iterator, List
 
 import pytest
@@ -25,95 +24,18 @@ cyclonedds = pytest.importorskip("cyclonedds")  # the "bridge" extra
 
 from cyclonedds.core import Qos  # noqa: E402
 from cyclonedds.domain import Domain, DomainParticipant  # noqa: E402
-from cyclonedds.idl import IdlStruct  # noqa: E402
-from cyclonedds.idl import types as t  # noqa: E402
 from cyclonedds.pub import DataWriter  # noqa: E402
 from cyclonedds.qos import Policy  # noqa: E402
 from cyclonedds.sub import DataReader  # noqa: E402
 from cyclonedds.topic import Topic  # noqa: E402
 
+from ros_dds_types import (DiagnosticArray_, Empty_, ParticipantEntitiesInfo_,  # noqa: E402
+                            ParticipantEntitiesInfo24_, WrenchStamped_)
+
 import leptrino  # noqa: E402
 
 WRENCH_HASH = "RIHS01_8dc3deaf06b2ab281f9f9a742a8961c328ca7cec16e3fd6586d3a5c83fa78f77"
 ROWS = RAMP_ROWS  # the replayed ramp's length (conftest.ramp)
-
-
-# -- the reader's own types (rosidl's DDS names for geometry_msgs etc.) -------
-@dataclass
-class Time_(IdlStruct, typename="builtin_interfaces::msg::dds_::Time_"):
-    sec: t.int32
-    nanosec: t.uint32
-
-
-@dataclass
-class Header_(IdlStruct, typename="std_msgs::msg::dds_::Header_"):
-    stamp: Time_
-    frame_id: str
-
-
-@dataclass
-class Vector3_(IdlStruct, typename="geometry_msgs::msg::dds_::Vector3_"):
-    x: t.float64
-    y: t.float64
-    z: t.float64
-
-
-@dataclass
-class Wrench_(IdlStruct, typename="geometry_msgs::msg::dds_::Wrench_"):
-    force: Vector3_
-    torque: Vector3_
-
-
-@dataclass
-class WrenchStamped_(IdlStruct, typename="geometry_msgs::msg::dds_::WrenchStamped_"):
-    header: Header_
-    wrench: Wrench_
-
-
-@dataclass
-class KeyValue_(IdlStruct, typename="diagnostic_msgs::msg::dds_::KeyValue_"):
-    key: str
-    value: str
-
-
-@dataclass
-class DiagnosticStatus_(IdlStruct, typename="diagnostic_msgs::msg::dds_::DiagnosticStatus_"):
-    level: t.uint8
-    name: str
-    message: str
-    hardware_id: str
-    values: t.sequence[KeyValue_]
-
-
-@dataclass
-class DiagnosticArray_(IdlStruct, typename="diagnostic_msgs::msg::dds_::DiagnosticArray_"):
-    header: Header_
-    status: t.sequence[DiagnosticStatus_]
-
-
-@dataclass
-class Empty_(IdlStruct, typename="std_msgs::msg::dds_::Empty_"):
-    structure_needs_at_least_one_member: t.uint8
-
-
-@dataclass
-class Gid_(IdlStruct, typename="rmw_dds_common::msg::dds_::Gid_"):
-    data: t.array[t.uint8, 16]
-
-
-@dataclass
-class NodeEntitiesInfo_(IdlStruct, typename="rmw_dds_common::msg::dds_::NodeEntitiesInfo_"):
-    node_namespace: t.bounded_str[256]
-    node_name: t.bounded_str[256]
-    reader_gid_seq: t.sequence[Gid_]
-    writer_gid_seq: t.sequence[Gid_]
-
-
-@dataclass
-class ParticipantEntitiesInfo_(IdlStruct,
-                               typename="rmw_dds_common::msg::dds_::ParticipantEntitiesInfo_"):
-    gid: Gid_
-    node_entities_info_seq: t.sequence[NodeEntitiesInfo_]
 
 
 LOOPBACK = ("<CycloneDDS><Domain Id=\"any\"><General><Interfaces>"
@@ -290,26 +212,6 @@ def test_tare_command_topic_and_diagnostics(participant: Any, domain: int) -> No
     finally:
         err = stop(proc)
     assert proc.returncode == 0, err
-
-
-@dataclass
-class Gid24_(IdlStruct, typename="rmw_dds_common::msg::dds_::Gid_"):
-    data: t.array[t.uint8, 24]
-
-
-@dataclass
-class NodeEntitiesInfo24_(IdlStruct, typename="rmw_dds_common::msg::dds_::NodeEntitiesInfo_"):
-    node_namespace: t.bounded_str[256]
-    node_name: t.bounded_str[256]
-    reader_gid_seq: t.sequence[Gid24_]
-    writer_gid_seq: t.sequence[Gid24_]
-
-
-@dataclass
-class ParticipantEntitiesInfo24_(
-        IdlStruct, typename="rmw_dds_common::msg::dds_::ParticipantEntitiesInfo_"):
-    gid: Gid24_
-    node_entities_info_seq: t.sequence[NodeEntitiesInfo24_]
 
 
 def test_humble_node_announcement(domain: int) -> None:

@@ -19,7 +19,6 @@ Every wait is bounded."""
 import os
 import subprocess
 import time
-from dataclasses import dataclass
 from typing import Any, Dict, Iterator, List
 
 import pytest
@@ -28,8 +27,6 @@ cyclonedds = pytest.importorskip("cyclonedds")  # the "bridge" extra
 
 from cyclonedds.core import Qos  # noqa: E402
 from cyclonedds.domain import Domain, DomainParticipant  # noqa: E402
-from cyclonedds.idl import IdlStruct  # noqa: E402
-from cyclonedds.idl import types as t  # noqa: E402
 from cyclonedds.pub import DataWriter  # noqa: E402
 from cyclonedds.qos import Policy  # noqa: E402
 from cyclonedds.sub import DataReader  # noqa: E402
@@ -37,25 +34,11 @@ from cyclonedds.topic import Topic  # noqa: E402
 from test_bridge_dds import (LOOPBACK, DiagnosticArray_, ParticipantEntitiesInfo_,  # noqa: E402
                              WrenchStamped_, reader_qos, start_bridge, stop)
 from test_bridge_fastdds import peer  # noqa: E402,F401 (the Fast DDS peer, a fixture)
+from ros_dds_types import TriggerRequest_, TriggerResponse_  # noqa: E402
 
 from leptrino.bridge import dds  # noqa: E402
 
 TRIGGER_HASH = "RIHS01_eeff2cd6fa5ad9d27cdf4dec64818317839b62f212a91e6b5304b634b2062c5f"
-
-
-@dataclass
-class TriggerRequest_(IdlStruct, typename="std_srvs::srv::dds_::Trigger_Request_"):
-    client_guid: t.uint64  # rmw_cyclonedds' request header ...
-    sequence_number: t.int64  # ... then the request
-    structure_needs_at_least_one_member: t.uint8
-
-
-@dataclass
-class TriggerResponse_(IdlStruct, typename="std_srvs::srv::dds_::Trigger_Response_"):
-    client_guid: t.uint64
-    sequence_number: t.int64
-    success: bool
-    message: str
 
 
 @pytest.fixture(scope="module")
@@ -280,3 +263,35 @@ def test_malformed_requests_are_counted_and_ignored(participant: Any, domain: in
     assert len(ignored) == 1, err  # rate-limited: one line for the burst
     assert len([line for line in err.splitlines() if "without rmw_cyclonedds' request header"
                 in line]) == 1, err
+
+
+def test_busy_requests_are_answered_busy(participant: Any, domain: int) -> None:
+    """Requests that come while a tare is served are answered at once with
+    success false and the busy message (not dropped), and counted."""
+    p = participant
+    rd = wrench_reader(p, "/a")
+    drd = DataReader(p, Topic(p, "rt/a/diagnostics", DiagnosticArray_), qos=reader_qos())
+    c = Client(p, "/a/tare", "1.2.3.4.5.6.7.8.9.a.b.c.0.0.0.9")
+    proc = start_bridge(domain, "--sim", "a,constant,amplitude=0.2", "--retare", "600")
+    try:
+        forces(rd, 100)
+        c.wait_matched()
+        for seq in range(1, 9):  # a tare of 600 samples takes 0.5 s: these come meanwhile
+            c.writer.write(TriggerRequest_(client_guid=c.guid, sequence_number=seq,
+                                           structure_needs_at_least_one_member=0))
+        got: Dict[int, Any] = {}
+        end = time.monotonic() + 10
+        while time.monotonic() < end and len(got) < 8:
+            for r in c.reader.take(10):
+                if isinstance(r, TriggerResponse_) and r.client_guid == c.guid:
+                    got[r.sequence_number] = r
+            time.sleep(0.01)
+        assert sorted(got) == list(range(1, 9)), sorted(got)
+        assert got[1].success and got[1].message.startswith("tared over 600"), got[1].message
+        busy = [s for s in range(2, 9) if not got[s].success]
+        assert busy and all(got[s].message.startswith("busy:") for s in busy)
+        kv = diagnostics(drd)
+        assert int(kv["tare_busy"]) == len(busy) and int(kv["tare_requests"]) == 8 - len(busy)
+    finally:
+        err = stop(proc)
+    assert proc.returncode == 0, err

@@ -20,7 +20,6 @@ import struct
 import subprocess
 import sys
 import time
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Callable, Dict, List, Tuple
 
@@ -130,32 +129,10 @@ class DdsSender:
     def __init__(self, domain: int) -> None:
         from cyclonedds.core import Qos
         from cyclonedds.domain import DomainParticipant
-        from cyclonedds.idl import IdlStruct
-        from cyclonedds.idl import types as t
         from cyclonedds.pub import DataWriter
+        from ros_dds_types import Vector3Stamped_
         from cyclonedds.qos import Policy
         from cyclonedds.topic import Topic
-
-        @dataclass
-        class Time_(IdlStruct, typename="builtin_interfaces::msg::dds_::Time_"):
-            sec: t.int32
-            nanosec: t.uint32
-
-        @dataclass
-        class Header_(IdlStruct, typename="std_msgs::msg::dds_::Header_"):
-            stamp: Time_
-            frame_id: str
-
-        @dataclass
-        class Vector3_(IdlStruct, typename="geometry_msgs::msg::dds_::Vector3_"):
-            x: t.float64
-            y: t.float64
-            z: t.float64
-
-        @dataclass
-        class Vector3Stamped_(IdlStruct, typename="geometry_msgs::msg::dds_::Vector3Stamped_"):
-            header: Header_
-            vector: Vector3_
 
         qos = Qos(Policy.Reliability.Reliable(1_000_000_000), Policy.Durability.Volatile,
                   Policy.History.KeepLast(10),

@@ -171,7 +171,7 @@ def test_trigger_request_and_response(store):
     with pytest.raises(ValueError):
         cdr.check_encapsulation(b"\x01")
     with pytest.raises(ValueError):
-        cdr.CdrWriter().string("a\x00b")
+        cdr.encode_trigger_response(True, "a\x00b")
 
 
 def test_attachment_layout_and_zenoh_serializer():
@@ -268,3 +268,31 @@ def test_foxglove_address():
     for bad in ("", "host:", "x:99999", "a:b"):
         with pytest.raises(ValueError):
             parse_address(bad)
+
+
+@pytest.mark.parametrize("frame", ["", "a", "abcd", "sensor_frame_7", "é"])
+def test_c_wrench_encoder_matches_the_schema(frame):
+    """The C fast path (lep_ros_wrench_cdr) writes the bytes the schema-driven
+    encoder (bridge/schema.py, from the one description) writes."""
+    from leptrino.bridge import schema
+
+    t = [1700000000.25, 1700000000.2508333, 5.5]
+    si = [(1.0, -2.0, 0.5, 0.25, -0.125, 3.0), (1e-9, 2e9, -0.0, 7.0, 8.0, 9.0),
+          (0.0,) * 6]
+    got, _raw, stamps = _wrench_batch(frame, t, si, None)
+    for payload, stamp, w in zip(got, stamps, si):
+        sec, nsec = divmod(stamp, 10**9)
+        want = schema.encode("geometry_msgs/msg/WrenchStamped",
+                             (((sec, nsec), frame), (w[:3], w[3:])))
+        assert payload == want
+
+
+def test_schema_decoder_refuses_what_is_not_the_message():
+    from leptrino.bridge import schema
+
+    ok = schema.encode("geometry_msgs/msg/Vector3Stamped", (((1, 2), "ab"), (1.0, 2.0, 3.0)))
+    assert schema.decode("geometry_msgs/msg/Vector3Stamped", ok + b"\0\0\0") == \
+        (((1, 2), "ab"), (1.0, 2.0, 3.0))
+    for bad in (ok[:-1], ok + b"\0" * 4, b"\x01" + ok[1:], ok[:12] + b"\xff" + ok[13:]):
+        with pytest.raises(ValueError):
+            schema.decode("geometry_msgs/msg/Vector3Stamped", bad)

@@ -370,3 +370,29 @@ def test_health_counts_dropped_events(backend: str) -> None:
         for _ in range(1030):
             s.untare()  # one tare event each, never read: the queue keeps 1024
         assert s.health.events_dropped == 6
+
+
+def test_read_batch_take_events_and_status_text(backend: str) -> None:
+    """A program's own reading loop (the bridge's): batches into a
+    SampleBuffer, status codes without exceptions, the events taken."""
+    with leptrino.Sensor(sim={"constant": True}, backend=backend, latency=0.002) as s:
+        buf = s.sample_buffer(64)
+        assert isinstance(buf, leptrino.SampleBuffer) and buf.cap == 64
+        s.start()
+        got = 0
+        events = []
+        s.tare(50, wait=False)
+        for _ in range(200):
+            rc = s.read_batch(buf, 0.5)
+            assert rc == 0 or rc == K.LEP_E_TIMEOUT, s.status_text(rc)
+            assert buf.n <= 64
+            got += buf.n
+            events += s.take_events()
+            if got > 300 and any(e.type == "tare" for e in events):
+                break
+        s.stop()
+        assert got > 300
+        tare = [e for e in events if e.type == "tare"]
+        assert tare and any(tare[0].tare) and 0 < tare[0].sample <= got
+        assert buf.si.shape == (64, 6) and buf.raw.dtype == np.int16
+        assert s.status_text(K.LEP_E_TIMEOUT)

@@ -11,12 +11,14 @@ import time
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, List, Optional, Tuple
 
-from .mcap_out import FileExistsRefused, McapRecorder
+from .mcap_out import FileExistsRefused, McapRecorder, McapTransport
 from .node import AUDIT_LOGGER, NodeOptions, SensorNode, SensorSpec
+from .transport import Transport
 
 if TYPE_CHECKING:
-    from .dds import DdsOptions, DdsParticipant
-    from .foxglove_out import FoxgloveServer
+    from .dds import DdsOptions, DdsTransport
+    from .foxglove_out import FoxgloveTransport
+    from .zenoh_transport import ZenohTransport
 
 log = logging.getLogger("leptrino.bridge")
 
@@ -140,9 +142,12 @@ class Bridge:
         self.opts = node_opts or NodeOptions()
         self.period = diagnostics_period_s
         self.session: Any = None
+        self.zenoh: Optional[ZenohTransport] = None
         self.mcap: Optional[McapRecorder] = None
-        self.dds: Optional[DdsParticipant] = None
-        self.foxglove: Optional[FoxgloveServer] = None
+        self.dds: Optional[DdsTransport] = None
+        self.foxglove: Optional[FoxgloveTransport] = None
+        #: every transport, in the order the nodes declare on them
+        self.transports: List[Transport] = []
         self.nodes: List[SensorNode] = []
         self._stop = threading.Event()
         self._diag: Optional[threading.Thread] = None
@@ -159,29 +164,33 @@ class Bridge:
             for spec in sensors:
                 self.nodes.append(SensorNode(spec, self.opts))
             if zenoh_opts is not None:
+                from .zenoh_transport import ZenohTransport
+
                 self.session = open_session(zenoh_opts)
+                self.zenoh = ZenohTransport(self.session, self.opts.domain)
+                self.transports.append(self.zenoh)
             if foxglove is not None:  # the port is taken now: a failure leaves no file
-                from .foxglove_out import FoxgloveServer
+                from .foxglove_out import FoxgloveTransport
 
-                self.foxglove = FoxgloveServer(*foxglove, inputs=not self.opts.read_only)
+                self.foxglove = FoxgloveTransport(*foxglove, inputs=not self.opts.read_only)
+                self.transports.append(self.foxglove)
             if dds_opts is not None:
-                from .dds import DdsParticipant
+                from .dds import DdsTransport
 
-                self.dds = DdsParticipant(self.opts.domain, dds_opts)
+                self.dds = DdsTransport(self.opts.domain, dds_opts)
+                self.transports.append(self.dds)
             if mcap_path is not None:  # last: whatever failed before, no file was made
                 self.mcap = McapRecorder(mcap_path, force)
+                self.transports.append(McapTransport(self.mcap))
             for i, node in enumerate(self.nodes):
-                node.declare(i, lambda: next(ids), self.session, self.mcap, self.dds,
-                             self.foxglove)
-            if self.dds is not None:
-                self.dds.announce()
-            if self.foxglove is not None:
-                self.foxglove.add_services()
+                node.declare(i, lambda: next(ids), self.transports)
+            for t in self.transports:
+                t.ready()
         except BaseException:
             self.close()
             raise
 
-    def __enter__(self) -> "Bridge":
+    def __enter__(self) -> Bridge:
         return self
 
     def __exit__(self, *exc: Any) -> None:
@@ -190,10 +199,7 @@ class Bridge:
     def reachable(self) -> List[str]:
         """The Zenoh routers and peers this session is connected to now (ids);
         empty: nobody can receive what the bridge publishes."""
-        if self.session is None:
-            return []
-        info = self.session.info
-        return [str(z) for z in list(info.routers_zid()) + list(info.peers_zid())]
+        return self.zenoh.reachable() if self.zenoh is not None else []
 
     @property
     def zid(self) -> str:
@@ -235,17 +241,15 @@ class Bridge:
         for n in self.nodes:
             n.close()
         self.nodes = []
-        if self.dds is not None:
-            self.dds.close()
-            self.dds = None
-        if self.foxglove is not None:
-            self.foxglove.close()
-            self.foxglove = None
-        if self.session is not None:
+        if not self.transports and self.session is not None:  # opened, not yet a transport
             try:
                 self.session.close()
             except Exception:
                 pass
-            self.session = None
-        if self.mcap is not None:
-            self.mcap.close()
+        for t in reversed(self.transports):
+            try:
+                t.close()
+            except Exception as e:
+                log.warning("%s: close: %s", t.name, e)
+        self.transports = []
+        self.session = self.zenoh = self.dds = self.foxglove = None

@@ -1,6 +1,3 @@
-# cyclonedds' IDL annotations (types.sequence[T], types.array[T, N], bounded_str)
-# are its own runtime markers, not PEP 484 types:
-# mypy: disable-error-code="type-arg, arg-type, var-annotated, valid-type"
 """ROS 2 on DDS: the bridge's topics as a ROS 2 node on Cyclone DDS would
 publish them, for ROS 2 nodes on Fast DDS (rmw_fastrtps_cpp, the default
 middleware) and Cyclone DDS (rmw_cyclonedds_cpp). Needs the PyPI
@@ -27,8 +24,7 @@ The conventions (docs/bridge.md, "DDS", cites the sources):
   (subscription()), never trusted to deserialize.
 """
 
-# no "from __future__ import annotations": the IDL classes below are made
-# in a function and cyclonedds resolves their annotations as objects
+from __future__ import annotations
 
 import logging
 import os
@@ -41,6 +37,14 @@ from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 from . import cdr
 from .commands import CommandRunner
 from .ratelog import RateLimitedLog
+from .transport import Endpoint, InputHandler, NodeRef, Publisher, Request, Transport
+from .typehash import rihs01
+
+TRIGGER = "std_srvs/srv/Trigger"
+EMPTY = "std_msgs/msg/Empty"
+WRENCH_STAMPED = "geometry_msgs/msg/WrenchStamped"
+VECTOR3_STAMPED = "geometry_msgs/msg/Vector3Stamped"
+DIAGNOSTIC_ARRAY = "diagnostic_msgs/msg/DiagnosticArray"
 
 log = logging.getLogger("leptrino.bridge")
 
@@ -91,135 +95,67 @@ class DdsOptions:
 
 
 class _Types:
-    """The IDL types, named as rosidl names them for DDS."""
+    """The DDS types, made from the one description of each message
+    (schema.idl_types), named as rosidl names them for DDS. rmw_cyclonedds'
+    request header (the client's writer instance handle, the request's
+    sequence number) is put before the fields of a service's request and
+    reply: the request/reply addressing, here and in split_request /
+    reply_payload only."""
 
     def __init__(self, gid_len: int) -> None:
-        from dataclasses import dataclass as dc
+        from . import schema
+        from .typehash import parse_fields
 
-        from cyclonedds.idl import IdlStruct
-        from cyclonedds.idl import types as t
-
-        @dc
-        class Time(IdlStruct, typename="builtin_interfaces::msg::dds_::Time_"):
-            sec: t.int32
-            nanosec: t.uint32
-
-        @dc
-        class Header(IdlStruct, typename="std_msgs::msg::dds_::Header_"):
-            stamp: Time
-            frame_id: str
-
-        @dc
-        class Vector3(IdlStruct, typename="geometry_msgs::msg::dds_::Vector3_"):
-            x: t.float64
-            y: t.float64
-            z: t.float64
-
-        @dc
-        class Wrench(IdlStruct, typename="geometry_msgs::msg::dds_::Wrench_"):
-            force: Vector3
-            torque: Vector3
-
-        @dc
-        class WrenchStamped(IdlStruct, typename="geometry_msgs::msg::dds_::WrenchStamped_"):
-            header: Header
-            wrench: Wrench
-
-        @dc
-        class Vector3Stamped(IdlStruct, typename="geometry_msgs::msg::dds_::Vector3Stamped_"):
-            header: Header
-            vector: Vector3
-
-        @dc
-        class KeyValue(IdlStruct, typename="diagnostic_msgs::msg::dds_::KeyValue_"):
-            key: str
-            value: str
-
-        @dc
-        class DiagnosticStatus(IdlStruct,
-                               typename="diagnostic_msgs::msg::dds_::DiagnosticStatus_"):
-            level: t.uint8
-            name: str
-            message: str
-            hardware_id: str
-            values: t.sequence[KeyValue]
-
-        @dc
-        class DiagnosticArray(IdlStruct,
-                              typename="diagnostic_msgs::msg::dds_::DiagnosticArray_"):
-            header: Header
-            status: t.sequence[DiagnosticStatus]
-
-        @dc
-        class Empty(IdlStruct, typename="std_msgs::msg::dds_::Empty_"):
-            structure_needs_at_least_one_member: t.uint8
-
-        # rmw_cyclonedds' service payloads: its request header (the client's
-        # writer instance handle, the request's sequence number) then the
-        # message; the bridge reads and writes them raw (TriggerService)
-        @dc
-        class TriggerRequest(IdlStruct, typename="std_srvs::srv::dds_::Trigger_Request_"):
-            client_guid: t.uint64
-            sequence_number: t.int64
-            structure_needs_at_least_one_member: t.uint8
-
-        @dc
-        class TriggerResponse(IdlStruct, typename="std_srvs::srv::dds_::Trigger_Response_"):
-            client_guid: t.uint64
-            sequence_number: t.int64
-            success: bool
-            message: str
-
-        @dc
-        class Gid(IdlStruct, typename="rmw_dds_common::msg::dds_::Gid_"):
-            data: t.array[t.uint8, gid_len]
-
-        @dc
-        class NodeEntitiesInfo(IdlStruct,
-                               typename="rmw_dds_common::msg::dds_::NodeEntitiesInfo_"):
-            node_namespace: t.bounded_str[256]
-            node_name: t.bounded_str[256]
-            reader_gid_seq: t.sequence[Gid]
-            writer_gid_seq: t.sequence[Gid]
-
-        @dc
-        class ParticipantEntitiesInfo(
-                IdlStruct, typename="rmw_dds_common::msg::dds_::ParticipantEntitiesInfo_"):
-            gid: Gid
-            node_entities_info_seq: t.sequence[NodeEntitiesInfo]
-
-        self.Time, self.Header, self.Vector3, self.Wrench = Time, Header, Vector3, Wrench
-        self.WrenchStamped, self.KeyValue = WrenchStamped, KeyValue
-        self.DiagnosticStatus, self.DiagnosticArray = DiagnosticStatus, DiagnosticArray
-        self.Empty, self.Gid, self.NodeEntitiesInfo = Empty, Gid, NodeEntitiesInfo
-        self.ParticipantEntitiesInfo = ParticipantEntitiesInfo
-        self.TriggerRequest, self.TriggerResponse = TriggerRequest, TriggerResponse
-        self.by_ros = {
-            "geometry_msgs/msg/WrenchStamped": WrenchStamped,
-            "diagnostic_msgs/msg/DiagnosticArray": DiagnosticArray,
-            "std_msgs/msg/Empty": Empty,
-            "geometry_msgs/msg/Vector3Stamped": Vector3Stamped,
-        }
+        header = parse_fields("uint64 client_guid\nint64 sequence_number\n", "std_srvs")
+        by_ros = schema.idl_types(
+            [WRENCH_STAMPED, DIAGNOSTIC_ARRAY, EMPTY, VECTOR3_STAMPED, TRIGGER + "_Request",
+             TRIGGER + "_Response", "rmw_dds_common/msg/ParticipantEntitiesInfo"],
+            overrides={"rmw_dds_common/msg/Gid": f"char[{gid_len}] data\n"},
+            extra_fields={TRIGGER + "_Request": header, TRIGGER + "_Response": header})
+        self.by_ros: Dict[str, Any] = by_ros
+        self.WrenchStamped = by_ros[WRENCH_STAMPED]
+        self.Empty = by_ros[EMPTY]
+        self.TriggerRequest = by_ros[TRIGGER + "_Request"]
+        self.TriggerResponse = by_ros[TRIGGER + "_Response"]
+        self.ParticipantEntitiesInfo = by_ros["rmw_dds_common/msg/ParticipantEntitiesInfo"]
+        # the nested types, made with it
+        ann = self.ParticipantEntitiesInfo.__annotations__
+        self.Gid = ann["gid"]
+        self.NodeEntitiesInfo = _element(ann["node_entities_info_seq"])
 
 
-class DdsWriter:
+def _element(seq_type: Any) -> Any:
+    """The element type of a cyclonedds types.sequence[T]."""
+    return seq_type.__metadata__[0].subtype
+
+
+class DdsWriter(Publisher):
     """One ROS 2 publisher on DDS: writes payloads already in CDR (the
-    bridge's bytes) without making a Python sample of them."""
+    bridge's bytes) without making a Python sample of them; `listening`
+    while it has matched readers (publication_matched)."""
 
-    def __init__(self, dds: "DdsParticipant", fq_name: str, ros_type: str) -> None:
+    def __init__(self, dds: DdsTransport, fq_name: str, ros_type: str) -> None:
         from cyclonedds._clayer import ddspy_write
+        from cyclonedds.core import Listener
         from cyclonedds.pub import DataWriter
         from cyclonedds.topic import Topic
 
-        from .typehash import rihs01
-
-        self.topic = Topic(dds.participant, topic_name(fq_name), dds.types.by_ros[ros_type],
-                           qos=dds.topic_qos())
-        self.writer = DataWriter(dds.participant, self.topic,
-                                 qos=dds.endpoint_qos(rihs01(ros_type), reliable=True))
+        self.matched = 0
+        self.topic: Any = Topic(dds.participant, topic_name(fq_name), dds.types.by_ros[ros_type],
+                                qos=dds.topic_qos())
+        self.writer: Any = DataWriter(
+            dds.participant, self.topic, qos=dds.endpoint_qos(rihs01(ros_type), reliable=True),
+            listener=Listener(on_publication_matched=self._on_matched))
         self.gid = self.writer.guid.bytes
         self._ref = self.writer._ref
         self._write = ddspy_write
+
+    def _on_matched(self, _writer: Any, status: Any) -> None:
+        self.matched = int(status.current_count)
+
+    @property
+    def listening(self) -> bool:
+        return self.matched > 0
 
     def publish(self, payloads: Sequence[bytes], stamps: Sequence[int], now_ns: int) -> None:
         write, ref = self._write, self._ref
@@ -229,8 +165,8 @@ class DdsWriter:
                 log.debug("dds write: %d", rc)
 
     def close(self) -> None:
-        self.writer = None  # type: ignore[assignment]
-        self.topic = None  # type: ignore[assignment]
+        self.writer = None
+        self.topic = None
 
 
 def pad4(payload: bytes) -> bytes:
@@ -239,9 +175,15 @@ def pad4(payload: bytes) -> bytes:
     return payload + b"\x00" * (-len(payload) % 4)
 
 
-class DdsParticipant:
+class DdsTransport(Transport):
     """The bridge's one DDS participant (domain, USER_DATA enclave=/;), its
-    ros_discovery_info writer, its writers and its command readers."""
+    ros_discovery_info writer (the nodes and their endpoints), its writers,
+    readers and services. Services are also offered as command topics
+    (std_msgs/msg/Empty on the service's name) that any DDS middleware can
+    publish to."""
+
+    name = "dds"
+    command_topics = True
 
     def __init__(self, domain: int, opts: DdsOptions) -> None:
         from cyclonedds.core import Qos
@@ -257,15 +199,18 @@ class DdsParticipant:
         cfg = domain_config(opts.interface)
         try:
             self._domain = Domain(domain, cfg) if cfg is not None else None
-            self.participant = DomainParticipant(domain,
-                                                 qos=Qos(Policy.Userdata(b"enclave=/;")))
+            self.participant: Any = DomainParticipant(domain,
+                                                      qos=Qos(Policy.Userdata(b"enclave=/;")))
         except Exception as e:  # cyclonedds' DDSException: a bad configuration, no interface
             raise OSError(f"DDS domain {domain}: {e}") from None
         self._nodes: Dict[Tuple[str, str], Tuple[List[bytes], List[bytes]]] = {}
         self._lock = threading.Lock()
         self._readers: List[Any] = []
-        self._commands = CommandRunner("bridge-dds-commands", 16)  # a flood is cut
-        self._services = 0  # TriggerServices made (their ids)
+        self._writers: List[DdsWriter] = []
+        self._services: Dict[Tuple[str, str], List[TriggerService]] = {}
+        # replies waiting for the client's reply reader to match (at most 1 s each)
+        self.replies = CommandRunner("bridge-dds-replies", 64)
+        self._service_ids = 0
         from cyclonedds.pub import DataWriter
         from cyclonedds.topic import Topic
 
@@ -274,7 +219,7 @@ class DdsParticipant:
                        Policy.DataRepresentation(use_cdrv0_representation=True))
         self._info_topic = Topic(self.participant, "ros_discovery_info",
                                  self.types.ParticipantEntitiesInfo, qos=info_qos)
-        self._info_writer = DataWriter(self.participant, self._info_topic, qos=info_qos)
+        self._info_writer: Any = DataWriter(self.participant, self._info_topic, qos=info_qos)
 
     def topic_qos(self) -> Any:
         P = self.Policy
@@ -291,101 +236,102 @@ class DdsParticipant:
     def gid(self, guid16: bytes) -> Any:
         return self.types.Gid(data=list(guid16) + [0] * (self.gid_len - 16))
 
-    def writer(self, node: Tuple[str, str], fq_name: str, ros_type: str) -> DdsWriter:
-        w = DdsWriter(self, fq_name, ros_type)
+    def _entities(self, node: NodeRef) -> Tuple[List[bytes], List[bytes]]:
+        """(reader GIDs, writer GIDs) of a node, for ros_discovery_info (under _lock)."""
+        return self._nodes.setdefault((node.namespace, node.name), ([], []))
+
+    def declare_node(self, node: NodeRef) -> None:
         with self._lock:
-            self._nodes.setdefault(node, ([], []))[1].append(w.gid)
+            self._entities(node)
+
+    def advertise(self, endpoint: Endpoint) -> Publisher:
+        w = DdsWriter(self, endpoint.name, endpoint.ros_type)
+        with self._lock:
+            self._writers.append(w)
+            self._entities(endpoint.node)[1].append(w.gid)
         return w
 
-    def command(self, node: Tuple[str, str], fq_name: str,
-                action: Callable[[str], Any]) -> None:
-        """A `std_msgs/msg/Empty` topic: each sample received runs
-        action(requester) (in a thread of its own: a tare waits for its
-        samples); requester: "dds writer <GUID>", the sample's writer as
-        discovery gives it. The reader is best effort, so that reliable and
-        best-effort publishers both match."""
-        from cyclonedds.core import Listener
+    def _raw_reader(self, fq_name: str, ros_type: str, topic_prefix: str,
+                    on_sample: Callable[[Any, bytes, Any], None], qos: Any,
+                    on_matched: Optional[Callable[[Any, Any], None]] = None) -> Any:
+        """A reader whose samples are taken as bytes (never deserialized by
+        Cyclone into Python objects): on_sample(reader, bytes, info) for each
+        valid one, in Cyclone's listener thread, until the reader is empty."""
+        from cyclonedds._clayer import ddspy_take
+        from cyclonedds.core import InstanceState, Listener, SampleState, ViewState
         from cyclonedds.sub import DataReader
         from cyclonedds.topic import Topic
 
-        from .typehash import rihs01
-
-        runner = self._commands
+        mask = SampleState.Any | ViewState.Any | InstanceState.Any
 
         def on_data(reader: Any) -> None:
-            for s in reader.take(16):
-                if isinstance(s, self.types.Empty):
-                    who = f"dds writer {_writer_guid(reader, s)}"
-                    runner.submit(fq_name, lambda w=who: action(w))
+            while True:
+                taken = ddspy_take(reader._ref, mask, 16)
+                if isinstance(taken, int):  # an error code
+                    log.debug("dds take %s: %d", fq_name, taken)
+                    return
+                if not taken:
+                    return
+                for data, info in taken:
+                    if info.valid_data:
+                        on_sample(reader, bytes(data), info)
 
-        topic = Topic(self.participant, topic_name(fq_name), self.types.Empty,
+        topic = Topic(self.participant, topic_prefix + fq_name, self.types.by_ros[ros_type],
                       qos=self.topic_qos())
-        reader = DataReader(self.participant, topic,
-                            qos=self.endpoint_qos(rihs01("std_msgs/msg/Empty"), reliable=False),
-                            listener=Listener(on_data_available=on_data))
+        listener = (Listener(on_data_available=on_data) if on_matched is None else
+                    Listener(on_data_available=on_data, on_subscription_matched=on_matched))
+        reader = DataReader(self.participant, topic, qos=qos, listener=listener)
         self._readers.append((topic, reader))
-        with self._lock:
-            self._nodes.setdefault(node, ([], []))[0].append(reader.guid.bytes)
+        return reader
 
-    def service(self, node: Tuple[str, str], fq_name: str,
-                action: Callable[[str], Tuple[bool, str]],
-                on_rejected: Callable[[], None]) -> "TriggerService":
-        """A std_srvs/srv/Trigger service in rmw_cyclonedds' mapping
-        (TriggerService); action(requester) runs off Cyclone's thread, one
-        request at a time (requester: "dds client <guid>", the request
-        header's client GUID); on_rejected is called for each malformed request."""
-        svc = TriggerService(self, fq_name, action, on_rejected, self._next_service_id())
-        self._readers.append(svc)
+    def take(self, endpoint: Endpoint, on_payload: InputHandler) -> None:
+        """A ROS 2 subscription: each sample's serialized bytes (encapsulation
+        header first) go to on_payload, which checks them. Best effort, so
+        that reliable and best-effort publishers both match."""
+        reader = self._raw_reader(
+            endpoint.name, endpoint.ros_type, "rt",
+            lambda _r, data, _i: on_payload(data, ""),
+            self.endpoint_qos(rihs01(endpoint.ros_type), reliable=False))
         with self._lock:
-            readers, writers = self._nodes.setdefault(node, ([], []))
-            readers.append(svc.reader.guid.bytes)
+            self._entities(endpoint.node)[0].append(reader.guid.bytes)
+
+    def serve(self, endpoint: Endpoint, on_request: Callable[[Request], None]) -> None:
+        """The service in rmw_cyclonedds' mapping (TriggerService) and its
+        command topic (std_msgs/msg/Empty on the same name; a sample is a
+        request nobody can be answered for: requester "dds writer <GUID>")."""
+        svc = TriggerService(self, endpoint.name, on_request, self._next_service_id())
+
+        def on_command(reader: Any, data: bytes, info: Any) -> None:
+            on_request(_CommandRequest(data, f"dds writer {_writer_guid(reader, info)}"))
+
+        reader = self._raw_reader(endpoint.name, EMPTY, "rt", on_command,
+                                  self.endpoint_qos(rihs01(EMPTY), reliable=False))
+        with self._lock:
+            self._services.setdefault((endpoint.node.namespace, endpoint.node.name),
+                                      []).append(svc)
+            readers, writers = self._entities(endpoint.node)
+            readers += [reader.guid.bytes, svc.reader.guid.bytes]
             writers.append(svc.writer.guid.bytes)
-        return svc
+
+    def diagnostics(self, node: NodeRef) -> List[Tuple[str, str]]:
+        """dds_headerless_clients: matched clients whose requests cannot be
+        answered (no rmw_cyclonedds request header: TriggerService)."""
+        svcs = self._services.get((node.namespace, node.name), [])
+        if not svcs:
+            return []
+        return [("dds_headerless_clients", str(sum(s.headerless_clients for s in svcs)))]
 
     def _next_service_id(self) -> str:
         """A client/service id as rmw_cyclonedds makes one: the participant's
         GUID prefix (12 bytes) then a counter (4 bytes, big-endian), in hex
         bytes joined by dots (the pair's USER_DATA `serviceid=`)."""
         with self._lock:
-            self._services += 1
-            n = self._services
+            self._service_ids += 1
+            n = self._service_ids
         raw = self.participant.guid.bytes[:12] + n.to_bytes(4, "big")
         return ".".join(f"{b:x}" for b in raw)
 
-    def subscription(self, node: Tuple[str, str], fq_name: str, ros_type: str,
-                     on_payload: Callable[[bytes], Any]) -> None:
-        """A ROS 2 subscription on DDS: each sample received is handed to
-        on_payload as its serialized bytes (encapsulation header first), in
-        Cyclone's listener thread; on_payload checks it (it must not raise).
-        Best effort, so that reliable and best-effort publishers both match."""
-        from cyclonedds._clayer import ddspy_take
-        from cyclonedds.core import InstanceState, Listener, SampleState, ViewState
-        from cyclonedds.sub import DataReader
-        from cyclonedds.topic import Topic
-
-        from .typehash import rihs01
-
-        mask = SampleState.Any | ViewState.Any | InstanceState.Any
-
-        def on_data(reader: Any) -> None:
-            taken = ddspy_take(reader._ref, mask, 16)
-            if isinstance(taken, int):  # an error code
-                log.debug("dds take %s: %d", fq_name, taken)
-                return
-            for data, info in taken:
-                if info.valid_data:
-                    on_payload(bytes(data))
-
-        topic = Topic(self.participant, topic_name(fq_name), self.types.by_ros[ros_type],
-                      qos=self.topic_qos())
-        reader = DataReader(self.participant, topic,
-                            qos=self.endpoint_qos(rihs01(ros_type), reliable=False),
-                            listener=Listener(on_data_available=on_data))
-        self._readers.append((topic, reader))
-        with self._lock:
-            self._nodes.setdefault(node, ([], []))[0].append(reader.guid.bytes)
-
-    def announce(self) -> None:
+    def ready(self) -> None:
         """Publish the nodes on ros_discovery_info (after every endpoint is made)."""
         T = self.types
         with self._lock:
@@ -396,26 +342,51 @@ class DdsParticipant:
         self._info_writer.write(T.ParticipantEntitiesInfo(
             gid=self.gid(self.participant.guid.bytes), node_entities_info_seq=infos))
 
+    announce = ready
+
     def close(self) -> None:
         """Withdraw the nodes (an empty announcement), then delete everything."""
+        if self.participant is None:
+            return
         try:
             T = self.types
             self._info_writer.write(T.ParticipantEntitiesInfo(
                 gid=self.gid(self.participant.guid.bytes), node_entities_info_seq=[]))
         except Exception:
             pass
-        self._commands.stop()
+        self.replies.stop()
         self._readers = []
-        self._info_writer = None  # type: ignore[assignment]
-        self.participant = None  # type: ignore[assignment]
+        for w in self._writers:
+            w.close()
+        self._writers = []
+        self._services = {}
+        self._info_writer = None
+        self.participant = None
         self._domain = None
 
 
-def _writer_guid(reader: Any, sample: Any) -> str:
-    """The GUID of the writer of a sample taken from reader ("unknown" when
-    the writer is gone already)."""
+DdsParticipant = DdsTransport  # the name before the transport interface
+
+
+class _CommandRequest(Request):
+    """A sample of a command topic: nobody to answer."""
+
+    def __init__(self, payload: bytes, requester: str) -> None:
+        self.payload = payload
+        self.requester = requester
+
+    def reply(self, payload: bytes) -> None:
+        return None
+
+    def refuse(self, why: str) -> None:
+        return None
+
+
+def _writer_guid(reader: Any, info: Any) -> str:
+    """The GUID of the writer of a sample taken from reader (info: its
+    SampleInfo; "unknown" when the writer is gone already)."""
     try:
-        ep = reader.get_matched_publication_data(sample.sample_info.publication_handle)
+        ep = reader.get_matched_publication_data(info.publication_handle)
         return str(ep.key) if ep is not None else "unknown"
     except Exception:
         return "unknown"
@@ -438,27 +409,73 @@ def parse_user_data(data: bytes) -> Dict[str, str]:
     return out
 
 
+# -- request/reply addressing: rmw_cyclonedds' request header (all of it here) --
+
+def split_request(payload: bytes) -> Tuple[int, int, bytes]:
+    """A request as rmw_cyclonedds sends it -> (client guid, sequence number,
+    the request message in CDR: encapsulation header and body). ValueError
+    when it is not CDR or too short for the header."""
+    if len(payload) < 4 or payload[0] != 0 or payload[1] not in (0, 1):
+        raise ValueError("not a CDR payload (bad encapsulation header)")
+    if len(payload) < 4 + REQUEST_HEADER_SIZE:
+        raise ValueError(f"{len(payload) - 4} bytes after the encapsulation header: no room "
+                         "for a request header")
+    guid, seq = struct.unpack_from("<Qq" if payload[1] == 1 else ">Qq", payload, 4)
+    return guid, seq, payload[:4] + payload[4 + REQUEST_HEADER_SIZE:]
+
+
+def reply_payload(guid: int, seq: int, response: bytes) -> bytes:
+    """The reply to a request: rmw_cyclonedds' header (the request's guid and
+    sequence number) then the response message (CDR little-endian, its
+    encapsulation header first). The header is 16 bytes, so the response's
+    fields keep their alignment."""
+    return pad4(response[:4] + struct.pack("<Qq", guid, seq) + response[4:])
+
+
 def parse_trigger_request(payload: bytes) -> Tuple[int, int]:
     """An rmw_cyclonedds std_srvs/srv/Trigger request -> (client guid, sequence
     number). ValueError for anything else: not CDR, no room for the header
     (a request without it, as rmw_fastrtps sends), a wrong length."""
-    if len(payload) < 4 or payload[0] != 0 or payload[1] not in (0, 1):
-        raise ValueError("not a CDR payload (bad encapsulation header)")
-    body = len(payload) - 4
-    # the header, Trigger_Request's one byte, at most 3 bytes of padding
-    if not REQUEST_HEADER_SIZE + 1 <= body <= REQUEST_HEADER_SIZE + 4:
-        raise ValueError(f"{body} bytes after the encapsulation header, expected "
+    guid, seq, body = split_request(payload)
+    # Trigger_Request's one byte, at most 3 bytes of padding
+    if not 1 <= len(body) - 4 <= 4:
+        raise ValueError(f"{len(payload) - 4} bytes after the encapsulation header, expected "
                          f"{REQUEST_HEADER_SIZE + 1} (a request header and the request)")
-    guid, seq = struct.unpack_from("<Qq" if payload[1] == 1 else ">Qq", payload, 4)
     return guid, seq
 
 
 def encode_trigger_reply(guid: int, seq: int, success: bool, message: str) -> bytes:
-    """The reply: rmw_cyclonedds' header (the request's guid and sequence
-    number) then std_srvs/srv/Trigger_Response, CDR little-endian. The header
-    is 16 bytes, so the response's fields keep their alignment."""
-    body = cdr.encode_trigger_response(success, message)
-    return pad4(body[:4] + struct.pack("<Qq", guid, seq) + body[4:])
+    """The reply to a Trigger request (reply_payload of Trigger_Response)."""
+    return reply_payload(guid, seq, cdr.encode_trigger_response(success, message))
+
+
+class _ServiceRequest(Request):
+    """A request taken by a TriggerService; reply() writes the reply with the
+    request's header once the client's reply reader is matched (at once when
+    it is, else from the transport's reply thread, waiting at most
+    TriggerService.MATCH_WAIT_S)."""
+
+    def __init__(self, svc: TriggerService, raw: bytes, writer_handle: int) -> None:
+        self._svc = svc
+        self._handle = writer_handle
+        self.guid = self.seq = 0
+        try:
+            self.guid, self.seq = parse_trigger_request(raw)
+            self.payload = raw[:4] + raw[4 + REQUEST_HEADER_SIZE:]
+        except ValueError as e:
+            self.error = str(e)
+        self.requester = f"dds client {self.guid:016x}"
+
+    def reply(self, payload: bytes) -> None:
+        svc, data = self._svc, reply_payload(self.guid, self.seq, payload)
+        if svc.client_reader_matched(self._handle):
+            svc.write(data, self.seq)
+        elif not svc.replies.submit(svc.name, lambda: svc.write_when_matched(
+                data, self.seq, self._handle)):
+            svc.write(data, self.seq)  # too many waiting: write it now
+
+    def refuse(self, why: str) -> None:
+        return None  # rmw_cyclonedds has no error reply: the request is dropped
 
 
 class TriggerService:
@@ -467,11 +484,10 @@ class TriggerService:
     `rr<name>Reply`, RELIABLE, VOLATILE, KEEP_LAST(10) (ROS 2's services
     profile), USER_DATA `serviceid=<id>;typehash=<Trigger's>;` on both.
 
-    Each request is taken raw and checked (parse_trigger_request); a bad one
-    is dropped, counted (on_rejected) and logged at most every 5 s. A good
-    one runs action in the participant's command thread; the reply carries the
-    request's header, and is written once the client's reply reader (the
-    reader with the request writer's `clientid`) is matched, or after 1 s.
+    Each request is taken raw and handed to on_request (the node checks it,
+    answers or refuses it); the reply carries the request's header, and is
+    written once the client's reply reader (the reader with the request
+    writer's `clientid`) is matched, or after MATCH_WAIT_S.
 
     A request shorter than the request type (no header: rmw_fastrtps') never
     reaches the bridge: Cyclone drops it while deserializing, with a line of
@@ -481,39 +497,28 @@ class TriggerService:
 
     MATCH_WAIT_S = 1.0
 
-    def __init__(self, dds: DdsParticipant, fq_name: str,
-                 action: Callable[[str], Tuple[bool, str]], on_rejected: Callable[[], None],
-                 service_id: str) -> None:
-        from cyclonedds._clayer import ddspy_take, ddspy_write
-        from cyclonedds.core import InstanceState, Listener, SampleState, ViewState
+    def __init__(self, dds: DdsTransport, fq_name: str,
+                 on_request: Callable[[Request], None], service_id: str) -> None:
+        from cyclonedds._clayer import ddspy_write
         from cyclonedds.pub import DataWriter
-        from cyclonedds.sub import DataReader
         from cyclonedds.topic import Topic
 
-        from .typehash import rihs01
-
         self.name = fq_name
-        self._action = action
-        self._on_rejected = on_rejected
-        self._runner = dds._commands
+        self.replies = dds.replies
         self._Userdata = dds.Policy.Userdata
-        self._take = ddspy_take
         self._write = ddspy_write
-        self._mask = SampleState.Any | ViewState.Any | InstanceState.Any
-        self._log = RateLimitedLog()
         self._client_log = RateLimitedLog()
-        self.rejected = 0
         self.headerless_clients = 0
-        qos = dds.endpoint_qos(rihs01("std_srvs/srv/Trigger"), reliable=True,
+        qos = dds.endpoint_qos(rihs01(TRIGGER), reliable=True,
                                user_data=f"serviceid={service_id};")
-        self.request_topic = Topic(dds.participant, f"rq{fq_name}Request",
-                                   dds.types.TriggerRequest, qos=dds.topic_qos())
         self.reply_topic = Topic(dds.participant, f"rr{fq_name}Reply",
                                  dds.types.TriggerResponse, qos=dds.topic_qos())
         self.writer = DataWriter(dds.participant, self.reply_topic, qos=qos)
-        self.reader = DataReader(dds.participant, self.request_topic, qos=qos,
-                                 listener=Listener(on_data_available=self._on_data,
-                                                   on_subscription_matched=self._on_match))
+        self.reader = dds._raw_reader(
+            fq_name + "Request", TRIGGER + "_Request", "rq",
+            lambda _r, data, info: on_request(
+                _ServiceRequest(self, data, info.publication_handle)), qos,
+            on_matched=self._on_match)
 
     def _on_match(self, _reader: Any, status: Any) -> None:
         if status.current_count_change <= 0:
@@ -530,41 +535,18 @@ class TriggerService:
             "its requests cannot be answered: it can publish std_msgs/msg/Empty on the "
             "topic %s instead", self.name, self.name)
 
-    def _on_data(self, _reader: Any) -> None:
-        while True:  # until the reader is empty (16 at a time)
-            got = self._take(self.reader._ref, self._mask, 16)
-            if isinstance(got, int):  # a DDS error code
-                log.debug("%s: take: %d", self.name, got)
-                return
-            if not got:
-                return
-            self._handle(got)
-
-    def _handle(self, got: Sequence[Tuple[bytes, Any]]) -> None:
-        for payload, info in got:
-            if not info.valid_data:
-                continue  # a writer went away
-            try:
-                guid, seq = parse_trigger_request(bytes(payload))
-            except ValueError as e:
-                self.rejected += 1
-                self._on_rejected()
-                self._log.warning("%s: request ignored: %s", self.name, e)
-                continue
-            handle = info.publication_handle
-            self._runner.submit(self.name, lambda g=guid, s=seq, h=handle: self._serve(g, s, h))
-
-    def _serve(self, guid: int, seq: int, writer_handle: int) -> str:
-        ok, message = self._action(f"dds client {guid:016x}")
-        end = time.monotonic() + self.MATCH_WAIT_S
-        while not self._client_reader_matched(writer_handle) and time.monotonic() < end:
-            time.sleep(0.01)
-        rc = self._write(self.writer._ref, encode_trigger_reply(guid, seq, ok, message))
+    def write(self, data: bytes, seq: int) -> None:
+        rc = self._write(self.writer._ref, data)
         if rc < 0:
-            return f"reply to request {seq} not written ({rc}): {message}"
-        return message
+            log.info("%s: reply to request %d not written (%d)", self.name, seq, rc)
 
-    def _client_reader_matched(self, writer_handle: int) -> bool:
+    def write_when_matched(self, data: bytes, seq: int, writer_handle: int) -> None:
+        end = time.monotonic() + self.MATCH_WAIT_S
+        while not self.client_reader_matched(writer_handle) and time.monotonic() < end:
+            time.sleep(0.01)
+        self.write(data, seq)
+
+    def client_reader_matched(self, writer_handle: int) -> bool:
         """Whether the reply writer has matched the requesting client's reply
         reader (by its USER_DATA clientid, as rmw_cyclonedds checks); a
         client without a clientid is taken as matched."""

@@ -16,14 +16,10 @@ import logging
 import threading
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
-from . import cdr
-from .mcap_out import ros2msg_schema
-from .ratelog import RateLimitedLog
+from .schema import ros2msg_schema
+from .transport import Endpoint, InputHandler, Publisher, Request, Transport
 
 log = logging.getLogger("leptrino.bridge")
-
-TRIGGER_REQUEST_MSG = ""  # std_srvs/srv/Trigger: an empty request
-TRIGGER_RESPONSE_MSG = "bool success\nstring message\n"
 
 
 def parse_address(text: str) -> Tuple[str, int]:
@@ -38,10 +34,11 @@ def parse_address(text: str) -> Tuple[str, int]:
     return host, int(port)
 
 
-class FoxgloveChannel:
-    """One topic on the server: logs the payloads as they are published."""
+class FoxgloveChannel(Publisher):
+    """One topic on the server: logs the payloads while a client subscribes."""
 
-    def __init__(self, ctx: Any, topic: str, ros_type: str) -> None:
+    def __init__(self, ctx: Any, topic: str, ros_type: str,
+                 subscribers: _ClientInputs) -> None:
         import foxglove
 
         self.channel = foxglove.Channel(
@@ -50,6 +47,11 @@ class FoxgloveChannel:
                                    data=ros2msg_schema(ros_type)),
             context=ctx)
         self._log = self.channel.log
+        self._subs = subscribers.counter(self.channel.id())
+
+    @property
+    def listening(self) -> bool:
+        return self._subs[0] > 0
 
     def publish(self, payloads: Sequence[bytes], stamps: Sequence[int], now_ns: int) -> None:
         log_ = self._log
@@ -63,18 +65,53 @@ class FoxgloveChannel:
             pass
 
 
-class FoxgloveServer:
+class _FoxgloveRequest(Request):
+    """A service call: the SDK's handler waits (in its own thread) for the
+    node's answer, at most REPLY_WAIT_S."""
+
+    REPLY_WAIT_S = 10.0
+
+    def __init__(self, request: Any) -> None:
+        self.requester = f"foxglove client {request.client_id}"
+        self.payload = bytes(request.payload)
+        self._done = threading.Event()
+        self._reply: Optional[bytes] = None
+        self._why = ""
+
+    def reply(self, payload: bytes) -> None:
+        self._reply = payload
+        self._done.set()
+
+    def refuse(self, why: str) -> None:
+        self._why = why
+        self._done.set()
+
+    def wait(self) -> bytes:
+        if not self._done.wait(self.REPLY_WAIT_S):
+            raise TimeoutError("no answer from the bridge")
+        if self._reply is None:
+            raise ValueError(f"malformed request: {self._why}")
+        return self._reply
+
+
+class FoxgloveTransport(Transport):
     """A Foxglove WebSocket server on host:port with its own context (so
     that nothing else logged in the process leaks into it). Listens from
     construction (OSError when it cannot); channels are advertised as they
-    are made, the services by add_services(). inputs False (read-only):
-    the server offers neither services nor client publishing."""
+    are made, the services when ready() is called. inputs False (read-only):
+    the server offers neither services nor client publishing.
+
+    Services: std_srvs/srv/Trigger in CDR; the SDK's handler thread waits for
+    the node's answer; a refused request is a service call failure for the
+    client. Inputs: topics clients may publish to (ros2msg schema, CDR); a
+    client channel of another encoding or schema is refused message by message."""
+
+    name = "foxglove"
 
     def __init__(self, host: str, port: int, inputs: bool = True) -> None:
         import foxglove
         from foxglove import Capability
 
-        self._refusals = RateLimitedLog()
         self.ctx = foxglove.Context()
         self.host = host
         self._services: List[Any] = []
@@ -88,51 +125,33 @@ class FoxgloveServer:
         except Exception as e:  # the SDK's error for a port in use, a bad host
             raise OSError(f"--foxglove {host}:{port}: {e}") from None
 
-    def channel(self, topic: str, ros_type: str) -> FoxgloveChannel:
-        return FoxgloveChannel(self.ctx, topic, ros_type)
+    def advertise(self, endpoint: Endpoint) -> Publisher:
+        return FoxgloveChannel(self.ctx, endpoint.name, endpoint.ros_type, self._inputs)
 
-    def service(self, name: str, call: Callable[[str], Tuple[bool, str]],
-                rejected: Callable[[], None]) -> None:
-        """A std_srvs/srv/Trigger service: call(requester) runs in the
-        server's thread (requester: "foxglove client <id>", the id the
-        server gave the connection); its answer goes back as
-        Trigger_Response in CDR. A request that is not CDR is refused (the
-        client gets a service call failure), counted by rejected() and
-        logged at most every 5 s, and calls nothing."""
+    def serve(self, endpoint: Endpoint, on_request: Callable[[Request], None]) -> None:
         from foxglove import MessageSchema, Schema, Service, ServiceSchema
 
         def handler(request: Any) -> bytes:
-            who = f"foxglove client {request.client_id}"
-            try:
-                cdr.check_encapsulation(bytes(request.payload))
-            except ValueError as e:
-                rejected()
-                self._refusals.warning("%s: request by %s refused: %s", name, who, e)
-                raise ValueError(f"malformed request: {e}") from None
-            ok, message = call(who)
-            return cdr.encode_trigger_response(ok, message)
+            req = _FoxgloveRequest(request)
+            on_request(req)
+            return req.wait()
 
+        base = endpoint.ros_type
         schema = ServiceSchema(
-            name="std_srvs/srv/Trigger",
+            name=base,
             request=MessageSchema(encoding="cdr", schema=Schema(
-                name="std_srvs/srv/Trigger_Request", encoding="ros2msg",
-                data=TRIGGER_REQUEST_MSG.encode())),
+                name=base + "_Request", encoding="ros2msg",
+                data=ros2msg_schema(base + "_Request"))),
             response=MessageSchema(encoding="cdr", schema=Schema(
-                name="std_srvs/srv/Trigger_Response", encoding="ros2msg",
-                data=TRIGGER_RESPONSE_MSG.encode())))
-        self._services.append(Service(name=name, schema=schema, handler=handler))
+                name=base + "_Response", encoding="ros2msg",
+                data=ros2msg_schema(base + "_Response"))))
+        self._services.append(Service(name=endpoint.name, schema=schema, handler=handler))
 
-    def client_topic(self, topic: str, ros_type: str,
-                     on_payload: Callable[[bytes, str], Any]) -> None:
-        """A topic clients may publish to (ros2msg schema ros_type, CDR):
-        each message's bytes go to on_payload(data, "") in the server's
-        thread (it must not raise); on a client channel of this topic with
-        another encoding or schema, on_payload(data, why) so that the
-        message is refused and counted like any bad one."""
-        self._inputs.add(topic, ros_type, on_payload)
+    def take(self, endpoint: Endpoint, on_payload: InputHandler) -> None:
+        self._inputs.add(endpoint.name, endpoint.ros_type, on_payload)
 
-    def add_services(self) -> None:
-        """Offer the services made by service() (after every node declared them)."""
+    def ready(self) -> None:
+        """Offer the services (after every node declared them)."""
         if self._services:
             self._server.add_services(self._services)
 
@@ -149,8 +168,6 @@ class FoxgloveServer:
             self._server = None
 
 
-
-
 class _ClientInputs:
     """The server's listener for what clients publish: channels advertised
     on a known topic are mapped to its handler; messages of any other
@@ -160,6 +177,7 @@ class _ClientInputs:
         self._lock = threading.Lock()
         self._topics: Dict[str, Tuple[str, Callable[[bytes, str], Any]]] = {}
         self._channels: Dict[Tuple[int, int], Tuple[str, Callable[[bytes, str], Any], str]] = {}
+        self._subs: Dict[int, List[int]] = {}
 
     def add(self, topic: str, ros_type: str, on_payload: Callable[[bytes, str], Any]) -> None:
         with self._lock:
@@ -193,8 +211,16 @@ class _ClientInputs:
         _topic, handler, wrong = ch
         handler(bytes(data), wrong)
 
+    def counter(self, channel_id: int) -> List[int]:
+        """The subscription count of a channel of the server ([n], updated in place)."""
+        with self._lock:
+            return self._subs.setdefault(channel_id, [0])
+
     def on_subscribe(self, client: Any, channel: Any) -> None:
-        return None
+        with self._lock:
+            self._subs.setdefault(channel.id, [0])[0] += 1
 
     def on_unsubscribe(self, client: Any, channel: Any) -> None:
-        return None
+        with self._lock:
+            n = self._subs.setdefault(channel.id, [0])
+            n[0] = max(0, n[0] - 1)

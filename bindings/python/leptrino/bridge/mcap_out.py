@@ -11,12 +11,10 @@ from __future__ import annotations
 
 import os
 import threading
-from typing import IO, Dict, List, Optional, Sequence
+from typing import IO, Dict, Optional, Sequence
 
-from .typehash import MESSAGES, type_description
-
-_SEPARATOR = "=" * 80
-
+from .transport import Endpoint, Publisher, Transport
+from .schema import ros2msg_schema
 
 #: rmw's RMW_DURATION_INFINITE (rmw/time.h), as rosbag2 writes it
 _INFINITE = "\n    sec: 9223372036\n    nsec: 854775807"
@@ -42,17 +40,6 @@ def offered_qos_profiles(depth: int = 10, reliable: bool = True) -> str:
 
 class FileExistsRefused(FileExistsError):
     """The output path already holds a file and --overwrite was not given."""
-
-
-def ros2msg_schema(ros_type: str) -> bytes:
-    """The ros2msg schema text of a message type: its definition, then each
-    type it references (by full name, sorted), as rosbag2 writes them."""
-    desc = type_description(ros_type)
-    parts: List[str] = [MESSAGES[ros_type].rstrip("\n")]
-    for ref in desc["referenced_type_descriptions"]:
-        name = ref["type_name"]
-        parts.append(f"{_SEPARATOR}\nMSG: {name}\n{MESSAGES[name].rstrip(chr(10))}")
-    return ("\n".join(parts) + "\n").encode("utf-8")
 
 
 class McapRecorder:
@@ -93,8 +80,8 @@ class McapRecorder:
             if sid is None:
                 sid = self._w.register_schema(ros_type, "ros2msg", ros2msg_schema(ros_type))
                 self._schemas[ros_type] = sid
-            cid = self._w.register_channel(
-                topic, "cdr", sid, {"offered_qos_profiles": offered_qos_profiles(qos_depth)})
+            cid = int(self._w.register_channel(
+                topic, "cdr", sid, {"offered_qos_profiles": offered_qos_profiles(qos_depth)}))
             self._channels[topic] = cid
             self._seq[cid] = 0
             return cid
@@ -124,7 +111,40 @@ class McapRecorder:
             if self._f is None:
                 return
             try:
-                self._w.finish()  # type: ignore[no-untyped-call]
+                self._w.finish()
             finally:
                 self._f.close()
                 self._f = None
+
+
+class McapPublisher(Publisher):
+    """A channel of the recording: always listening while the file is open."""
+
+    def __init__(self, rec: McapRecorder, channel_id: int) -> None:
+        self._rec = rec
+        self._cid = channel_id
+
+    @property
+    def listening(self) -> bool:
+        return self._rec._f is not None
+
+    def publish(self, payloads: Sequence[bytes], stamps: Sequence[int], now_ns: int) -> None:
+        self._rec.write_batch(self._cid, payloads, stamps, now_ns)
+
+
+class McapTransport(Transport):
+    """The recording as a transport: topics only (no services, no inputs)."""
+
+    name = "mcap"
+    interactive = False
+
+    def __init__(self, rec: McapRecorder) -> None:
+        self.recorder = rec
+
+    def advertise(self, endpoint: Endpoint) -> Publisher:
+        return McapPublisher(self.recorder,
+                             self.recorder.channel(endpoint.name, endpoint.ros_type,
+                                                   endpoint.qos_depth))
+
+    def close(self) -> None:
+        self.recorder.close()

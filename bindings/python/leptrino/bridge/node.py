@@ -17,23 +17,24 @@ show in the diagnostics, published at once when one begins or ends.
 
 from __future__ import annotations
 
+import functools
 import logging
 import math
 import threading
 import time
 from dataclasses import dataclass, field
-from typing import Any, Callable, Dict, List, Optional, Protocol, Sequence, Tuple
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
 from .. import _constants as K
+from .._backend import get_backend
 from ..errors import LeptrinoError
 from ..sensor import Sensor
 from . import cdr
 from . import rmw_zenoh as rz
 from .gravity_in import VECTOR3_STAMPED, GravityInput
 from .commands import CommandRunner
-from .mcap_out import McapRecorder
 from .ratelog import RateLimitedLog
-from .typehash import rihs01
+from .transport import Endpoint, NodeRef, Publisher, Request, Transport
 from .wrench_batch import WrenchBatch
 
 log = logging.getLogger("leptrino.bridge")
@@ -47,6 +48,10 @@ WRENCH = "geometry_msgs/msg/WrenchStamped"
 #: (they feed the counters and the log; the session queues them meanwhile).
 EVENTS_PERIOD_S = 0.1
 DIAGNOSTICS = "diagnostic_msgs/msg/DiagnosticArray"
+#: The session's latency budget while nobody listens to `wrench` or `wrench_raw`
+#: on any transport (s): fewer wake-ups; limit events and a tare's end are then
+#: seen up to this much later.
+IDLE_LATENCY_S = 0.05
 TRIGGER = "std_srvs/srv/Trigger"
 
 
@@ -98,73 +103,50 @@ def axis_names(bits: int) -> str:
     return ",".join(a for i, a in enumerate(AXES) if bits >> i & 1)
 
 
-class Output(Protocol):
-    """Another transport of a topic (dds.DdsWriter, foxglove_out.FoxgloveChannel):
-    publish() gets a batch of payloads with their stamps (ns) and the
-    publication time (ns); close() withdraws it."""
-
-    def publish(self, payloads: Sequence[bytes], stamps: Sequence[int], now_ns: int) -> None:
-        ...
-
-    def close(self) -> None:
-        ...
-
-
 class Topic:
-    """One publisher: its graph entity, its Zenoh publisher and/or MCAP
-    channel, further outputs, and its sequence number."""
+    """One topic of a node on every transport: its publishers; a batch goes
+    to those with someone listening, the others count it as skipped."""
 
-    __slots__ = ("entity", "gid", "pub", "cid", "mcap", "seq", "name", "outputs")
+    __slots__ = ("name", "ros_type", "pubs", "skipped")
 
-    def __init__(self, entity: rz.Entity, session: Any, mcap: Optional[McapRecorder],
-                 qos_depth: int = 10) -> None:
-        self.entity = entity
-        self.name = entity.name
-        self.gid = entity.gid()
-        self.seq = 0
-        self.pub: Any = None
-        self.mcap = mcap
-        self.outputs: List[Output] = []
-        self.cid = (mcap.channel(entity.name, entity.ros_type, qos_depth) if mcap is not None
-                    else -1)
-        if session is not None:
-            import zenoh
+    def __init__(self, name: str, ros_type: str, pubs: Sequence[Tuple[str, Publisher]]) -> None:
+        self.name = name
+        self.ros_type = ros_type
+        self.pubs = list(pubs)  # (transport name, publisher)
+        self.skipped: Dict[str, int] = {t: 0 for t, _ in pubs}
 
-            self.pub = session.declare_publisher(
-                entity.key(), congestion_control=zenoh.CongestionControl.DROP,
-                reliability=zenoh.Reliability.RELIABLE)
+    @property
+    def listening(self) -> bool:
+        """Whether any transport has someone listening now."""
+        for _, p in self.pubs:
+            if p.listening:
+                return True
+        return False
+
+    def skip(self, n: int) -> None:
+        """n messages nobody listens to on any transport (not serialized)."""
+        for t in self.skipped:
+            self.skipped[t] += n
 
     def send(self, payload: bytes, stamp_ns: int) -> None:
         self.send_batch((payload,), (stamp_ns,))
 
     def send_batch(self, payloads: Sequence[bytes], stamps: Sequence[int]) -> None:
-        """Publish a batch: one time of publication, sequence numbers on."""
-        seq = self.seq
-        self.seq = seq + len(payloads)
+        """Publish a batch where someone listens: one time of publication."""
         now = time.time_ns()
-        if self.pub is not None:
-            put, pack, gid, glen = self.pub.put, rz.ATTACHMENT.pack, self.gid, rz.GID_SIZE
-            for p in payloads:
-                seq += 1
-                put(p, attachment=pack(seq, now, glen, gid))
-        if self.mcap is not None:
-            self.mcap.write_batch(self.cid, payloads, stamps, now)
-        for out in self.outputs:
-            out.publish(payloads, stamps, now)
+        for t, p in self.pubs:
+            if p.listening:
+                p.publish(payloads, stamps, now)
+            else:
+                self.skipped[t] += len(payloads)
 
     def close(self) -> None:
-        if self.pub is not None:
+        for _, p in self.pubs:
             try:
-                self.pub.undeclare()
-            except Exception:  # the session may be closing
+                p.close()
+            except Exception:  # the transport may be closing
                 pass
-            self.pub = None
-        for out in self.outputs:
-            try:
-                out.close()
-            except Exception:
-                pass
-        self.outputs = []
+        self.pubs = []
 
 
 #: The answer to a tare or untare that comes while another is being served.
@@ -186,6 +168,12 @@ class Counters:
     limit_axes: int = 0  # bit i: axis i beyond its limit in the current episode
     last_limit_axes: int = 0  # the axes of the last episode begun
     last_request: str = ""  # the last tare/untare from the network: what, who, when, result
+    lock: threading.Lock = field(default_factory=threading.Lock, repr=False, compare=False)
+
+    def bump(self, name: str, n: int = 1) -> None:
+        """Add n to a counter that several threads update (under the lock)."""
+        with self.lock:
+            setattr(self, name, getattr(self, name) + n)
 
 
 class SensorNode:
@@ -205,10 +193,13 @@ class SensorNode:
         self._stop = threading.Event()
         self._thread: Optional[threading.Thread] = None
         self._lock = threading.Lock()  # tare/untare from service threads
-        self._tokens: List[Any] = []
-        self._queryables: List[Any] = []
-        self._zenoh_requests: Optional[CommandRunner] = None  # the Zenoh services' thread
-        self._dds_services: List[Any] = []  # dds.TriggerService
+        # requests from the network: one served at a time (in this thread), the others
+        # answered busy at once, on every transport
+        self._requests: Optional[CommandRunner] = None
+        self._gate = threading.Lock()
+        self._in_flight = False
+        self._transports: List[Transport] = []
+        self.node_ref: Optional[NodeRef] = None
         self.wrench: Optional[Topic] = None
         self.wrench_raw: Optional[Topic] = None
         self.diagnostics: Optional[Topic] = None
@@ -217,13 +208,15 @@ class SensorNode:
             lowpass=opts.lowpass_hz, rotation=opts.rotation, degrees=False, reconnect=True,
             latency=opts.latency_s, data_timeout=opts.data_timeout_s)
         try:
-            self._batch = WrenchBatch(self.sensor._be, self.sensor.rated, spec.frame_id)
+            self._batch = WrenchBatch(get_backend(self.sensor.backend), self.sensor.rated,
+                                     spec.frame_id)
             self.gravity = self._set_load()
         except ValueError:
             self.sensor.close()
             raise
         self._diag_lock = threading.Lock()  # diagnostics from two threads
-        self._subscribers: List[Any] = []
+        self._tare_done = threading.Event()  # set when the reading thread reads a TARE event
+        self._tare_wanted = False
 
     def _set_load(self) -> GravityInput:
         """Payload, initial gravity and limits into the session (ValueError
@@ -236,86 +229,45 @@ class SensorNode:
         s.set_gravity(g)
         s.set_payload(spec.payload)
         s.set_limits(self.opts.limits)
-        return GravityInput(spec.name, s.set_gravity, g)  # type: ignore[arg-type]
+        return GravityInput(spec.name, s.set_gravity, g)
 
-    def declare(self, node_id: int, next_entity_id: Callable[[], int], session: Any = None,
-                mcap: Optional[McapRecorder] = None, dds: Any = None, fox: Any = None) -> None:
-        """Declare the node, its topics and services on session (a
-        zenoh.Session, or None), its channels in mcap (or None), its writers
-        and command topics on dds (a DdsParticipant, or None) and its
-        channels and services on fox (a FoxgloveServer, or None)."""
+    def declare(self, node_id: int, next_entity_id: Callable[[], int],
+                transports: Sequence[Transport]) -> None:
+        """Declare the node, its topics (`wrench`, `wrench_raw`,
+        `diagnostics`), its services (`tare`, `untare`) and its input
+        (`gravity`) on each transport; read-only: no service or input at all."""
         spec, opts = self.spec, self.opts
         ns = rz.normalize_namespace(opts.namespace)
-        zid = str(session.zid()) if session is not None else "0"
-        qos = rz.qos_keyexpr(True, opts.qos_depth)
+        node = NodeRef(ns, spec.name, node_id)
+        self.node_ref = node
+        self._transports = list(transports)
 
-        def entity(kind: str, topic: str = "", ros_type: str = "") -> rz.Entity:
-            eid = node_id if kind == rz.NODE else next_entity_id()
-            name = rz.fully_qualified(ns, spec.name, topic) if topic else ""
-            return rz.Entity(opts.domain, zid, node_id, eid, kind, ns, spec.name, name,
-                             ros_type, rihs01(ros_type) if ros_type else "",
-                             qos if ros_type else "")
+        def endpoint(topic: str, ros_type: str) -> Endpoint:
+            return Endpoint(node, rz.fully_qualified(ns, spec.name, topic), ros_type,
+                            next_entity_id(), opts.qos_depth)
 
-        self.node_entity = entity(rz.NODE)
-        d = opts.qos_depth
-        self.wrench = Topic(entity(rz.PUBLISHER, "wrench", WRENCH), session, mcap, d)
-        self.wrench_raw = Topic(entity(rz.PUBLISHER, "wrench_raw", WRENCH), session, mcap, d)
-        self.diagnostics = Topic(entity(rz.PUBLISHER, "diagnostics", DIAGNOSTICS),
-                                 session, mcap, d)
-        node = (ns, spec.name)
-        # read-only: no service, command topic or input is declared at all
-        self.services = {} if opts.read_only else {
-            "tare": entity(rz.SERVICE, "tare", TRIGGER),
-            "untare": entity(rz.SERVICE, "untare", TRIGGER),
-        }
-        inputs: List[rz.Entity] = []
-        if not opts.read_only:
-            self.gravity_entity = entity(rz.SUBSCRIPTION, "gravity", VECTOR3_STAMPED)
-            inputs.append(self.gravity_entity)
-            self._declare_gravity(session, dds, fox, node)
-        for t in self.wrench, self.wrench_raw, self.diagnostics:
-            if dds is not None:
-                t.outputs.append(dds.writer(node, t.name, t.entity.ros_type))
-            if fox is not None:
-                t.outputs.append(fox.channel(t.name, t.entity.ros_type))
-        calls = {"tare": self.tare, "untare": self.untare}
-        for svc, ent in self.services.items():
-            if dds is not None:  # a command topic and an rmw_cyclonedds service
-                dds.command(node, ent.name, calls[svc])
-                self._dds_services.append(
-                    dds.service(node, ent.name, calls[svc], self._rejected_request))
-            if fox is not None:
-                fox.service(ent.name, calls[svc], self._rejected_request)
-        if session is not None:
-            if self.services:  # one request served, one waiting; the others: busy at once
-                self._zenoh_requests = CommandRunner(f"bridge-{self.spec.name}-zenoh-requests", 1)
-            for svc, ent in self.services.items():
-                self._queryables.append(session.declare_queryable(
-                    ent.key(), self._service_handler(svc), complete=True))
-            for ent in [self.node_entity, self.wrench.entity, self.wrench_raw.entity,
-                        self.diagnostics.entity, *self.services.values(), *inputs]:
-                self._tokens.append(session.liveliness().declare_token(ent.token()))
+        for t in transports:
+            t.declare_node(node)
 
-    def _declare_gravity(self, session: Any, dds: Any, fox: Any, node: Tuple[str, str]) -> None:
-        """The `gravity` input on each transport: a Zenoh subscriber on the
-        topic's key (its liveliness token is declared with the others), a
-        DDS reader, a Foxglove client-publish topic; all feed self.gravity."""
-        ent, receive = self.gravity_entity, self.gravity.receive
-        if session is not None:
-            def on_sample(sample: Any) -> None:
-                try:
-                    payload = bytes(sample.payload.to_bytes())
-                except Exception as e:  # nothing a peer sends may reach zenoh's thread
-                    receive(b"", "zenoh", f"unreadable payload: {e}")
-                    return
-                receive(payload, "zenoh")
-            self._subscribers.append(session.declare_subscriber(ent.key(), on_sample))
-        if dds is not None:
-            dds.subscription(node, ent.name, VECTOR3_STAMPED,
-                             lambda p: receive(p, "dds"))
-        if fox is not None:
-            fox.client_topic(ent.name, VECTOR3_STAMPED,
-                             lambda p, wrong: receive(p, "foxglove", wrong))
+        def topic(name: str, ros_type: str) -> Topic:
+            ep = endpoint(name, ros_type)
+            return Topic(ep.name, ros_type, [(t.name, t.advertise(ep)) for t in transports])
+
+        self.wrench = topic("wrench", WRENCH)
+        self.wrench_raw = topic("wrench_raw", WRENCH)
+        self.diagnostics = topic("diagnostics", DIAGNOSTICS)
+        if opts.read_only:
+            return
+        interactive = [t for t in transports if t.interactive]
+        if interactive:
+            self._requests = CommandRunner(f"bridge-{spec.name}-requests", 1)
+        for which in ("tare", "untare"):
+            ep = endpoint(which, TRIGGER)
+            for t in interactive:
+                t.serve(ep, functools.partial(self.on_request, which))
+        ep = endpoint("gravity", VECTOR3_STAMPED)
+        for t in interactive:
+            t.take(ep, self._gravity_handler(t.name))
 
     # -- life cycle ----------------------------------------------------------
     def start(self) -> None:
@@ -334,32 +286,15 @@ class SensorNode:
             self._thread.join(timeout)
 
     def close(self) -> None:
-        """Undeclare the services, topics and tokens; stop and close the sensor."""
+        """Withdraw the topics, stop the request thread; stop and close the
+        sensor (the transports, shared by the nodes, are the bridge's to close)."""
         self._stop.set()
-        for q in self._queryables:
-            try:
-                q.undeclare()
-            except Exception:
-                pass
-        self._queryables = []
-        if self._zenoh_requests is not None:
-            self._zenoh_requests.stop()
-            self._zenoh_requests = None
-        for sub in self._subscribers:
-            try:
-                sub.undeclare()
-            except Exception:
-                pass
-        self._subscribers = []
+        if self._requests is not None:
+            self._requests.stop()
+            self._requests = None
         for t in self.wrench, self.wrench_raw, self.diagnostics:
             if t is not None:
                 t.close()
-        for tok in self._tokens:
-            try:
-                tok.undeclare()
-            except Exception:
-                pass
-        self._tokens = []
         try:
             if not self.sensor.closed and self.sensor.streaming:
                 self.sensor.stop()
@@ -373,42 +308,66 @@ class SensorNode:
 
     # -- data ----------------------------------------------------------------
     def _run(self) -> None:
-        """Read the session in batches; each batch is serialized in one C
-        call and published topic by topic (no Python object per sample
-        but the payloads the transports take)."""
+        """Read the session in batches (Sensor.read_batch); while anyone
+        listens to `wrench` or `wrench_raw` on a transport, each batch is
+        serialized in one C call and published topic by topic (no Python
+        object per sample but the payloads the transports take); while
+        nobody does, it is only counted (skipped)."""
         sensor = self.sensor
-        lib = sensor._be.lib
         wb = self._batch
-        arrays = wb.arrays
+        buf = wb.arrays
         t_mono = wb.t_mono
         wrench, wrench_raw, c = self.wrench, self.wrench_raw, self.counters
         assert wrench is not None and wrench_raw is not None
-        base = sensor._delivered
-        timeout_ms = max(1, int(self.opts.timeout_s * 1000))
+        timeout = max(0.001, self.opts.timeout_s)
+        # While nobody listens to the wrench topics nothing is waiting for a sample:
+        # the session may hold them longer (fewer wake-ups); back to the latency
+        # asked for at the first batch after someone listens again.
+        busy_latency = self.opts.latency_s
+        idle_latency = max(busy_latency, IDLE_LATENCY_S)
+        idle = False
         failing = False
         silent_since = next_events = time.monotonic()
         while not self._stop.is_set():
             try:
-                rc = arrays.read(sensor._live(), timeout_ms, wb.cap)
+                rc = sensor.read_batch(buf, timeout)
             except LeptrinoError:  # closed under us
                 break
-            n = arrays.n
-            sensor._delivered += n
+            n = buf.n
             now = time.monotonic()
             if n:
                 if failing:
                     log.warning("%s: data again", self.spec.name)
                     failing = False
-                w, r, stamps = wb.encode()
-                wrench.send_batch(w, stamps)
-                wrench_raw.send_batch(r, stamps)
+                lw, lr = wrench.listening, wrench_raw.listening
+                listening = lw or lr
+                if listening == idle:
+                    idle = not listening
+                    try:
+                        sensor.latency = idle_latency if idle else busy_latency
+                    except (LeptrinoError, ValueError) as e:
+                        log.debug("%s: latency: %s", self.spec.name, e)
+                if listening:
+                    w, r, stamps = wb.encode(lw, lr)
+                    if lw:
+                        wrench.send_batch(w, stamps)
+                    else:
+                        wrench.skip(n)
+                    if lr:
+                        wrench_raw.send_batch(r, stamps)
+                    else:
+                        wrench_raw.skip(n)
+                else:
+                    wrench.skip(n)
+                    wrench_raw.skip(n)
                 c.samples += n
                 c.last_sample_mono = t_mono[n - 1]
                 silent_since = now
             # after the batch is counted: a limit event's diagnostics (published at once)
-            # must see the samples that came with it, not "no data"
-            if not n or now >= next_events:  # the events feed counters and logs only
-                self._take_events(sensor._drain_events(base))
+            # must see the samples that came with it, not "no data"; while a tare is
+            # served, every batch (its end is the TARE event)
+            if not n or now >= next_events or self._tare_wanted:
+                self._take_events(sensor.take_events())
                 next_events = now + EVENTS_PERIOD_S
             if n:
                 continue
@@ -419,8 +378,7 @@ class SensorNode:
             # The session reconnects inside its reads; until it is back each
             # read fails or times out. Count it, say it once, go on.
             c.read_errors += 1
-            c.last_error = (sensor._be.text(lib.lep_strerror(rc)) if rc != K.LEP_E_TIMEOUT
-                            else "no data")
+            c.last_error = sensor.status_text(rc) if rc != K.LEP_E_TIMEOUT else "no data"
             if not failing:
                 log.warning("%s: %s (the session keeps trying)", self.spec.name, c.last_error)
                 failing = True
@@ -430,7 +388,9 @@ class SensorNode:
     def _take_events(self, evs: Sequence[Any]) -> None:
         for ev in evs:
             self.counters.events[ev.type] = self.counters.events.get(ev.type, 0) + 1
-            if ev.type in ("disconnected", "reconnected"):
+            if ev.type == "tare":
+                self._tare_done.set()
+            elif ev.type in ("disconnected", "reconnected"):
                 log.warning("%s: %s", self.spec.name, ev.type)
             elif ev.type in ("limit_exceeded", "limit_cleared"):
                 self._limit_event(ev)
@@ -486,9 +446,13 @@ class SensorNode:
         values += [(f"tare_offset_{a}", f"{v:g}") for a, v in
                    zip(("fx", "fy", "fz", "mx", "my", "mz"), offsets)]
         values.append(("rejected_requests", str(c.rejected_requests)))
-        if self._dds_services:  # clients whose requests DDS drops (dds.TriggerService)
-            values.append(("dds_headerless_clients",
-                           str(sum(s.headerless_clients for s in self._dds_services))))
+        for topic in self.wrench, self.wrench_raw, self.diagnostics:
+            if topic is not None:  # messages nobody listened to: not serialized nor sent
+                values += [(f"skipped_{t}_{topic.name.rsplit('/', 1)[-1]}", str(n))
+                           for t, n in topic.skipped.items()]
+        if self.node_ref is not None:
+            for t in self._transports:
+                values += t.diagnostics(self.node_ref)
         values += self._load_values(h)
         values += [("model", info.model), ("serial", info.serial),
                    ("firmware", info.firmware), ("port", self.sensor.port)]
@@ -514,6 +478,10 @@ class SensorNode:
         bridge's 1 Hz thread and from the reading thread at a limit event."""
         ns = time.time_ns() if stamp_ns is None else stamp_ns
         sec, nsec = divmod(ns, 1_000_000_000)
+        topic = self.diagnostics
+        if topic is not None and not topic.listening:
+            topic.skip(1)  # nobody listens on any transport: not even made
+            return
         with self._diag_lock:
             payload = cdr.encode_diagnostic_array(sec, nsec, self.spec.frame_id,
                                                   [self.diagnostic_status()])
@@ -530,7 +498,7 @@ class SensorNode:
         if not self._serve_one("tare", requester):
             return False, BUSY
         try:
-            self.counters.tare_requests += 1
+            self.counters.bump("tare_requests")
             result = self._tare_locked()
         finally:
             self._lock.release()
@@ -540,16 +508,24 @@ class SensorNode:
     def _tare_locked(self) -> Tuple[bool, str]:
         if not self.alive:
             return False, "the sensor is not streaming"
+        self._tare_done.clear()
+        self._tare_wanted = True  # the reading thread takes the events every batch
         try:
-            self.sensor.tare(self.opts.tare_samples, wait=False)
-        except (LeptrinoError, ValueError) as e:
-            return False, f"tare failed: {e}"
-        end = time.monotonic() + 3.0
-        try:
-            while self.sensor.taring and time.monotonic() < end:
-                time.sleep(0.005)
+            try:
+                self.sensor.tare(self.opts.tare_samples, wait=False)
+            except (LeptrinoError, ValueError) as e:
+                return False, f"tare failed: {e}"
+            # its end is the session's TARE event, read by the reading thread (an
+            # event of an earlier untare, read meanwhile, is not it: taring still)
+            end = time.monotonic() + 3.0
+            while self._tare_done.wait(max(0.0, end - time.monotonic())) and \
+                    self.sensor.taring:
+                self._tare_done.clear()
             if self.sensor.taring:
                 return False, "tare started but no samples came within 3 s"
+        finally:
+            self._tare_wanted = False
+        try:
             offs = ", ".join(f"{v:g}" for v in self.sensor.tare_offsets)
         except LeptrinoError as e:  # the bridge is closing the sensor meanwhile
             return False, f"tare not finished: {e}"
@@ -577,7 +553,7 @@ class SensorNode:
         counted (tare_busy) and logged at most every 5 s, not recorded."""
         if self._lock.acquire(blocking=False):
             return True
-        self.counters.tare_busy += 1
+        self.counters.bump("tare_busy")
         self._refusal_log.warning("%s/%s by %s refused: busy with another", self.spec.name, what,
                                   requester or "the bridge")
         return False
@@ -593,49 +569,59 @@ class SensorNode:
         when = time.strftime("%Y-%m-%dT%H:%M:%S", time.gmtime(t_ns // 1_000_000_000))
         when += f".{t_ns // 1_000_000 % 1000:03d}Z"
         text = f"{what} by {requester} at {when}: {'done' if result[0] else 'failed'}"
-        self.counters.last_request = text
+        with self.counters.lock:
+            self.counters.last_request = text
         audit.info("%s: %s (%s)", self.spec.name, text, result[1])
         try:
             self.publish_diagnostics(t_ns)
         except Exception as e:  # the outputs may be closing
             log.warning("%s: diagnostics: %s", self.spec.name, e)
 
-    def _rejected_request(self) -> None:
-        self.counters.rejected_requests += 1  # (the caller logs, rate-limited)
+    def _gravity_handler(self, transport: str) -> Callable[[bytes, str], None]:
+        def on_payload(payload: bytes, refuse: str) -> None:
+            self.gravity.receive(payload, transport, refuse)
+        return on_payload
 
-    def _service_handler(self, which: str) -> Callable[[Any], None]:
-        def handle(query: Any) -> None:
+    def on_request(self, which: str, req: Request) -> None:
+        """A tare or untare request from a transport (its thread): a request
+        that cannot be read is counted and refused; while another is served
+        it is answered busy at once (counted); else served in this node's
+        request thread, then answered."""
+        why = req.error
+        if not why:
             try:
-                att = query.attachment
-                seq, _ts, client_gid = rz.parse_attachment(
-                    bytes(att.to_bytes()) if att is not None else b"")
-                payload = query.payload
-                if payload is not None:
-                    cdr.check_encapsulation(bytes(payload.to_bytes()))
+                cdr.check_encapsulation(req.payload)
             except ValueError as e:
-                self._refusal_log.warning("%s/%s: request refused: %s", self.spec.name, which, e)
-                self._rejected_request()
-                query.reply_err(f"malformed request: {e}".encode())
-                return
-            who = f"zenoh client {client_gid.hex()}"
-            src = getattr(query, "source_info", None)
-            sid = getattr(src, "source_id", None) if src is not None else None
-            if sid is not None:
-                who += f" (source {sid.zid}/{sid.eid})"
+                why = str(e)
+        if why:
+            self._refusal_log.warning("%s/%s: request refused: %s", self.spec.name, which, why)
+            self._rejected_request()
+            req.refuse(why)
+            return
+        who = req.requester
+        with self._gate:
+            busy, self._in_flight = self._in_flight, True
+        runner = self._requests
+        if not busy and (runner is None or not runner.submit(
+                f"{self.spec.name}/{which}", lambda: self._serve(which, req))):
+            with self._gate:
+                self._in_flight = False
+            busy = True
+        if busy:
+            self.counters.bump("tare_busy")
+            self._refusal_log.warning("%s/%s by %s refused: busy with another",
+                                      self.spec.name, which, who or "the bridge")
+            req.reply(cdr.encode_trigger_response(False, BUSY))
 
-            def serve(q: Any = query) -> None:  # in the runner's thread; q kept till then
-                try:
-                    ok, message = self.tare(who) if which == "tare" else self.untare(who)
-                    q.reply(q.key_expr, cdr.encode_trigger_response(ok, message),
-                            attachment=rz.attachment(seq, time.time_ns(), client_gid))
-                finally:
-                    q.drop()  # the query is complete: the requester stops waiting now
+    def _serve(self, which: str, req: Request) -> str:
+        try:
+            ok, message = self.tare(req.requester) if which == "tare" else \
+                self.untare(req.requester)
+        finally:
+            with self._gate:
+                self._in_flight = False
+        req.reply(cdr.encode_trigger_response(ok, message))
+        return message
 
-            runner = self._zenoh_requests
-            if runner is None or not runner.submit(f"{self.spec.name}/{which}", serve):
-                self.counters.tare_busy += 1
-                self._refusal_log.warning("%s/%s by %s refused: busy with another",
-                                          self.spec.name, which, who)
-                query.reply(query.key_expr, cdr.encode_trigger_response(False, BUSY),
-                            attachment=rz.attachment(seq, time.time_ns(), client_gid))
-        return handle
+    def _rejected_request(self) -> None:
+        self.counters.bump("rejected_requests")  # (the caller logs, rate-limited)

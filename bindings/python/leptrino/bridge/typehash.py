@@ -5,9 +5,10 @@ TypeDescription: the type's fields (name; type id, capacity, string
 capacity, nested type name) plus every type it references, sorted by name.
 That description, without default values, is written as JSON with ", " and
 ": " separators in a fixed key order; its SHA-256 is the hash, written
-"RIHS01_<64 hex digits>". This module holds the definitions the bridge
-publishes (.msg text as in ros2/common_interfaces and ros2/rcl_interfaces)
-and computes the hashes from them; nothing here is a stored hash.
+"RIHS01_<64 hex digits>". The definitions are
+bridge/schema.py's (.msg text as in ros2/common_interfaces and
+ros2/rcl_interfaces); this module computes the hashes from them; nothing
+here is a stored hash.
 """
 
 from __future__ import annotations
@@ -16,6 +17,9 @@ import hashlib
 import json
 import re
 from typing import Any, Dict, List, Optional, Set, Tuple
+
+# the definitions: bridge/schema.py, the one description of each message
+from .schema import MESSAGES, SERVICES
 
 Description = Dict[str, Any]
 
@@ -30,32 +34,6 @@ _BOUNDED_STRING = 21
 _BOUNDED_WSTRING = 22
 #: Added to the element's id for a fixed array, a bounded and an unbounded sequence.
 _ARRAY, _BOUNDED_SEQ, _UNBOUNDED_SEQ = 48, 96, 144
-
-#: The .msg definitions (fields only; constants and comments do not enter a hash).
-MESSAGES: Dict[str, str] = {
-    "builtin_interfaces/msg/Time": "int32 sec\nuint32 nanosec\n",
-    "std_msgs/msg/Header": "builtin_interfaces/Time stamp\nstring frame_id\n",
-    "std_msgs/msg/Empty": "",
-    "geometry_msgs/msg/Vector3": "float64 x\nfloat64 y\nfloat64 z\n",
-    "geometry_msgs/msg/Wrench": "Vector3 force\nVector3 torque\n",
-    "geometry_msgs/msg/WrenchStamped": "std_msgs/Header header\nWrench wrench\n",
-    "geometry_msgs/msg/Vector3Stamped": "std_msgs/Header header\nVector3 vector\n",
-    "diagnostic_msgs/msg/KeyValue": "string key\nstring value\n",
-    "diagnostic_msgs/msg/DiagnosticStatus": (
-        "byte OK=0\nbyte WARN=1\nbyte ERROR=2\nbyte STALE=3\n"
-        "byte level\nstring name\nstring message\nstring hardware_id\nKeyValue[] values\n"),
-    "diagnostic_msgs/msg/DiagnosticArray": "std_msgs/Header header\nDiagnosticStatus[] status\n",
-    "service_msgs/msg/ServiceEventInfo": (
-        "uint8 REQUEST_SENT = 0\nuint8 REQUEST_RECEIVED = 1\nuint8 RESPONSE_SENT = 2\n"
-        "uint8 RESPONSE_RECEIVED = 3\n"
-        "uint8 event_type\nbuiltin_interfaces/Time stamp\nchar[16] client_gid\n"
-        "int64 sequence_number\n"),
-}
-
-#: The .srv definitions: request and response, split at "---".
-SERVICES: Dict[str, str] = {
-    "std_srvs/srv/Trigger": "---\nbool success\nstring message\n",
-}
 
 _TYPE_RE = re.compile(
     r"^(?P<base>[A-Za-z_][\w/]*)(?:<=(?P<strcap>\d+))?(?:\[(?P<seq>(?:<=)?\d*)\])?$")

@@ -14,7 +14,7 @@ import numpy as np
 
 from .. import _constants as K
 from ..errors import LeptrinoError
-from ..sensor import _Arrays
+from ..sensor import SampleBuffer
 
 #: Samples per lep_session_read (a 2 ms latency budget brings 2-3 at 1.2 kHz;
 #: a stalled reader catches up in batches of this many).
@@ -43,7 +43,7 @@ class WrenchBatch:
         self._fid = fid
         self.cap = cap
         self.size = int(be.lib.lep_ros_wrench_size(len(fid)))
-        self.arrays = _Arrays(be, cap)
+        self.arrays = SampleBuffer(be, cap)
         self._w = np.zeros(cap * self.size, np.uint8)
         self._r = np.zeros(cap * self.size, np.uint8)
         self._st = np.zeros(cap, np.int64)
@@ -61,16 +61,19 @@ class WrenchBatch:
         self._psi = be.array_ptr(a.si, "double")
         self._praw = be.array_ptr(a.raw, "int16_t")
         self._nbytes = cap * self.size
-        self._mw, self._mr = memoryview(self._w), memoryview(self._r)
-        self._mst = memoryview(self._st)
+        self._mw, self._mr = self._w.data, self._r.data
+        self._mst = self._st.data
         self._cuts = [(i * self.size, (i + 1) * self.size) for i in range(cap)]
         #: the arrays' t_mono as a memoryview (the last sample's time, per batch)
-        self.t_mono = memoryview(self.arrays.t_mono)
+        self.t_mono = self.arrays.t_mono.data
 
-    def encode(self) -> Tuple[List[bytes], List[bytes], List[int]]:
+    def encode(self, wrench: bool = True, wrench_raw: bool = True
+               ) -> Tuple[List[bytes], List[bytes], List[int]]:
         """The arrays' samples [0, n) as (wrench payloads, wrench_raw
-        payloads, stamps in ns); stamps never go back, across calls too.
-        LeptrinoError for a time the message cannot hold."""
+        payloads, stamps in ns); a topic not wanted gets an empty list (its
+        bytes are written by the C call, not cut into payloads). Stamps never
+        go back, across calls too. LeptrinoError for a time the message
+        cannot hold."""
         n = self.arrays.n
         if n == 0:
             return [], [], []
@@ -79,7 +82,11 @@ class WrenchBatch:
         if rc != 0:
             raise LeptrinoError(f"serializing WrenchStamped: error {int(rc)}", int(rc))
         end = n * self.size
-        w = self._mw[:end].tobytes()
-        r = self._mr[:end].tobytes()
         cuts = self._cuts[:n]
-        return [w[i:j] for i, j in cuts], [r[i:j] for i, j in cuts], self._mst[:n].tolist()
+        w = r = b""
+        if wrench:
+            w = self._mw[:end].tobytes()
+        if wrench_raw:
+            r = self._mr[:end].tobytes()
+        return ([w[i:j] for i, j in cuts] if wrench else [],
+                [r[i:j] for i, j in cuts] if wrench_raw else [], self._mst[:n].tolist())

@@ -1,7 +1,7 @@
 """Figures of leptrino-bridge on this machine (loopback only, bounded).
 
-    python -m leptrino.bridge.bench                 # all figures (about 2 min)
-    python -m leptrino.bridge.bench --quick         # a smoke run (about 20 s)
+    python bench/bridge_bench.py            # all figures (about 2 min)
+    python bench/bridge_bench.py --quick    # a smoke run (about 20 s)
 
 The virtual sensors run in this process (leptrino.Simulator, each on its
 pty); the bridge runs as its own process (`python -m leptrino.bridge
@@ -32,7 +32,7 @@ import threading
 import time
 from typing import Any, Dict, List, Optional
 
-from .rmw_zenoh import parse_attachment
+from leptrino.bridge.rmw_zenoh import parse_attachment
 
 
 def _free_port() -> int:
@@ -106,7 +106,7 @@ STREAM_MAX_SENSORS = 8
 def _stream_args(ports: List[str], latency_s: str) -> List[str]:
     """`leptrino stream` writing CSV for the same kind of sensors, as the
     reference the bridge's cost is compared with."""
-    from .._tools import program_path
+    from leptrino._tools import program_path
 
     args = [str(program_path("leptrino")), "stream", *ports, "--reconnect", "--latency",
             str(max(0, int(round(float(latency_s) * 1000)))), "-o", os.devnull]
@@ -123,7 +123,7 @@ def dds_reader(domain: int, n: int, seconds: float) -> int:
     from cyclonedds.sub import DataReader
     from cyclonedds.topic import Topic
 
-    from .dds import _Types, config_xml
+    from leptrino.bridge.dds import _Types, config_xml
 
     dom = Domain(domain, config_xml("127.0.0.1"))
     p = DomainParticipant(domain)
@@ -226,7 +226,7 @@ def run(n: int, seconds: float, zenoh_mod: Any, extra: Optional[List[str]] = Non
             fport = _free_port()
             args += ["--dds", "--dds-interface", "127.0.0.1", "--foxglove", f"127.0.0.1:{fport}"]
             reader = subprocess.Popen(
-                [sys.executable, "-m", "leptrino.bridge.bench", "--dds-reader",
+                [sys.executable, os.path.abspath(__file__), "--dds-reader",
                  f"{domain},{n},{seconds + 6}"], stdout=subprocess.PIPE, text=True)
             fox = _FoxgloveCounter(fport)
         for i, sim in enumerate(sims):
@@ -309,18 +309,92 @@ def run(n: int, seconds: float, zenoh_mod: Any, extra: Optional[List[str]] = Non
             "lost": lost, "gaps": gaps, "rates": rates, "no_loss": ok}
 
 
+def cost(seconds: float, zenoh_mod: Any, latency_s: str = "0.002") -> List[Dict[str, Any]]:
+    """One sensor over Zenoh beside `leptrino stream` on another virtual
+    sensor, in one run, in three phases of `seconds` each: nobody subscribed
+    (no subscriber anywhere: the bridge publishes nothing), one subscriber on
+    NAME/wrench only, nobody again. CPU of each process, the bridge's by thread."""
+    import leptrino
+
+    ep = f"tcp/127.0.0.1:{_free_port()}"
+    conf = zenoh_mod.Config()
+    conf.insert_json5("mode", '"router"')
+    conf.insert_json5("listen/endpoints", json.dumps([ep]))
+    conf.insert_json5("scouting/multicast/enabled", "false")
+    router = zenoh_mod.open(conf)
+    domain = 1 + os.getpid() % 99
+    sim, ref_sim = leptrino.Simulator(), leptrino.Simulator()
+    got = [0]
+    out: List[Dict[str, Any]] = []
+    child = ref = None
+    try:
+        child = subprocess.Popen(
+            [sys.executable, "-m", "leptrino.bridge", "--connect", ep, "--latency", latency_s,
+             "--domain", str(domain), "--sensor", f"s0={sim.port}"],
+            stderr=subprocess.PIPE, text=True)
+        ref = subprocess.Popen(_stream_args([ref_sim.port], latency_s),
+                               stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        time.sleep(3.0)
+        for phase in ("nobody subscribed", "one subscriber on s0/wrench",
+                      "the subscriber gone"):
+            sub = None
+            if phase == "the subscriber gone":
+                time.sleep(1.0)  # its undeclaration reaches the bridge
+            if phase == "one subscriber on s0/wrench":
+                sub = router.declare_subscriber(f"{domain}/s0/wrench/**",
+                                                lambda _s: got.__setitem__(0, got[0] + 1))
+                time.sleep(1.0)
+            g0 = got[0]
+            c0, r0, t0 = _cpu_seconds(child.pid), _cpu_seconds(ref.pid), time.monotonic()
+            th0 = _thread_cpu(child.pid)
+            time.sleep(seconds)
+            c1, r1, t1 = _cpu_seconds(child.pid), _cpu_seconds(ref.pid), time.monotonic()
+            th1 = _thread_cpu(child.pid)
+            dt = t1 - t0
+            out.append({"phase": phase, "bridge": (c1 - c0) / dt, "stream": (r1 - r0) / dt,
+                        "ratio": (c1 - c0) / max(r1 - r0, 1e-9),
+                        "messages_per_s": (got[0] - g0) / dt,
+                        "threads": {k: (th1.get(k, 0.0) - th0.get(k, 0.0)) / dt
+                                    for k in th1}})
+            if sub is not None:
+                sub.undeclare()
+    finally:
+        for proc in (child, ref):
+            if proc is not None:
+                proc.terminate()
+                proc.communicate(timeout=20)
+        sim.stop()
+        ref_sim.stop()
+        router.close()
+    return out
+
+
 def main(argv: Optional[List[str]] = None) -> int:
     import zenoh
 
-    p = argparse.ArgumentParser(prog="python -m leptrino.bridge.bench")
+    p = argparse.ArgumentParser(prog="python bench/bridge_bench.py")
     p.add_argument("--quick", action="store_true", help="a smoke run: 1 and 2 sensors, 3 s")
     p.add_argument("--seconds", type=float, default=10.0)
     p.add_argument("--max-sensors", type=int, default=16)
     p.add_argument("--latency", default="0.002", help="the bridge's --latency")
     p.add_argument("--all", action="store_true",
                    help="also DDS (with a Cyclone DDS reader) and Foxglove (with a client)")
+    p.add_argument("--cost", action="store_true",
+                   help="one sensor: nobody subscribed, one subscriber on NAME/wrench, nobody "
+                        "again, beside `leptrino stream` (the targets: 1.2x and 2x)")
     p.add_argument("--dds-reader", metavar="DOMAIN,N,SECONDS", help=argparse.SUPPRESS)
     a = p.parse_args(argv)
+    if a.cost or a.quick:
+        print(f"cost of one sensor over Zenoh beside `leptrino stream` (load average "
+              f"{os.getloadavg()[0]:.1f}, --latency {a.latency}):")
+        for r in cost(3.0 if a.quick else a.seconds, __import__("zenoh"), a.latency):
+            print(f"  {r['phase']}: bridge {100 * r['bridge']:.1f} % of a core, `leptrino "
+                  f"stream` {100 * r['stream']:.1f} %, ratio {r['ratio']:.2f}, "
+                  f"{r['messages_per_s']:.0f} messages/s received; threads (% of a core) "
+                  + ", ".join(f"{k} {100 * v:.1f}" for k, v in sorted(r["threads"].items())
+                              if v >= 0.0005), flush=True)
+        if a.cost:
+            return 0
     if a.dds_reader:
         d, n_, secs_ = a.dds_reader.split(",")
         return dds_reader(int(d), int(n_), float(secs_))
