@@ -6,8 +6,9 @@
 # the Linux leptrino-sim through a COM port that Wine maps to its pty
 # ($WINEPREFIX/dosdevices/com5 -> /dev/pts/N): `info COM5`, `stream COM5
 # --duration 2` with the rate and zero gaps checked, a missing port's exit
-# code; 3. `stream --sim` says clearly that the virtual sensor is not there
-# yet on Windows (exit 1). A persistent wineserver keeps each wine start cheap.
+# code; 3. the in-process virtual sensor: `stream --sim --duration 2` (rate,
+# zero gaps) and `example_stream --sim`. A persistent wineserver keeps each
+# wine start cheap.
 set -euo pipefail
 ci_apt gcc-mingw-w64-x86-64 wine64 cmake ninja-build
 root=$(pwd)
@@ -79,11 +80,25 @@ w missing info COM9 || rc=$?
 echo "windows: info COM9 (no such port): exit $rc: $(head -n 1 "$tmp/missing.txt")"
 [ "$rc" = 6 ] || { echo "windows: want exit 6 (port not found)"; fail=1; }
 
-rc=0
-w sim stream --sim --duration 1 || rc=$?
-echo "windows: stream --sim: exit $rc: $(head -n 1 "$tmp/sim.txt")"
-grep -q "not available on Windows" "$tmp/sim.txt" && [ "$rc" = 1 ] ||
-  { echo "windows: stream --sim: want the clear message and exit 1"; fail=1; }
+# The in-process virtual sensor (a loopback port, no hardware, no pty).
+w sim stream --sim --duration 2 || { cat "$tmp/sim.txt"; echo "windows: stream --sim FAILED"; fail=1; }
+cat "$tmp/sim.txt"
+rows=$(grep -c '^[0-9]' "$tmp/sim.out" || true)
+hz=$(sed -nE 's/.* ([0-9.]+) Hz measured.*/\1/p' "$tmp/sim.txt" | head -n 1)
+gaps=$(sed -nE 's/.*, ([0-9]+) gaps.*/\1/p' "$tmp/sim.txt" | head -n 1)
+echo "windows: stream --sim 2 s: $rows rows, ${hz:-?} Hz, ${gaps:-?} gaps"
+if [ "${gaps:-x}" != 0 ] || ! awk -v h="${hz:-0}" 'BEGIN { exit !(h >= 1180 && h <= 1220) }' ||
+   [ "$rows" -lt 2300 ]; then
+  echo "windows: stream --sim: want ~1200 Hz, 0 gaps, >= 2300 rows"
+  fail=1
+fi
+set +e
+wine "$build/examples/example_stream.exe" --sim >"$tmp/example.out" 2>&1 </dev/null
+rc=$?
+set -e
+echo "windows: example_stream --sim: exit $rc: $(tr -d '\r' <"$tmp/example.out" | sed -n 2p)"
+[ "$rc" = 0 ] && grep -q "after the tare" "$tmp/example.out" ||
+  { tr -d '\r' <"$tmp/example.out"; echo "windows: example_stream --sim FAILED"; fail=1; }
 rm -rf "$tmp"
 
 echo "windows: done in $(( $(date +%s) - start )) s"

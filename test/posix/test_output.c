@@ -12,6 +12,7 @@
 
 #include "leptrino/error.h"
 #include "leptrino/output.h"
+#include "host_os.h"
 #include "struct_api.h"
 #include "unity.h"
 
@@ -36,7 +37,7 @@ static lep_session_batch batch;
 void setUp(void)
 {
     snprintf(dir, sizeof dir, "/tmp/lep-test-output-XXXXXX");
-    TEST_ASSERT_NOT_NULL(mkdtemp(dir));
+    TEST_ASSERT_NOT_NULL(lep_test_mkdtemp(dir));
     snprintf(path, sizeof path, "%s/rec.csv", dir);
     memset(&batch, 0, sizeof batch);
     batch.cap = batch.n = 3;

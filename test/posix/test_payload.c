@@ -15,6 +15,7 @@
 #include "leptrino/payload.h"
 #include "leptrino/session.h"
 #include "leptrino/sim.h"
+#include "host_os.h"
 #include "struct_api.h"
 #include "rng.h"
 #include "unity.h"
@@ -29,7 +30,7 @@ void setUp(void)
 {
     err[0] = '\0';
     snprintf(dir, sizeof dir, "/tmp/lep-test-payload-XXXXXX");
-    TEST_ASSERT_NOT_NULL(mkdtemp(dir));
+    TEST_ASSERT_NOT_NULL(lep_test_mkdtemp(dir));
 }
 
 void tearDown(void)

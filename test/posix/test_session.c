@@ -17,6 +17,7 @@
 #include "leptrino/serial.h"
 #include "leptrino/session.h"
 #include "session_test.h"
+#include "host_os.h"
 #include "struct_api.h"
 #include "unity.h"
 
@@ -43,7 +44,7 @@ static void test_open_start_read_stop(void)
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
     TEST_ASSERT_EQUAL_INT(LEP_E_STATE, lep_session_start(s));
     TEST_ASSERT_TRUE(lep_session_streaming(s));
-    TEST_ASSERT_TRUE(lep_session_fd(s) >= 0);
+    TEST_ASSERT_TRUE(LEP_TEST_PORT_FD_OK(lep_session_fd(s)));
     TEST_ASSERT_NOT_NULL(lep_session_client(s));
     TEST_ASSERT_NOT_NULL(lep_session_sim(s));
     while (b.b.n < 600 && (rc = lep_session_read_batch(s, &b.b, 2000)) == LEP_OK) {

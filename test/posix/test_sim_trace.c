@@ -13,6 +13,7 @@
 #include "leptrino/leptrino.h"
 #include "leptrino/serial.h"
 #include "leptrino/sim.h"
+#include "host_os.h"
 #include "struct_api.h"
 #include "unity.h"
 
@@ -31,7 +32,7 @@ void setUp(void)
     port = NULL;
     err[0] = '\0';
     snprintf(dir, sizeof dir, "/tmp/lep-trace-XXXXXX");
-    TEST_ASSERT_NOT_NULL(mkdtemp(dir));
+    TEST_ASSERT_NOT_NULL(lep_test_mkdtemp(dir));
     snprintf(path, sizeof path, "%s/writes.bin", dir);
     lep_sim_options_init(&o);
     rc = lep_sim_start_so(&o, &sim, err, sizeof err);

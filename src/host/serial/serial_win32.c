@@ -17,11 +17,16 @@
  * WaitCommEvent is not used either (unusable on a Wine pty). A failed read,
  * write or ClearCommError means the device went away (an unplugged USB port
  * fails them with ERROR_ACCESS_DENIED, ERROR_GEN_FAILURE,
- * ERROR_DEVICE_NOT_CONNECTED ...): LEP_E_DISCONNECTED from then on. */
+ * ERROR_DEVICE_NOT_CONNECTED ...): LEP_E_DISCONNECTED from then on.
+ *
+ * A name a virtual sensor of this program lists ("sim:1", or its link
+ * option) is opened as its in-process loopback port instead
+ * (serial_loopback_win32.c), with the same read and write contract. */
 #include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <winsock2.h> /* before windows.h (serial_loopback.h) */
 #include <windows.h>
 
 #include "errmsg.h"
@@ -29,6 +34,7 @@
 #include "leptrino/serial.h"
 #include "struct_api.h"
 #include "posix_clock.h"
+#include "serial_loopback.h"
 
 /* How long a write may wait for the port to take its bytes. */
 #define WRITE_STALL_MS 2000
@@ -38,8 +44,9 @@
 #define OUT_QUEUE 4096
 
 struct lep_serial {
-    HANDLE h;
-    bool dead; /* the port vanished: every call says so */
+    HANDLE h;                /* the COM port, or INVALID_HANDLE_VALUE with loop */
+    lep_loopback_port *loop; /* a virtual sensor's port, or NULL */
+    bool dead;               /* the port vanished: every call says so */
     bool have_saved;
     DCB saved_dcb;
     COMMTIMEOUTS saved_timeouts;
@@ -152,6 +159,7 @@ static int configure(lep_serial *s, char *err, size_t errlen)
 int lep_serial_open(const char *path, lep_serial **out, char *err, size_t errlen)
 {
     char dev[PORT_NAME_MAX + 4];
+    lep_loopback_port *loop = NULL;
     lep_serial *s;
     HANDLE h;
     int rc;
@@ -166,6 +174,23 @@ int lep_serial_open(const char *path, lep_serial **out, char *err, size_t errlen
     if (strlen(path) >= PORT_NAME_MAX) {
         lep_priv_set_err(err, errlen, "%.64s...: path too long", path);
         return LEP_E_NOT_FOUND;
+    }
+    rc = lep_priv_loopback_open(path, &loop, err, errlen);
+    if (rc != LEP_OK)
+        return rc;
+    if (loop != NULL) {
+        s = calloc(1, sizeof *s);
+        if (s == NULL) {
+            lep_priv_loopback_close(loop);
+            lep_priv_set_err(err, errlen, "%s: out of memory", path);
+            return LEP_E_IO;
+        }
+        s->h = INVALID_HANDLE_VALUE;
+        s->loop = loop;
+        s->info.ftdi_latency_ms = -1;
+        memcpy(s->path, path, strlen(path) + 1);
+        *out = s;
+        return LEP_OK;
     }
     device_name(path, dev, sizeof dev);
     /* dwShareMode 0: nobody else may open the port while we hold it. */
@@ -201,6 +226,11 @@ void lep_serial_close(lep_serial *s)
 {
     if (s == NULL)
         return;
+    if (s->loop != NULL) {
+        lep_priv_loopback_close(s->loop);
+        free(s);
+        return;
+    }
     if (!s->dead && s->have_saved) {
         (void)SetCommState(s->h, &s->saved_dcb);
         (void)SetCommTimeouts(s->h, &s->saved_timeouts);
@@ -341,6 +371,11 @@ void lep_serial_get_io(lep_serial *s, lep_io *io)
     io->read = serial_read;
     io->now_ms = serial_now_ms;
     io->user = s;
+    if (s != NULL && s->loop != NULL) {
+        io->write = lep_priv_loopback_write;
+        io->read = lep_priv_loopback_read;
+        io->user = s->loop;
+    }
 }
 
 int lep_serial_client_init(lep_client *c, lep_serial *s)

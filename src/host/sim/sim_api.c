@@ -5,12 +5,9 @@
 #define _DEFAULT_SOURCE
 #endif
 
-#include <errno.h>
-#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "errmsg.h"
 #include "leptrino/error.h"
@@ -23,7 +20,6 @@ int lep_sim_start_so(const lep_sim_options *o, lep_sim **out, char *err, size_t 
     lep_sim_options defaults;
     lep_sim *s;
     int rc;
-    sigset_t all, old;
     if (err != NULL && errlen > 0)
         err[0] = '\0';
     if (out == NULL) {
@@ -43,9 +39,8 @@ int lep_sim_start_so(const lep_sim_options *o, lep_sim **out, char *err, size_t 
         lep_priv_set_err(err, errlen, "out of memory");
         return LEP_E_IO;
     }
-    s->master = s->slave = -1;
+    lep_priv_sim_port_init(s);
     s->lock_fd = -1;
-    s->wake[0] = s->wake[1] = -1;
     s->req_stall_ms = -1;
     s->req_hold_ms = -1;
     s->opt = *o;
@@ -70,11 +65,8 @@ int lep_sim_start_so(const lep_sim_options *o, lep_sim **out, char *err, size_t 
             lep_priv_fir_design(&s->fir[code], code, o->rate_hz);
     }
     rc = lep_priv_sim_init_device(s, err, errlen);
-    if (rc == LEP_OK && (pipe(s->wake) != 0 || lep_priv_sim_set_flags(s->wake[0]) != 0 ||
-                         lep_priv_sim_set_flags(s->wake[1]) != 0)) {
-        lep_priv_set_err(err, errlen, "cannot create a pipe: %s", strerror(errno));
-        rc = LEP_E_IO;
-    }
+    if (rc == LEP_OK)
+        rc = lep_priv_sim_wake_open(s, err, errlen);
     if (rc == LEP_OK)
         rc = lep_priv_sim_link_claim(s, err, errlen);
     if (rc == LEP_OK)
@@ -93,11 +85,7 @@ int lep_sim_start_so(const lep_sim_options *o, lep_sim **out, char *err, size_t 
     if (o->hangup_after_s > 0)
         s->hangup_at = s->power_on + (int64_t)(o->hangup_after_s * NS_PER_S);
     lep_priv_sim_publish(s);
-    /* The thread takes no signals: they belong to the application. */
-    sigfillset(&all);
-    pthread_sigmask(SIG_SETMASK, &all, &old);
-    rc = pthread_create(&s->thread, NULL, lep_priv_sim_serve, s);
-    pthread_sigmask(SIG_SETMASK, &old, NULL);
+    rc = lep_priv_sim_start_thread(s, lep_priv_sim_serve);
     if (rc != 0) {
         lep_priv_set_err(err, errlen, "cannot start the serving thread");
         lep_sim_stop(s);
@@ -129,7 +117,6 @@ const char *lep_sim_pty_path(const lep_sim *s)
 
 static void request(lep_sim *s, bool *flag, int *ms_field, int ms)
 {
-    static const uint8_t one = 1;
     if (s == NULL)
         return;
     pthread_mutex_lock(&s->lock);
@@ -138,8 +125,7 @@ static void request(lep_sim *s, bool *flag, int *ms_field, int ms)
     if (ms_field != NULL)
         *ms_field = ms;
     pthread_mutex_unlock(&s->lock);
-    if (s->wake[1] >= 0)
-        (void)!write(s->wake[1], &one, 1);
+    lep_priv_sim_wake(s);
 }
 
 void lep_sim_power_cycle(lep_sim *s)
@@ -223,10 +209,7 @@ void lep_sim_stop(lep_sim *s)
     lep_priv_sim_remove_link(s);
     lep_priv_sim_link_release(s);
     lep_priv_sim_close_pty(s);
-    if (s->wake[0] >= 0)
-        close(s->wake[0]);
-    if (s->wake[1] >= 0)
-        close(s->wake[1]);
+    lep_priv_sim_wake_close(s);
     lep_priv_signal_free(&s->sig);
     pthread_mutex_destroy(&s->lock);
     free(s);

@@ -12,13 +12,15 @@
  *                   the start of a stream, power cycles, set-up from options
  *   sim_faults.c    faults on the way out (drop, garbage, corrupt) and the
  *                   input's NAK fault
- *   sim_pty.c       the pty and the output queue written to it
- *   sim_link.c      ownership of the link path; sim_trace.c the write trace
+ *   sim_pty.c       the port (a pty), the requests' wake-up pipe, waiting on
+ *                   both, writing the output queue to the port (POSIX)
+ *   sim_link.c      ownership of the link path (POSIX)
+ *   sim_link_win32.c  on Windows, instead of sim_pty.c and sim_link.c: the port
+ *                   is one end of a loopback TCP connection whose other end the
+ *                   Win32 serial backend opens by name (serial_loopback.h)
+ *   sim_queue.c     the output queue; sim_trace.c the write trace
  *   sim_filter.c, sim_signal.c, sim_replay.c, sim_models.c, sim_options.c:
  *                   the signal, the sensor's filter, the options (no state here)
- *   sim_win32.c     on Windows, instead of sim_api.c .. sim_trace.c (which serve
- *                   a pseudo-terminal): lep_sim_start says the virtual sensor is
- *                   not available there yet (docs/windows.md)
  *
  * struct lep_sim is shared; each field group below says which file writes it. */
 #ifndef LEPTRINO_SIM_PRIV_H
@@ -59,7 +61,8 @@ struct lep_sim {
     lep_sim_trace *req_trace; /* lep_sim_trace_writes: handed to the serving thread */
     bool trace_requested;     /* lep_sim_trace_writes was called (once only) */
     lep_sim_counters stats;
-    int wake[2];
+    int wake[2];      /* POSIX: the requests' pipe (sim_pty.c) */
+    uintptr_t wake_s; /* Windows: the requests' UDP socket (sim_link_win32.c) */
     pthread_t thread;
     bool thread_started;
 
@@ -91,9 +94,11 @@ struct lep_sim {
     int64_t power_on; /* also set by sim_serve.c's reopen */
     /* sim_faults.c */
     uint64_t rng;
-    /* sim_pty.c (emptied by sim_device.c's power-off) */
-    int master, slave;
-    char pty[PATH_MAX];
+    /* sim_pty.c or sim_link_win32.c: the port; sim_queue.c: the output queue
+     * (emptied by sim_device.c's power-off) */
+    int master, slave;  /* POSIX: the pty's two sides */
+    uintptr_t master_s; /* Windows: the sensor's end of the loopback connection */
+    char pty[PATH_MAX]; /* the port's own name (a pty's path; on Windows a loopback name) */
     uint8_t out[OUTQ_SIZE];
     size_t out_len;
     /* sim_serve.c */
@@ -104,16 +109,45 @@ struct lep_sim {
     bool trace_was_streaming; /* to mark the end of a stream in the trace */
 };
 
-/* sim_pty.c */
-int lep_priv_sim_set_flags(int fd); /* non-blocking, close-on-exec */
+/* sim_pty.c (sim_link_win32.c on Windows): the port, the requests' wake-up
+ * channel, waiting on both, the thread. */
+/* Nothing open yet (before anything can fail). */
+void lep_priv_sim_port_init(lep_sim *s);
+/* The wake-up channel callers write a request into: LEP_OK or LEP_E_IO. */
+int lep_priv_sim_wake_open(lep_sim *s, char *err, size_t errlen);
+/* From any thread: wake the serving thread (a request is set). */
+void lep_priv_sim_wake(lep_sim *s);
+/* The serving thread: read all the wake-ups out. */
+void lep_priv_sim_wake_drain(lep_sim *s);
+void lep_priv_sim_wake_close(lep_sim *s);
+/* Open a new port (and point the link at it): LEP_OK, or an error with a message. */
 int lep_priv_sim_open_pty(lep_sim *s, char *err, size_t errlen);
 void lep_priv_sim_close_pty(lep_sim *s);
+/* What lep_priv_sim_wait found ready. */
+#define LEP_SIM_READY_WAKE 1u /* a request was written */
+#define LEP_SIM_READY_PORT 2u /* the port has input (or hung up: a read says) */
+/* Wait until the absolute time until (lep_priv_monotonic_ns; 0: no end) for a
+ * wake-up and, with port, for input on the port (and room for output with
+ * want_out). *ready gets LEP_SIM_READY_*. 0, or -1 when waiting fails. */
+int lep_priv_sim_wait(lep_sim *s, bool port, bool want_out, int64_t until, unsigned *ready);
+/* Read what the host sent: the count, 0 for nothing now, -1 when the port
+ * cannot be read now (the caller waits a little). */
+long lep_priv_sim_read_port(lep_sim *s, uint8_t *buf, size_t cap);
+/* Write the output queue to the port until it takes no more. */
 void lep_priv_sim_flush_out(lep_sim *s);
+/* Start the serving thread fn(s) (taking none of the application's signals):
+ * pthread_create's result. */
+int lep_priv_sim_start_thread(lep_sim *s, void *(*fn)(void *));
+/* The serving thread's own settings, from inside it (timer slack). */
+void lep_priv_sim_thread_init(void);
+
+/* sim_queue.c: the output queue */
 bool lep_priv_sim_queue(lep_sim *s, const uint8_t *b, size_t n);
 /* True when the output queue cannot take another message. */
 bool lep_priv_sim_queue_full(const lep_sim *s);
 
-/* sim_link.c: ownership of the link path (see the file's comment) */
+/* sim_link.c (sim_link_win32.c on Windows): ownership of the link path (see
+ * the file's comment) */
 /* Take the link's lock and check what is at the path: LEP_OK (nothing to
  * do without a link), LEP_E_BUSY (owned by a running sensor, or holding
  * something that is not a stale pty link), LEP_E_IO, with a message. */

@@ -1,18 +1,11 @@
 /* Virtual sensor: the serving thread (wait for input, deadlines and requests;
- * hang-up and reopen) and publishing counters to callers. */
+ * hang-up and reopen) and publishing counters to callers. Portable: the port
+ * and the waiting are sim_pty.c's (POSIX) or sim_link_win32.c's (Windows). */
 #if defined(__APPLE__)
 #define _DARWIN_C_SOURCE
 #else
-#define _GNU_SOURCE /* ppoll, ptsname_r */
+#define _DEFAULT_SOURCE /* PATH_MAX */
 #endif
-
-#include <errno.h>
-#include <poll.h>
-#if defined(__linux__)
-#include <sys/prctl.h>
-#endif
-#include <time.h>
-#include <unistd.h>
 
 #include "leptrino/error.h"
 #include "posix_clock.h"
@@ -65,31 +58,6 @@ static int64_t earliest(int64_t a, int64_t b)
     return a < b ? a : b;
 }
 
-static int wait_events(lep_sim *s, struct pollfd *p, nfds_t n, int64_t until)
-{
-#if defined(__linux__)
-    struct timespec ts, *tp = NULL;
-    if (until != 0) {
-        int64_t left = until - lep_priv_monotonic_ns();
-        if (left < 0)
-            left = 0;
-        ts.tv_sec = (time_t)(left / 1000000000);
-        ts.tv_nsec = (long)(left % 1000000000);
-        tp = &ts;
-    }
-    (void)s;
-    return ppoll(p, n, tp, NULL);
-#else
-    int ms = -1;
-    (void)s;
-    if (until != 0) {
-        int64_t left = until - lep_priv_monotonic_ns();
-        ms = left <= 0 ? 0 : (int)((left + 999999) / 1000000);
-    }
-    return poll(p, n, ms);
-#endif
-}
-
 #define BLOCKED_WAKE_NS 100000000 /* 100 ms */
 /* While streaming, a next deadline at most this far off is waited for in
  * clock_nanosleep, not ppoll: the pty and the requests are looked at once
@@ -111,14 +79,10 @@ static bool requests_pending(lep_sim *s)
 void *lep_priv_sim_serve(void *arg)
 {
     lep_sim *s = arg;
-#if defined(__linux__) && defined(PR_SET_TIMERSLACK)
-    /* Wake at each deadline, not up to 50 us after it (the default slack of
-     * a thread's timers; this thread's only, the host program keeps its own). */
-    (void)prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
-#endif
+    lep_priv_sim_thread_init();
     for (;;) {
-        struct pollfd p[2];
-        nfds_t n = 1;
+        bool port = false, want_out = false;
+        unsigned ready = 0;
         int64_t now = lep_priv_monotonic_ns(), until = 0;
         bool stalled = s->stall_until != 0 && now < s->stall_until;
         bool held = s->hold_until != 0 && now < s->hold_until;
@@ -153,14 +117,9 @@ void *lep_priv_sim_serve(void *arg)
         if (!s->hung && !stalled && !held)
             lep_priv_sim_flush_out(s);
 
-        p[0].fd = s->wake[0];
-        p[0].events = POLLIN;
-        p[0].revents = 0;
         if (!s->hung && !stalled) {
-            p[1].fd = s->master;
-            p[1].events = (short)(POLLIN | (s->out_len > 0 && !held ? POLLOUT : 0));
-            p[1].revents = 0;
-            n = 2;
+            port = true;
+            want_out = s->out_len > 0 && !held;
             /* The next sample's deadline, unless the queue is full (nobody
              * reads): then wait for room (POLLOUT), waking every
              * BLOCKED_WAKE_NS instead of each sample to count the samples
@@ -184,24 +143,21 @@ void *lep_priv_sim_serve(void *arg)
          * wait) and, with neither, sleep to the next deadline: one
          * clock_nanosleep and one read per period instead of a ppoll on
          * two descriptors, which costs more on every wake-up. */
-        quiet = n == 2 && s->streaming && s->out_len == 0 && until != 0 &&
+        quiet = port && s->streaming && s->out_len == 0 && until != 0 &&
                 until - now <= QUIET_WAIT_MAX_NS && !lep_priv_sim_queue_full(s);
         idle = quiet;
         if (quiet) {
-            p[0].revents = requests_pending(s) ? POLLIN : 0;
-            p[1].revents = POLLIN;
-        } else if (wait_events(s, p, n, until) < 0 && errno != EINTR) {
+            ready = (requests_pending(s) ? LEP_SIM_READY_WAKE : 0u) | LEP_SIM_READY_PORT;
+        } else if (lep_priv_sim_wait(s, port, want_out, until, &ready) < 0) {
             break;
         }
 
         stop = cycle = hangup = false;
         stall_ms = hold_ms = -1;
-        if (p[0].revents & POLLIN) {
+        if (ready & LEP_SIM_READY_WAKE) {
             idle = false;
-            /* a request: callers set it under the lock, then write the pipe */
-            uint8_t junk[64];
-            while (read(s->wake[0], junk, sizeof junk) > 0) {
-            }
+            /* a request: callers set it under the lock, then wake us */
+            lep_priv_sim_wake_drain(s);
             pthread_mutex_lock(&s->lock);
             stop = s->req_stop;
             cycle = s->req_power_cycle;
@@ -235,18 +191,17 @@ void *lep_priv_sim_serve(void *arg)
                 s->st.stalls++;
             continue;
         }
-        if (n == 2 && !s->hung && (p[1].revents & (POLLIN | POLLHUP | POLLERR))) {
+        if (port && !s->hung && (ready & LEP_SIM_READY_PORT)) {
             uint8_t buf[1024];
-            ssize_t r = read(s->master, buf, sizeof buf);
+            long r = lep_priv_sim_read_port(s, buf, sizeof buf);
             if (r > 0) {
                 idle = false;
                 s->st.bytes_received += (uint64_t)r;
                 lep_priv_sim_handle_input(s, buf, (size_t)r);
-            } else if (r < 0 && errno == EIO) {
-                /* no slave open (cannot happen while we hold one): wait a little */
-                struct timespec ts = { 0, 10000000 };
+            } else if (r < 0) {
+                /* the port cannot be read now: wait a little */
                 idle = false;
-                nanosleep(&ts, NULL);
+                lep_priv_sleep_until_ns(lep_priv_monotonic_ns() + 10000000);
             }
         }
         if (idle)

@@ -11,12 +11,12 @@
 #endif
 
 #include <errno.h>
-#include <fcntl.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "errmsg.h"
+#include "fd_write.h"
 #include "leptrino/error.h"
 #include "posix_clock.h"
 #include "sim_priv.h"
@@ -37,15 +37,10 @@ struct lep_sim_trace {
 
 static void trace_flush(lep_sim_trace *t)
 {
-    size_t off = 0, len = t->buf_n * sizeof t->buf[0];
+    size_t len = t->buf_n * sizeof t->buf[0];
     const uint8_t *p = (const uint8_t *)t->buf;
-    while (off < len && !t->broken) {
-        ssize_t n = write(t->fd, p + off, len - off);
-        if (n > 0)
-            off += (size_t)n;
-        else if (!(n < 0 && errno == EINTR))
-            t->broken = true;
-    }
+    if (len > 0 && !t->broken && lep_priv_write_all(t->fd, p, len, -1) != LEP_PRIV_WRITE_OK)
+        t->broken = true;
     t->buf_n = 0;
 }
 
@@ -65,7 +60,8 @@ static void trace_put(lep_sim_trace *t, uint64_t k, int64_t t_call, int64_t t_re
 int lep_priv_sim_trace_open(const char *path, lep_sim_trace **out, char *err, size_t errlen)
 {
     lep_sim_trace *t;
-    int fd = open(path, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC | O_NOFOLLOW, 0644);
+    /* never an existing file (O_EXCL: nor a symbolic link) */
+    int fd = lep_priv_fd_create(path, 0);
     if (fd < 0) {
         lep_priv_set_err(err, errlen, "write trace %s: %s%s", path, strerror(errno),
                          errno == EEXIST ? " (an existing file is never replaced)" : "");
@@ -73,8 +69,8 @@ int lep_priv_sim_trace_open(const char *path, lep_sim_trace **out, char *err, si
     }
     t = calloc(1, sizeof *t);
     if (t == NULL) {
-        close(fd);
-        (void)unlink(path);
+        (void)lep_priv_fd_close(fd);
+        (void)remove(path);
         lep_priv_set_err(err, errlen, "write trace %s: out of memory", path);
         return LEP_E_IO;
     }
@@ -88,7 +84,7 @@ void lep_priv_sim_trace_close(lep_sim_trace *t)
     if (t == NULL)
         return;
     trace_flush(t);
-    close(t->fd);
+    (void)lep_priv_fd_close(t->fd);
     free(t);
 }
 
