@@ -61,8 +61,8 @@ static void figures(const char *what, const double *e, size_t n)
     }
     qsort(a, n, sizeof *a, cmp_double);
     printf("  %-14s n %7zu  mean %8.1f us  rms %8.1f us  p99 %8.1f us  max %8.1f us\n", what, n,
-           sum / (double)n * 1e6, sqrt(sq / (double)n) * 1e6, a[(size_t)((double)(n - 1) * 0.99)] * 1e6,
-           a[n - 1] * 1e6);
+           sum / (double)n * 1e6, sqrt(sq / (double)n) * 1e6,
+           a[(size_t)((double)(n - 1) * 0.99)] * 1e6, a[n - 1] * 1e6);
     free(a);
 }
 

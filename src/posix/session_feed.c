@@ -44,8 +44,8 @@ void lep_priv_session_feed(lep_session *s, const uint8_t *data, size_t len, doub
     lep_priv_health_client(&s->hs, &st);
     if (n > 0) {
         timeline_verdict v;
-        uint64_t j = 0, known =
-            lep_priv_timing_seq(tm, s->sim != NULL, got, n, t_read, s->nominal_hz, lost);
+        uint64_t j = 0, known = lep_priv_timing_seq(tm, s->sim != NULL, got, n, t_read,
+                                                    s->nominal_hz, lost);
         size_t rows_before;
         lep_priv_timeline_read(&tm->tl, t_read, n, known, &v);
         lep_priv_timing_judged(s, &v);

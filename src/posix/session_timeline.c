@@ -80,12 +80,13 @@ static void add_point(session_timeline *tl, double k, double t)
     }
 }
 
-/* The slope: the lower hull's edge across the middle of the window, in
- * coordinates relative to the oldest point, time less the nominal period. */
+/* The slope: of the lower hull between its vertices nearest a quarter and
+ * three quarters of the window, in coordinates relative to the oldest point,
+ * time less the nominal period. */
 static double hull_slope(const session_timeline *tl)
 {
-    double x[TIMELINE_BLOCKS], y[TIMELINE_BLOCKS], mid, slope;
-    size_t h[TIMELINE_BLOCKS], m = 0, i;
+    double x[TIMELINE_BLOCKS], y[TIMELINE_BLOCKS], q1, q3, slope;
+    size_t h[TIMELINE_BLOCKS], m = 0, i, a = 0, b = 0;
     const timeline_point *p0 = point(tl, 0), *pn = point(tl, tl->len - 1u);
     if (tl->len < 2 || pn->t - p0->t < TIMELINE_MIN_SPAN_S)
         return tl->prior;
@@ -94,20 +95,32 @@ static double hull_slope(const session_timeline *tl)
         x[i] = p->k - p0->k;
         y[i] = (p->t - p0->t) - tl->nominal * x[i];
         while (m >= 2) {
-            size_t a = h[m - 2], b = h[m - 1];
-            double cross = (x[b] - x[a]) * (y[i] - y[a]) - (y[b] - y[a]) * (x[i] - x[a]);
+            size_t u = h[m - 2], w = h[m - 1];
+            double cross = (x[w] - x[u]) * (y[i] - y[u]) - (y[w] - y[u]) * (x[i] - x[u]);
             if (cross > 0.0)
                 break;
             m--;
         }
         h[m++] = i;
     }
-    mid = x[tl->len - 1u] / 2.0;
-    for (i = 0; i + 2 < m && x[h[i + 1]] < mid; i++) {
+    /* the vertices nearest a quarter and three quarters of the window: far
+     * apart, so their delays above the line hardly tilt the slope (an edge's
+     * two ends may be close together) */
+    q1 = x[tl->len - 1u] / 4.0;
+    q3 = 3.0 * q1;
+    for (i = 0; i < m; i++) {
+        if (fabs(x[h[i]] - q1) < fabs(x[h[a]] - q1))
+            a = i;
+        if (fabs(x[h[i]] - q3) < fabs(x[h[b]] - q3))
+            b = i;
     }
-    if (!(x[h[i + 1]] > x[h[i]]))
+    if (a == b) {
+        a = 0;
+        b = m - 1u;
+    }
+    if (!(x[h[b]] > x[h[a]]))
         return tl->prior;
-    slope = tl->nominal + (y[h[i + 1]] - y[h[i]]) / (x[h[i + 1]] - x[h[i]]);
+    slope = tl->nominal + (y[h[b]] - y[h[a]]) / (x[h[b]] - x[h[a]]);
     if (fabs(slope / tl->nominal - 1.0) > TIMELINE_MAX_PPM * 1e-6)
         slope = tl->nominal * (1.0 + (slope > tl->nominal ? 1.0 : -1.0) * TIMELINE_MAX_PPM * 1e-6);
     return slope;
