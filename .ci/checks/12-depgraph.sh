@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Files depend one way: a file-level dependency graph of the library's
-# (src/core, src/posix) and the CLI's (tools/leptrino) object files, built
+# (src/core, src/host/*) and the CLI's (tools/leptrino) object files, built
 # from their symbols with nm (who defines, who references), must have no
 # cycle; a cycle is named with the symbols that make it (test/checks/depgraph.py).
 # The objects are the dev build's, one per tracked source file (no stale ones).
@@ -19,7 +19,7 @@ objs() { # objects dir, then sources relative to the dir they are compiled from
     printf '%s\n' "$o"
   done
 }
-lib=$(objs build/dev/src/CMakeFiles/leptrino_static.dir src 'src/core/*.c' 'src/posix/*.c')
+lib=$(objs build/dev/src/CMakeFiles/leptrino_static.dir src 'src/core/*.c' 'src/host/*/*.c')
 cli=$(objs build/dev/tools/leptrino/CMakeFiles/leptrino_cli.dir tools/leptrino 'tools/leptrino/*.c')
 # shellcheck disable=SC2086
 python3 test/checks/depgraph.py --dot build/dev/depgraph.dot --group library $lib --group cli $cli

@@ -57,7 +57,7 @@ LEPTRINO_SYS_BUNDLED=1 cargo package --workspace --locked
 for c in "$CARGO_TARGET_DIR"/package/leptrino-sys-*.crate; do
   listing=$(tar tzvf "$c")
   if grep -q '^l' <<<"$listing"; then echo "65-rust: $c holds a symlink"; exit 1; fi
-  grep -q 'csrc/src/posix/session.c$' <<<"$listing" || { echo "65-rust: $c lacks the C sources"; exit 1; }
+  grep -q 'csrc/src/host/session/session.c$' <<<"$listing" || { echo "65-rust: $c lacks the C sources"; exit 1; }
 done
 
 echo "-- the README's Rust example is the crate README's (which runs as a doctest above)"

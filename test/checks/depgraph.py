@@ -27,7 +27,7 @@ DEFINING = set("ABCDGRSTVWi")
 
 
 def file_name(obj: str) -> str:
-    """A readable name for an object: src/posix/session.c.o -> posix/session.c."""
+    """A readable name for an object: src/host/session/session.c.o -> posix/session.c."""
     obj = os.path.normpath(obj)
     base = os.path.basename(obj)
     parent = os.path.basename(os.path.dirname(obj))

@@ -2,7 +2,7 @@
 """The private headers' map of who owns what is true: each prototype is
 defined by the file whose section it sits in.
 
-A private header (src/posix/session_priv.h, sim_priv.h) is divided into
+A private header (src/host/session/session_priv.h, sim_priv.h) is divided into
 sections by comments that begin with a file's name at the start of a line
 ("/* session_proc.c: ..." or "/* ---- session_load.c ---- */"). Each function
 prototype at the start of a line (not static, not a typedef) belongs to the

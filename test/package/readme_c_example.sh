@@ -52,8 +52,10 @@ if [ -n "$sim" ]; then
     if ! grep -q 'serial' "$tmp/run$i.out" || [ "$rows" -ne 10 ]; then
       echo "FAIL README.md C block $i printed $rows samples (want 10):"; cat "$tmp/run$i.out"; exit 1
     fi
-    # 1 s of samples at the virtual sensor's 1200 Hz, and the missing port named
-    if ! grep -Eq '^1[12][0-9][0-9] samples, 1[12][0-9][0-9]\.[0-9] Hz$' "$tmp/run$i.out" ||
+    # 1 s of samples and their rate (not checked for 1200 Hz: a loaded machine
+    # starves the virtual sensor; the rate is tested where it is the subject),
+    # and the missing port named
+    if ! grep -Eq '^[1-9][0-9]* samples, [1-9][0-9]*\.[0-9] Hz$' "$tmp/run$i.out" ||
        ! grep -q '^as expected: /dev/leptrino-none: ' "$tmp/run$i.out"; then
       echo "FAIL README.md C block $i: no rate over 1 s or no message for the missing port:"
       cat "$tmp/run$i.out"; exit 1

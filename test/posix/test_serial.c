@@ -14,7 +14,7 @@
 #include "leptrino/leptrino.h"
 #include "leptrino/serial.h"
 #include "struct_api.h"
-#include "posix/serial_list.h"
+#include "host/serial/serial_list.h"
 #include "unity.h"
 
 static lep_serial *port;

@@ -24,7 +24,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "posix/session_timeline.h"
+#include "host/session/session_timeline.h"
 #include "unity.h"
 
 #define MAXN 40000u

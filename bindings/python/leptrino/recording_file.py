@@ -1,6 +1,6 @@
 """Read a recording back: leptrino.read_recording(path).
 
-Reads what the one writer (src/posix/output.c, leptrino/output.h; format in
+Reads what the one writer (src/host/output/output.c, leptrino/output.h; format in
 docs/session.md "Recordings") writes for `leptrino stream -o` and
 Recording.save, and the .npz of Recording.save:
 

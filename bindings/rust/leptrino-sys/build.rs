@@ -179,24 +179,33 @@ fn build_bundled(csrc: &Path) {
     build
         .std("c99")
         .include(csrc.join("include"))
-        .include(src.join("posix"))
+        .include(src.join("host"))
         .define("LEPTRINO_BUILDING", None)
         .flag_if_supported("-fvisibility=hidden")
         .warnings(true);
-    for dir in ["core", "posix"] {
-        for f in c_files(&src.join(dir)) {
+    // The host layer's subsystems (src/host/<dir>), as src/CMakeLists.txt lists them.
+    let host = [
+        "platform", "serial", "options", "session", "sim", "output", "payload", "ros",
+    ];
+    for dir in host {
+        build.include(src.join("host").join(dir));
+    }
+    let dirs =
+        std::iter::once(src.join("core")).chain(host.iter().map(|d| src.join("host").join(d)));
+    for dir in dirs {
+        for f in c_files(&dir) {
             println!("cargo:rerun-if-changed={}", f.display());
-            build.file(f);
+            build.file(&f);
+            let h = f.with_extension("h");
+            if h.exists() {
+                println!("cargo:rerun-if-changed={}", h.display());
+            }
         }
     }
-    for f in c_files(&src.join("posix"))
-        .iter()
-        .map(|p| p.with_extension("h"))
-    {
-        if f.exists() {
-            println!("cargo:rerun-if-changed={}", f.display());
-        }
-    }
+    println!(
+        "cargo:rerun-if-changed={}",
+        src.join("host/struct_api.h").display()
+    );
     build.compile("leptrino");
     // The session's filter and rotation use libm; the virtual sensor a thread.
     println!("cargo:rustc-link-lib=m");

@@ -1,7 +1,7 @@
 /* One pose for a payload identification: the mean wrench of a CSV recording
  * made by the leptrino tool, brought back to what the sensor measured (the
  * sensor frame, no tare). Reads the metadata line, the header, the tare
- * events and the rows that src/posix/output.c writes. */
+ * events and the rows that src/host/output/output.c writes. */
 #if defined(__APPLE__)
 #define _DARWIN_C_SOURCE
 #else
