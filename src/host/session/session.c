@@ -280,7 +280,6 @@ static int session_start(lep_session *s)
     pthread_mutex_unlock(&s->mu);
     s->streaming = true;
     s->backlog = false;
-    s->dither = 2463534242u;
     lep_priv_reconnect_start(&s->rc);
     lep_priv_rows_clear(&s->rows);
     lep_priv_session_stream_reset(s, now);

@@ -225,8 +225,7 @@ struct lep_session {
 
     /* ---- streaming (driving thread) ---- */
     bool streaming;
-    bool backlog;    /* more may be waiting: read again before sleeping (session_read.c) */
-    uint32_t dither; /* xorshift state of the budget's wake-up dither (session_read.c) */
+    bool backlog; /* more may be waiting: read again before sleeping (session_read.c) */
     uint8_t rbuf[SESSION_RBUF]; /* session_read.c */
     session_rows rows;
     session_timing tm;

@@ -85,14 +85,6 @@ static int port_wait(lep_session *s, read_call *c, double now, double data_deadl
     wake = c->got ? c->first + c->budget : s->tm.last_read_t + c->budget;
     if (s->rows.held > 0 && wake > s->tm.last_read_t + SESSION_CONFIRM_S)
         wake = s->tm.last_read_t + SESSION_CONFIRM_S; /* judge a suspected hole soon */
-    /* Dither by up to a period: reads that keep one phase against the
-     * samples (the budget runs from a sample's stamp) would show the
-     * timeline the same delay every time, and it learns the sensor's clock
-     * from the spread of the delays (session_timeline.h). */
-    s->dither ^= s->dither << 13;
-    s->dither ^= s->dither >> 17;
-    s->dither ^= s->dither << 5;
-    wake += s->period_s * (double)(s->dither >> 8) / 16777216.0;
     if (wake > c->deadline)
         wake = c->deadline;
     if (wake > data_deadline)
