@@ -69,6 +69,12 @@ typedef struct trace_row {
     unsigned gaps;
     unsigned gap_at; /* received index of the first sample after the hole */
     unsigned lost, lost_tol;
+    /* a sender on a loaded machine: now and then (every loaded_every_s on
+     * average) it runs late by up to loaded_ms and then catches up */
+    double loaded_every_s, loaded_ms;
+    /* the reader descheduled between a read and its clock: that often, by
+     * up to that long */
+    double desched_p, desched_ms;
 } trace_row;
 
 /* Made samples: emission, arrival, the sensor's count. */
@@ -129,6 +135,21 @@ static void make(const trace_row *row, rng *r)
                 a_t[first_unsent++] = tick + row->base_us * 1e-6;
         }
     }
+    if (row->loaded_every_s > 0) {
+        double t = expo(r, row->loaded_every_s);
+        size_t i = 0;
+        while (t < row->seconds) {
+            double len = row->loaded_ms * 1e-3 * (0.1 + 0.9 * uni(r));
+            while (i < n_made && a_t[i] < t)
+                i++;
+            double w = t + len + row->base_us * 1e-6;
+            for (; i < n_made && a_t[i] < t + len; i++) {
+                w += 40e-6 * uni(r); /* one write per sample, as it catches up */
+                a_t[i] = w;
+            }
+            t += len + expo(r, row->loaded_every_s);
+        }
+    }
     for (k = 0; k < n_made; k++) {
         if (row->hold_s > 0 && a_t[k] >= row->hold_at && a_t[k] < row->hold_at + row->hold_s)
             a_t[k] = row->hold_at + row->hold_s + row->base_us * 1e-6;
@@ -156,7 +177,7 @@ static void feed(double t, size_t from, size_t n)
     if (v.release) {
         if (v.gap && held_n > 0) {
             for (i = held_from; i < held_from + held_n; i++)
-                stamp[i] = stamp[i] + v.shift < v.cap ? stamp[i] + v.shift : v.cap;
+                stamp[i] = stamp[i] + v.shift < ret[i] ? stamp[i] + v.shift : ret[i];
             gapflag[held_from] = 1;
             if (out.gaps++ == 0) {
                 out.gap_at = (unsigned)held_from;
@@ -169,7 +190,9 @@ static void feed(double t, size_t from, size_t n)
         stamp[from + i] = lep_priv_timeline_stamp(&tl, i);
         ret[from + i] = t;
     }
-    if (v.hold) {
+    if (v.extend) {
+        held_n += n;
+    } else if (v.hold) {
         held_from = from;
         held_n = n;
     }
@@ -180,13 +203,24 @@ static size_t read_all(const trace_row *row, rng *r)
 {
     size_t got = 0;
     double t = 0.0;
-    bool was_away = false;
+    bool was_away = false, in_call = false;
+    double first = 0.0;
     while (got < n_made) {
         size_t avail = got, piece = PIECE;
-        if (row->budget_ms > 0) {
-            /* the session dithers its wake-ups by up to a period, so the
-             * reads do not lock to the samples' phase */
-            t += row->budget_ms * 1e-3 + uni(r) / 1200.0;
+        if (row->budget_ms > 0 && in_call) {
+            /* as lep_session_read with a budget: the budget runs from the
+             * call's first data; the scheduler wakes the reader a little late */
+            double wake = first + row->budget_ms * 1e-3;
+            if (lep_priv_timeline_holding(&tl) && wake > t + 0.02)
+                wake = t + 0.02; /* the session judges a suspected hole soon */
+            t = wake + expo(r, row->jitter_us * 1e-6);
+            in_call = false;
+        } else if (row->budget_ms > 0) {
+            /* a new call waits for data */
+            double wake = a_t[got] > t ? a_t[got] : t;
+            t = wake + 3e-6 + expo(r, 5e-6);
+            first = t;
+            in_call = true;
         } else {
             double wake = a_t[got] > t ? a_t[got] : t;
             t = wake + 3e-6 + expo(r, 5e-6);
@@ -215,6 +249,8 @@ static size_t read_all(const trace_row *row, rng *r)
                 break;
             }
             t += 2e-6 + 0.05e-6 * (double)n;
+            if (row->desched_p > 0 && uni(r) < row->desched_p)
+                t += row->desched_ms * 1e-3 * uni(r);
             feed(t, got, n);
             got += n;
             if (row->budget_ms == 0 && n < piece)
@@ -249,87 +285,205 @@ static void judge(const trace_row *row, size_t got)
 }
 
 static const trace_row rows[] = {
-    /* name, ppm, transport, ftdi ms, jitter us, budget ms, seconds,
-     * stall at/s, away at/s, half piece, hold at/s,
-     * base us, rms us, max us, gaps, gap at, lost, tol */
-    { "pty, latency 0", 0, T_PTY, 0, 20, 0, 10, 0, 0, 0, 0, 0, 0, 0, 15, 10, 20, 0, 0, 0, 0 },
-    { "pty, +300 ppm", 300, T_PTY, 0, 20, 0, 10, 0, 0, 0, 0, 0, 0, 0, 15, 10, 25, 0, 0, 0, 0 },
-    { "pty, -300 ppm", -300, T_PTY, 0, 20, 0, 10, 0, 0, 0, 0, 0, 0, 0, 15, 10, 25, 0, 0, 0, 0 },
-    { "pty, latency 100", 0, T_PTY, 0, 20, 100, 10, 0, 0, 0, 0, 0, 0, 0, 15, 150, 450, 0, 0, 0, 0 },
-    { "USB 1 ms packets", 0, T_USB, 0, 0, 0, 10, 0, 0, 0, 0, 0, 0, 0, 50, 30, 120, 0, 0, 0, 0 },
-    { "USB, +300 ppm", 300, T_USB, 0, 0, 0, 10, 0, 0, 0, 0, 0, 0, 0, 50, 30, 120, 0, 0, 0, 0 },
+    /* fields not named are 0 (transport: T_PTY) */
+    { .name = "pty, latency 0",
+      .transport = T_PTY,
+      .jitter_us = 20,
+      .seconds = 10,
+      .base_us = 15,
+      .rms_us = 10,
+      .max_us = 20 },
+    { .name = "pty, +300 ppm",
+      .ppm = 300,
+      .transport = T_PTY,
+      .jitter_us = 20,
+      .seconds = 10,
+      .base_us = 15,
+      .rms_us = 10,
+      .max_us = 25 },
+    { .name = "pty, -300 ppm",
+      .ppm = -300,
+      .transport = T_PTY,
+      .jitter_us = 20,
+      .seconds = 10,
+      .base_us = 15,
+      .rms_us = 10,
+      .max_us = 25 },
+    { .name = "pty, latency 100",
+      .transport = T_PTY,
+      .jitter_us = 20,
+      .budget_ms = 100,
+      .seconds = 10,
+      .base_us = 15,
+      .rms_us = 30,
+      .max_us = 80 },
+    { .name = "USB 1 ms packets",
+      .transport = T_USB,
+      .seconds = 10,
+      .base_us = 50,
+      .rms_us = 30,
+      .max_us = 120 },
+    { .name = "USB, +300 ppm",
+      .ppm = 300,
+      .transport = T_USB,
+      .seconds = 10,
+      .base_us = 50,
+      .rms_us = 30,
+      .max_us = 120 },
     /* At exactly 1200 Hz the chip's packets lock to the 1 ms frames (6
      * samples per 5 ms): the least delay of that pattern, about 100 us, is a
      * fixed delay no one-way translation sees. Off by a few ppm, it drifts
      * through every phase and the least delay goes to 0 (the -300 ppm row). */
-    { "FTDI timer 16 ms", 0, T_FTDI, 16, 0, 0, 10, 0, 0, 0, 0, 0, 0, 0, 0, 130, 250, 0, 0, 0, 0 },
-    { "FTDI timer 1 ms", 0, T_FTDI, 1, 0, 0, 10, 0, 0, 0, 0, 0, 0, 0, 0, 130, 250, 0, 0, 0, 0 },
-    { "FTDI 16 ms, -300 ppm",
-      -300,
-      T_FTDI,
-      16,
-      0,
-      0,
-      10,
-      0,
-      0,
-      0,
-      0,
-      0,
-      0,
-      0,
-      50,
-      40,
-      150,
-      0,
-      0,
-      0,
-      0 },
-    { "stall 1 s", 0, T_PTY, 0, 20, 0, 6, 3.0, 1.0, 0, 0, 0, 0, 0, 15, 10, 30, 1, 3599, 1200, 2 },
-    { "caller away 0.5 s", 0, T_PTY, 0, 20, 0, 6, 0, 0, 3.0, 0.5, 0, 0, 0, 15, 10, 30, 0, 0, 0, 0 },
-    { "away, half-made piece",
-      0,
-      T_PTY,
-      0,
-      20,
-      0,
-      6,
-      0,
-      0,
-      3.0,
-      0.5,
-      52,
-      0,
-      0,
-      15,
-      10,
-      30,
-      0,
-      0,
-      0,
-      0 },
-    { "sender holds 200 ms", 0, T_PTY, 0, 20, 0, 6, 0, 0, 0, 0, 0, 3.0, 0.2, 15, 10, 30, 0, 0, 0, 0 },
-    { "stall behind USB",
-      0,
-      T_USB,
-      0,
-      0,
-      0,
-      6,
-      3.0,
-      0.5,
-      0,
-      0,
-      0,
-      0,
-      0,
-      50,
-      30,
-      120,
-      1,
-      3599,
-      600,
-      2 },
+    { .name = "FTDI timer 16 ms",
+      .transport = T_FTDI,
+      .ftdi_timer_ms = 16,
+      .seconds = 10,
+      .rms_us = 130,
+      .max_us = 250 },
+    { .name = "FTDI timer 1 ms",
+      .transport = T_FTDI,
+      .ftdi_timer_ms = 1,
+      .seconds = 10,
+      .rms_us = 130,
+      .max_us = 250 },
+    { .name = "FTDI 16 ms, -300 ppm",
+      .ppm = -300,
+      .transport = T_FTDI,
+      .ftdi_timer_ms = 16,
+      .seconds = 10,
+      .base_us = 50,
+      .rms_us = 40,
+      .max_us = 150 },
+    /* after a hole the model starts over from the arrivals (the period
+     * learned kept): the first stamps after it carry that read's delay */
+    { .name = "stall 1 s",
+      .transport = T_PTY,
+      .jitter_us = 20,
+      .seconds = 6,
+      .stall_at = 3.0,
+      .stall_s = 1.0,
+      .base_us = 15,
+      .rms_us = 10,
+      .max_us = 60,
+      .gaps = 1,
+      .gap_at = 3599,
+      .lost = 1200,
+      .lost_tol = 2 },
+    { .name = "caller away 0.5 s",
+      .transport = T_PTY,
+      .jitter_us = 20,
+      .seconds = 6,
+      .away_at = 3.0,
+      .away_s = 0.5,
+      .base_us = 15,
+      .rms_us = 10,
+      .max_us = 30 },
+    { .name = "away, half-made piece",
+      .transport = T_PTY,
+      .jitter_us = 20,
+      .seconds = 6,
+      .away_at = 3.0,
+      .away_s = 0.5,
+      .half_piece = 52,
+      .base_us = 15,
+      .rms_us = 10,
+      .max_us = 30 },
+    { .name = "sender holds 200 ms",
+      .transport = T_PTY,
+      .jitter_us = 20,
+      .seconds = 6,
+      .hold_at = 3.0,
+      .hold_s = 0.2,
+      .base_us = 15,
+      .rms_us = 10,
+      .max_us = 30 },
+    /* (up to a 1 ms packet's delay until the new window sees the least) */
+    { .name = "stall behind USB",
+      .transport = T_USB,
+      .seconds = 6,
+      .stall_at = 3.0,
+      .stall_s = 0.5,
+      .base_us = 50,
+      .rms_us = 30,
+      .max_us = 250,
+      .gaps = 1,
+      .gap_at = 3599,
+      .lost = 600,
+      .lost_tol = 2 },
+    /* a budgeted read some time after a stall began is late by the silence
+     * at its end, not by a hole before it: one gap, after the stall */
+    { .name = "stall 1 s, latency 100",
+      .transport = T_PTY,
+      .jitter_us = 20,
+      .budget_ms = 100,
+      .seconds = 6,
+      .stall_at = 3.0,
+      .stall_s = 1.0,
+      .base_us = 15,
+      .rms_us = 50,
+      .max_us = 100,
+      .gaps = 1,
+      .gap_at = 3599,
+      .lost = 1200,
+      .lost_tol = 2 },
+    /* a loaded machine: the sender late by up to 20 ms every 0.2 s or so
+     * (as the virtual sensor with two busy loops beside it); the hole after
+     * a 1 s stall is still found */
+    { .name = "loaded, latency 0",
+      .transport = T_PTY,
+      .jitter_us = 20,
+      .seconds = 10,
+      .base_us = 15,
+      .rms_us = 20,
+      .max_us = 60,
+      .loaded_every_s = 0.2,
+      .loaded_ms = 20 },
+    { .name = "loaded, latency 100",
+      .transport = T_PTY,
+      .jitter_us = 20,
+      .budget_ms = 100,
+      .seconds = 10,
+      .base_us = 15,
+      .rms_us = 20,
+      .max_us = 60,
+      .loaded_every_s = 0.2,
+      .loaded_ms = 20 },
+    { .name = "loaded, stall 1 s",
+      .transport = T_PTY,
+      .jitter_us = 20,
+      .seconds = 6,
+      .stall_at = 3.0,
+      .stall_s = 1.0,
+      .base_us = 15,
+      .rms_us = 20,
+      .max_us = 60,
+      .gaps = 1,
+      .gap_at = 3599,
+      .lost = 1200,
+      .lost_tol = 2,
+      .loaded_every_s = 0.2,
+      .loaded_ms = 20 },
+    /* the reader descheduled for up to 10 ms between a read and its clock
+     * now and then (as beside two busy loops): late once is not a hole */
+    { .name = "reader held up, latency 0",
+      .transport = T_PTY,
+      .jitter_us = 20,
+      .seconds = 10,
+      .base_us = 15,
+      .rms_us = 10,
+      .max_us = 30,
+      .desched_p = 0.01,
+      .desched_ms = 10 },
+    { .name = "reader held up, latency 100",
+      .transport = T_PTY,
+      .jitter_us = 20,
+      .budget_ms = 100,
+      .seconds = 10,
+      .base_us = 15,
+      .rms_us = 30,
+      .max_us = 80,
+      .desched_p = 0.3,
+      .desched_ms = 10 },
 };
 
 static void run_row(const trace_row *row)
@@ -360,51 +514,6 @@ static void run_row(const trace_row *row)
     }
 }
 
-/* Known, not yet right (printed, not asserted): a 1 s stall read with a
- * 100 ms budget is reported as two gaps, the first before the stall. */
-static const trace_row known_bad[] = {
-    { "stall 1 s, latency 100",
-      0,
-      T_PTY,
-      0,
-      20,
-      100,
-      6,
-      3.0,
-      1.0,
-      0,
-      0,
-      0,
-      0,
-      0,
-      15,
-      80,
-      300,
-      1,
-      3599,
-      1200,
-      2 },
-};
-
-static void test_known_bad_traces_are_printed(void)
-{
-    size_t i;
-    for (i = 0; i < sizeof known_bad / sizeof known_bad[0]; i++) {
-        rng r = { 0x9E3779B97F4A7C15ull };
-        size_t got;
-        memset(&out, 0, sizeof out);
-        held_n = 0;
-        make(&known_bad[i], &r);
-        lep_priv_timeline_init(&tl, 1.0 / 1200.0, 3.0, true);
-        got = read_all(&known_bad[i], &r);
-        judge(&known_bad[i], got);
-        printf("KNOWN BAD %-24s rms %6.1f us  max %7.1f us  gaps %u (at %u, lost %u)\n",
-               known_bad[i].name, out.rms_us, out.max_us, out.gaps, out.gap_at, out.lost);
-        TEST_ASSERT_TRUE(out.monotonic);
-        TEST_ASSERT_TRUE(out.never_after);
-    }
-}
-
 static void test_synthetic_traces(void)
 {
     size_t i;
@@ -423,6 +532,5 @@ int main(void)
 {
     UNITY_BEGIN();
     RUN_TEST(test_synthetic_traces);
-    RUN_TEST(test_known_bad_traces_are_printed);
     return UNITY_END();
 }

@@ -58,11 +58,16 @@ void lep_priv_session_feed(lep_session *s, const uint8_t *data, size_t len, doub
             t = lep_priv_timeline_stamp(&tm->tl, j++);
             flags = lep_priv_timing_sample(s, lost[i], t);
             lep_priv_health_sample(&s->hs, t);
-            if (row != NULL && lep_priv_session_process(s, &got[i], t, t + tm->utc_off, flags, row))
+            if (row != NULL &&
+                lep_priv_session_process(s, &got[i], t, t + tm->utc_off, flags, row)) {
+                row->arrived = t_read;
                 lep_priv_rows_push(&s->rows);
+            }
             tm->last_sample_t = t;
         }
-        if (v.hold && s->rows.len > rows_before) {
+        if (v.extend) {
+            s->rows.held += s->rows.len - rows_before; /* too soon to judge */
+        } else if (v.hold && s->rows.len > rows_before) {
             s->rows.held = s->rows.len - rows_before;
             tm->suspect_index = s->hs.processed - s->rows.held;
         } else if (v.hold) {

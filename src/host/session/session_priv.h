@@ -83,6 +83,7 @@ typedef struct session_row {
     uint8_t status;
     uint8_t flags;
     uint16_t seq;
+    double arrived; /* return of the read that brought it (session_feed.c) */
 } session_row;
 
 /* session_events.c: [mu] events kept until lep_session_next_event. */

@@ -170,6 +170,10 @@ static void suspect(session_timeline *tl, size_t n, uint64_t lost, double late, 
     tl->susp_from = tl->floor;
     tl->susp_first = lep_priv_timeline_stamp(tl, 0);
     tl->susp_last = lep_priv_timeline_stamp(tl, n - 1u + lost);
+    tl->susp_last_t = tl->read_t;
+    tl->susp_held = n;
+    tl->susp_reads = 0;
+    tl->susp_min_late = late;
     tl->susp_silent = tl->empty_t - tl->floor > tl->thr;
     v->hold = true;
 }
@@ -179,21 +183,20 @@ static void confirm(session_timeline *tl, uint32_t lost, double k_new, double t_
                     timeline_verdict *v)
 {
     double shift = (double)lost * tl->period, held_last;
-    size_t i;
     v->gap = true;
     v->lost = lost;
     v->shift = shift;
-    v->cap = tl->susp_t;
     v->from = tl->susp_from;
     v->to = tl->susp_first + shift < tl->susp_t ? tl->susp_first + shift : tl->susp_t;
     tl->k += lost;
     tl->read_k0 += lost;
-    for (i = 0; i < tl->len; i++) {
-        timeline_point *p = &tl->pts[(tl->head + i) % TIMELINE_BLOCKS];
-        if (p->k >= (double)tl->susp_k)
-            p->k += (double)lost;
-    }
-    held_last = tl->susp_last + shift < tl->susp_t ? tl->susp_last + shift : tl->susp_t;
+    /* The window starts over after the hole, at the period learned: a hole
+     * judged wrongly (its size, or a false one) would otherwise bend the
+     * hull for the whole window and put the stamps off; starting over, the
+     * count is only a label and the stamps stay on the arrivals. */
+    tl->head = tl->len = 0;
+    add_point(tl, k_new + (double)lost, t_new);
+    held_last = tl->susp_last + shift < tl->susp_last_t ? tl->susp_last + shift : tl->susp_last_t;
     if (held_last > tl->floor)
         tl->floor = held_last;
     fit(tl, k_new + (double)lost, t_new);
@@ -228,17 +231,37 @@ void lep_priv_timeline_read(session_timeline *tl, double t, size_t n, uint64_t l
          * sender running late) says nothing about the sensor. */
         double due = (t - tl->susp_t) / tl->nominal + TIMELINE_BURST;
         bool lag = (double)n > due && (!tl->susp_silent || tl->susp_n >= TIMELINE_LAG_READ);
+        if (late > tl->thr && !lag && late - tl->susp_late <= tl->thr &&
+            (t - tl->susp_t < TIMELINE_JUDGE_S || tl->susp_reads < TIMELINE_JUDGE_READS) &&
+            tl->susp_held + n <= TIMELINE_HOLD_MAX) {
+            /* too soon to judge: these rows join the held ones */
+            tl->susp_last = lep_priv_timeline_stamp(tl, n - 1u + lost);
+            tl->susp_last_t = t;
+            tl->susp_held += n;
+            tl->susp_reads++;
+            if (late < tl->susp_min_late)
+                tl->susp_min_late = late;
+            tl->last = tl->susp_last;
+            v->hold = true;
+            v->extend = true;
+            return;
+        }
         tl->held = false;
         v->release = true;
-        if (late > tl->thr && !lag) {
-            double again = late - tl->susp_late; /* a silence since the suspected read */
-            double hole = again > tl->thr ? tl->susp_late : late;
-            double periods = floor(hole / tl->nominal + 0.5);
+        /* the least lateness since the suspected read: a read held up on
+         * the way (a reader descheduled) is late once, a hole every time */
+        if (late - tl->susp_late <= tl->thr && tl->susp_min_late < late)
+            late = tl->susp_min_late;
+        if (late > tl->thr && !lag && late - tl->susp_late > tl->thr) {
+            /* Later again: a silence since the suspected read. Its lateness
+             * may have been a silence at its end rather than a hole before
+             * it (a budgeted read some time after a stall began): the held
+             * rows go as they are and this read is suspected with the whole
+             * lateness (two holes so close are reported as one, here). */
+            suspect(tl, n, lost, late, v);
+        } else if (late > tl->thr && !lag) {
+            double periods = floor(late / tl->nominal + 0.5);
             confirm(tl, periods >= 4294967295.0 ? 4294967295u : (uint32_t)periods, k_new, t, v);
-            k_new = (double)(tl->k - 1u);
-            late = t - line(tl, k_new);
-            if (again > tl->thr)
-                suspect(tl, n, lost, late, v);
         }
     } else if (tl->arrival_gaps && late > tl->thr) {
         suspect(tl, n, lost, late, v);

@@ -36,22 +36,33 @@
  * Gaps (arrival_gaps, on a port without sequence numbers): the lateness of a
  * read is t - L(count of its newest sample). Transit jitter makes it rise and
  * fall back; a hole makes it rise and stay. A read later than gap_periods
- * periods is suspected: its rows are held back (verdict.hold) until the next
- * read judges: still late and not a catching-up read (one that brought more
+ * periods is suspected: its rows are held back (verdict.hold) until a read
+ * TIMELINE_JUDGE_S or more after it, and not the first after it, judges (the
+ * rows of a read before that, still late and not later again, are held back
+ * with them, verdict.extend: a sender running late, a machine under load,
+ * catches up within that, and a hole judged on the reads of its catching up
+ * is a false gap). The judge takes the least lateness of the held reads and
+ * its own (a read held up on the way is late once, a hole every time):
+ * still late and not a catching-up read (one that brought more
  * than was due since the suspected read, beyond TIMELINE_BURST; after a
  * silence the reader saw, only when the suspected read took at least
  * TIMELINE_LAG_READ samples, most of a tty piece) -- a gap of lost =
  * lateness / period before the held rows (verdict.gap: flag the first, an
  * event from..to; the count moves on by lost, so the held rows' stamps move
- * by verdict.shift, capped at verdict.cap, their arrival); caught up -- the
- * held rows are released as they are. A next read after a silence of its
- * own confirms the suspected hole at the size it had and is suspected in
- * turn. Known losses (sequence numbers) just move the count on.
+ * by verdict.shift, each capped at its own read's return; the window of
+ * points starts over from this read, the period learned kept as the prior,
+ * so a hole judged wrongly does not bend the line for a whole window);
+ * caught up -- the held rows are released as they are. A judging read later
+ * again by more than gap_periods (a silence since the suspected read)
+ * releases the held rows as they are and is suspected with the whole
+ * lateness: the suspected read may have been late by a silence at its end (a
+ * budgeted read some time into a stall), not by a hole before it. Known
+ * losses (sequence numbers) just move the count on.
  *
  * No field of another unit is written: the verdict says what to do with the
  * rows; the session applies it. */
-#ifndef LEPTRINO_POSIX_SESSION_TIMELINE_H
-#define LEPTRINO_POSIX_SESSION_TIMELINE_H
+#ifndef LEPTRINO_HOST_SESSION_TIMELINE_H
+#define LEPTRINO_HOST_SESSION_TIMELINE_H
 
 #include <stdbool.h>
 #include <stddef.h>
@@ -63,6 +74,13 @@
 #define TIMELINE_MAX_PPM 1000.0
 /* A USB adapter's burst: samples a read may bring beyond what was due. */
 #define TIMELINE_BURST 32.0
+/* A suspected hole is judged by a read at least this long after it, and
+ * not before the second read after it (the first one's rows are held too). */
+#define TIMELINE_JUDGE_S 0.015
+#define TIMELINE_JUDGE_READS 1u
+/* Samples held at most while a hole is judged (the session's rows keep this
+ * many and one read more). */
+#define TIMELINE_HOLD_MAX 512u
 /* Most of a 4 KiB tty piece, in samples of the smallest frame. */
 #define TIMELINE_LAG_READ 128u
 
@@ -79,10 +97,11 @@ typedef struct timeline_verdict {
     uint32_t lost; /* gap: samples lost (estimated) */
     double from;   /* gap: stamp of the sample before the hole */
     double to;     /* gap: stamp of the first held sample, after the shift */
-    double shift;  /* gap: add to each held row's stamp, ... */
-    double cap;    /* ... then no later than this (when they arrived) */
+    double shift;  /* gap: add to each held row's stamp, then no later than
+                      the return of the read that brought it */
     /* this read's rows */
-    bool hold; /* hold them back: a suspected hole before them */
+    bool hold;   /* hold them back: a suspected hole before them */
+    bool extend; /* with hold: too soon to judge; they join the rows held */
 } timeline_verdict;
 
 typedef struct session_timeline {
@@ -106,6 +125,10 @@ typedef struct session_timeline {
     uint64_t susp_k; /* count of the first held sample */
     size_t susp_n;
     double susp_t, susp_late, susp_from, susp_first, susp_last;
+    double susp_last_t;   /* return of the last read whose rows are held */
+    size_t susp_held;     /* samples held (an extension stops at TIMELINE_HOLD_MAX) */
+    unsigned susp_reads;  /* reads since the suspected one, their rows held too */
+    double susp_min_late; /* the least lateness of the held reads */
     bool susp_silent;
 } session_timeline;
 

@@ -86,7 +86,7 @@ void lep_priv_timing_judged(lep_session *s, const timeline_verdict *v)
     if (v->gap && rows->held > 0) {
         for (b = 0; b < rows->held; b++) {
             session_row *r = lep_priv_rows_back(rows, b);
-            double t = r->t_mono + v->shift < v->cap ? r->t_mono + v->shift : v->cap;
+            double t = r->t_mono + v->shift < r->arrived ? r->t_mono + v->shift : r->arrived;
             r->t_utc += t - r->t_mono;
             r->t_mono = t;
         }
