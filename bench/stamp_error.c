@@ -117,8 +117,8 @@ int main(int argc, char **argv)
     uint64_t kmax = 0, unwrapped = 0;
     FILE *f;
     rec24 r;
-    double health[LEP_H_COUNT] = {0};
-    uint64_t simst[LEP_SIMST_COUNT] = {0}, missing = 0;
+    double health[LEP_H_COUNT] = { 0 };
+    uint64_t simst[LEP_SIMST_COUNT] = { 0 }, missing = 0;
 
     if (o == NULL || t == NULL || seq == NULL)
         return 1;
