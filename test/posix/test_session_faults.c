@@ -97,7 +97,17 @@ static void test_a_stall_shorter_than_the_data_timeout_is_a_gap(void)
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
     TEST_ASSERT_EQUAL_INT(LEP_OK, read_until(s, &b, 200));
     lep_sim_stall(lep_session_sim(s), 1000); /* data timeout is 2000 ms */
-    TEST_ASSERT_EQUAL_INT(LEP_OK, read_until(s, &b, 1000));
+    /* read until the row after the hole and 200 more, not to a count: on a
+     * loaded machine the sensor's thread may begin the stall only after more
+     * samples than that were read */
+    while (b.b.n + 100 <= 3800 && (after == 0 || b.b.n < after + 200)) {
+        size_t from = b.b.n;
+        TEST_ASSERT_EQUAL_INT(LEP_OK, read_until(s, &b, b.b.n + 100));
+        for (i = from; i < b.b.n && after == 0; i++)
+            if (b.flags[i] & LEP_SF_GAP)
+                after = i;
+    }
+    after = 0;
     lep_session_get_health(s, &h);
     TEST_ASSERT_EQUAL_UINT64(1, h.gaps);
     TEST_ASSERT_EQUAL_UINT64(missing(&b, &holes), h.lost);
@@ -129,7 +139,7 @@ static void test_dropped_samples_are_counted_exactly(void)
     lep_session_health_info h;
     lep_session_event ev;
     size_t holes, events = 0, i;
-    uint64_t lost_in_events = 0;
+    uint64_t lost_in_events = 0, m;
     lep_session_options_init(&o);
     o.sim.p_drop = 0.02;
     o.sim.seed = 7;
@@ -139,16 +149,20 @@ static void test_dropped_samples_are_counted_exactly(void)
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
     TEST_ASSERT_EQUAL_INT(LEP_OK, read_until(s, &b, 2400));
     lep_session_get_health(s, &h);
-    TEST_ASSERT_TRUE(h.lost > 10);
-    TEST_ASSERT_EQUAL_UINT64(missing(&b, &holes), h.lost);
-    TEST_ASSERT_EQUAL_UINT64(holes, h.gaps);
+    m = missing(&b, &holes);
+    TEST_ASSERT_TRUE(m > 10);
+    /* the health counts the samples processed, which on a loaded machine run
+     * ahead of the rows read: at least what is missing among those read */
+    TEST_ASSERT_TRUE(h.lost >= m);
+    TEST_ASSERT_TRUE(h.gaps >= holes);
+    /* the events before the rows read: exactly their holes */
     while (lep_session_pop_event(s, &ev))
-        if (ev.type == LEP_EV_GAP) {
+        if (ev.type == LEP_EV_GAP && ev.sample < b.b.n) {
             events++;
             lost_in_events += ev.lost;
         }
     TEST_ASSERT_EQUAL_size_t(holes, events);
-    TEST_ASSERT_EQUAL_UINT64(h.lost, lost_in_events);
+    TEST_ASSERT_EQUAL_UINT64(m, lost_in_events);
     for (i = 0; i < b.b.n; i++)
         if (b.flags[i] & LEP_SF_GAP)
             TEST_ASSERT_TRUE(b.flags[i] & LEP_SF_SETTLING);

@@ -160,6 +160,21 @@ static void test_identified_then_compensated_at_a_fifth(void)
     st_batch_free(&x);
 }
 
+/* Take the rows the session processed already (they were made before what
+ * the test changes next): on a loaded machine the reader falls behind, and a
+ * change could otherwise show only after more rows than the test reads. */
+static void drain(lep_session *s, st_batch *x)
+{
+    size_t cap = x->b.cap;
+    int i, rc = LEP_OK;
+    for (i = 0; i < 1000 && rc == LEP_OK; i++) {
+        x->b.n = 0;
+        rc = lep_session_read_batch(s, &x->b, 0);
+    }
+    x->b.cap = cap;
+    x->b.n = 0;
+}
+
 /* A tare with a payload set removes the bias only: the offsets are the bias
  * (the constant level), not the tool; SI reads zero there, and moving the
  * robot (a new gravity) shows the change of the tool's wrench removed. */
@@ -204,11 +219,13 @@ static void test_tare_with_a_payload_keeps_the_tool(void)
                                   x.zeroed[150 * 6 + (size_t)k]);
     }
     /* the robot turns (the virtual sensor cannot): SI = w(g1) - w(g2) */
+    drain(s, &x);
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_set_gravity(s, g2));
     read_n(s, &x, 100, mean, NULL, NULL, NULL, 0, NULL);
     for (k = 0; k < 6; k++)
         TEST_ASSERT_DOUBLE_WITHIN(1e-9, w1[k] - w2[k], x.si[90 * 6 + (size_t)k]);
     /* without the payload a tare zeroes the tool away: offsets = bias + tool */
+    drain(s, &x);
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_set_payload(s, NULL));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_tare(s, 50, 0.0));
     read_n(s, &x, 100, mean, NULL, NULL, NULL, 0, NULL);

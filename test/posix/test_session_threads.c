@@ -42,12 +42,15 @@ typedef struct reader {
     double returned_t; /* when the blocked read returned */
 } reader;
 
-/* Reads the running stream for about 0.6 s, 20 samples at a time. */
+/* Reads the running stream, 20 samples at a time, until it has 200 (a count,
+ * not a time: on a loaded machine the two threads and the virtual sensor get
+ * less of the CPU, and 0.6 s of it once gave fewer than 300 samples in all;
+ * 10 s at most). */
 static void *read_loop(void *arg)
 {
     reader *r = arg;
-    double until = lep_monotonic_seconds() + 0.6;
-    while (lep_monotonic_seconds() < until && r->b.b.n + 20 <= r->b.b.cap) {
+    double until = lep_monotonic_seconds() + 10.0;
+    while (lep_monotonic_seconds() < until && r->b.b.n < 200 && r->b.b.n + 20 <= r->b.b.cap) {
         size_t cap = r->b.b.cap;
         int rc;
         r->b.b.cap = r->b.b.n + 20;

@@ -274,7 +274,8 @@ static int session_start(lep_session *s)
         return rc;
     lep_client_get_stats(&s->client, &base);
     now = lep_monotonic_seconds();
-    lep_priv_timing_start(&s->tm); /* measures the UTC offset */
+    lep_priv_timing_start(&s->tm, s->period_s, s->opt.gap_periods,
+                          s->sim == NULL); /* measures the UTC offset */
     pthread_mutex_lock(&s->mu);
     lep_priv_health_start(&s->hs, s->nominal_hz, &base);
     lep_priv_events_start(&s->events);

@@ -28,10 +28,10 @@ static size_t step_samples(lep_session *s, const uint8_t *data, size_t len,
 void lep_priv_session_feed(lep_session *s, const uint8_t *data, size_t len, double t_read)
 {
     lep_sample got[SESSION_PENDING];
+    uint32_t lost[SESSION_PENDING];
     lep_client_stats st;
     session_timing *tm = &s->tm;
-    size_t n = step_samples(s, data, len, got), i, rows_before;
-    double lower, first_t = 0.0, before_t;
+    size_t n = step_samples(s, data, len, got), i;
 
     lep_client_get_stats(&s->client, &st);
     if (n > 0 && lep_priv_utc_may_have_moved(tm->utc_off, t_read)) {
@@ -42,25 +42,39 @@ void lep_priv_session_feed(lep_session *s, const uint8_t *data, size_t len, doub
 
     pthread_mutex_lock(&s->mu);
     lep_priv_health_client(&s->hs, &st);
-    lower = tm->last_read_t > tm->last_sample_t ? tm->last_read_t : tm->last_sample_t;
-    before_t = tm->last_sample_t;
-    rows_before = s->rows.len;
-    for (i = 0; i < n; i++) {
-        double t = lep_priv_timing_stamp(s, i, n, t_read, lower);
-        uint8_t flags = lep_priv_timing_sample(s, &got[i], t);
-        session_row *row = lep_priv_rows_slot(&s->rows);
-        if (i == 0)
-            first_t = t;
-        lep_priv_health_sample(&s->hs, t);
-        if (row != NULL && lep_priv_session_process(s, &got[i], t, t + tm->utc_off, flags, row))
-            lep_priv_rows_push(&s->rows);
-        tm->last_sample_t = t;
-        lower = t;
-    }
-    if (n > 0 && s->sim == NULL)
-        lep_priv_timing_read(s, n, t_read, before_t, first_t, rows_before);
-    if (n > 0)
+    if (n > 0) {
+        timeline_verdict v;
+        uint64_t j = 0, known = lep_priv_timing_seq(tm, s->sim != NULL, got, n, t_read,
+                                                    s->nominal_hz, lost);
+        size_t rows_before;
+        lep_priv_timeline_read(&tm->tl, t_read, n, known, &v);
+        lep_priv_timing_judged(s, &v);
+        rows_before = s->rows.len;
+        for (i = 0; i < n; i++) {
+            double t;
+            uint8_t flags;
+            session_row *row = lep_priv_rows_slot(&s->rows);
+            j += lost[i];
+            t = lep_priv_timeline_stamp(&tm->tl, j++);
+            flags = lep_priv_timing_sample(s, lost[i], t);
+            lep_priv_health_sample(&s->hs, t);
+            if (row != NULL &&
+                lep_priv_session_process(s, &got[i], t, t + tm->utc_off, flags, row)) {
+                row->arrived = t_read;
+                lep_priv_rows_push(&s->rows);
+            }
+            tm->last_sample_t = t;
+        }
+        if (v.extend) {
+            s->rows.held += s->rows.len - rows_before; /* too soon to judge */
+        } else if (v.hold && s->rows.len > rows_before) {
+            s->rows.held = s->rows.len - rows_before;
+            tm->suspect_index = s->hs.processed - s->rows.held;
+        } else if (v.hold) {
+            lep_priv_timeline_forget_held(&tm->tl); /* nothing kept to hold */
+        }
         tm->last_data_read_t = t_read;
+    }
     tm->last_read_t = t_read;
     pthread_mutex_unlock(&s->mu);
 }

@@ -14,9 +14,11 @@
  *                       recovery, identity check (the port fields of lep_session)
  *   session_feed.c      port bytes -> frames -> samples -> stamped, processed
  *                       rows (no struct of its own)
- *   session_timing.c    arrival times, gaps from sequence numbers and from
- *                       arrival times (session_timing); it sets rows.held for a
- *                       suspected hole and restarts the low-pass's settling count
+ *   session_timing.c    stamps and gaps: applies the timeline's verdicts
+ *                       (session_timeline.c: the sensor's clock, sans-I/O),
+ *                       gaps from sequence numbers and reconnects
+ *                       (session_timing); it sets rows.held for a suspected
+ *                       hole and restarts the low-pass's settling count
  *   session_rows.c      processed rows waiting for a read, delivery into a
  *                       batch (session_rows)
  *   session_proc.c      overload, tare, low-pass, decimation, rotation, end of
@@ -44,6 +46,7 @@
 #include "leptrino/session.h"
 #include "leptrino/sim.h"
 #include "struct_api.h"
+#include "session_timeline.h"
 
 /* Bytes taken from the port per read: 16 KiB is 0.55 s of a 1.2 kHz stream,
  * so a latency budget of up to half a second needs one read per wake-up. */
@@ -60,13 +63,6 @@
 /* Rows kept for reads: those held back while a hole is suspected (one read's
  * worth at most) and the next read's. */
 #define SESSION_ROWS (2u * SESSION_PENDING)
-/* A reader that lags (a caller busy elsewhere) finds samples waiting in the
- * kernel: the read after a suspected one brings more than was due since,
- * beyond the burst of a USB adapter (a 16 ms latency timer holds 20 samples
- * at 1.2 kHz). After a silence the session saw, the suspected read must
- * also have taken most of a tty buffer (4 KiB: 146 frames). */
-#define SESSION_BURST 32.0
-#define SESSION_LAG_READ 128u
 /* How soon a read judges a suspected hole when a latency budget would wait longer. */
 #define SESSION_CONFIRM_S 0.02
 /* How often a vanished port is looked for while reconnecting. */
@@ -87,6 +83,7 @@ typedef struct session_row {
     uint8_t status;
     uint8_t flags;
     uint16_t seq;
+    double arrived; /* return of the read that brought it (session_feed.c) */
 } session_row;
 
 /* session_events.c: [mu] events kept until lep_session_next_event. */
@@ -174,29 +171,22 @@ typedef struct session_rows {
     size_t held; /* newest rows held back: a suspected hole before them */
 } session_rows;
 
-/* session_timing.c: arrival times and gaps (driving thread; its gap events
- * and counters go through [mu]). */
+/* session_timing.c: stamps and gaps (driving thread; its gap events and
+ * counters go through [mu]). The model of the sensor's clock, the stamps and
+ * the gaps from arrival times are the timeline's (session_timeline.h); the
+ * rest here is the session's side: sequence numbers, reconnects, the UTC
+ * offset, and the index of the rows held back. */
 typedef struct session_timing {
+    session_timeline tl;
     double last_read_t;      /* when the last read returned */
     double last_data_read_t; /* when the last read that completed a sample returned */
-    double last_sample_t;    /* reconstructed arrival of the last sample */
+    double last_sample_t;    /* stamp of the last sample */
     bool have_seq;
     uint16_t last_seq;
     bool gap_next; /* the next sample follows a gap (reconnect) */
     double gap_from;
-    int gap_error; /* what caused the disconnect before a reconnect */
-    /* holes found from arrival times (no sequence numbers) */
-    bool started;
-    double anchor_t;
-    uint64_t anchor_k, k;
-    double window_t, window_min;
-    double suspect_from, suspect_to;
-    uint64_t suspect_index;
-    double suspect_read_t; /* when the suspected read returned */
-    size_t suspect_n;      /* samples it brought */
-    double suspect_late;   /* how late it left the stream, s */
-    bool suspect_silent;   /* the port was seen empty for more than gap_periods before it */
-    double empty_t;        /* when a port read last found nothing */
+    int gap_error;          /* what caused the disconnect before a reconnect */
+    uint64_t suspect_index; /* sample index of the first row held back */
     /* UTC - monotonic offset the samples are stamped with: held between
      * batches so UTC intervals equal monotonic ones, and moved only when the
      * wall clock steps by more than SESSION_UTC_STEP_S. */
@@ -291,23 +281,25 @@ void lep_priv_session_feed(lep_session *s, const uint8_t *data, size_t len, doub
 void lep_priv_session_stream_reset(lep_session *s, double now);
 
 /* ---- session_timing.c ---- */
-/* A stream starts: gaps start over, the UTC offset is measured. */
-void lep_priv_timing_start(session_timing *tm);
-/* A loss: a suspected hole ends in it, arrival times start over. */
+/* A stream starts: gaps start over, the UTC offset is measured; the timeline
+ * decides gaps from arrival times unless arrival_gaps is false (the
+ * in-process virtual sensor numbers its samples). */
+void lep_priv_timing_start(session_timing *tm, double period_s, double gap_periods,
+                           bool arrival_gaps);
+/* A loss: a suspected hole ends in it, the timeline starts over. */
 void lep_priv_timing_lost(lep_session *s);
 /* The next sample follows a reconnect: gap from gap_from, caused by error. */
 void lep_priv_timing_reconnected(session_timing *tm, double gap_from, int error);
-/* Arrival of sample i of n completed by a read at t_read, never before lower. */
-double lep_priv_timing_stamp(const lep_session *s, size_t i, size_t n, double t_read, double lower);
-/* Gap before sample smp arriving at t (reconnect, or missing sequence
- * numbers of the virtual sensor): queues the event, returns LEP_SF_GAP or 0.
- * [mu] held. */
-uint8_t lep_priv_timing_sample(lep_session *s, const lep_sample *smp, double t);
-/* After a read's n samples (on a port without sequence numbers): holes from
- * arrival times. rows_before: rows pending before this read; before_t,
- * first_t: arrival of the sample before it and of its first. [mu] held. */
-void lep_priv_timing_read(lep_session *s, size_t n, double t_read, double before_t, double first_t,
-                          size_t rows_before);
+/* Samples known to be missing before each of got[0..n) (the virtual
+ * sensor's sequence numbers, when numbered) into lost[]; their sum. */
+uint64_t lep_priv_timing_seq(session_timing *tm, bool numbered, const lep_sample *got, size_t n,
+                             double t_read, double hz, uint32_t *lost);
+/* Apply the timeline's verdict on the rows held back: a gap before them
+ * (flag, event, their stamps moved), or their release. [mu] held. */
+void lep_priv_timing_judged(lep_session *s, const timeline_verdict *v);
+/* Gap before a sample stamped t (a reconnect, or `lost` missing sequence
+ * numbers): queues the event, returns LEP_SF_GAP or 0. [mu] held. */
+uint8_t lep_priv_timing_sample(lep_session *s, uint32_t lost, double t);
 
 /* ---- session_rows.c ---- */
 void lep_priv_rows_clear(session_rows *r);

@@ -56,6 +56,7 @@ static int delivered(lep_session *s, read_call *c, double *now)
         if (!(s->proc.ended && s->rows.len == s->rows.held))
             break;
         s->rows.held = 0; /* nothing comes after the end to judge it by */
+        lep_priv_timeline_forget_held(&s->tm.tl);
         if (s->rows.len == 0)
             return LEP_E_END;
     }
@@ -110,7 +111,7 @@ static int read_port(lep_session *s, read_call *c, double now)
     }
     if (rc == 0) {
         s->tm.last_read_t = now;
-        s->tm.empty_t = now;
+        lep_priv_timeline_empty(&s->tm.tl, now);
         if (now >= data_deadline)
             lep_priv_reconnect_lost(s, LEP_E_TIMEOUT, now);
         else if (now >= c->deadline)
