@@ -49,6 +49,7 @@ import pytest
 ROOT = Path(__file__).resolve().parents[2]
 CLIENT = Path(__file__).resolve().parent / "ros2_nodes" / "ros2_client.py"
 COUNT_SUB = CLIENT.parent / "count_sub.py"
+BUSY_CLIENT = CLIENT.parent / "busy_client.py"
 DISTROS = ("jazzy", "kilted")
 CHECKS = ("wrench", "wrench_raw", "diagnostics", "gravity_input", "node_listed",
           "node_info", "tare", "untare")
@@ -143,6 +144,14 @@ def run_distro(impl, distro):
         except subprocess.TimeoutExpired as e:
             pytest.fail(f"{distro}: the rclpy client did not finish in 120 s: {e.stderr!r}")
         took = time.monotonic() - t0
+        busy = None
+        if impl == "rclpy":  # two tare calls at once: one served, the other answered busy
+            try:
+                b = subprocess.run([str(py), str(BUSY_CLIENT), "--name", "a"], env=env,
+                                   capture_output=True, text=True, timeout=60)
+                busy = json.loads(b.stdout.strip().splitlines()[-1])
+            except (subprocess.TimeoutExpired, ValueError, IndexError) as e:
+                busy = {"ok": False, "error": repr(e)}
         # stopped while it publishes to a subscriber: the rclpy path must stop
         # publishing before it destroys its publishers and context (the spike
         # that did not ended "Aborted" in 8 of 9 such stops)
@@ -165,7 +174,7 @@ def run_distro(impl, distro):
         res = None
     _results[impl, distro] = {"result": res, "rc": p.returncode, "stderr": p.stderr[-3000:],
                               "bridge_log": blog[-3000:], "bridge_rc": bridge.returncode,
-                              "seconds": took}
+                              "seconds": took, "busy": busy}
     return _results[impl, distro]
 
 
@@ -185,6 +194,14 @@ def test_client_ran(impl, distro):
     assert r["bridge_rc"] == 0, f"bridge exit status {r['bridge_rc']}: {r['bridge_log']}"
     assert SAYS[impl] in r["bridge_log"], r["bridge_log"]
     print(f"{impl} {distro}: client {r['seconds']:.1f} s")
+
+
+@pytest.mark.parametrize("distro", DISTROS)
+def test_busy_tare_answered_at_once(distro):
+    """Through rclpy, two Trigger calls at once: one tares, the other is
+    answered busy at once (not queued behind it)."""
+    r = run_distro("rclpy", distro)
+    assert r["busy"] is not None and r["busy"]["ok"], r["busy"]
 
 
 def _params():
