@@ -71,7 +71,8 @@ def reader_qos(reliable: bool = True) -> Qos:
 
 def start_bridge(domain: int, *args: str) -> subprocess.Popen:
     return subprocess.Popen(
-        [sys.executable, "-m", "leptrino.bridge", "--dds", "--dds-interface", "127.0.0.1",
+        [sys.executable, "-m", "leptrino.bridge", "--dds", "--dds-impl", "cyclone",
+         "--dds-interface", "127.0.0.1",
          "--domain", str(domain), *args],
         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
 

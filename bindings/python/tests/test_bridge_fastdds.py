@@ -56,7 +56,8 @@ def domain() -> int:
 
 def bridge(dom: int, *args: str) -> subprocess.Popen:
     return subprocess.Popen(
-        [sys.executable, "-m", "leptrino.bridge", "--dds", "--dds-interface", "127.0.0.1",
+        [sys.executable, "-m", "leptrino.bridge", "--dds", "--dds-impl", "cyclone",
+         "--dds-interface", "127.0.0.1",
          "--domain", str(dom), *args], stderr=subprocess.PIPE, text=True)
 
 

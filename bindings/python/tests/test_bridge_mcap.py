@@ -157,6 +157,8 @@ def test_sigint_and_sigterm_close_the_file(tmp_path: Path) -> None:
     (["--sim", "a", "--dds", "--dds-interface", "eth0", "--mcap", "x.mcap"], "IP address", 2),
     (["--sim", "a", "--foxglove", "host:port", "--mcap", "x.mcap"], "[HOST:]PORT", 2),
     (["--sim", "a", "--dds", "--ros-distro", "foxy"], "invalid choice", 2),
+    (["--sim", "a", "--dds-impl", "cyclone", "--mcap", "x.mcap"], "needs --dds", 2),
+    (["--sim", "a", "--dds", "--dds-impl", "fast"], "invalid choice", 2),
     # the `leptrino` tool's exit codes: a missing port 6, an output that cannot be created 1
     (["--sensor", "a=/nonexistent/tty", "--mcap", "x.mcap"], "/nonexistent/tty", 6),
     (["--sim", "a", "--mcap", "/nonexistent/dir/x.mcap"], "nonexistent", 1),

@@ -197,7 +197,7 @@ def run_transport(transport: str, tmp_path: Path, router: str) -> None:
         pytest.importorskip("cyclonedds")
         from leptrino.bridge.dds import DdsOptions
 
-        kw["dds_opts"] = DdsOptions(interface="127.0.0.1")
+        kw["dds_opts"] = DdsOptions(interface="127.0.0.1", impl="cyclone")  # its Cyclone writer
     else:
         pytest.importorskip("foxglove")
         pytest.importorskip("websockets")

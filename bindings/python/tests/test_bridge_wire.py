@@ -249,14 +249,42 @@ def test_dds_names_and_configuration():
 
 
 def test_dds_configuration_honours_cyclonedds_uri(monkeypatch):
+    """Kilted's compatibility line first, then CYCLONEDDS_URI (which may
+    override it), then --dds-interface's fragment."""
     from leptrino.bridge import dds
 
+    compat = "<Compatibility><IgnoreTypeInformation>1.15</IgnoreTypeInformation></Compatibility>"
+    assert compat in dds.COMPAT_XML
     monkeypatch.setenv("CYCLONEDDS_URI", "file:///etc/cyclone.xml")
     cfg = dds.domain_config("127.0.0.1")
-    assert cfg is not None and cfg.startswith("file:///etc/cyclone.xml,<CycloneDDS>")
-    assert dds.domain_config(None) is None  # Cyclone reads CYCLONEDDS_URI itself
+    assert cfg == f"{dds.COMPAT_XML},file:///etc/cyclone.xml,{dds.config_xml('127.0.0.1')}"
+    assert dds.domain_config(None) == f"{dds.COMPAT_XML},file:///etc/cyclone.xml"
     monkeypatch.delenv("CYCLONEDDS_URI")
-    assert dds.domain_config("127.0.0.1") == dds.config_xml("127.0.0.1")
+    assert dds.domain_config("127.0.0.1") == f"{dds.COMPAT_XML},{dds.config_xml('127.0.0.1')}"
+    assert dds.domain_config(None) == dds.COMPAT_XML
+
+
+def test_dds_impl_choice(monkeypatch):
+    """--dds-impl: cyclone when asked; auto falls back to cyclone where rclpy
+    does not import or the interface is not loopback; rclpy asked for and
+    missing is an error that says how to install it."""
+    from leptrino.bridge import dds, rclpy_transport
+
+    assert dds.choose_impl(dds.DdsOptions(impl="cyclone"))[0] == "cyclone"
+    with pytest.raises(ValueError):
+        dds.choose_impl(dds.DdsOptions(impl="fast"))
+    monkeypatch.setattr(rclpy_transport, "unavailable", lambda: "rclpy: No module named 'rclpy'")
+    impl, why = dds.choose_impl(dds.DdsOptions())
+    assert impl == "cyclone" and "rclpy not available" in why
+    with pytest.raises(ValueError, match="ros-jazzy"):
+        dds.choose_impl(dds.DdsOptions(impl="rclpy"))
+    monkeypatch.setattr(rclpy_transport, "unavailable", lambda: "")
+    assert dds.choose_impl(dds.DdsOptions(interface="127.0.0.1"))[0] == "rclpy"
+    impl, why = dds.choose_impl(dds.DdsOptions(interface="192.0.2.1"))
+    assert impl == "cyclone" and "loopback" in why
+    with pytest.raises(ValueError, match="loopback"):
+        dds.choose_impl(dds.DdsOptions(impl="rclpy", interface="192.0.2.1"))
+    assert rclpy_transport.interface_env(None) == {}
 
 
 def test_foxglove_address():

@@ -16,7 +16,7 @@ from .node import AUDIT_LOGGER, NodeOptions, SensorNode, SensorSpec
 from .transport import Transport
 
 if TYPE_CHECKING:
-    from .dds import DdsOptions, DdsTransport
+    from .dds import DdsOptions
     from .foxglove_out import FoxgloveTransport
     from .zenoh_transport import ZenohTransport
 
@@ -144,7 +144,11 @@ class Bridge:
         self.session: Any = None
         self.zenoh: Optional[ZenohTransport] = None
         self.mcap: Optional[McapRecorder] = None
-        self.dds: Optional[DdsTransport] = None
+        #: the DDS transport (dds.DdsTransport or rclpy_transport.RclpyTransport)
+        self.dds: Optional[Transport] = None
+        #: which one runs ("rclpy (rmw_fastrtps_cpp)", "cyclone"), and why it was chosen
+        self.dds_impl = ""
+        self.dds_why = ""
         self.foxglove: Optional[FoxgloveTransport] = None
         #: every transport, in the order the nodes declare on them
         self.transports: List[Transport] = []
@@ -175,9 +179,19 @@ class Bridge:
                 self.foxglove = FoxgloveTransport(*foxglove, inputs=not self.opts.read_only)
                 self.transports.append(self.foxglove)
             if dds_opts is not None:
-                from .dds import DdsTransport
+                from .dds import choose_impl
 
-                self.dds = DdsTransport(self.opts.domain, dds_opts)
+                impl, self.dds_why = choose_impl(dds_opts)
+                if impl == "rclpy":
+                    from .rclpy_transport import RclpyTransport
+
+                    rt = RclpyTransport(self.opts.domain, dds_opts.interface)
+                    self.dds, self.dds_impl = rt, rt.impl
+                else:
+                    from .dds import DdsTransport
+
+                    self.dds, self.dds_impl = DdsTransport(self.opts.domain, dds_opts), "cyclone"
+                log.info("DDS: %s (%s)", self.dds_impl, self.dds_why)
                 self.transports.append(self.dds)
             if mcap_path is not None:  # last: whatever failed before, no file was made
                 self.mcap = McapRecorder(mcap_path, force)

@@ -41,6 +41,13 @@ def encode_trigger_response(success: bool, message: str) -> bytes:
     return schema.encode("std_srvs/srv/Trigger_Response", (success, message))
 
 
+def decode_trigger_response(payload: bytes) -> Tuple[bool, str]:
+    """(success, message) of a std_srvs/srv/Trigger_Response in CDR
+    (ValueError for anything else)."""
+    success, message = schema.decode("std_srvs/srv/Trigger_Response", payload)
+    return bool(success), str(message)
+
+
 def encode_trigger_request() -> bytes:
     """std_srvs/srv/Trigger_Request (its one placeholder byte)."""
     return schema.encode("std_srvs/srv/Trigger_Request", (0,))

@@ -228,8 +228,14 @@ def build_parser() -> argparse.ArgumentParser:
     z.add_argument("--namespace", default="/", metavar="NS", help="ROS namespace (default /)")
     d = p.add_argument_group("DDS (ROS 2 on Fast DDS or Cyclone DDS)")
     d.add_argument("--dds", action="store_true",
-                   help="publish on DDS as a ROS 2 node (domain --domain; Cyclone DDS, "
-                        "CYCLONEDDS_URI honoured)")
+                   help="publish on DDS as a ROS 2 node (domain --domain; through rclpy "
+                        "when it imports, else Cyclone DDS: --dds-impl)")
+    d.add_argument("--dds-impl", choices=("auto", "rclpy", "cyclone"), default="auto",
+                   help="how --dds is served: rclpy (the ROS 2 rmw rclpy loads, "
+                        "rmw_fastrtps_cpp by default: every ROS 2 client answered), cyclone "
+                        "(the cyclonedds package: no ROS needed, but rmw_fastrtps' service "
+                        "calls cannot be answered; use the command topics), auto (default: "
+                        "rclpy when it imports, else cyclone)")
     d.add_argument("--dds-interface", metavar="ADDR", default=None,
                    help="DDS on this interface address only, no multicast, ADDR as its peer "
                         "(e.g. 127.0.0.1)")
@@ -313,7 +319,9 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
             config_xml(a.dds_interface)
         except ValueError:
             p.error(f"--dds-interface {a.dds_interface!r}: expected an IP address")
-        dds_opts = DdsOptions(interface=a.dds_interface, distro=a.ros_distro)
+        dds_opts = DdsOptions(interface=a.dds_interface, distro=a.ros_distro, impl=a.dds_impl)
+    elif a.dds_impl != "auto":
+        p.error("--dds-impl needs --dds")
     fox = None
     if a.foxglove is not None:
         from .foxglove_out import parse_address
@@ -327,7 +335,16 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
                        latency_s=a.latency, limits=_limits(p, a.limit),
                        read_only=a.read_only)
 
-    for wanted, module, package in ((a.dds, "cyclonedds", "cyclonedds"),
+    dds_impl = ""
+    if dds_opts is not None:
+        from .dds import choose_impl
+
+        try:
+            dds_impl = choose_impl(dds_opts)[0]
+        except ValueError as e:
+            print(f"{PROG}: {e}", file=sys.stderr)
+            return 2
+    for wanted, module, package in ((dds_impl == "cyclone", "cyclonedds", "cyclonedds"),
                                     (a.foxglove is not None, "foxglove", "foxglove-sdk")):
         if wanted:
             try:
@@ -370,7 +387,9 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
                       "can receive the topics until one is (start `ros2 run rmw_zenoh_cpp "
                       "rmw_zenohd`, or give --connect / --listen / --scout)", file=sys.stderr)
         if bridge.dds is not None:
-            print(f"{PROG}: DDS domain {domain} ({a.ros_distro} node announcement), "
+            how = (f"{bridge.dds_impl}" if bridge.dds_impl != "cyclone" else
+                   f"cyclone, {a.ros_distro} node announcement")
+            print(f"{PROG}: DDS domain {domain} through {how} ({bridge.dds_why}), "
                   f"namespace {namespace}: {names}", file=sys.stderr)
         if bridge.foxglove is not None:
             print(f"{PROG}: Foxglove: ws://{bridge.foxglove.host}:{bridge.foxglove.port}",

@@ -37,7 +37,8 @@ from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 from . import cdr
 from .commands import CommandRunner
 from .ratelog import RateLimitedLog
-from .transport import Endpoint, InputHandler, NodeRef, Publisher, Request, Transport
+from .transport import CommandRequest, Endpoint, InputHandler, NodeRef, Publisher, Request, \
+    Transport
 from .typehash import rihs01
 
 TRIGGER = "std_srvs/srv/Trigger"
@@ -75,15 +76,24 @@ def config_xml(interface: Optional[str]) -> Optional[str]:
             "</Domain></CycloneDDS>")
 
 
-def domain_config(interface: Optional[str]) -> Optional[str]:
-    """The configuration given to the domain: CYCLONEDDS_URI (files or XML,
-    comma-separated, as Cyclone reads it) then --dds-interface's fragment,
-    which wins where they overlap. None: Cyclone reads CYCLONEDDS_URI itself."""
-    extra = config_xml(interface)
-    if extra is None:
-        return None
-    env = os.environ.get("CYCLONEDDS_URI", "").strip()
-    return f"{env},{extra}" if env else extra
+#: Cyclone's compatibility with Fast DDS 3 (Kilted's rmw_fastrtps): match
+#: eProsima's (vendor id 1.15) endpoints by type name, ignoring the XTypes
+#: TypeInformation they send, whose TypeObjects of types with sequences of
+#: structs (DiagnosticArray, ParticipantEntitiesInfo) Cyclone rejects as
+#: invalid: without it Kilted's nodes see no diagnostics and no node list
+#: (docs/ros2-rmw-notes.md; eclipse-cyclonedds/cyclonedds#2333).
+COMPAT_XML = ("<CycloneDDS><Domain Id=\"any\"><Compatibility>"
+              "<IgnoreTypeInformation>1.15</IgnoreTypeInformation>"
+              "</Compatibility></Domain></CycloneDDS>")
+
+
+def domain_config(interface: Optional[str]) -> str:
+    """The configuration given to the domain: COMPAT_XML, then
+    CYCLONEDDS_URI (files or XML, comma-separated, as Cyclone reads it), then
+    --dds-interface's fragment; a later one wins where they overlap, so a
+    user's CYCLONEDDS_URI can still set Compatibility otherwise."""
+    parts = [COMPAT_XML, os.environ.get("CYCLONEDDS_URI", "").strip(), config_xml(interface)]
+    return ",".join(p for p in parts if p)
 
 
 @dataclass
@@ -92,6 +102,39 @@ class DdsOptions:
 
     interface: Optional[str] = None  # --dds-interface ADDR
     distro: str = "jazzy"  # --ros-distro: the Gid layout of ros_discovery_info
+    impl: str = "auto"  # --dds-impl: rclpy, cyclone, or auto (rclpy when it imports)
+
+
+#: --dds-impl's choices
+IMPLS = ("auto", "rclpy", "cyclone")
+RCLPY_HINT = ("a ROS 2 installation (source its setup), or the PyPI wheels: "
+              "pip install \"leptrino[bridge,ros-jazzy]\" (or ros-kilted; x86_64, CPython 3.11)")
+
+
+def choose_impl(opts: DdsOptions) -> Tuple[str, str]:
+    """The DDS transport --dds runs: ("rclpy" or "cyclone", why). auto: rclpy
+    when it and the message packages import and the options suit it (a
+    --dds-interface address rclpy can honour: loopback), else Cyclone.
+    ValueError for an impl asked for that cannot run."""
+    if opts.impl not in IMPLS:
+        raise ValueError(f"--dds-impl {opts.impl!r}: one of {', '.join(IMPLS)}")
+    if opts.impl == "cyclone":
+        return "cyclone", "--dds-impl cyclone"
+    from .rclpy_transport import interface_env, unavailable
+
+    missing = unavailable()
+    if opts.impl == "rclpy":
+        if missing:
+            raise ValueError(f"--dds-impl rclpy: cannot import {missing}; needs {RCLPY_HINT}")
+        interface_env(opts.interface)  # ValueError: not an address rclpy can honour
+        return "rclpy", "--dds-impl rclpy"
+    if missing:
+        return "cyclone", f"rclpy not available ({missing})"
+    try:
+        interface_env(opts.interface)
+    except ValueError:
+        return "cyclone", f"--dds-interface {opts.interface} is not a loopback address"
+    return "rclpy", "rclpy imports"
 
 
 class _Types:
@@ -198,7 +241,7 @@ class DdsTransport(Transport):
         self.gid_len = GID_LENGTH[opts.distro]
         cfg = domain_config(opts.interface)
         try:
-            self._domain = Domain(domain, cfg) if cfg is not None else None
+            self._domain = Domain(domain, cfg)
             self.participant: Any = DomainParticipant(domain,
                                                       qos=Qos(Policy.Userdata(b"enclave=/;")))
         except Exception as e:  # cyclonedds' DDSException: a bad configuration, no interface
@@ -302,7 +345,7 @@ class DdsTransport(Transport):
         svc = TriggerService(self, endpoint.name, on_request, self._next_service_id())
 
         def on_command(reader: Any, data: bytes, info: Any) -> None:
-            on_request(_CommandRequest(data, f"dds writer {_writer_guid(reader, info)}"))
+            on_request(CommandRequest(data, f"dds writer {_writer_guid(reader, info)}"))
 
         reader = self._raw_reader(endpoint.name, EMPTY, "rt", on_command,
                                   self.endpoint_qos(rihs01(EMPTY), reliable=False))
@@ -317,9 +360,11 @@ class DdsTransport(Transport):
         """dds_headerless_clients: matched clients whose requests cannot be
         answered (no rmw_cyclonedds request header: TriggerService)."""
         svcs = self._services.get((node.namespace, node.name), [])
-        if not svcs:
-            return []
-        return [("dds_headerless_clients", str(sum(s.headerless_clients for s in svcs)))]
+        values = [("dds_impl", "cyclone")]
+        if svcs:
+            values.append(("dds_headerless_clients",
+                           str(sum(s.headerless_clients for s in svcs))))
+        return values
 
     def _next_service_id(self) -> str:
         """A client/service id as rmw_cyclonedds makes one: the participant's
@@ -366,20 +411,6 @@ class DdsTransport(Transport):
 
 
 DdsParticipant = DdsTransport  # the name before the transport interface
-
-
-class _CommandRequest(Request):
-    """A sample of a command topic: nobody to answer."""
-
-    def __init__(self, payload: bytes, requester: str) -> None:
-        self.payload = payload
-        self.requester = requester
-
-    def reply(self, payload: bytes) -> None:
-        return None
-
-    def refuse(self, why: str) -> None:
-        return None
 
 
 def _writer_guid(reader: Any, info: Any) -> str:

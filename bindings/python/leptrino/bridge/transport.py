@@ -90,6 +90,21 @@ class Request(abc.ABC):
         reply), or drop it where it cannot."""
 
 
+class CommandRequest(Request):
+    """A sample of a command topic (std_msgs/msg/Empty on a service's name):
+    a request nobody can be answered for."""
+
+    def __init__(self, payload: bytes, requester: str) -> None:
+        self.payload = payload
+        self.requester = requester
+
+    def reply(self, payload: bytes) -> None:
+        return None
+
+    def refuse(self, why: str) -> None:
+        return None
+
+
 #: on_payload(payload, refuse) of an input: refuse is "" or why the transport refuses it
 InputHandler = Callable[[bytes, str], None]
 
