@@ -62,6 +62,7 @@ static void test_init_rejects_incomplete_io(void)
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_init(NULL, &io));
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_set_timeout(&client, 0));
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_set_retries(&client, 256));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_client_set_retries(&client, -1));
     TEST_ASSERT_EQUAL_size_t(sizeof(lep_client), lep_client_sizeof());
     TEST_ASSERT_EQUAL_size_t(sizeof(lep_client_rx), lep_client_rx_sizeof());
 }
