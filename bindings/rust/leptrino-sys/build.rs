@@ -173,6 +173,19 @@ fn c_files(dir: &Path) -> Vec<PathBuf> {
     files
 }
 
+/// One file per OS where the OS differs, as src/CMakeLists.txt chooses:
+/// `name_posix.c` (and the virtual sensor's pty, `sim_pty.c` and `sim_link.c`)
+/// beside `name_win32.c`.
+fn for_this_os(file: &Path) -> bool {
+    let name = file.file_name().and_then(|n| n.to_str()).unwrap_or("");
+    let windows = env::var("CARGO_CFG_TARGET_OS").is_ok_and(|os| os == "windows");
+    if windows {
+        !(name.ends_with("_posix.c") || name == "sim_pty.c" || name == "sim_link.c")
+    } else {
+        !name.ends_with("_win32.c")
+    }
+}
+
 fn build_bundled(csrc: &Path) {
     let src = csrc.join("src");
     let mut build = cc::Build::new();
@@ -194,6 +207,9 @@ fn build_bundled(csrc: &Path) {
         std::iter::once(src.join("core")).chain(host.iter().map(|d| src.join("host").join(d)));
     for dir in dirs {
         for f in c_files(&dir) {
+            if !for_this_os(&f) {
+                continue;
+            }
             println!("cargo:rerun-if-changed={}", f.display());
             build.file(&f);
             let h = f.with_extension("h");
