@@ -94,11 +94,31 @@ static void busy_stop(void)
     n_busy = 0;
 }
 
+static void usage_to(FILE *to)
+{
+    fprintf(to, "usage: leptrino-stamp-error [--seconds S] [--latency MS] [--busy N] "
+                "[--label TEXT] [--sim-NAME VALUE ...]\n");
+}
+
 static int usage(void)
 {
-    fprintf(stderr, "usage: leptrino-stamp-error [--seconds S] [--latency MS] [--busy N] "
-                    "[--label TEXT] [--sim-NAME VALUE ...]\n");
+    usage_to(stderr);
     return 2;
+}
+
+static int help(void)
+{
+    usage_to(stdout);
+    printf("Streams from an in-process virtual sensor through a session for S seconds (default\n"
+           "10) and compares each sample's stamp with the sensor's own clock (its write trace:\n"
+           "sample k is due at t0 + (k+1)/rate): mean, RMS, p99 and max of the error over the\n"
+           "first second and after it, what went missing and the session's gaps.\n"
+           "  --seconds S    how long to stream (default 10)\n"
+           "  --latency MS   the session's latency budget (default 0)\n"
+           "  --busy N       N busy loops beside it (child processes)\n"
+           "  --label TEXT   a label for the printed line\n"
+           "  --sim-NAME V   any option of the virtual sensor (leptrino help sim)\n");
+    return 0;
 }
 
 int main(int argc, char **argv)
@@ -123,6 +143,8 @@ int main(int argc, char **argv)
     if (o == NULL || t == NULL || seq == NULL)
         return 1;
     for (i = 1; i < argc; i++) {
+        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0)
+            return help();
         if (i + 1 >= argc)
             return usage();
         if (strcmp(argv[i], "--seconds") == 0)

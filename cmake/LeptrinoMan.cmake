@@ -11,7 +11,8 @@ set(LEPTRINO_MAN_SUMMARIES
   "leptrino|read, record and configure Leptrino 6-axis force/torque sensors"
   "leptrino-sim|a virtual Leptrino force/torque sensor on a pseudo-terminal"
   "leptrino-soak|soak test of the leptrino client against a faulty virtual sensor"
-  "leptrino-bench|measure the leptrino library and print the figures as JSON")
+  "leptrino-bench|measure the leptrino library and print the figures as JSON"
+  "leptrino-stamp-error|measure the session's time stamps against the virtual sensor's clock")
 
 option(LEPTRINO_MAN "Generate and install man pages (needs help2man)" ON)
 set(LEPTRINO_MAN_PAGES "")
