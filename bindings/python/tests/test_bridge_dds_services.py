@@ -259,7 +259,7 @@ def test_malformed_requests_are_counted_and_ignored(participant: Any, domain: in
     finally:
         err = stop(proc)
     assert proc.returncode == 0, err
-    ignored = [line for line in err.splitlines() if "/b/tare: request ignored" in line]
+    ignored = [line for line in err.splitlines() if "b/tare: request refused" in line]
     assert len(ignored) == 1, err  # rate-limited: one line for the burst
     assert len([line for line in err.splitlines() if "without rmw_cyclonedds' request header"
                 in line]) == 1, err
