@@ -127,11 +127,11 @@ int main(int argc, char **argv)
     int latency = 0, nb = 0, i, rc;
     const char *label = "";
     char err[256], trace[64], port[256];
-    lep_options *o = lep_options_new();
+    lep_options *o;
     lep_sim *sim = NULL;
     lep_session *s = NULL;
-    double *t = malloc(MAX_SAMPLES * sizeof *t), *e0, *e1, *lateness, t_start = 0.0;
-    uint16_t *seq = malloc(MAX_SAMPLES * sizeof *seq);
+    double *t, *e0, *e1, *lateness, t_start = 0.0;
+    uint16_t *seq;
     size_t n = 0, n0 = 0, n1 = 0, nl = 0, k;
     int64_t t0 = 0, *write_ns;
     uint64_t kmax = 0, unwrapped = 0;
@@ -140,11 +140,15 @@ int main(int argc, char **argv)
     double health[LEP_H_COUNT] = { 0 };
     uint64_t simst[LEP_SIMST_COUNT] = { 0 }, missing = 0;
 
+    for (i = 1; i < argc; i++) /* before anything is allocated */
+        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0)
+            return help();
+    o = lep_options_new();
+    t = malloc(MAX_SAMPLES * sizeof *t);
+    seq = malloc(MAX_SAMPLES * sizeof *seq);
     if (o == NULL || t == NULL || seq == NULL)
         return 1;
     for (i = 1; i < argc; i++) {
-        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0)
-            return help();
         if (i + 1 >= argc)
             return usage();
         if (strcmp(argv[i], "--seconds") == 0)
