@@ -1,5 +1,7 @@
-/* The port list handle of leptrino/serial.h over lep_serial_list (which
- * serial_list_posix.c or serial_list_win32.c gives): the same on every OS. */
+/* The flat parts of leptrino/serial.h that are the same on every OS: the
+ * port list handle over lep_serial_list (which serial_list_posix.c or
+ * serial_list_win32.c gives), and the latency settings as ints over
+ * lep_serial_get_latency_info (serial_posix.c or serial_win32.c). */
 #include <stdlib.h>
 #include <string.h>
 
@@ -100,4 +102,18 @@ int lep_port_list_likely_sensor(const lep_port_list *l, size_t i)
 {
     const lep_port_info *p = port_at(l, i);
     return p != NULL && p->likely_sensor ? 1 : 0;
+}
+
+int lep_serial_get_info(const lep_serial *s, int *out, size_t n)
+{
+    lep_serial_info info;
+    int f[LEP_SERIAL_INFO_COUNT];
+    if (s == NULL || (out == NULL && n > 0))
+        return LEP_E_ARG;
+    lep_serial_get_latency_info(s, &info);
+    f[LEP_SERIAL_LOW_LATENCY] = info.low_latency ? 1 : 0;
+    f[LEP_SERIAL_FTDI_LATENCY_MS] = info.ftdi_latency_ms;
+    f[LEP_SERIAL_FTDI_LOWERED] = info.ftdi_lowered ? 1 : 0;
+    memcpy(out, f, sizeof(int) * (n < LEP_SERIAL_INFO_COUNT ? n : LEP_SERIAL_INFO_COUNT));
+    return LEP_OK;
 }

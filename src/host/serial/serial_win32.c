@@ -411,17 +411,3 @@ int lep_serial_fd(const lep_serial *s)
     (void)s;
     return -1; /* a HANDLE, not a file descriptor: nothing to poll() */
 }
-
-int lep_serial_get_info(const lep_serial *s, int *out, size_t n)
-{
-    lep_serial_info info;
-    int f[LEP_SERIAL_INFO_COUNT];
-    if (s == NULL || (out == NULL && n > 0))
-        return LEP_E_ARG;
-    lep_serial_get_latency_info(s, &info);
-    f[LEP_SERIAL_LOW_LATENCY] = info.low_latency ? 1 : 0;
-    f[LEP_SERIAL_FTDI_LATENCY_MS] = info.ftdi_latency_ms;
-    f[LEP_SERIAL_FTDI_LOWERED] = info.ftdi_lowered ? 1 : 0;
-    memcpy(out, f, sizeof(int) * (n < LEP_SERIAL_INFO_COUNT ? n : LEP_SERIAL_INFO_COUNT));
-    return LEP_OK;
-}
