@@ -12,14 +12,34 @@
 /* Not an outcome: go round the read loop again. */
 #define READ_AGAIN 1
 
+/* A read with a latency budget sleeps the budget out, drains the port, then
+ * waits for the next frame: its arrival, seen at once, is a point on the
+ * sensor's clock as close as an unbudgeted read's (a drain alone returns
+ * at a time unrelated to the last sample's arrival, up to a period after
+ * it, and in lockstep with the stream when the budget is a whole number of
+ * periods). It costs one wake-up more per budget, and is made only when a
+ * budget spans PROBE_MIN_PERIODS periods or more (so the wait, at most
+ * PROBE_WAIT_PERIODS, is small beside the budget). */
+#define PROBE_MIN_PERIODS 4.0
+#define PROBE_WAIT_PERIODS 2.0
+
+/* Where a call with a latency budget is. */
+enum budget_stage {
+    BUDGET_AWAKE,   /* not slept yet */
+    BUDGET_SLEPT,   /* slept out the budget: draining without waiting */
+    BUDGET_DRAINED, /* the port found empty: the next read waits for a frame */
+    BUDGET_DONE     /* the budgeted read is made: deliver */
+};
+
 /* One call of lep_session_read. */
 typedef struct read_call {
     lep_session_batch *b;
-    double budget;    /* latency budget, s */
-    double deadline;  /* of the call's timeout, monotonic s (INFINITY: none) */
-    double first;     /* arrival of the first sample appended (< 0: none yet) */
-    bool budget_read; /* a read after sleeping out the budget was made */
-    bool got;         /* samples appended or events queued */
+    double budget;   /* latency budget, s */
+    double deadline; /* of the call's timeout, monotonic s (INFINITY: none) */
+    double first;    /* arrival of the first sample appended (< 0: none yet) */
+    bool probe;      /* wait for a frame after the drain (see PROBE_MIN_PERIODS) */
+    int stage;       /* enum budget_stage */
+    bool got;        /* samples appended or events queued */
     size_t n0;
     uint64_t ev0;
 } read_call;
@@ -67,7 +87,8 @@ static int delivered(lep_session *s, read_call *c, double *now)
         return c->got ? LEP_OK : s->rc.failed;
     *now = lep_monotonic_seconds();
     if (c->got && !s->backlog &&
-        (c->budget <= 0.0 || b->n == c->n0 || c->budget_read || *now >= c->first + c->budget))
+        (c->budget <= 0.0 || b->n == c->n0 || c->stage == BUDGET_DONE ||
+         *now >= c->first + c->budget))
         return LEP_OK;
     return READ_AGAIN;
 }
@@ -80,9 +101,17 @@ static int port_wait(lep_session *s, read_call *c, double now, double data_deadl
         return 0; /* the last read filled the buffer: more is waiting, take it now */
     if (c->budget <= 0.0)
         return lep_priv_ms_until(c->deadline < data_deadline ? c->deadline : data_deadline, now);
-    /* Save wake-ups: sleep until the budget is spent, then take everything
-     * in one read that does not wait. */
+    if (c->stage == BUDGET_DRAINED) {
+        /* the port is empty: the next frame's arrival is seen at once */
+        wake = now + PROBE_WAIT_PERIODS * s->period_s;
+        c->stage = BUDGET_DONE;
+        return lep_priv_ms_until(wake < c->deadline ? wake : c->deadline, now);
+    }
+    /* Save wake-ups: sleep until the budget is spent (less the probe's
+     * period), then take everything in reads that do not wait. */
     wake = c->got ? c->first + c->budget : s->tm.last_read_t + c->budget;
+    if (c->probe)
+        wake -= s->period_s;
     if (s->rows.held > 0 && wake > s->tm.last_read_t + SESSION_CONFIRM_S)
         wake = s->tm.last_read_t + SESSION_CONFIRM_S; /* judge a suspected hole soon */
     if (wake > c->deadline)
@@ -90,7 +119,7 @@ static int port_wait(lep_session *s, read_call *c, double now, double data_deadl
     if (wake > data_deadline)
         wake = data_deadline;
     lep_priv_sleep_until_ns((int64_t)(wake * 1e9));
-    c->budget_read = true;
+    c->stage = BUDGET_SLEPT;
     return 0;
 }
 
@@ -104,7 +133,10 @@ static int read_port(lep_session *s, read_call *c, double now)
     /* More may be waiting: a read returns at most what the tty layer holds
      * (4 KiB on Linux), so with a budget, read until one comes back empty;
      * without, only after a read that filled the buffer. */
-    s->backlog = rc == (int)sizeof s->rbuf || (c->budget > 0.0 && rc > 0);
+    s->backlog =
+        rc == (int)sizeof s->rbuf || (c->budget > 0.0 && rc > 0 && c->stage != BUDGET_DONE);
+    if (rc == 0 && c->stage == BUDGET_SLEPT)
+        c->stage = c->probe ? BUDGET_DRAINED : BUDGET_DONE;
     if (rc > 0) {
         lep_priv_session_feed(s, s->rbuf, (size_t)rc, now);
         return READ_AGAIN;
@@ -143,6 +175,7 @@ static int read_pass(lep_session *s, lep_session_batch *b, int timeout_ms)
     kernel_s = SESSION_KERNEL_BYTES / (s->nominal_hz * SESSION_MIN_FRAME);
     if (c.budget > kernel_s)
         c.budget = kernel_s;
+    c.probe = c.budget >= PROBE_MIN_PERIODS * s->period_s;
     c.deadline = timeout_ms < 0 ? INFINITY : lep_monotonic_seconds() + (double)timeout_ms / 1000.0;
     for (;;) {
         double now = 0.0;
