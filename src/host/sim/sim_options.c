@@ -46,7 +46,7 @@ static const opt_row rows[] = {
     NUM("rate", LEP_SIM_OPT_DOUBLE, "HZ", "continuous output rate in Hz", "1200", 1, 10000, false,
         rate_hz, S_DOUBLE),
     NUM("ppm", LEP_SIM_OPT_DOUBLE, "N",
-        "the crystal off by N ppm: samples at rate*(1+N*1e-6), the nominal rate reported", "0",
+        "crystal off by N ppm: true rate rate*(1+N*1e-6), the nominal one reported", "0",
         -1000, 1000, false, ppm, S_DOUBLE),
     NUM("seed", LEP_SIM_OPT_UINT, "N", "seed of the waveform noise and of the faults", "1", 0,
         18446744073709551615.0, false, seed, S_U64),
