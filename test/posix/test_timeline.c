@@ -530,7 +530,7 @@ static void test_synthetic_traces(void)
 /* ---- recorded read traces ---- */
 
 typedef struct recorded_row {
-    const char *file; /* in test/vectors/timeline */
+    const char *file;              /* in test/vectors/timeline */
     double rms_us, p99_us, max_us; /* allowed after the first second */
 } recorded_row;
 
@@ -667,12 +667,18 @@ static void run_recorded(const recorded_row *row)
     TEST_ASSERT_TRUE_MESSAGE(out.max_us <= row->max_us, msg);
 }
 
+/* The bounds: what the replay gives (it is deterministic) and a fifth more,
+ * rounded up. Against the sensor's clock with the transport's delay in the
+ * truth: the least delay a one-way translation cannot see is part of the
+ * error (the pty's tens of us; at exactly the host's rate, the 1 ms frames
+ * lock to the samples and the least delay of their pattern, up to about
+ * 170 us, stays constant: usb-packets, ftdi16). In pty-latency0 the
+ * machine's load changed in its second second: the least delay went from
+ * 22 to 40-48 us and back, which the hull first took for drift. */
 static const recorded_row recorded[] = {
-    { "pty-latency0.txt", 1000, 1000, 1000 },
-    { "pty-latency100.txt", 1000, 1000, 1000 },
-    { "busy2-latency0.txt", 1000, 1000, 1000 },
-    { "usb-packets.txt", 1000, 1000, 1000 },
-    { "ftdi16.txt", 1000, 1000, 1000 },
+    { "pty-latency0.txt", 50, 70, 75 },   { "pty-latency100.txt", 55, 75, 75 },
+    { "busy2-latency0.txt", 25, 30, 30 }, { "usb-packets.txt", 220, 240, 240 },
+    { "ftdi16.txt", 80, 290, 290 },
 };
 
 static void test_recorded_traces(void)

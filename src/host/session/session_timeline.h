@@ -112,13 +112,13 @@ typedef struct timeline_verdict {
 
 /* One feed, for a recorder. */
 typedef struct timeline_fed {
-    char what;           /* 'i' init, 's' restart, 'r' read, 'e' empty read */
-    double t;            /* r, e: the time given */
-    size_t n;            /* r: samples */
-    uint64_t lost;       /* r: lost samples known before them */
-    double nominal;      /* i: nominal period, s */
-    double gap_periods;  /* i */
-    bool arrival_gaps;   /* i */
+    char what;          /* 'i' init, 's' restart, 'r' read, 'e' empty read */
+    double t;           /* r, e: the time given */
+    size_t n;           /* r: samples */
+    uint64_t lost;      /* r: lost samples known before them */
+    double nominal;     /* i: nominal period, s */
+    double gap_periods; /* i */
+    bool arrival_gaps;  /* i */
 } timeline_fed;
 
 typedef struct timeline_tap {
@@ -128,10 +128,10 @@ typedef struct timeline_tap {
 
 typedef struct session_timeline {
     const timeline_tap *tap; /* a recorder, or NULL; kept by init (start zeroed) */
-    double nominal;    /* nominal period, s */
-    double thr;        /* gap threshold, s */
-    bool arrival_gaps; /* decide gaps from arrival times */
-    double prior;      /* the period until the hull spans enough: nominal or learned */
+    double nominal;          /* nominal period, s */
+    double thr;              /* gap threshold, s */
+    bool arrival_gaps;       /* decide gaps from arrival times */
+    double prior;            /* the period until the hull spans enough: nominal or learned */
     double period, offset;
     bool started;
     double t0;        /* the stream's first read */
