@@ -532,6 +532,7 @@ static void test_synthetic_traces(void)
 typedef struct recorded_row {
     const char *file;              /* in test/vectors/timeline */
     double rms_us, p99_us, max_us; /* allowed after the first second */
+    unsigned gaps;                 /* gaps found: none was there; 0 but in the known cases */
 } recorded_row;
 
 static double live[MAXN]; /* the stamp the session gave a read's newest sample */
@@ -658,7 +659,7 @@ static void run_recorded(const recorded_row *row)
              row->file, out.rms_us, p99, out.max_us, out.gaps, worst_live * 1e6);
     TEST_ASSERT_TRUE_MESSAGE(out.monotonic, msg);
     TEST_ASSERT_TRUE_MESSAGE(out.never_after, msg);
-    TEST_ASSERT_EQUAL_UINT_MESSAGE(0, out.gaps, msg); /* no false gap */
+    TEST_ASSERT_EQUAL_UINT_MESSAGE(row->gaps, out.gaps, msg); /* false gaps */
     /* the trace holds what the timeline was fed: the same stamps (to the
      * ns the times are written in) */
     TEST_ASSERT_TRUE_MESSAGE(worst_live < 0.01e-6, msg);
@@ -676,9 +677,21 @@ static void run_recorded(const recorded_row *row)
  * machine's load changed in its second second: the least delay went from
  * 22 to 40-48 us and back, which the hull first took for drift. */
 static const recorded_row recorded[] = {
-    { "pty-latency0.txt", 50, 70, 75 },   { "pty-latency100.txt", 55, 75, 75 },
-    { "busy2-latency0.txt", 25, 30, 30 }, { "usb-packets.txt", 220, 240, 240 },
-    { "ftdi16.txt", 80, 290, 290 },
+    { "pty-latency0.txt", 50, 70, 75, 0 },
+    { "pty-latency100.txt", 55, 75, 75, 0 },
+    { "busy2-latency0.txt", 25, 30, 30, 0 },
+    { "usb-packets.txt", 220, 240, 240, 0 },
+    { "ftdi16.txt", 80, 290, 290, 0 },
+    /* Where the model misses (10 s at --latency 100, BENCHMARKS.md): rows
+     * that say what it does now, so a better model shows here. USB frames
+     * locked to the samples, read ten times a second: the reads see one
+     * phase of the frames' pattern, slowly moving, which the hull takes
+     * for drift (the slope off by about 50 ppm). */
+    { "usb-latency100.txt", 350, 640, 650, 0 },
+    /* An FTDI adapter's 62-byte packets make reads up to about 3 ms late,
+     * more than the 3 periods (2.5 ms) of the gap threshold: after the
+     * sender ran late (a loaded machine), two false gaps of 3 samples. */
+    { "ftdi16-latency100.txt", 1550, 4400, 4400, 2 },
 };
 
 static void test_recorded_traces(void)
