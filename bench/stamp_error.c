@@ -108,18 +108,21 @@ static long long ns_since(double t, double t0_s)
 /* The feeds of the stream that was measured, joined with the samples
  * delivered (in the order fed): k[i] the stream index of sample i, t[i] its
  * stamp. Stops at the first read not wholly delivered. */
-static int write_reads(const char *path, int argc, char **argv, double t0_s, double rate,
+/* Create path for the read trace (never an existing file): its descriptor, or -1 said. */
+static int create_reads(const char *path)
+{
+    int fd = open(path, O_WRONLY | O_CREAT | O_EXCL, 0644);
+    if (fd < 0)
+        fprintf(stderr, "leptrino-stamp-error: %s: %s%s\n", path, strerror(errno),
+                errno == EEXIST ? " (an existing file is never replaced)" : "");
+    return fd;
+}
+
+static int write_reads(int fd, const char *path, int argc, char **argv, double t0_s, double rate,
                        const uint64_t *k, const double *t, size_t n)
 {
     size_t f, i = 0, j;
-    int fd = open(path, O_WRONLY | O_CREAT | O_EXCL, 0644);
-    FILE *out;
-    if (fd < 0) {
-        fprintf(stderr, "leptrino-stamp-error: %s: %s%s\n", path, strerror(errno),
-                errno == EEXIST ? " (an existing file is never replaced)" : "");
-        return 1;
-    }
-    out = fdopen(fd, "w");
+    FILE *out = fdopen(fd, "w");
     if (out == NULL) {
         close(fd);
         return 1;
@@ -225,7 +228,7 @@ static int help(void)
 int main(int argc, char **argv)
 {
     double seconds = 10.0, rate, ppm = 0.0;
-    int latency = 0, nb = 0, i, rc;
+    int latency = 0, nb = 0, i, rc, record_fd = -1;
     const char *label = "", *record = NULL;
     timeline_tap tap = { on_fed, NULL };
     uint64_t *karr;
@@ -272,6 +275,12 @@ int main(int argc, char **argv)
             i++;
         } else
             return usage();
+    }
+    if (record != NULL && (record_fd = create_reads(record)) < 0) {
+        free(t);
+        free(seq);
+        lep_options_free(o);
+        return 1;
     }
     (void)lep_options_get_double(o, "sim-rate", &rate);
     if (lep_option_index("sim-ppm") >= 0)
@@ -381,7 +390,7 @@ int main(int argc, char **argv)
             fprintf(stderr, "leptrino-stamp-error: out of memory for the read trace\n");
             return 1;
         }
-        if (write_reads(record, argc, argv, (double)t0 * 1e-9, rate, karr, t, n) != 0)
+        if (write_reads(record_fd, record, argc, argv, (double)t0 * 1e-9, rate, karr, t, n) != 0)
             return 1;
     }
     free(karr);
