@@ -34,6 +34,7 @@ from . import rmw_zenoh as rz
 from .gravity_in import VECTOR3_STAMPED, GravityInput
 from .commands import CommandRunner
 from .ratelog import RateLimitedLog
+from .threadname import name_this_thread
 from .transport import Endpoint, NodeRef, Publisher, Request, Transport
 from .wrench_batch import WrenchBatch
 
@@ -313,6 +314,7 @@ class SensorNode:
         serialized in one C call and published topic by topic (no Python
         object per sample but the payloads the transports take); while
         nobody does, it is only counted (skipped)."""
+        name_this_thread(f"read-{self.spec.name}")
         sensor = self.sensor
         wb = self._batch
         buf = wb.arrays
