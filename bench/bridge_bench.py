@@ -71,6 +71,16 @@ def _threads(pid: int) -> Dict[str, Tuple[int, int]]:
     return out
 
 
+def _tick_seconds(pid: int) -> float:
+    """User + system time of a process in clock ticks (/proc/PID/stat), as
+    `top` and rusage count it: printed beside the schedstat figures only to
+    show how far the two differ for processes that run in slices much
+    shorter than a tick."""
+    with open(f"/proc/{pid}/stat") as f:
+        fields = f.read().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
 def _cpu_ns(pid: int) -> int:
     """Nanoseconds on a CPU of a process's threads (schedstat, see _threads)."""
     return sum(ns for ns, _ in _threads(pid).values())
@@ -383,8 +393,10 @@ def cost(seconds: float, rounds: int, zenoh_mod: Any,
                         first_ms = 1000.0 * (first[0] - t_decl)
             g0 = got[0]
             th0, r0, t0 = _threads(child.pid), _threads(ref.pid), time.monotonic()
+            k0 = _tick_seconds(child.pid), _tick_seconds(ref.pid)
             time.sleep(seconds)
             th1, r1, t1 = _threads(child.pid), _threads(ref.pid), time.monotonic()
+            k1 = _tick_seconds(child.pid), _tick_seconds(ref.pid)
             dt = t1 - t0
             threads = _thread_delta(th0, th1, dt)
             stream = _thread_delta(r0, r1, dt)
@@ -395,7 +407,8 @@ def cost(seconds: float, rounds: int, zenoh_mod: Any,
                         "bridge_wakeups": sum(w for _, w in threads.values()),
                         "stream_wakeups": sum(w for _, w in stream.values()),
                         "messages_per_s": (got[0] - g0) / dt, "first_message_ms": first_ms,
-                        "load": os.getloadavg()[0], "threads": threads})
+                        "load": os.getloadavg()[0], "threads": threads,
+                        "ticks": ((k1[0] - k0[0]) / dt, (k1[1] - k0[1]) / dt)})
             if sub is not None:
                 sub.undeclare()
         for proc in (child, ref):
@@ -434,7 +447,9 @@ def print_cost(phases: List[Dict[str, Any]]) -> None:
               f"{r['ratio']:.2f}, {r['messages_per_s']:.0f} messages/s received"
               + (f", first message {r['first_message_ms']:.0f} ms after the subscriber's "
                  "declaration" if r["phase"] == ONE else ""), flush=True)
-        print(f"     threads (% of a core, wake-ups/s): {_fmt_threads(r['threads'])}")
+        print(f"     threads (% of a core, wake-ups/s): {_fmt_threads(r['threads'])}; "
+              f"in clock ticks instead: bridge {100 * r['ticks'][0]:.1f} %, stream "
+              f"{100 * r['ticks'][1]:.1f} %")
     print("  medians:")
     for kind in (NOBODY, ONE):
         rs = [r for r in phases if r["phase"] == kind]
