@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import os
 import socket
 import struct
@@ -426,7 +427,7 @@ def cost(seconds: float, rounds: int, zenoh_mod: Any,
 
 
 def _median(xs: List[float]) -> float:
-    v = sorted(x for x in xs if x == x)
+    v = sorted(x for x in xs if not math.isnan(x))
     if not v:
         return float("nan")
     m = len(v) // 2
