@@ -460,7 +460,7 @@ def print_cost(phases: List[Dict[str, Any]]) -> None:
         med = {k: (_median([r["threads"].get(k, (0.0, 0.0))[0] for r in rs]),
                    _median([r["threads"].get(k, (0.0, 0.0))[1] for r in rs])) for k in names}
         ratios = ", ".join(f"{r['ratio']:.2f}" for r in rs)
-        print(f"  {kind} ({len(rs)} phases): bridge {100 * _median([r['bridge'] for r in rs]):.2f}"
+        print(f"  {kind} ({len(rs)} phase{'s' if len(rs) > 1 else ''}): bridge {100 * _median([r['bridge'] for r in rs]):.2f}"
               f" % of a core, `leptrino stream` {100 * _median([r['stream'] for r in rs]):.2f} %,"
               f" ratio {_median([r['ratio'] for r in rs]):.2f} (per phase {ratios})"
               + (f"; first message {_median([r['first_message_ms'] for r in rs]):.0f} ms after "
