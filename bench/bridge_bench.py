@@ -1,16 +1,22 @@
 """Figures of leptrino-bridge on this machine (loopback only, bounded).
 
     python bench/bridge_bench.py            # all figures (about 2 min)
-    python bench/bridge_bench.py --quick    # a smoke run (about 20 s)
+    python bench/bridge_bench.py --cost     # one sensor: nobody / one subscriber (2.5 min)
+    python bench/bridge_bench.py --quick    # a smoke run of both (about 25 s)
 
 The virtual sensors run in this process (leptrino.Simulator, each on its
 pty); the bridge runs as its own process (`python -m leptrino.bridge
 --sensor NAME=PTY ...`) connected to a Zenoh router this process opens on
 127.0.0.1, and a subscriber here receives every message. Measured:
 
-- CPU of the bridge process per sensor (user + system time / wall time),
-  and by thread: the Python threads (reading, serializing, publishing)
-  against zenoh's own runtime threads (tx sends, rx receives, ...);
+- CPU of the bridge process per sensor (ns on a CPU from the scheduler's
+  /proc/PID/task/TID/schedstat, over wall time), and by thread with its
+  wake-ups: the bridge's reading thread (`read`: the session's read, the
+  serialization, the puts), its diagnostics thread, zenoh's own runtime
+  threads (tx sends, rx receives, ...);
+- --cost: one sensor, nobody subscribed then one subscriber on
+  NAME/wrench, phases interleaved, each kind's median and ratio to
+  `leptrino stream` beside it, and how soon a new subscriber gets data;
 - latency from a sample's arrival (its header stamp: the session's UTC time
   of the sample) to the subscriber's receipt, p50 and p99;
 - the largest number of sensors bridged without loss: every sensor's
@@ -23,6 +29,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import os
 import socket
 import struct
@@ -30,7 +37,7 @@ import subprocess
 import sys
 import threading
 import time
-from typing import Any, Dict, List, Optional
+from typing import Any, Dict, List, Optional, Tuple
 
 from leptrino.bridge.rmw_zenoh import parse_attachment
 
@@ -41,29 +48,50 @@ def _free_port() -> int:
         return int(s.getsockname()[1])
 
 
-def _cpu_seconds(pid: int) -> float:
+def _threads(pid: int) -> Dict[str, Tuple[int, int]]:
+    """Per thread name of a process: (nanoseconds on a CPU, times it was put
+    on a CPU), summed over the threads of that name, from
+    /proc/PID/task/TID/schedstat (the scheduler's own accounting in ns, not
+    clock ticks: a thread that runs 20 us at a time between ticks is
+    counted too). Names as the threads set them with the number dropped:
+    the bridge's (`read-NAME` -> "read", "diagnostics", "requests", "python"
+    for the interpreter's main thread), zenoh's runtime ("tx", "rx", "net",
+    "acc", "app"...). A thread that ended between two readings is lost to
+    both; none do while the bridge runs."""
+    out: Dict[str, Tuple[int, int]] = {}
+    for tid in os.listdir(f"/proc/{pid}/task"):
+        try:
+            with open(f"/proc/{pid}/task/{tid}/comm") as f:
+                name = f.read().strip().split("-")[0]
+            with open(f"/proc/{pid}/task/{tid}/schedstat") as f:
+                run_ns, _wait_ns, slices = (int(x) for x in f.read().split()[:3])
+        except (OSError, ValueError):  # the thread ended meanwhile
+            continue
+        ns0, sl0 = out.get(name, (0, 0))
+        out[name] = (ns0 + run_ns, sl0 + slices)
+    return out
+
+
+def _tick_seconds(pid: int) -> float:
+    """User + system time of a process in clock ticks (/proc/PID/stat), as
+    `top` and rusage count it: printed beside the schedstat figures only to
+    show how far the two differ for processes that run in slices much
+    shorter than a tick."""
     with open(f"/proc/{pid}/stat") as f:
         fields = f.read().rsplit(")", 1)[1].split()
     return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
 
 
-def _thread_cpu(pid: int) -> Dict[str, float]:
-    """CPU seconds of a process's threads by name: "python" for the
-    interpreter's threads (the reading threads, the sessions' reads and the
-    serialization in them), zenoh's runtime threads by their own names with
-    the number dropped ("tx", "rx", "net", "acc", ...)."""
-    out: Dict[str, float] = {}
-    for tid in os.listdir(f"/proc/{pid}/task"):
-        try:
-            with open(f"/proc/{pid}/task/{tid}/stat") as f:
-                text = f.read()
-        except OSError:  # the thread ended meanwhile
-            continue
-        name = text[text.index("(") + 1:text.rindex(")")].split("-")[0]
-        fields = text.rsplit(")", 1)[1].split()
-        out[name] = out.get(name, 0.0) + (int(fields[11]) + int(fields[12])) / os.sysconf(
-            "SC_CLK_TCK")
-    return out
+def _cpu_ns(pid: int) -> int:
+    """Nanoseconds on a CPU of a process's threads (schedstat, see _threads)."""
+    return sum(ns for ns, _ in _threads(pid).values())
+
+
+def _thread_delta(a: Dict[str, Tuple[int, int]], b: Dict[str, Tuple[int, int]],
+                  dt: float) -> Dict[str, Tuple[float, float]]:
+    """Per thread name between two readings: (share of a core, wake-ups/s)."""
+    return {k: ((ns - a.get(k, (0, 0))[0]) / 1e9 / dt, (sl - a.get(k, (0, 0))[1]) / dt)
+            for k, (ns, sl) in b.items()}
 
 
 def _stamp_ns(payload: bytes) -> int:
@@ -240,13 +268,11 @@ def run(n: int, seconds: float, zenoh_mod: Any, extra: Optional[List[str]] = Non
         time.sleep(3.0)  # start-up, discovery, the first diagnostics
         with sink.lock:
             sink.latency_ns.clear()
-        c0, t0 = _cpu_seconds(child.pid), time.monotonic()
-        th0 = _thread_cpu(child.pid)
-        r0 = sum(_cpu_seconds(r.pid) for r in refs)
+        th0, t0 = _threads(child.pid), time.monotonic()
+        r0 = sum(_cpu_ns(r.pid) for r in refs)
         time.sleep(seconds)
-        c1, t1 = _cpu_seconds(child.pid), time.monotonic()
-        th1 = _thread_cpu(child.pid)
-        r1 = sum(_cpu_seconds(r.pid) for r in refs)
+        th1, t1 = _threads(child.pid), time.monotonic()
+        r1 = sum(_cpu_ns(r.pid) for r in refs)
         dead = [r.args for r in refs + [child] if r.poll() is not None]
         if dead:
             raise RuntimeError(f"ended during the measurement: {dead}")
@@ -292,15 +318,15 @@ def run(n: int, seconds: float, zenoh_mod: Any, extra: Optional[List[str]] = Non
     # tolerated up to 0.1 %.
     ok = (contiguous and n_wrench == n and len(rates) == n
           and all(abs(r - 1200) < 24 for r in rates) and lost <= 0.001 * max(received, 1))
-    cpu = (c1 - c0) / (t1 - t0)
-    ref_cpu = (r1 - r0) / (t1 - t0)
+    threads = _thread_delta(th0, th1, t1 - t0)
+    cpu = sum(c for c, _ in threads.values())
+    ref_cpu = (r1 - r0) / 1e9 / (t1 - t0)
 
     def pct(p: float) -> float:
         return lat[min(len(lat) - 1, int(p * len(lat)))] / 1e6 if lat else float("nan")
 
-    threads = {k: (v - th0.get(k, 0.0)) / (t1 - t0) for k, v in th1.items()
-               if v - th0.get(k, 0.0) > 0}
-    return {"sensors": n, "cpu_total": cpu, "cpu_per_sensor": cpu / n, "threads": threads,
+    return {"sensors": n, "cpu_total": cpu, "cpu_per_sensor": cpu / n,
+            "threads": {k: c for k, (c, _) in threads.items() if c > 0},
             "stream_cpu_per_sensor": ref_cpu / n,
             "ratio": cpu / ref_cpu if ref_cpu > 0 else float("inf"),
             "dds_messages": sum(dds_counts.values()), "foxglove_messages": fox_count,
@@ -309,11 +335,20 @@ def run(n: int, seconds: float, zenoh_mod: Any, extra: Optional[List[str]] = Non
             "lost": lost, "gaps": gaps, "rates": rates, "no_loss": ok}
 
 
-def cost(seconds: float, zenoh_mod: Any, latency_s: str = "0.002") -> List[Dict[str, Any]]:
+NOBODY = "nobody subscribed"
+ONE = "one subscriber on s0/wrench"
+
+
+def cost(seconds: float, rounds: int, zenoh_mod: Any,
+         latency_s: str = "0.002") -> List[Dict[str, Any]]:
     """One sensor over Zenoh beside `leptrino stream` on another virtual
-    sensor, in one run, in three phases of `seconds` each: nobody subscribed
-    (no subscriber anywhere: the bridge publishes nothing), one subscriber on
-    NAME/wrench only, nobody again. CPU of each process, the bridge's by thread."""
+    sensor of the same kind, in one run: phases of `seconds` each,
+    interleaved `rounds` times (nobody subscribed, one subscriber on
+    NAME/wrench only, nobody, one...), so that the load of a shared machine
+    drifting meanwhile falls on both kinds alike. Per phase: the CPU of
+    each process and the bridge's by thread (schedstat: ns on a CPU and
+    wake-ups), the messages received; with a subscriber, how long after
+    its declaration its first message came."""
     import leptrino
 
     ep = f"tcp/127.0.0.1:{_free_port()}"
@@ -324,7 +359,16 @@ def cost(seconds: float, zenoh_mod: Any, latency_s: str = "0.002") -> List[Dict[
     router = zenoh_mod.open(conf)
     domain = 1 + os.getpid() % 99
     sim, ref_sim = leptrino.Simulator(), leptrino.Simulator()
+    lock = threading.Lock()
     got = [0]
+    first: List[Optional[float]] = [None]
+
+    def on_sample(_s: Any) -> None:
+        with lock:
+            if first[0] is None:
+                first[0] = time.monotonic()
+            got[0] += 1
+
     out: List[Dict[str, Any]] = []
     child = ref = None
     try:
@@ -334,30 +378,43 @@ def cost(seconds: float, zenoh_mod: Any, latency_s: str = "0.002") -> List[Dict[
             stderr=subprocess.PIPE, text=True)
         ref = subprocess.Popen(_stream_args([ref_sim.port], latency_s),
                                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-        time.sleep(3.0)
-        for phase in ("nobody subscribed", "one subscriber on s0/wrench",
-                      "the subscriber gone"):
+        time.sleep(3.0)  # start-up, the router's discovery of the bridge
+        for phase in [NOBODY, ONE] * rounds:
             sub = None
-            if phase == "the subscriber gone":
-                time.sleep(1.0)  # its undeclaration reaches the bridge
-            if phase == "one subscriber on s0/wrench":
-                sub = router.declare_subscriber(f"{domain}/s0/wrench/**",
-                                                lambda _s: got.__setitem__(0, got[0] + 1))
-                time.sleep(1.0)
+            first_ms = float("nan")
+            if phase == ONE:
+                with lock:
+                    first[0] = None
+                t_decl = time.monotonic()
+                sub = router.declare_subscriber(f"{domain}/s0/wrench/**", on_sample)
+            time.sleep(1.0)  # a subscriber's declaration or undeclaration reaches the bridge
+            if sub is not None:
+                with lock:
+                    if first[0] is not None:
+                        first_ms = 1000.0 * (first[0] - t_decl)
             g0 = got[0]
-            c0, r0, t0 = _cpu_seconds(child.pid), _cpu_seconds(ref.pid), time.monotonic()
-            th0 = _thread_cpu(child.pid)
+            th0, r0, t0 = _threads(child.pid), _threads(ref.pid), time.monotonic()
+            k0 = _tick_seconds(child.pid), _tick_seconds(ref.pid)
             time.sleep(seconds)
-            c1, r1, t1 = _cpu_seconds(child.pid), _cpu_seconds(ref.pid), time.monotonic()
-            th1 = _thread_cpu(child.pid)
+            th1, r1, t1 = _threads(child.pid), _threads(ref.pid), time.monotonic()
+            k1 = _tick_seconds(child.pid), _tick_seconds(ref.pid)
             dt = t1 - t0
-            out.append({"phase": phase, "bridge": (c1 - c0) / dt, "stream": (r1 - r0) / dt,
-                        "ratio": (c1 - c0) / max(r1 - r0, 1e-9),
-                        "messages_per_s": (got[0] - g0) / dt,
-                        "threads": {k: (th1.get(k, 0.0) - th0.get(k, 0.0)) / dt
-                                    for k in th1}})
+            threads = _thread_delta(th0, th1, dt)
+            stream = _thread_delta(r0, r1, dt)
+            bridge_cpu = sum(c for c, _ in threads.values())
+            stream_cpu = sum(c for c, _ in stream.values())
+            out.append({"phase": phase, "bridge": bridge_cpu, "stream": stream_cpu,
+                        "ratio": bridge_cpu / max(stream_cpu, 1e-9),
+                        "bridge_wakeups": sum(w for _, w in threads.values()),
+                        "stream_wakeups": sum(w for _, w in stream.values()),
+                        "messages_per_s": (got[0] - g0) / dt, "first_message_ms": first_ms,
+                        "load": os.getloadavg()[0], "threads": threads,
+                        "ticks": ((k1[0] - k0[0]) / dt, (k1[1] - k0[1]) / dt)})
             if sub is not None:
                 sub.undeclare()
+        for proc in (child, ref):
+            if proc.poll() is not None:
+                raise RuntimeError(f"ended during the measurement: {proc.args}")
     finally:
         for proc in (child, ref):
             if proc is not None:
@@ -369,36 +426,82 @@ def cost(seconds: float, zenoh_mod: Any, latency_s: str = "0.002") -> List[Dict[
     return out
 
 
+def _median(xs: List[float]) -> float:
+    v = sorted(x for x in xs if not math.isnan(x))
+    if not v:
+        return float("nan")
+    m = len(v) // 2
+    return v[m] if len(v) % 2 else (v[m - 1] + v[m]) / 2
+
+
+def _fmt_threads(threads: Dict[str, Tuple[float, float]]) -> str:
+    return ", ".join(f"{k} {100 * c:.2f} ({w:.0f}/s)" for k, (c, w) in
+                     sorted(threads.items(), key=lambda kv: -kv[1][0]) if c >= 0.00005 or w >= 1)
+
+
+def print_cost(phases: List[Dict[str, Any]]) -> None:
+    """Each phase, then the medians of each kind of phase."""
+    for i, r in enumerate(phases, 1):
+        print(f"  {i}. {r['phase']} (load {r['load']:.1f}): bridge {100 * r['bridge']:.2f} % "
+              f"of a core ({r['bridge_wakeups']:.0f} wake-ups/s), `leptrino stream` "
+              f"{100 * r['stream']:.2f} % ({r['stream_wakeups']:.0f}/s), ratio "
+              f"{r['ratio']:.2f}, {r['messages_per_s']:.0f} messages/s received"
+              + (f", first message {r['first_message_ms']:.0f} ms after the subscriber's "
+                 "declaration" if r["phase"] == ONE else ""), flush=True)
+        print(f"     threads (% of a core, wake-ups/s): {_fmt_threads(r['threads'])}; "
+              f"in clock ticks instead: bridge {100 * r['ticks'][0]:.1f} %, stream "
+              f"{100 * r['ticks'][1]:.1f} %")
+    print("  medians:")
+    for kind in (NOBODY, ONE):
+        rs = [r for r in phases if r["phase"] == kind]
+        if not rs:
+            continue
+        names = sorted({k for r in rs for k in r["threads"]})
+        med = {k: (_median([r["threads"].get(k, (0.0, 0.0))[0] for r in rs]),
+                   _median([r["threads"].get(k, (0.0, 0.0))[1] for r in rs])) for k in names}
+        ratios = ", ".join(f"{r['ratio']:.2f}" for r in rs)
+        print(f"  {kind} ({len(rs)} phase{'s' if len(rs) > 1 else ''}): bridge {100 * _median([r['bridge'] for r in rs]):.2f}"
+              f" % of a core, `leptrino stream` {100 * _median([r['stream'] for r in rs]):.2f} %,"
+              f" ratio {_median([r['ratio'] for r in rs]):.2f} (per phase {ratios})"
+              + (f"; first message {_median([r['first_message_ms'] for r in rs]):.0f} ms after "
+                 "the subscriber's declaration" if kind == ONE else ""))
+        print(f"     threads (% of a core, wake-ups/s): {_fmt_threads(med)}", flush=True)
+
+
 def main(argv: Optional[List[str]] = None) -> int:
     import zenoh
 
     p = argparse.ArgumentParser(prog="python bench/bridge_bench.py")
     p.add_argument("--quick", action="store_true", help="a smoke run: 1 and 2 sensors, 3 s")
-    p.add_argument("--seconds", type=float, default=10.0)
+    p.add_argument("--seconds", type=float, default=None,
+                   help="s per run (default 10), with --cost per phase (default 20)")
     p.add_argument("--max-sensors", type=int, default=16)
     p.add_argument("--latency", default="0.002", help="the bridge's --latency")
     p.add_argument("--all", action="store_true",
                    help="also DDS (with a Cyclone DDS reader) and Foxglove (with a client)")
     p.add_argument("--cost", action="store_true",
-                   help="one sensor: nobody subscribed, one subscriber on NAME/wrench, nobody "
-                        "again, beside `leptrino stream` (the targets: 1.2x and 2x)")
+                   help="one sensor beside `leptrino stream`: nobody subscribed and one "
+                        "subscriber on NAME/wrench, interleaved --rounds times (the targets: "
+                        "1.2x and 2x)")
+    p.add_argument("--rounds", type=int, default=3,
+                   help="with --cost: how many times each kind of phase runs (default 3)")
     p.add_argument("--dds-reader", metavar="DOMAIN,N,SECONDS", help=argparse.SUPPRESS)
     a = p.parse_args(argv)
+    if a.rounds < 1 or (a.seconds is not None and a.seconds <= 0):
+        p.error("--rounds and --seconds: positive numbers")
     if a.cost or a.quick:
-        print(f"cost of one sensor over Zenoh beside `leptrino stream` (load average "
-              f"{os.getloadavg()[0]:.1f}, --latency {a.latency}):")
-        for r in cost(3.0 if a.quick else a.seconds, __import__("zenoh"), a.latency):
-            print(f"  {r['phase']}: bridge {100 * r['bridge']:.1f} % of a core, `leptrino "
-                  f"stream` {100 * r['stream']:.1f} %, ratio {r['ratio']:.2f}, "
-                  f"{r['messages_per_s']:.0f} messages/s received; threads (% of a core) "
-                  + ", ".join(f"{k} {100 * v:.1f}" for k, v in sorted(r["threads"].items())
-                              if v >= 0.0005), flush=True)
+        phase_s = 2.0 if a.quick else (a.seconds or 20.0)
+        rounds = 1 if a.quick else a.rounds
+        print(f"cost of one sensor over Zenoh beside `leptrino stream` ({os.cpu_count()} CPUs, "
+              f"load average {os.getloadavg()[0]:.1f}, --latency {a.latency}, {rounds} x "
+              f"{phase_s:g} s per kind of phase, interleaved; CPU from schedstat):", flush=True)
+        print_cost(cost(phase_s, rounds, zenoh, a.latency))
         if a.cost:
             return 0
     if a.dds_reader:
         d, n_, secs_ = a.dds_reader.split(",")
         return dds_reader(int(d), int(n_), float(secs_))
-    secs = 3.0 if a.quick else a.seconds
+    secs = 3.0 if a.quick else (a.seconds or 10.0)
     extra: List[str] = []
     print(f"leptrino-bridge figures: {os.cpu_count()} CPUs, load average "
           f"{os.getloadavg()[0]:.1f}, {secs:g} s per run, --latency {a.latency} (the bridge "

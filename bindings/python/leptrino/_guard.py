@@ -42,46 +42,84 @@ class Guard:
         """Become (or stay) the driving thread; StateError when another is."""
         me = threading.get_ident()
         with self._cv:
-            if self.closing:
-                raise self.closed_error(port)
-            if self._owner is not None and self._owner != me:
-                raise self._busy_error(port)
-            self._owner = me
-            self._depth += 1
+            self._hold(me, port)
+
+    def _hold(self, me: int, port: str) -> None:
+        if self.closing:
+            raise self.closed_error(port)
+        if self._owner is not None and self._owner != me:
+            raise self._busy_error(port)
+        self._owner = me
+        self._depth += 1
 
     def release(self) -> None:
         with self._cv:
-            if self._depth > 0:
-                self._depth -= 1
-            if self._depth == 0:
-                self._owner = None
+            self._release()
+
+    def _release(self) -> None:
+        if self._depth > 0:
+            self._depth -= 1
+        if self._depth == 0:
+            self._owner = None
+        if self.closing:  # close() waits on the condition; nobody else does
             self._cv.notify_all()
 
-    @contextmanager
-    def call(self, port: str) -> Iterator[None]:
-        """Any-thread call: counted so that close() waits for it."""
+    # The enter/leave pairs below are what every Sensor call runs (a stream
+    # reader calls read_batch hundreds of times a second): one lock section
+    # each, no generator; call() and drive() are the same as context managers.
+    def enter_call(self, port: str) -> None:
+        """An any-thread call begins: counted so that close() waits for it."""
         me = threading.get_ident()
         with self._cv:
             if self.closing:
                 raise self.closed_error(port)
             self._inside[me] = self._inside.get(me, 0) + 1
+
+    def leave_call(self) -> None:
+        """The call entered by enter_call() (in this thread) is over."""
+        me = threading.get_ident()
+        with self._cv:
+            self._leave(me)
+
+    def _leave(self, me: int) -> None:
+        n = self._inside[me] - 1
+        if n:
+            self._inside[me] = n
+        else:
+            del self._inside[me]
+        if self.closing:
+            self._cv.notify_all()
+
+    def enter_drive(self, port: str) -> None:
+        """A driving call begins: hold(), and counted as enter_call() does."""
+        me = threading.get_ident()
+        with self._cv:
+            self._hold(me, port)
+            self._inside[me] = self._inside.get(me, 0) + 1
+
+    def leave_drive(self) -> None:
+        """The call entered by enter_drive() (in this thread) is over."""
+        me = threading.get_ident()
+        with self._cv:
+            self._leave(me)
+            self._release()
+
+    @contextmanager
+    def call(self, port: str) -> Iterator[None]:
+        """Any-thread call: counted so that close() waits for it."""
+        self.enter_call(port)
         try:
             yield
         finally:
-            with self._cv:
-                self._inside[me] -= 1
-                if not self._inside[me]:
-                    del self._inside[me]
-                self._cv.notify_all()
+            self.leave_call()
 
     @contextmanager
     def drive(self, port: str) -> Iterator[None]:
-        self.hold(port)
+        self.enter_drive(port)
         try:
-            with self.call(port):
-                yield
+            yield
         finally:
-            self.release()
+            self.leave_drive()
 
     def check(self, port: str) -> None:
         """Between two reads: StateError when close() has begun."""

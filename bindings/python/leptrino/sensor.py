@@ -66,8 +66,12 @@ def _driving(fn: _F) -> _F:
     """A call only the driving thread makes (StateError from another thread)."""
     @functools.wraps(fn)
     def wrap(self: Sensor, *a: Any, **k: Any) -> Any:
-        with self._guard.drive(self.port):
+        g = self._guard
+        g.enter_drive(self.port)
+        try:
             return fn(self, *a, **k)
+        finally:
+            g.leave_drive()
     return cast(_F, wrap)
 
 
@@ -75,8 +79,12 @@ def _any_thread(fn: _F) -> _F:
     """A call any thread may make (close() waits for it)."""
     @functools.wraps(fn)
     def wrap(self: Sensor, *a: Any, **k: Any) -> Any:
-        with self._guard.call(self.port):
+        g = self._guard
+        g.enter_call(self.port)
+        try:
             return fn(self, *a, **k)
+        finally:
+            g.leave_call()
     return cast(_F, wrap)
 
 

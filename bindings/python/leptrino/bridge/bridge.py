@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, List, Optional, Tuple
 
 from .mcap_out import FileExistsRefused, McapRecorder, McapTransport
+from .threadname import name_this_thread
 from .node import AUDIT_LOGGER, NodeOptions, SensorNode, SensorSpec
 from .transport import Transport
 
@@ -227,6 +228,7 @@ class Bridge:
         self._diag.start()
 
     def _diagnostics(self) -> None:
+        name_this_thread("diagnostics")
         next_t = time.monotonic() + self.period
         while not self._stop.wait(max(0.0, next_t - time.monotonic())):
             next_t += self.period

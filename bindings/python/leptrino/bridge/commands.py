@@ -10,6 +10,8 @@ import logging
 import threading
 from typing import Any, Callable, List, Tuple
 
+from .threadname import name_this_thread
+
 log = logging.getLogger("leptrino.bridge")
 
 
@@ -35,6 +37,7 @@ class CommandRunner:
             return True
 
     def _run(self) -> None:
+        name_this_thread("requests")
         while True:
             with self._cv:
                 while not self._queue and not self._stop:

@@ -34,6 +34,7 @@ from . import rmw_zenoh as rz
 from .gravity_in import VECTOR3_STAMPED, GravityInput
 from .commands import CommandRunner
 from .ratelog import RateLimitedLog
+from .threadname import name_this_thread
 from .transport import Endpoint, NodeRef, Publisher, Request, Transport
 from .wrench_batch import WrenchBatch
 
@@ -50,8 +51,11 @@ EVENTS_PERIOD_S = 0.1
 DIAGNOSTICS = "diagnostic_msgs/msg/DiagnosticArray"
 #: The session's latency budget while nobody listens to `wrench` or `wrench_raw`
 #: on any transport (s): fewer wake-ups; limit events and a tare's end are then
-#: seen up to this much later.
-IDLE_LATENCY_S = 0.05
+#: seen up to this much later, and a new subscriber's first message comes up to
+#: this much later. Each wake-up costs far more than the samples it brings
+#: (docs/bridge.md, "from the scheduler's accounting": 0.05 -> 0.1 s took the
+#: idle reading thread from 0.52 to 0.25 % of a core).
+IDLE_LATENCY_S = 0.1
 TRIGGER = "std_srvs/srv/Trigger"
 
 
@@ -313,6 +317,7 @@ class SensorNode:
         serialized in one C call and published topic by topic (no Python
         object per sample but the payloads the transports take); while
         nobody does, it is only counted (skipped)."""
+        name_this_thread(f"read-{self.spec.name}")
         sensor = self.sensor
         wb = self._batch
         buf = wb.arrays
