@@ -19,7 +19,7 @@
  *                       gaps from sequence numbers and reconnects
  *                       (session_timing); it sets rows.held for a suspected
  *                       hole and restarts the low-pass's settling count
- *   session_rows.c      processed rows waiting for a read, delivery into a
+ *   session_sink.c      processed rows waiting for a read, delivery into a
  *                       batch (session_rows)
  *   session_proc.c      overload, tare, low-pass, decimation, rotation, end of
  *                       run (session_proc)
@@ -164,7 +164,7 @@ typedef struct session_load {
     bool beyond;             /* in a limit episode */
 } session_load;
 
-/* session_rows.c: processed rows waiting for a read (driving thread). */
+/* session_sink.c: processed rows waiting for a read (driving thread). */
 typedef struct session_rows {
     session_row pending[SESSION_ROWS];
     size_t head, len;
@@ -301,7 +301,7 @@ void lep_priv_timing_judged(lep_session *s, const timeline_verdict *v);
  * numbers): queues the event, returns LEP_SF_GAP or 0. [mu] held. */
 uint8_t lep_priv_timing_sample(lep_session *s, uint32_t lost, double t);
 
-/* ---- session_rows.c ---- */
+/* ---- session_sink.c ---- */
 void lep_priv_rows_clear(session_rows *r);
 /* The slot the next row is written to, or NULL when full. */
 session_row *lep_priv_rows_slot(session_rows *r);
