@@ -164,7 +164,7 @@ int lep_session_open_so(const lep_session_options *o, lep_session **out, char *e
         lep_priv_set_err(err, errlen, "session: out of memory");
         return LEP_E_IO;
     }
-    lep_priv_events_stop(&s->events); /* not streaming: events go as they come */
+    lep_priv_sink_open(&s->sink); /* not streaming: events go as they come */
     if (pthread_mutex_init(&s->mu, NULL) != 0) {
         free(s);
         lep_priv_set_err(err, errlen, "session: cannot create a mutex");
@@ -277,8 +277,7 @@ static int session_start(lep_session *s)
     lep_priv_timing_start(&s->tm, s->period_s, s->opt.gap_periods,
                           s->sim == NULL); /* measures the UTC offset */
     pthread_mutex_lock(&s->mu);
-    lep_priv_health_start(&s->hs, s->nominal_hz, &base);
-    lep_priv_events_start(&s->events);
+    lep_priv_sink_start(&s->sink, s->nominal_hz, &base);
     s->start_mono = now;
     s->start_utc = now + s->tm.utc_off;
     lep_priv_proc_start(s);
@@ -286,7 +285,6 @@ static int session_start(lep_session *s)
     s->streaming = true;
     s->backlog = false;
     lep_priv_reconnect_start(&s->rc);
-    lep_priv_rows_clear(&s->rows);
     lep_priv_session_stream_reset(s, now);
     return LEP_OK;
 }
@@ -336,9 +334,8 @@ static int session_stop(lep_session *s)
     if (!s->streaming)
         return LEP_E_STATE;
     s->streaming = false;
-    lep_priv_rows_clear(&s->rows);
     pthread_mutex_lock(&s->mu);
-    lep_priv_events_stop(&s->events); /* the rows their samples wait for are gone */
+    lep_priv_sink_stop(&s->sink); /* the rows, and the gate of the events that waited for them */
     pthread_mutex_unlock(&s->mu);
     if (s->conn == CONN_UP && lep_client_streaming(&s->client)) {
         rc = lep_client_stop(&s->client);

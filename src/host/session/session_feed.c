@@ -41,7 +41,7 @@ void lep_priv_session_feed(lep_session *s, const uint8_t *data, size_t len, doub
     }
 
     pthread_mutex_lock(&s->mu);
-    lep_priv_health_client(&s->hs, &st);
+    lep_priv_sink_client(&s->sink, &st);
     if (n > 0) {
         timeline_verdict v;
         uint64_t j = 0, known = lep_priv_timing_seq(tm, s->sim != NULL, got, n, t_read,
@@ -49,27 +49,24 @@ void lep_priv_session_feed(lep_session *s, const uint8_t *data, size_t len, doub
         size_t rows_before;
         lep_priv_timeline_read(&tm->tl, t_read, n, known, &v);
         lep_priv_timing_judged(s, &v);
-        rows_before = s->rows.len;
+        rows_before = lep_priv_sink_pending(&s->sink);
         for (i = 0; i < n; i++) {
             double t;
             uint8_t flags;
-            session_row *row = lep_priv_rows_slot(&s->rows);
             j += lost[i];
             t = lep_priv_timeline_stamp(&tm->tl, j++);
             flags = lep_priv_timing_sample(s, lost[i], t);
-            lep_priv_health_sample(&s->hs, t);
-            if (row != NULL &&
-                lep_priv_session_process(s, &got[i], t, t + tm->utc_off, flags, row)) {
-                row->arrived = t_read;
-                lep_priv_rows_push(&s->rows);
-            }
+            lep_priv_sink_received(&s->sink, t);
+            if (lep_priv_sink_room(&s->sink))
+                (void)lep_priv_session_process(s, &got[i], t, t + tm->utc_off, t_read, flags);
             tm->last_sample_t = t;
         }
-        if (v.extend) {
-            s->rows.held += s->rows.len - rows_before; /* too soon to judge */
-        } else if (v.hold && s->rows.len > rows_before) {
-            s->rows.held = s->rows.len - rows_before;
-            tm->suspect_index = s->hs.processed - s->rows.held;
+        if (v.extend) { /* too soon to judge */
+            lep_priv_sink_hold(&s->sink, lep_priv_sink_held(&s->sink) +
+                                             lep_priv_sink_pending(&s->sink) - rows_before);
+        } else if (v.hold && lep_priv_sink_pending(&s->sink) > rows_before) {
+            lep_priv_sink_hold(&s->sink, lep_priv_sink_pending(&s->sink) - rows_before);
+            tm->suspect_index = lep_priv_sink_processed(&s->sink) - lep_priv_sink_held(&s->sink);
         } else if (v.hold) {
             lep_priv_timeline_forget_held(&tm->tl); /* nothing kept to hold */
         }

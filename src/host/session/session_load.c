@@ -100,9 +100,7 @@ uint8_t lep_priv_load_limits(lep_session *s, const double si[LEP_AXES], double t
                             t);
         ev.axes = axes;
         memcpy(ev.wrench, si, sizeof ev.wrench);
-        lep_priv_events_push(&s->events, &ev);
-        if (l->beyond)
-            s->hs.h.limit_episodes++;
+        lep_priv_sink_event(&s->sink, &ev); /* counts an episode begun */
     }
     return axes != 0u ? LEP_SF_LIMIT : 0u;
 }

@@ -19,7 +19,7 @@
  *                       gaps from sequence numbers and reconnects
  *                       (session_timing); it sets rows.held for a suspected
  *                       hole and restarts the low-pass's settling count
- *   session_sink.c      processed rows waiting for a read, delivery into a
+ *   session_rows.c      processed rows waiting for a read, delivery into a
  *                       batch (session_rows)
  *   session_proc.c      overload, tare, low-pass, decimation, rotation, end of
  *                       run (session_proc)
@@ -46,70 +46,18 @@
 #include "leptrino/session.h"
 #include "leptrino/sim.h"
 #include "struct_api.h"
+#include "session_clock.h"
+#include "session_sink.h"
 #include "session_timeline.h"
 
-/* Bytes taken from the port per read: 16 KiB is 0.55 s of a 1.2 kHz stream,
- * so a latency budget of up to half a second needs one read per wake-up. */
-#define SESSION_RBUF 16384u
 /* What a latency budget may leave in the kernel between reads: half of the
  * 64 KiB a Linux tty buffers before the sender blocks (1.1 s at 1.2 kHz,
  * 131 ms at 10 kHz). */
 #define SESSION_KERNEL_BYTES 32768.0
-/* Smallest wire size of a data frame (DLE STX, 20 bytes, DLE ETX, BCC). */
-#define SESSION_MIN_FRAME 25u
-/* Samples one read can complete: every byte in whole frames, plus the frame
- * begun by the previous read. */
-#define SESSION_PENDING (SESSION_RBUF / SESSION_MIN_FRAME + 2u)
-/* Rows kept for reads: those held back while a hole is suspected (one read's
- * worth at most) and the next read's. */
-#define SESSION_ROWS (2u * SESSION_PENDING)
 /* How soon a read judges a suspected hole when a latency budget would wait longer. */
 #define SESSION_CONFIRM_S 0.02
 /* How often a vanished port is looked for while reconnecting. */
 #define SESSION_WATCH_S 0.02
-/* Events kept until lep_session_next_event takes them; beyond, the oldest go
- * (counted in lep_session_health_info.events_dropped). */
-#define SESSION_EVENTS 1024u
-/* A wall-clock step smaller than this is measurement jitter, not a step. */
-#define SESSION_UTC_STEP_S 1e-3
-
-/* A processed sample waiting for lep_session_read. */
-typedef struct session_row {
-    double t_mono;
-    double t_utc;
-    int16_t raw[LEP_AXES];
-    double zeroed[LEP_AXES];
-    double si[LEP_AXES];
-    uint8_t status;
-    uint8_t flags;
-    uint16_t seq;
-    double arrived; /* return of the read that brought it (session_feed.c) */
-} session_row;
-
-/* session_events.c: [mu] events kept until lep_session_next_event. */
-typedef struct session_events {
-    lep_session_event ev[SESSION_EVENTS];
-    size_t head, len;
-    uint64_t pushed;  /* queued since open (tells a read it has news) */
-    uint64_t dropped; /* pushed out of a full queue since start */
-    /* An event waits until the rows before its sample are returned: the head
-     * goes when its sample <= gate (rows returned; UINT64_MAX when stopped),
-     * or while ungated > 0 (queued before a start: another stream's numbers). */
-    uint64_t gate;
-    size_t ungated;
-} session_events;
-
-/* session_health.c: [mu] the health counters and what they are computed from. */
-typedef struct session_health_state {
-    lep_session_health_info h; /* h.delivered: rows returned by lep_session_read */
-    uint64_t processed;        /* rows processed: the next row's number (events' sample) */
-    double first_t;
-    double window_t;
-    uint64_t window_n;
-    uint64_t errors_before;      /* errors counted on earlier connections */
-    uint64_t data_timeouts;      /* data timeouts (each counted as an error) */
-    lep_client_stats base_stats; /* the connection's counters at start or reconnect */
-} session_health_state;
 
 /* session_proc.c: 2nd-order Butterworth low-pass, one section per axis
  * (direct form II transposed), run on raw counts. */
@@ -163,13 +111,6 @@ typedef struct session_load {
     double limit[LEP_AXES];  /* N, N m on the output SI values; 0: none */
     bool beyond;             /* in a limit episode */
 } session_load;
-
-/* session_sink.c: processed rows waiting for a read (driving thread). */
-typedef struct session_rows {
-    session_row pending[SESSION_ROWS];
-    size_t head, len;
-    size_t held; /* newest rows held back: a suspected hole before them */
-} session_rows;
 
 /* session_timing.c: stamps and gaps (driving thread; its gap events and
  * counters go through [mu]). The model of the sensor's clock, the stamps and
@@ -228,16 +169,14 @@ struct lep_session {
     bool streaming;
     bool backlog; /* more may be waiting: read again before sleeping (session_read.c) */
     uint8_t rbuf[SESSION_RBUF]; /* session_read.c */
-    session_rows rows;
     session_timing tm;
     session_reconnect rc;
 
     /* ---- [mu] ---- */
     session_proc proc;
     session_load load;
-    session_health_state hs;
-    session_events events;
-    double start_utc; /* metadata */
+    session_sink sink; /* rows (driving thread), events and health [mu] */
+    double start_utc;  /* metadata */
     double start_mono;
 
     session_guard guard; /* the driving calls' thread guard, and close's (session_guard.c) */
@@ -301,25 +240,11 @@ void lep_priv_timing_judged(lep_session *s, const timeline_verdict *v);
  * numbers): queues the event, returns LEP_SF_GAP or 0. [mu] held. */
 uint8_t lep_priv_timing_sample(lep_session *s, uint32_t lost, double t);
 
-/* ---- session_sink.c ---- */
-void lep_priv_rows_clear(session_rows *r);
-/* The slot the next row is written to, or NULL when full. */
-session_row *lep_priv_rows_slot(session_rows *r);
-/* Keep the row written to the slot. */
-void lep_priv_rows_push(session_rows *r);
-/* The row `back` rows before the newest pending one (0: the newest). */
-session_row *lep_priv_rows_back(session_rows *r, size_t back);
-/* Append one row to b (b->n < b->cap). */
-void lep_priv_rows_append(lep_session_batch *b, const session_row *r);
-/* Move rows not held back into b; *first gets the arrival of the first moved
- * (unchanged when none). */
-void lep_priv_rows_deliver(session_rows *r, lep_session_batch *b, double *first);
-
 /* ---- session_proc.c ---- */
 /* Process one sample: overload, tare, low-pass, decimation, rotation; false
  * when it is not delivered (start-up tare, decimation, end reached). [mu] held. */
 bool lep_priv_session_process(lep_session *s, const lep_sample *smp, double t, double t_utc,
-                              uint8_t flags, session_row *row);
+                              double arrived, uint8_t flags);
 /* A handshake sample (outside the stream) into row: the tare offsets, SI
  * units and output frame in force; LEP_SF_OVERLOAD when overloaded. No
  * low-pass, decimation or tare averaging (they are the stream's), no event.
@@ -349,41 +274,5 @@ void lep_priv_load_counts(const session_load *l, const lep_rated *rated, double 
  * LEP_SF_LIMIT flag or 0, and the episode's events (before delivered sample
  * number `sample`, at t). */
 uint8_t lep_priv_load_limits(lep_session *s, const double si[LEP_AXES], double t, uint64_t sample);
-
-/* ---- session_health.c ([mu] held for all) ---- */
-void lep_priv_health_start(session_health_state *hs, double nominal_hz,
-                           const lep_client_stats *base);
-/* The client's counters now: errors and the current connection's stats. */
-void lep_priv_health_client(session_health_state *hs, const lep_client_stats *st);
-void lep_priv_health_sample(session_health_state *hs, double t);
-void lep_priv_health_gap(session_health_state *hs, double from, double to, uint32_t lost);
-/* The connection ended (error: LEP_E_TIMEOUT counts a data timeout). */
-void lep_priv_health_lost(session_health_state *hs, const lep_client_stats *st, int error);
-/* A new connection's counters start at base. */
-void lep_priv_health_reconnected(session_health_state *hs, const lep_client_stats *base);
-
-/* ---- session_events.c ---- */
-void lep_priv_event_init(lep_session_event *ev, int type, uint64_t sample, double t_mono);
-/* A stream starts: the dropped count starts over; events queued stay and go
- * out ahead of the new stream's. [mu] held. */
-void lep_priv_events_start(session_events *q);
-/* Not streaming (opened, or stopped: the rows an event waited for are gone):
- * every event queued may go. [mu] held. */
-void lep_priv_events_stop(session_events *q);
-/* Rows returned so far: the events up to that sample may go. [mu] held. */
-void lep_priv_events_returned(session_events *q, uint64_t rows);
-/* Queue ev; a full queue drops its oldest (counted). [mu] held. */
-void lep_priv_events_push(session_events *q, const lep_session_event *ev);
-/* The oldest event, once the rows before its sample are returned. [mu] held. */
-bool lep_priv_events_pop(session_events *q, lep_session_event *ev);
-
-/* ---- session_clock.c ---- */
-/* UTC - monotonic offset, measured (the narrowest of three brackets). */
-double lep_priv_utc_offset(void);
-/* Whether the wall clock may have left utc_off +- SESSION_UTC_STEP_S, from
- * one read bracketed by t_before (monotonic) and now. */
-bool lep_priv_utc_may_have_moved(double utc_off, double t_before);
-/* Milliseconds from now until t, rounded up, clipped to int; -1 for infinity. */
-int lep_priv_ms_until(double t, double now);
 
 #endif

@@ -194,7 +194,7 @@ static void tare_event(lep_session *s, double t, uint64_t sample)
     lep_session_event ev;
     lep_priv_event_init(&ev, LEP_EV_TARE, sample, t);
     memcpy(ev.tare, s->proc.tare, sizeof ev.tare);
-    lep_priv_events_push(&s->events, &ev);
+    lep_priv_sink_event(&s->sink, &ev);
 }
 
 /* The new offset applies from delivered sample number `sample` on. With a
@@ -233,7 +233,7 @@ int lep_session_untare(lep_session *s)
     s->proc.tare_hold = false;
     s->proc.tared = false;
     memset(s->proc.tare, 0, sizeof s->proc.tare);
-    tare_event(s, lep_monotonic_seconds(), s->hs.processed);
+    tare_event(s, lep_monotonic_seconds(), lep_priv_sink_processed(&s->sink));
     pthread_mutex_unlock(&s->mu);
     return LEP_OK;
 }
@@ -251,7 +251,7 @@ int lep_session_set_tare(lep_session *s, const double offset[LEP_AXES])
     s->proc.tare_hold = false;
     s->proc.tared = true;
     memcpy(s->proc.tare, offset, sizeof s->proc.tare);
-    tare_event(s, lep_monotonic_seconds(), s->hs.processed);
+    tare_event(s, lep_monotonic_seconds(), lep_priv_sink_processed(&s->sink));
     pthread_mutex_unlock(&s->mu);
     return LEP_OK;
 }
@@ -295,13 +295,11 @@ static void overload(lep_session *s, const lep_sample *smp, double t, uint8_t *f
     if (over == s->proc.overloaded)
         return;
     s->proc.overloaded = over;
-    lep_priv_event_init(&ev, over ? LEP_EV_OVERLOAD_BEGIN : LEP_EV_OVERLOAD_END, s->hs.processed,
-                        t);
+    lep_priv_event_init(&ev, over ? LEP_EV_OVERLOAD_BEGIN : LEP_EV_OVERLOAD_END,
+                        lep_priv_sink_processed(&s->sink), t);
     ev.axes = axes;
     ev.status = smp->status;
-    lep_priv_events_push(&s->events, &ev);
-    if (over)
-        s->hs.h.overloads++;
+    lep_priv_sink_event(&s->sink, &ev); /* counts an overload begun */
 }
 
 /* zeroed, si (tare after the filter: exact, as the filter's gain at 0 Hz is
@@ -339,11 +337,13 @@ void lep_priv_proc_one(const lep_session *s, const lep_sample *smp, double t, do
 }
 
 bool lep_priv_session_process(lep_session *s, const lep_sample *smp, double t, double t_utc,
-                              uint8_t flags, session_row *row)
+                              double arrived, uint8_t flags)
 {
     double y[LEP_AXES], off[LEP_AXES];
     int k;
     uint32_t phase;
+    uint64_t processed = lep_priv_sink_processed(&s->sink);
+    session_row row_, *row = &row_;
 
     if (s->proc.ended)
         return false;
@@ -361,7 +361,7 @@ bool lep_priv_session_process(lep_session *s, const lep_sample *smp, double t, d
         if (by_time && s->proc.tare_n == 0)
             s->proc.tare_until = t + s->proc.tare_duration;
         if (by_time && t >= s->proc.tare_until && s->proc.tare_n > 0) {
-            tare_finish(s, t, s->hs.processed); /* this sample comes after the averaging time */
+            tare_finish(s, t, processed); /* this sample comes after the averaging time */
             memcpy(off, s->proc.tare, sizeof off);
         } else {
             bool hold = s->proc.tare_hold;
@@ -370,7 +370,7 @@ bool lep_priv_session_process(lep_session *s, const lep_sample *smp, double t, d
             s->proc.tare_n++;
             flags |= LEP_SF_TARING;
             if (!by_time && s->proc.tare_n >= s->proc.tare_n_goal)
-                tare_finish(s, t, s->hs.processed + (hold || s->proc.dec_phase != 0u ? 0u : 1u));
+                tare_finish(s, t, processed + (hold || s->proc.dec_phase != 0u ? 0u : 1u));
             if (hold) {
                 s->proc.carry_flags |= flags & LEP_SF_GAP;
                 return false;
@@ -383,7 +383,7 @@ bool lep_priv_session_process(lep_session *s, const lep_sample *smp, double t, d
         s->proc.carry_flags |= flags & LEP_SF_GAP;
         return false;
     }
-    if (s->opt.duration_s > 0.0 && s->hs.processed > 0 &&
+    if (s->opt.duration_s > 0.0 && processed > 0 &&
         t - s->proc.first_delivered_t >= s->opt.duration_s) {
         s->proc.ended = true;
         return false;
@@ -393,11 +393,12 @@ bool lep_priv_session_process(lep_session *s, const lep_sample *smp, double t, d
     row->t_mono = t;
     row->t_utc = t_utc;
     fill_row(s, smp, y, off, row);
-    row->flags = flags | lep_priv_load_limits(s, row->si, t, s->hs.processed);
-    if (s->hs.processed == 0)
+    row->arrived = arrived;
+    row->flags = flags | lep_priv_load_limits(s, row->si, t, processed);
+    if (processed == 0)
         s->proc.first_delivered_t = t;
-    s->hs.processed++;
-    if (s->opt.count > 0 && s->hs.processed >= s->opt.count)
+    lep_priv_sink_row(&s->sink, row); /* row number `processed` */
+    if (s->opt.count > 0 && processed + 1u >= s->opt.count)
         s->proc.ended = true;
     return true;
 }

@@ -48,7 +48,7 @@ static uint64_t events_pushed(lep_session *s)
 {
     uint64_t n;
     pthread_mutex_lock(&s->mu);
-    n = s->events.pushed;
+    n = lep_priv_sink_pushed(&s->sink);
     pthread_mutex_unlock(&s->mu);
     return n;
 }
@@ -56,13 +56,11 @@ static uint64_t events_pushed(lep_session *s)
 /* Rows into the caller's batch: counted, and their events free to go. */
 static void deliver_rows(lep_session *s, lep_session_batch *b, double *first)
 {
-    size_t n = b->n;
-    lep_priv_rows_deliver(&s->rows, b, first);
-    if (b->n == n)
+    size_t n = lep_priv_sink_deliver(&s->sink, b, first);
+    if (n == 0)
         return;
     pthread_mutex_lock(&s->mu);
-    s->hs.h.delivered += b->n - n;
-    lep_priv_events_returned(&s->events, s->hs.h.delivered);
+    lep_priv_sink_returned(&s->sink, n);
     pthread_mutex_unlock(&s->mu);
 }
 
@@ -73,11 +71,11 @@ static int delivered(lep_session *s, read_call *c, double *now)
     lep_session_batch *b = c->b;
     for (;;) {
         deliver_rows(s, b, &c->first);
-        if (!(s->proc.ended && s->rows.len == s->rows.held))
+        if (!(s->proc.ended && lep_priv_sink_pending(&s->sink) == lep_priv_sink_held(&s->sink)))
             break;
-        s->rows.held = 0; /* nothing comes after the end to judge it by */
+        lep_priv_sink_release(&s->sink); /* nothing comes after the end to judge it by */
         lep_priv_timeline_forget_held(&s->tm.tl);
-        if (s->rows.len == 0)
+        if (lep_priv_sink_pending(&s->sink) == 0)
             return LEP_E_END;
     }
     if (b->n == b->cap)
@@ -112,7 +110,7 @@ static int port_wait(lep_session *s, read_call *c, double now, double data_deadl
     wake = c->got ? c->first + c->budget : s->tm.last_read_t + c->budget;
     if (c->probe)
         wake -= s->period_s;
-    if (s->rows.held > 0 && wake > s->tm.last_read_t + SESSION_CONFIRM_S)
+    if (lep_priv_sink_held(&s->sink) > 0 && wake > s->tm.last_read_t + SESSION_CONFIRM_S)
         wake = s->tm.last_read_t + SESSION_CONFIRM_S; /* judge a suspected hole soon */
     if (wake > c->deadline)
         wake = c->deadline;
@@ -209,7 +207,7 @@ static int read_one(lep_session *s, lep_session_batch *b)
     pthread_mutex_lock(&s->mu);
     lep_priv_proc_one(s, &smp, t, t + lep_priv_utc_offset(), &row);
     pthread_mutex_unlock(&s->mu);
-    lep_priv_rows_append(b, &row);
+    lep_priv_row_append(b, &row);
     return LEP_OK;
 }
 

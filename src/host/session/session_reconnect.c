@@ -26,11 +26,10 @@ void lep_priv_reconnect_lost(lep_session *s, int error, double now)
     lep_client_stats st;
     lep_client_get_stats(&s->client, &st);
     pthread_mutex_lock(&s->mu);
-    lep_priv_event_init(&ev, LEP_EV_DISCONNECTED, s->hs.processed, now);
+    lep_priv_event_init(&ev, LEP_EV_DISCONNECTED, lep_priv_sink_processed(&s->sink), now);
     ev.error = error;
     ev.gap_from = s->tm.last_sample_t;
-    lep_priv_events_push(&s->events, &ev);
-    lep_priv_health_lost(&s->hs, &st, error);
+    lep_priv_sink_lost(&s->sink, &ev, &st);
     lep_priv_timing_lost(s);
     pthread_mutex_unlock(&s->mu);
     if (!s->opt.reconnect) {
@@ -73,7 +72,7 @@ static int attempt(lep_session *s)
     }
     lep_client_get_stats(&s->client, &base);
     pthread_mutex_lock(&s->mu);
-    lep_priv_health_reconnected(&s->hs, &base);
+    lep_priv_sink_reconnected(&s->sink, &base);
     lep_priv_lowpass_restart(&s->proc.lp);
     pthread_mutex_unlock(&s->mu);
     r->port_missing = false;

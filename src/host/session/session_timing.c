@@ -6,7 +6,6 @@
 #include <math.h>
 
 #include "session_priv.h"
-#include "session_tap.h"
 
 void lep_priv_timing_start(session_timing *tm, double period_s, double gap_periods,
                            bool arrival_gaps)
@@ -17,14 +16,9 @@ void lep_priv_timing_start(session_timing *tm, double period_s, double gap_perio
     lep_priv_timeline_init(&tm->tl, period_s, gap_periods, arrival_gaps);
 }
 
-void lep_priv_session_tap_timeline(lep_session *s, const timeline_tap *tap)
-{
-    s->tm.tl.tap = tap;
-}
-
 void lep_priv_timing_lost(lep_session *s)
 {
-    s->rows.held = 0; /* a suspected hole ends in the loss itself */
+    lep_priv_sink_release(&s->sink); /* a suspected hole ends in the loss itself */
     lep_priv_timeline_restart(&s->tm.tl);
 }
 
@@ -54,9 +48,8 @@ static void gap_event(lep_session *s, int type, uint64_t sample, double from, do
     ev.gap_to = to;
     ev.lost = lost;
     ev.error = error;
-    lep_priv_events_push(&s->events, &ev);
+    lep_priv_sink_event(&s->sink, &ev);      /* counts the gap */
     s->proc.lp.settle = s->proc.lp.settle_n; /* the filter's output after a hole is a transient */
-    lep_priv_health_gap(&s->hs, from, to, lost);
 }
 
 uint64_t lep_priv_timing_seq(session_timing *tm, bool numbered, const lep_sample *got, size_t n,
@@ -85,21 +78,13 @@ uint64_t lep_priv_timing_seq(session_timing *tm, bool numbered, const lep_sample
 
 void lep_priv_timing_judged(lep_session *s, const timeline_verdict *v)
 {
-    session_rows *rows = &s->rows;
-    size_t b;
     if (!v->release)
         return;
-    if (v->gap && rows->held > 0) {
-        for (b = 0; b < rows->held; b++) {
-            session_row *r = lep_priv_rows_back(rows, b);
-            double t = r->t_mono + v->shift < r->arrived ? r->t_mono + v->shift : r->arrived;
-            r->t_utc += t - r->t_mono;
-            r->t_mono = t;
-        }
-        lep_priv_rows_back(rows, rows->held - 1u)->flags |= LEP_SF_GAP;
+    if (v->gap && lep_priv_sink_held(&s->sink) > 0) {
+        lep_priv_sink_gap_before_held(&s->sink, v->shift);
         gap_event(s, LEP_EV_GAP, s->tm.suspect_index, v->from, v->to, v->lost, 0);
     }
-    rows->held = 0;
+    lep_priv_sink_release(&s->sink);
 }
 
 uint8_t lep_priv_timing_sample(lep_session *s, uint32_t lost, double t)
@@ -107,13 +92,13 @@ uint8_t lep_priv_timing_sample(lep_session *s, uint32_t lost, double t)
     session_timing *tm = &s->tm;
     if (tm->gap_next) {
         double est = (t - tm->gap_from) * s->nominal_hz - 1.0;
-        gap_event(s, LEP_EV_RECONNECTED, s->hs.processed, tm->gap_from, t,
+        gap_event(s, LEP_EV_RECONNECTED, lep_priv_sink_processed(&s->sink), tm->gap_from, t,
                   clip_u32(floor(est + 0.5)), tm->gap_error);
         tm->gap_next = false;
         return LEP_SF_GAP;
     }
     if (lost > 0) {
-        gap_event(s, LEP_EV_GAP, s->hs.processed, tm->last_sample_t, t, lost, 0);
+        gap_event(s, LEP_EV_GAP, lep_priv_sink_processed(&s->sink), tm->last_sample_t, t, lost, 0);
         return LEP_SF_GAP;
     }
     return 0;
