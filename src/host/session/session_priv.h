@@ -21,11 +21,11 @@
  *                       hole and restarts the low-pass's settling count
  *   session_rows.c      processed rows waiting for a read, delivery into a
  *                       batch (session_rows)
- *   session_proc.c      overload, tare, low-pass, decimation, rotation, end of
+ *   session_chain.c      overload, tare, low-pass, decimation, rotation, end of
  *                       run (session_proc)
  *   session_load.c      payload compensation and limits on the SI values
  *                       (session_load)
- *   session_health.c    health counters (session_health_state; session_proc.c
+ *   session_health.c    health counters (session_health_state; session_chain.c
  *                       counts processed rows and h.overloads itself;
  *                       session_read.c counts h.delivered as rows are returned)
  *   session_events.c    the event queue (session_events)
@@ -59,7 +59,7 @@
 /* How often a vanished port is looked for while reconnecting. */
 #define SESSION_WATCH_S 0.02
 
-/* session_proc.c: 2nd-order Butterworth low-pass, one section per axis
+/* session_chain.c: 2nd-order Butterworth low-pass, one section per axis
  * (direct form II transposed), run on raw counts. */
 typedef struct session_lowpass {
     double cutoff_hz; /* 0: off */
@@ -80,7 +80,7 @@ typedef struct session_guard {
     bool closing;        /* lep_session_close has begun */
 } session_guard;
 
-/* session_proc.c: [mu] the processing of each sample. */
+/* session_chain.c: [mu] the processing of each sample. */
 typedef struct session_proc {
     double tare[LEP_AXES];
     bool tared;
@@ -240,7 +240,7 @@ void lep_priv_timing_judged(lep_session *s, const timeline_verdict *v);
  * numbers): queues the event, returns LEP_SF_GAP or 0. [mu] held. */
 uint8_t lep_priv_timing_sample(lep_session *s, uint32_t lost, double t);
 
-/* ---- session_proc.c ---- */
+/* ---- session_chain.c ---- */
 /* Process one sample: overload, tare, low-pass, decimation, rotation; false
  * when it is not delivered (start-up tare, decimation, end reached). [mu] held. */
 bool lep_priv_session_process(lep_session *s, const lep_sample *smp, double t, double t_utc,
