@@ -218,10 +218,16 @@ int lep_session_open_so(const lep_session_options *o, lep_session **out, char *e
      * read, `leptrino read`, says when it was taken). */
     s->start_mono = lep_monotonic_seconds();
     s->start_utc = s->start_mono + lep_priv_utc_offset();
-    memcpy(s->proc.rot, o->rotation, sizeof s->proc.rot);
-    memcpy(s->proc.shift, o->shift_m, sizeof s->proc.shift);
-    s->proc.decimate = o->decimate;
-    lep_priv_load_init(&s->load, o);
+    {
+        session_chain_config cc;
+        memset(&cc, 0, sizeof cc);
+        cc.rated = s->rated;
+        cc.saturation = s->saturation;
+        cc.tare_samples = o->tare_samples;
+        cc.duration_s = o->duration_s;
+        cc.count = o->count;
+        lep_priv_chain_init(&s->chain, o, &cc);
+    }
     rc = lep_session_set_rotation(s, o->rotation, o->shift_m);
     if (rc != LEP_OK) {
         lep_priv_set_err(err, errlen, "session: rotation is not a rotation matrix (R R^T != I)");
@@ -280,7 +286,7 @@ static int session_start(lep_session *s)
     lep_priv_sink_start(&s->sink, s->nominal_hz, &base);
     s->start_mono = now;
     s->start_utc = now + s->tm.utc_off;
-    lep_priv_proc_start(s);
+    lep_priv_chain_start(&s->chain);
     pthread_mutex_unlock(&s->mu);
     s->streaming = true;
     s->backlog = false;
@@ -345,7 +351,7 @@ static int session_stop(lep_session *s)
             rc = lep_client_stop(&s->client);
     }
     pthread_mutex_lock(&s->mu);
-    lep_priv_proc_stop(&s->proc);
+    lep_priv_chain_stop(&s->chain);
     pthread_mutex_unlock(&s->mu);
     return rc == LEP_E_DISCONNECTED ? LEP_OK : rc;
 }

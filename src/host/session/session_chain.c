@@ -1,18 +1,21 @@
-/* Host session, the processing of each sample: overload episodes, tare
- * (averaged in raw counts), the host low-pass (2nd-order Butterworth),
+/* Host session, the processing chain (session_chain.h): overload episodes,
+ * tare (averaged in raw counts), the host low-pass (2nd-order Butterworth),
  * payload compensation and limits (session_load.c), decimation, rotation and
- * moment-point shift, and the end of a run (duration or count). */
+ * moment-point shift, and the end of a run (duration or count). Its rows and
+ * events go into the sink it is given. */
 #define _POSIX_C_SOURCE 200809L
 
 #include <math.h>
 #include <string.h>
 
 #include "leptrino/error.h"
-#include "session_priv.h"
+#include "session_chain.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
 #endif
+
+#define LOWPASS_NAME "2nd-order Butterworth (bilinear, prewarped)"
 
 /* ---- low-pass ---- */
 
@@ -38,11 +41,6 @@ void lep_priv_lowpass_design(session_lowpass *lp, double cutoff_hz, double fs)
     tau = 1.0 - (lp->a1 + 2.0 * lp->a2) / (1.0 + lp->a1 + lp->a2);
     lp->delay_s = tau / fs;
     lp->settle_n = (uint32_t)ceil(fs / cutoff_hz);
-}
-
-void lep_priv_lowpass_restart(session_lowpass *lp)
-{
-    lp->primed = false;
 }
 
 /* Filter raw counts x into y (direct form II transposed). The first sample
@@ -74,16 +72,22 @@ static bool lowpass_run(session_lowpass *lp, const int16_t raw[LEP_AXES], double
     return false;
 }
 
-int lep_session_set_lowpass(lep_session *s, double cutoff_hz)
+int lep_priv_chain_set_lowpass(session_chain *ch, double cutoff_hz, double fs)
 {
-    if (s == NULL)
-        return LEP_E_ARG;
-    if (!isfinite(cutoff_hz) || cutoff_hz < 0.0 || cutoff_hz > 0.45 * s->nominal_hz)
+    if (!isfinite(cutoff_hz) || cutoff_hz < 0.0 || cutoff_hz > 0.45 * fs)
         return LEP_E_VALUE;
-    pthread_mutex_lock(&s->mu);
-    lep_priv_lowpass_design(&s->proc.lp, cutoff_hz, s->nominal_hz);
-    pthread_mutex_unlock(&s->mu);
+    lep_priv_lowpass_design(&ch->lp, cutoff_hz, fs);
     return LEP_OK;
+}
+
+void lep_priv_chain_restart_filter(session_chain *ch)
+{
+    ch->lp.primed = false;
+}
+
+void lep_priv_chain_hole(session_chain *ch)
+{
+    ch->lp.settle = ch->lp.settle_n; /* the filter's output after a hole is a transient */
 }
 
 /* ---- rotation ---- */
@@ -106,15 +110,14 @@ void lep_rotation_from_rpy(double roll, double pitch, double yaw, double r[9])
     r[8] = cp * cr;
 }
 
-int lep_session_set_rotation(lep_session *s, const double rotation[9], const double shift_m[3])
+int lep_priv_chain_set_rotation(session_chain *ch, const double rotation[9],
+                                const double shift_m[3])
 {
     static const double identity[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
     static const double zero[3] = { 0, 0, 0 };
     const double *r = rotation != NULL ? rotation : identity;
     const double *p = shift_m != NULL ? shift_m : zero;
     int i, j, k;
-    if (s == NULL)
-        return LEP_E_ARG;
     for (i = 0; i < 9; i++)
         if (!isfinite(r[i]))
             return LEP_E_VALUE;
@@ -131,15 +134,13 @@ int lep_session_set_rotation(lep_session *s, const double rotation[9], const dou
                 return LEP_E_VALUE;
         }
     }
-    pthread_mutex_lock(&s->mu);
-    memcpy(s->proc.rot, r, sizeof s->proc.rot);
-    memcpy(s->proc.shift, p, sizeof s->proc.shift);
-    pthread_mutex_unlock(&s->mu);
+    memcpy(ch->rot, r, sizeof ch->rot);
+    memcpy(ch->shift, p, sizeof ch->shift);
     return LEP_OK;
 }
 
 /* f' = R f, m' = R m - r x f' (the moment about the point r). */
-static void rotate(const session_proc *pr, double v[LEP_AXES])
+static void rotate(const session_chain *pr, double v[LEP_AXES])
 {
     const double *r = pr->rot, *p = pr->shift;
     double f[3], m[3];
@@ -156,249 +157,245 @@ static void rotate(const session_proc *pr, double v[LEP_AXES])
     v[5] = m[2] - (p[0] * f[1] - p[1] * f[0]);
 }
 
+/* ---- the run ---- */
+
+void lep_priv_chain_init(session_chain *ch, const lep_session_options *o,
+                         const session_chain_config *cfg)
+{
+    memset(ch, 0, sizeof *ch);
+    ch->cfg = *cfg;
+    memcpy(ch->rot, o->rotation, sizeof ch->rot);
+    memcpy(ch->shift, o->shift_m, sizeof ch->shift);
+    ch->decimate = o->decimate;
+    lep_priv_load_init(&ch->load, o);
+}
+
 /* ---- tare ---- */
 
-static void begin_tare(lep_session *s, unsigned n, double duration_s, bool hold)
+static void begin_tare(session_chain *ch, unsigned n, double duration_s, bool hold)
 {
-    s->proc.taring = true;
-    s->proc.tare_hold = hold;
-    s->proc.tare_n_goal = n;
-    s->proc.tare_duration = duration_s;
-    s->proc.tare_until = 0.0;
-    s->proc.tare_n = 0;
-    memset(s->proc.tare_sum, 0, sizeof s->proc.tare_sum);
+    ch->taring = true;
+    ch->tare_hold = hold;
+    ch->tare_n_goal = n;
+    ch->tare_duration = duration_s;
+    ch->tare_until = 0.0;
+    ch->tare_n = 0;
+    memset(ch->tare_sum, 0, sizeof ch->tare_sum);
 }
 
-void lep_priv_proc_start(lep_session *s)
+void lep_priv_chain_start(session_chain *ch)
 {
-    session_proc *p = &s->proc;
-    if (s->opt.tare_samples > 0)
-        begin_tare(s, s->opt.tare_samples, 0.0, true);
-    lep_priv_lowpass_restart(&p->lp);
-    lep_priv_load_start(&s->load);
-    p->dec_phase = 0;
-    p->carry_flags = 0;
-    p->overloaded = false;
-    p->ended = false;
-    p->first_delivered_t = 0.0;
+    if (ch->cfg.tare_samples > 0)
+        begin_tare(ch, ch->cfg.tare_samples, 0.0, true);
+    ch->lp.primed = false;
+    lep_priv_load_start(&ch->load);
+    ch->dec_phase = 0;
+    ch->carry_flags = 0;
+    ch->overloaded = false;
+    ch->ended = false;
+    ch->first_delivered_t = 0.0;
 }
 
-void lep_priv_proc_stop(session_proc *p)
+void lep_priv_chain_stop(session_chain *ch)
 {
-    p->taring = false;
-    p->tare_hold = false;
+    ch->taring = false;
+    ch->tare_hold = false;
 }
 
-static void tare_event(lep_session *s, double t, uint64_t sample)
+bool lep_priv_chain_ended(const session_chain *ch)
+{
+    return ch->ended;
+}
+
+static void tare_event(const session_chain *ch, session_sink *sk, double t, uint64_t sample)
 {
     lep_session_event ev;
     lep_priv_event_init(&ev, LEP_EV_TARE, sample, t);
-    memcpy(ev.tare, s->proc.tare, sizeof ev.tare);
-    lep_priv_sink_event(&s->sink, &ev);
+    memcpy(ev.tare, ch->tare, sizeof ev.tare);
+    lep_priv_sink_event(sk, &ev);
 }
 
-/* The new offset applies from delivered sample number `sample` on. With a
- * payload set, the offset is the bias alone: the mean less the payload's
- * expected wrench at the gravity in force. */
-static void tare_finish(lep_session *s, double t, uint64_t sample)
+/* The new offset applies from row number `sample` on. With a payload set,
+ * the offset is the bias alone: the mean less the payload's expected wrench
+ * at the gravity in force. */
+static void tare_finish(session_chain *ch, session_sink *sk, double t, uint64_t sample)
 {
     double payload[LEP_AXES];
     int k;
-    lep_priv_load_counts(&s->load, &s->rated, payload);
+    lep_priv_load_counts(&ch->load, &ch->cfg.rated, payload);
     for (k = 0; k < LEP_AXES; k++)
-        s->proc.tare[k] = s->proc.tare_sum[k] / (double)s->proc.tare_n - payload[k];
-    s->proc.tared = true;
-    s->proc.taring = false;
-    s->proc.tare_hold = false;
-    tare_event(s, t, sample);
+        ch->tare[k] = ch->tare_sum[k] / (double)ch->tare_n - payload[k];
+    ch->tared = true;
+    ch->taring = false;
+    ch->tare_hold = false;
+    tare_event(ch, sk, t, sample);
 }
 
-int lep_session_tare(lep_session *s, int samples, double duration_s)
+void lep_priv_chain_tare(session_chain *ch, unsigned n, double duration_s)
 {
-    if (s == NULL || samples < 0 || !isfinite(duration_s) || duration_s < 0.0 ||
-        (samples == 0 && duration_s <= 0.0))
-        return LEP_E_ARG;
-    pthread_mutex_lock(&s->mu);
-    begin_tare(s, (unsigned)samples, samples > 0 ? 0.0 : duration_s, false);
-    pthread_mutex_unlock(&s->mu);
-    return LEP_OK;
+    begin_tare(ch, n, n > 0 ? 0.0 : duration_s, false);
 }
 
-int lep_session_untare(lep_session *s)
+void lep_priv_chain_set_tare(session_chain *ch, session_sink *sk, const double offset[LEP_AXES],
+                             double t, uint64_t sample)
 {
-    if (s == NULL)
-        return LEP_E_ARG;
-    pthread_mutex_lock(&s->mu);
-    s->proc.taring = false;
-    s->proc.tare_hold = false;
-    s->proc.tared = false;
-    memset(s->proc.tare, 0, sizeof s->proc.tare);
-    tare_event(s, lep_monotonic_seconds(), lep_priv_sink_processed(&s->sink));
-    pthread_mutex_unlock(&s->mu);
-    return LEP_OK;
-}
-
-int lep_session_set_tare(lep_session *s, const double offset[LEP_AXES])
-{
-    int k;
-    if (s == NULL || offset == NULL)
-        return LEP_E_ARG;
-    for (k = 0; k < LEP_AXES; k++)
-        if (!isfinite(offset[k]))
-            return LEP_E_ARG;
-    pthread_mutex_lock(&s->mu);
-    s->proc.taring = false;
-    s->proc.tare_hold = false;
-    s->proc.tared = true;
-    memcpy(s->proc.tare, offset, sizeof s->proc.tare);
-    tare_event(s, lep_monotonic_seconds(), lep_priv_sink_processed(&s->sink));
-    pthread_mutex_unlock(&s->mu);
-    return LEP_OK;
-}
-
-int lep_session_get_tare(lep_session *s, double offset[LEP_AXES])
-{
-    bool tared;
-    if (s == NULL) {
-        if (offset != NULL)
-            memset(offset, 0, sizeof(double) * LEP_AXES);
-        return LEP_E_ARG;
-    }
-    pthread_mutex_lock(&s->mu);
+    ch->taring = false;
+    ch->tare_hold = false;
+    ch->tared = offset != NULL;
     if (offset != NULL)
-        memcpy(offset, s->proc.tare, sizeof s->proc.tare);
-    tared = s->proc.tared;
-    pthread_mutex_unlock(&s->mu);
-    return tared ? 1 : 0;
+        memcpy(ch->tare, offset, sizeof ch->tare);
+    else
+        memset(ch->tare, 0, sizeof ch->tare);
+    tare_event(ch, sk, t, sample);
 }
 
-int lep_session_taring(lep_session *s)
+bool lep_priv_chain_tared(const session_chain *ch, double offset[LEP_AXES])
 {
-    bool taring;
-    if (s == NULL)
-        return 0;
-    pthread_mutex_lock(&s->mu);
-    taring = s->proc.taring;
-    pthread_mutex_unlock(&s->mu);
-    return taring ? 1 : 0;
+    if (offset != NULL)
+        memcpy(offset, ch->tare, sizeof ch->tare);
+    return ch->tared;
+}
+
+bool lep_priv_chain_taring(const session_chain *ch)
+{
+    return ch->taring;
+}
+
+void lep_priv_chain_meta(const session_chain *ch, lep_session_meta *out)
+{
+    out->lowpass_hz = ch->lp.cutoff_hz;
+    if (ch->lp.cutoff_hz > 0.0) {
+        size_t n = sizeof LOWPASS_NAME < sizeof out->lowpass_name ? sizeof LOWPASS_NAME
+                                                                  : sizeof out->lowpass_name;
+        memcpy(out->lowpass_name, LOWPASS_NAME, n);
+        out->lowpass_name[sizeof out->lowpass_name - 1u] = '\0';
+        out->lowpass_delay_s = ch->lp.delay_s;
+    }
+    out->decimate = ch->decimate;
+    memcpy(out->rotation, ch->rot, sizeof out->rotation);
+    memcpy(out->shift_m, ch->shift, sizeof out->shift_m);
+    out->tared = ch->tared;
+    memcpy(out->tare, ch->tare, sizeof out->tare);
+    lep_priv_load_meta(&ch->load, out);
 }
 
 /* ---- one sample ---- */
 
-static void overload(lep_session *s, const lep_sample *smp, double t, uint8_t *flags)
+static void overload(session_chain *ch, session_sink *sk, const lep_sample *smp, double t,
+                     uint8_t *flags)
 {
-    uint8_t axes = lep_sample_saturated(smp, s->saturation);
+    uint8_t axes = lep_sample_saturated(smp, ch->cfg.saturation);
     bool over = (smp->status & LEP_STATUS_OVERLOAD) != 0u || axes != 0u;
     lep_session_event ev;
     if (over)
         *flags |= LEP_SF_OVERLOAD;
-    if (over == s->proc.overloaded)
+    if (over == ch->overloaded)
         return;
-    s->proc.overloaded = over;
+    ch->overloaded = over;
     lep_priv_event_init(&ev, over ? LEP_EV_OVERLOAD_BEGIN : LEP_EV_OVERLOAD_END,
-                        lep_priv_sink_processed(&s->sink), t);
+                        lep_priv_sink_processed(sk), t);
     ev.axes = axes;
     ev.status = smp->status;
-    lep_priv_sink_event(&s->sink, &ev); /* counts an overload begun */
+    lep_priv_sink_event(sk, &ev); /* counts an overload begun */
 }
 
 /* zeroed, si (tare after the filter: exact, as the filter's gain at 0 Hz is
  * 1; the payload's gravity wrench removed), rotated and shifted; the
  * sample's own fields. */
-static void fill_row(const lep_session *s, const lep_sample *smp, const double y[LEP_AXES],
+static void fill_row(const session_chain *ch, const lep_sample *smp, const double y[LEP_AXES],
                      const double off[LEP_AXES], session_row *row)
 {
     int k;
     memcpy(row->raw, smp->raw, sizeof row->raw);
     for (k = 0; k < LEP_AXES; k++) {
         row->zeroed[k] = (double)smp->raw[k] - off[k];
-        row->si[k] = (y[k] - off[k]) * (double)s->rated.axis[k] / (double)LEP_RAW_FULL_SCALE;
+        row->si[k] = (y[k] - off[k]) * (double)ch->cfg.rated.axis[k] / (double)LEP_RAW_FULL_SCALE;
     }
-    lep_priv_load_compensate(&s->load, row->si);
-    rotate(&s->proc, row->si);
+    lep_priv_load_compensate(&ch->load, row->si);
+    rotate(ch, row->si);
     row->status = smp->status;
     row->seq = smp->reserved;
 }
 
-void lep_priv_proc_one(const lep_session *s, const lep_sample *smp, double t, double t_utc,
-                       session_row *row)
+void lep_priv_chain_one(const session_chain *ch, const lep_sample *smp, double t, double t_utc,
+                        session_row *row)
 {
     double y[LEP_AXES];
     int k;
     for (k = 0; k < LEP_AXES; k++)
         y[k] = (double)smp->raw[k];
-    fill_row(s, smp, y, s->proc.tare, row);
+    fill_row(ch, smp, y, ch->tare, row);
     row->t_mono = t;
     row->t_utc = t_utc;
-    row->flags =
-        (smp->status & LEP_STATUS_OVERLOAD) != 0u || lep_sample_saturated(smp, s->saturation) != 0u
-            ? LEP_SF_OVERLOAD
-            : 0u;
+    row->arrived = t;
+    row->flags = (smp->status & LEP_STATUS_OVERLOAD) != 0u ||
+                         lep_sample_saturated(smp, ch->cfg.saturation) != 0u
+                     ? LEP_SF_OVERLOAD
+                     : 0u;
 }
 
-bool lep_priv_session_process(lep_session *s, const lep_sample *smp, double t, double t_utc,
-                              double arrived, uint8_t flags)
+void lep_priv_chain_sample(session_chain *ch, session_sink *sk, const lep_sample *smp, double t,
+                           double t_utc, double arrived, uint8_t flags)
 {
     double y[LEP_AXES], off[LEP_AXES];
     int k;
     uint32_t phase;
-    uint64_t processed = lep_priv_sink_processed(&s->sink);
-    session_row row_, *row = &row_;
+    uint64_t processed = lep_priv_sink_processed(sk);
+    session_row row;
 
-    if (s->proc.ended)
-        return false;
-    overload(s, smp, t, &flags);
-    if (s->proc.lp.cutoff_hz > 0.0) {
-        if (lowpass_run(&s->proc.lp, smp->raw, y))
+    if (ch->ended)
+        return;
+    overload(ch, sk, smp, t, &flags);
+    if (ch->lp.cutoff_hz > 0.0) {
+        if (lowpass_run(&ch->lp, smp->raw, y))
             flags |= LEP_SF_SETTLING;
     } else {
         for (k = 0; k < LEP_AXES; k++)
             y[k] = (double)smp->raw[k];
     }
-    memcpy(off, s->proc.tare, sizeof off); /* a sample averaged by a tare keeps the old offset */
-    if (s->proc.taring) {
-        bool by_time = s->proc.tare_n_goal == 0;
-        if (by_time && s->proc.tare_n == 0)
-            s->proc.tare_until = t + s->proc.tare_duration;
-        if (by_time && t >= s->proc.tare_until && s->proc.tare_n > 0) {
-            tare_finish(s, t, processed); /* this sample comes after the averaging time */
-            memcpy(off, s->proc.tare, sizeof off);
+    memcpy(off, ch->tare, sizeof off); /* a sample averaged by a tare keeps the old offset */
+    if (ch->taring) {
+        bool by_time = ch->tare_n_goal == 0;
+        if (by_time && ch->tare_n == 0)
+            ch->tare_until = t + ch->tare_duration;
+        if (by_time && t >= ch->tare_until && ch->tare_n > 0) {
+            tare_finish(ch, sk, t, processed); /* this sample comes after the averaging time */
+            memcpy(off, ch->tare, sizeof off);
         } else {
-            bool hold = s->proc.tare_hold;
+            bool hold = ch->tare_hold;
             for (k = 0; k < LEP_AXES; k++)
-                s->proc.tare_sum[k] += (double)smp->raw[k];
-            s->proc.tare_n++;
+                ch->tare_sum[k] += (double)smp->raw[k];
+            ch->tare_n++;
             flags |= LEP_SF_TARING;
-            if (!by_time && s->proc.tare_n >= s->proc.tare_n_goal)
-                tare_finish(s, t, processed + (hold || s->proc.dec_phase != 0u ? 0u : 1u));
+            if (!by_time && ch->tare_n >= ch->tare_n_goal)
+                tare_finish(ch, sk, t, processed + (hold || ch->dec_phase != 0u ? 0u : 1u));
             if (hold) {
-                s->proc.carry_flags |= flags & LEP_SF_GAP;
-                return false;
+                ch->carry_flags |= flags & LEP_SF_GAP;
+                return;
             }
         }
     }
-    phase = s->proc.dec_phase;
-    s->proc.dec_phase = s->proc.decimate > 1u ? (phase + 1u) % s->proc.decimate : 0u;
+    phase = ch->dec_phase;
+    ch->dec_phase = ch->decimate > 1u ? (phase + 1u) % ch->decimate : 0u;
     if (phase != 0u) {
-        s->proc.carry_flags |= flags & LEP_SF_GAP;
-        return false;
+        ch->carry_flags |= flags & LEP_SF_GAP;
+        return;
     }
-    if (s->opt.duration_s > 0.0 && processed > 0 &&
-        t - s->proc.first_delivered_t >= s->opt.duration_s) {
-        s->proc.ended = true;
-        return false;
+    if (ch->cfg.duration_s > 0.0 && processed > 0 &&
+        t - ch->first_delivered_t >= ch->cfg.duration_s) {
+        ch->ended = true;
+        return;
     }
-    flags |= s->proc.carry_flags;
-    s->proc.carry_flags = 0;
-    row->t_mono = t;
-    row->t_utc = t_utc;
-    fill_row(s, smp, y, off, row);
-    row->arrived = arrived;
-    row->flags = flags | lep_priv_load_limits(s, row->si, t, processed);
+    flags |= ch->carry_flags;
+    ch->carry_flags = 0;
+    row.t_mono = t;
+    row.t_utc = t_utc;
+    row.arrived = arrived;
+    fill_row(ch, smp, y, off, &row);
+    row.flags = flags | lep_priv_load_limits(&ch->load, sk, row.si, t, processed);
     if (processed == 0)
-        s->proc.first_delivered_t = t;
-    lep_priv_sink_row(&s->sink, row); /* row number `processed` */
-    if (s->opt.count > 0 && processed + 1u >= s->opt.count)
-        s->proc.ended = true;
-    return true;
+        ch->first_delivered_t = t;
+    lep_priv_sink_row(sk, &row); /* row number `processed` */
+    if (ch->cfg.count > 0 && processed + 1u >= ch->cfg.count)
+        ch->ended = true;
 }

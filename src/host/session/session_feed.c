@@ -58,7 +58,8 @@ void lep_priv_session_feed(lep_session *s, const uint8_t *data, size_t len, doub
             flags = lep_priv_timing_sample(s, lost[i], t);
             lep_priv_sink_received(&s->sink, t);
             if (lep_priv_sink_room(&s->sink))
-                (void)lep_priv_session_process(s, &got[i], t, t + tm->utc_off, t_read, flags);
+                lep_priv_chain_sample(&s->chain, &s->sink, &got[i], t, t + tm->utc_off, t_read,
+                                      flags);
             tm->last_sample_t = t;
         }
         if (v.extend) { /* too soon to judge */

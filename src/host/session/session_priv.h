@@ -21,11 +21,11 @@
  *                       hole and restarts the low-pass's settling count
  *   session_rows.c      processed rows waiting for a read, delivery into a
  *                       batch (session_rows)
- *   session_chain.c      overload, tare, low-pass, decimation, rotation, end of
+ *   session_proc.c      overload, tare, low-pass, decimation, rotation, end of
  *                       run (session_proc)
  *   session_load.c      payload compensation and limits on the SI values
  *                       (session_load)
- *   session_health.c    health counters (session_health_state; session_chain.c
+ *   session_health.c    health counters (session_health_state; session_proc.c
  *                       counts processed rows and h.overloads itself;
  *                       session_read.c counts h.delivered as rows are returned)
  *   session_events.c    the event queue (session_events)
@@ -46,6 +46,7 @@
 #include "leptrino/session.h"
 #include "leptrino/sim.h"
 #include "struct_api.h"
+#include "session_chain.h"
 #include "session_clock.h"
 #include "session_sink.h"
 #include "session_timeline.h"
@@ -59,18 +60,6 @@
 /* How often a vanished port is looked for while reconnecting. */
 #define SESSION_WATCH_S 0.02
 
-/* session_chain.c: 2nd-order Butterworth low-pass, one section per axis
- * (direct form II transposed), run on raw counts. */
-typedef struct session_lowpass {
-    double cutoff_hz; /* 0: off */
-    double b0, b1, b2, a1, a2;
-    double z1[LEP_AXES], z2[LEP_AXES];
-    bool primed;       /* state set from a sample (steady state) */
-    uint32_t settle;   /* samples left flagged LEP_SF_SETTLING */
-    uint32_t settle_n; /* samples of one settling period */
-    double delay_s;    /* group delay at 0 Hz */
-} session_lowpass;
-
 /* session_guard.c: the public entry points' thread guard. */
 typedef struct session_guard {
     pthread_mutex_t mu;
@@ -79,38 +68,6 @@ typedef struct session_guard {
     bool driving;        /* a driving call (start, read, read_one, stop, set_latency) runs */
     bool closing;        /* lep_session_close has begun */
 } session_guard;
-
-/* session_chain.c: [mu] the processing of each sample. */
-typedef struct session_proc {
-    double tare[LEP_AXES];
-    bool tared;
-    bool taring;
-    bool tare_hold;       /* the start-up tare: its samples are not delivered */
-    uint32_t tare_n_goal; /* samples to average (0: by time) */
-    double tare_until;    /* by time: arrival time that ends it (set at its first sample) */
-    double tare_duration;
-    double tare_sum[LEP_AXES];
-    uint32_t tare_n;
-    session_lowpass lp;
-    double rot[9];
-    double shift[3];
-    unsigned decimate;
-    uint32_t dec_phase;
-    uint8_t carry_flags; /* LEP_SF_GAP of a sample that decimation dropped */
-    bool overloaded;
-    bool ended; /* duration or count reached */
-    double first_delivered_t;
-} session_proc;
-
-/* session_load.c: [mu] the payload's gravity wrench removed from the SI
- * values, and the limits on what is left. */
-typedef struct session_load {
-    lep_payload payload;     /* mass 0: none */
-    double gravity[3];       /* sensor frame, m/s^2 */
-    double wrench[LEP_AXES]; /* the payload's gravity wrench at gravity (N, N m, sensor frame) */
-    double limit[LEP_AXES];  /* N, N m on the output SI values; 0: none */
-    bool beyond;             /* in a limit episode */
-} session_load;
 
 /* session_timing.c: stamps and gaps (driving thread; its gap events and
  * counters go through [mu]). The model of the sensor's clock, the stamps and
@@ -173,8 +130,7 @@ struct lep_session {
     session_reconnect rc;
 
     /* ---- [mu] ---- */
-    session_proc proc;
-    session_load load;
+    session_chain chain;
     session_sink sink; /* rows (driving thread), events and health [mu] */
     double start_utc;  /* metadata */
     double start_mono;
@@ -239,40 +195,5 @@ void lep_priv_timing_judged(lep_session *s, const timeline_verdict *v);
 /* Gap before a sample stamped t (a reconnect, or `lost` missing sequence
  * numbers): queues the event, returns LEP_SF_GAP or 0. [mu] held. */
 uint8_t lep_priv_timing_sample(lep_session *s, uint32_t lost, double t);
-
-/* ---- session_chain.c ---- */
-/* Process one sample: overload, tare, low-pass, decimation, rotation; false
- * when it is not delivered (start-up tare, decimation, end reached). [mu] held. */
-bool lep_priv_session_process(lep_session *s, const lep_sample *smp, double t, double t_utc,
-                              double arrived, uint8_t flags);
-/* A handshake sample (outside the stream) into row: the tare offsets, SI
- * units and output frame in force; LEP_SF_OVERLOAD when overloaded. No
- * low-pass, decimation or tare averaging (they are the stream's), no event.
- * [mu] held. */
-void lep_priv_proc_one(const lep_session *s, const lep_sample *smp, double t, double t_utc,
-                       session_row *row);
-/* A new stream: the start-up tare when asked, the low-pass restarted. [mu] held. */
-void lep_priv_proc_start(lep_session *s);
-/* The stream stopped: a tare in progress ends without a result. [mu] held. */
-void lep_priv_proc_stop(session_proc *p);
-void lep_priv_lowpass_design(session_lowpass *lp, double cutoff_hz, double fs);
-/* The next sample sets the low-pass state again (a new stream, a reconnect). */
-void lep_priv_lowpass_restart(session_lowpass *lp);
-
-/* ---- session_load.c ([mu] held for the lep_priv_ ones) ---- */
-/* Check the payload, gravity and limits of options o (one line in err). */
-int lep_priv_load_check(const lep_session_options *o, char *err, size_t errlen);
-/* From checked options. */
-void lep_priv_load_init(session_load *l, const lep_session_options *o);
-/* A new stream: no limit episode. */
-void lep_priv_load_start(session_load *l);
-/* Remove the payload's gravity wrench from si (N, N m, sensor frame). */
-void lep_priv_load_compensate(const session_load *l, double si[LEP_AXES]);
-/* The payload's gravity wrench in counts through rated (for a tare's offset). */
-void lep_priv_load_counts(const session_load *l, const lep_rated *rated, double counts[LEP_AXES]);
-/* Check a delivered row's SI values (output frame) against the limits: the
- * LEP_SF_LIMIT flag or 0, and the episode's events (before delivered sample
- * number `sample`, at t). */
-uint8_t lep_priv_load_limits(lep_session *s, const double si[LEP_AXES], double t, uint64_t sample);
 
 #endif

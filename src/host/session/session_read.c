@@ -71,7 +71,8 @@ static int delivered(lep_session *s, read_call *c, double *now)
     lep_session_batch *b = c->b;
     for (;;) {
         deliver_rows(s, b, &c->first);
-        if (!(s->proc.ended && lep_priv_sink_pending(&s->sink) == lep_priv_sink_held(&s->sink)))
+        if (!(lep_priv_chain_ended(&s->chain) &&
+              lep_priv_sink_pending(&s->sink) == lep_priv_sink_held(&s->sink)))
             break;
         lep_priv_sink_release(&s->sink); /* nothing comes after the end to judge it by */
         lep_priv_timeline_forget_held(&s->tm.tl);
@@ -205,7 +206,7 @@ static int read_one(lep_session *s, lep_session_batch *b)
     if (rc != LEP_OK)
         return rc;
     pthread_mutex_lock(&s->mu);
-    lep_priv_proc_one(s, &smp, t, t + lep_priv_utc_offset(), &row);
+    lep_priv_chain_one(&s->chain, &smp, t, t + lep_priv_utc_offset(), &row);
     pthread_mutex_unlock(&s->mu);
     lep_priv_row_append(b, &row);
     return LEP_OK;

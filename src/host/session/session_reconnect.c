@@ -73,7 +73,7 @@ static int attempt(lep_session *s)
     lep_client_get_stats(&s->client, &base);
     pthread_mutex_lock(&s->mu);
     lep_priv_sink_reconnected(&s->sink, &base);
-    lep_priv_lowpass_restart(&s->proc.lp);
+    lep_priv_chain_restart_filter(&s->chain);
     pthread_mutex_unlock(&s->mu);
     r->port_missing = false;
     lep_priv_session_stream_reset(s, lep_monotonic_seconds());

@@ -48,8 +48,8 @@ static void gap_event(lep_session *s, int type, uint64_t sample, double from, do
     ev.gap_to = to;
     ev.lost = lost;
     ev.error = error;
-    lep_priv_sink_event(&s->sink, &ev);      /* counts the gap */
-    s->proc.lp.settle = s->proc.lp.settle_n; /* the filter's output after a hole is a transient */
+    lep_priv_sink_event(&s->sink, &ev); /* counts the gap */
+    lep_priv_chain_hole(&s->chain);
 }
 
 uint64_t lep_priv_timing_seq(session_timing *tm, bool numbered, const lep_sample *got, size_t n,
