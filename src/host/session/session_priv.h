@@ -10,7 +10,7 @@
  *                       guard, in passes that see a close): waiting,
  *                       the latency budget, reading the port (rbuf, backlog)
  *   session_reconnect.c loss of the stream and reconnection (session_reconnect)
- *   session_port.c      connecting and disconnecting the port: open, start-up
+ *   session_reader.c      connecting and disconnecting the port: open, start-up
  *                       recovery, identity check (the port fields of lep_session)
  *   session_feed.c      port bytes -> frames -> samples -> stamped, processed
  *                       rows (no struct of its own)
@@ -107,7 +107,7 @@ struct lep_session {
     char port_buf[256];
     char link_buf[128];
     lep_sim *sim;
-    /* ---- the port (session_port.c) ---- */
+    /* ---- the port (session_reader.c) ---- */
     lep_serial *serial; /* NULL while disconnected */
     lep_client client;
     int conn;                    /* enum session_conn */
@@ -149,7 +149,7 @@ void lep_priv_reconnect_lost(lep_session *s, int error, double now);
  * (no later than deadline), or attempt. False when deadline passed asleep. */
 bool lep_priv_reconnect_wait(lep_session *s, double now, double deadline);
 
-/* ---- session_port.c ---- */
+/* ---- session_reader.c ---- */
 /* Open the port, start-up recovery, identify (s->info). */
 int lep_priv_session_connect(lep_session *s, char *err, size_t errlen);
 void lep_priv_session_disconnect(lep_session *s);
