@@ -1,34 +1,68 @@
-/* Host session, timing: the session's side of stamps and gaps. The model of
- * the sensor's clock, the stamps and the gaps from arrival times are the
- * timeline's (session_timeline.c); here its verdicts are applied to the rows
- * and events, and the gaps it cannot see are found: after a reconnect, and
- * from the virtual sensor's sequence numbers. */
+/* Host session, timing (session_timing.h): the session's side of stamps and
+ * gaps. The model of the sensor's clock, the stamps and the gaps from
+ * arrival times are the timeline's (session_timeline.c); here its verdicts
+ * are applied to the rows held back in the sink, and the gaps it cannot see
+ * are found: after a reconnect, and from the virtual sensor's sequence
+ * numbers. */
 #include <math.h>
 
-#include "session_priv.h"
+#include "session_clock.h"
+#include "session_timing.h"
 
-void lep_priv_timing_start(session_timing *tm, double period_s, double gap_periods,
-                           bool arrival_gaps)
+void lep_priv_timing_start(session_timing *tm, double nominal_hz, double gap_periods, bool numbered)
 {
     tm->utc_off = lep_priv_utc_offset();
+    tm->hz = nominal_hz;
+    tm->numbered = numbered;
     tm->have_seq = false;
     tm->gap_next = false;
-    lep_priv_timeline_init(&tm->tl, period_s, gap_periods, arrival_gaps);
+    lep_priv_timeline_init(&tm->tl, 1.0 / nominal_hz, gap_periods, !numbered);
 }
 
-void lep_priv_timing_lost(lep_session *s)
+void lep_priv_timing_resume(session_timing *tm, double now)
 {
-    lep_priv_sink_release(&s->sink); /* a suspected hole ends in the loss itself */
-    lep_priv_timeline_restart(&s->tm.tl);
+    if (tm->last_sample_t > now)
+        tm->last_sample_t = now;
 }
 
-void lep_priv_timing_reconnected(session_timing *tm, double gap_from, int error)
+void lep_priv_timing_lost(session_timing *tm, session_sink *sk)
+{
+    lep_priv_sink_release(sk); /* a suspected hole ends in the loss itself */
+    lep_priv_timeline_restart(&tm->tl);
+}
+
+void lep_priv_timing_reconnected(session_timing *tm, int error)
 {
     tm->have_seq = false;
     tm->gap_next = true;
-    tm->gap_from = gap_from;
+    tm->gap_from = tm->last_sample_t;
     tm->gap_error = error;
     lep_priv_timeline_restart(&tm->tl);
+}
+
+void lep_priv_timing_empty(session_timing *tm, double t)
+{
+    lep_priv_timeline_empty(&tm->tl, t);
+}
+
+double lep_priv_timing_utc(session_timing *tm, double t_read)
+{
+    if (lep_priv_utc_may_have_moved(tm->utc_off, t_read)) {
+        double fresh = lep_priv_utc_offset();
+        if (fabs(fresh - tm->utc_off) > SESSION_UTC_STEP_S)
+            tm->utc_off = fresh; /* the wall clock was set (NTP step, by hand) */
+    }
+    return tm->utc_off;
+}
+
+double lep_priv_timing_utc_offset(const session_timing *tm)
+{
+    return tm->utc_off;
+}
+
+double lep_priv_timing_last(const session_timing *tm)
+{
+    return tm->last_sample_t;
 }
 
 static uint32_t clip_u32(double v)
@@ -39,7 +73,7 @@ static uint32_t clip_u32(double v)
 }
 
 /* [mu] held */
-static void gap_event(lep_session *s, int type, uint64_t sample, double from, double to,
+static void gap_event(session_sink *sk, int type, uint64_t sample, double from, double to,
                       uint32_t lost, int error)
 {
     lep_session_event ev;
@@ -48,26 +82,27 @@ static void gap_event(lep_session *s, int type, uint64_t sample, double from, do
     ev.gap_to = to;
     ev.lost = lost;
     ev.error = error;
-    lep_priv_sink_event(&s->sink, &ev); /* counts the gap */
-    lep_priv_chain_hole(&s->chain);
+    lep_priv_sink_event(sk, &ev); /* counts the gap */
 }
 
-uint64_t lep_priv_timing_seq(session_timing *tm, bool numbered, const lep_sample *got, size_t n,
-                             double t_read, double hz, uint32_t *lost)
+/* Samples known to be missing before each of got[0..n) (the virtual
+ * sensor's sequence numbers, when numbered) into lost[]; their sum. */
+static uint64_t seq_lost(session_timing *tm, const lep_sample *got, size_t n, double t_read,
+                         uint32_t *lost)
 {
     uint64_t total = 0;
     size_t i;
     for (i = 0; i < n; i++) {
         lost[i] = 0;
-        if (numbered && tm->have_seq) {
+        if (tm->numbered && tm->have_seq) {
             /* The virtual sensor numbers its samples: every missing number is lost. */
             uint32_t d = (uint16_t)(got[i].reserved - tm->last_seq);
-            double est = i == 0 ? (t_read - tm->last_sample_t) * hz : 0.0;
+            double est = i == 0 ? (t_read - tm->last_sample_t) * tm->hz : 0.0;
             if (est > (double)d + 32768.0) /* a hole of 65536 or more */
                 d += 65536u * (uint32_t)floor((est - (double)d) / 65536.0 + 0.5);
             lost[i] = d > 0 ? d - 1u : 0u;
         }
-        if (numbered) {
+        if (tm->numbered) {
             tm->have_seq = true;
             tm->last_seq = got[i].reserved;
         }
@@ -76,30 +111,59 @@ uint64_t lep_priv_timing_seq(session_timing *tm, bool numbered, const lep_sample
     return total;
 }
 
-void lep_priv_timing_judged(lep_session *s, const timeline_verdict *v)
+bool lep_priv_timing_read(session_timing *tm, session_sink *sk, const lep_sample *got, size_t n,
+                          double t_read, uint32_t *lost, timeline_verdict *v)
 {
+    uint64_t known = seq_lost(tm, got, n, t_read, lost);
+    bool gap = false;
+    lep_priv_timeline_read(&tm->tl, t_read, n, known, v);
     if (!v->release)
-        return;
-    if (v->gap && lep_priv_sink_held(&s->sink) > 0) {
-        lep_priv_sink_gap_before_held(&s->sink, v->shift);
-        gap_event(s, LEP_EV_GAP, s->tm.suspect_index, v->from, v->to, v->lost, 0);
+        return false;
+    if (v->gap && lep_priv_sink_held(sk) > 0) {
+        lep_priv_sink_gap_before_held(sk, v->shift);
+        gap_event(sk, LEP_EV_GAP, tm->suspect_index, v->from, v->to, v->lost, 0);
+        gap = true;
     }
-    lep_priv_sink_release(&s->sink);
+    lep_priv_sink_release(sk);
+    return gap;
 }
 
-uint8_t lep_priv_timing_sample(lep_session *s, uint32_t lost, double t)
+uint8_t lep_priv_timing_sample(session_timing *tm, session_sink *sk, uint64_t j, uint32_t lost,
+                               double *t)
 {
-    session_timing *tm = &s->tm;
+    double stamp = lep_priv_timeline_stamp(&tm->tl, j);
+    uint8_t flags = 0;
     if (tm->gap_next) {
-        double est = (t - tm->gap_from) * s->nominal_hz - 1.0;
-        gap_event(s, LEP_EV_RECONNECTED, lep_priv_sink_processed(&s->sink), tm->gap_from, t,
+        double est = (stamp - tm->gap_from) * tm->hz - 1.0;
+        gap_event(sk, LEP_EV_RECONNECTED, lep_priv_sink_processed(sk), tm->gap_from, stamp,
                   clip_u32(floor(est + 0.5)), tm->gap_error);
         tm->gap_next = false;
-        return LEP_SF_GAP;
+        flags = LEP_SF_GAP;
+    } else if (lost > 0) {
+        gap_event(sk, LEP_EV_GAP, lep_priv_sink_processed(sk), tm->last_sample_t, stamp, lost, 0);
+        flags = LEP_SF_GAP;
     }
-    if (lost > 0) {
-        gap_event(s, LEP_EV_GAP, lep_priv_sink_processed(&s->sink), tm->last_sample_t, t, lost, 0);
-        return LEP_SF_GAP;
+    tm->last_sample_t = stamp;
+    *t = stamp;
+    return flags;
+}
+
+void lep_priv_timing_held(session_timing *tm, session_sink *sk, const timeline_verdict *v,
+                          size_t before)
+{
+    size_t now = lep_priv_sink_pending(sk);
+    if (v->extend) {
+        lep_priv_sink_hold(sk, lep_priv_sink_held(sk) + now - before); /* too soon to judge */
+    } else if (v->hold && now > before) {
+        lep_priv_sink_hold(sk, now - before);
+        tm->suspect_index = lep_priv_sink_processed(sk) - lep_priv_sink_held(sk);
+    } else if (v->hold) {
+        lep_priv_timeline_forget_held(&tm->tl); /* nothing kept to hold */
     }
-    return 0;
+}
+
+void lep_priv_timing_end(session_timing *tm, session_sink *sk)
+{
+    lep_priv_sink_release(sk);
+    lep_priv_timeline_forget_held(&tm->tl);
 }
