@@ -139,9 +139,9 @@ uint8_t lep_priv_load_limits(session_load *l, session_sink *sk, const double si[
                              uint64_t sample);
 /* The payload (NULL: none), the gravity, the limits (NULL: none):
  * LEP_E_ARG for a negative mass or limit, or numbers not finite. */
-int lep_priv_load_set_payload(session_load *l, const lep_payload *p);
-int lep_priv_load_set_gravity(session_load *l, const double gravity[3]);
-int lep_priv_load_set_limits(session_load *l, const double limit[LEP_AXES]);
+int lep_priv_chain_set_payload(session_chain *ch, const lep_payload *p);
+int lep_priv_chain_set_gravity(session_chain *ch, const double gravity[3]);
+int lep_priv_chain_set_limits(session_chain *ch, const double limit[LEP_AXES]);
 /* The load's part of the metadata. */
 void lep_priv_load_meta(const session_load *l, lep_session_meta *out);
 

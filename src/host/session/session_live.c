@@ -124,7 +124,7 @@ int lep_session_set_payload(lep_session *s, const lep_payload *p)
     if (s == NULL)
         return LEP_E_ARG;
     pthread_mutex_lock(&s->mu);
-    rc = lep_priv_load_set_payload(&s->chain.load, p);
+    rc = lep_priv_chain_set_payload(&s->chain, p);
     pthread_mutex_unlock(&s->mu);
     return rc;
 }
@@ -135,7 +135,7 @@ int lep_session_set_gravity(lep_session *s, const double gravity[3])
     if (s == NULL || gravity == NULL)
         return LEP_E_ARG;
     pthread_mutex_lock(&s->mu);
-    rc = lep_priv_load_set_gravity(&s->chain.load, gravity);
+    rc = lep_priv_chain_set_gravity(&s->chain, gravity);
     pthread_mutex_unlock(&s->mu);
     return rc;
 }
@@ -146,7 +146,7 @@ int lep_session_set_limits(lep_session *s, const double limit[LEP_AXES])
     if (s == NULL)
         return LEP_E_ARG;
     pthread_mutex_lock(&s->mu);
-    rc = lep_priv_load_set_limits(&s->chain.load, limit);
+    rc = lep_priv_chain_set_limits(&s->chain, limit);
     pthread_mutex_unlock(&s->mu);
     return rc;
 }

@@ -135,8 +135,9 @@ int lep_limits_parse(const char *text, double limit[LEP_AXES])
 
 /* ---- the setters ---- */
 
-int lep_priv_load_set_payload(session_load *l, const lep_payload *p)
+int lep_priv_chain_set_payload(session_chain *ch, const lep_payload *p)
 {
+    session_load *l = &ch->load;
     static const lep_payload none = { 0.0, { 0.0, 0.0, 0.0 } };
     double w[LEP_AXES];
     if (p == NULL)
@@ -148,8 +149,9 @@ int lep_priv_load_set_payload(session_load *l, const lep_payload *p)
     return LEP_OK;
 }
 
-int lep_priv_load_set_gravity(session_load *l, const double gravity[3])
+int lep_priv_chain_set_gravity(session_chain *ch, const double gravity[3])
 {
+    session_load *l = &ch->load;
     double w[LEP_AXES];
     if (lep_payload_wrench_p(&l->payload, gravity, w) != LEP_OK)
         return LEP_E_ARG;
@@ -158,8 +160,9 @@ int lep_priv_load_set_gravity(session_load *l, const double gravity[3])
     return LEP_OK;
 }
 
-int lep_priv_load_set_limits(session_load *l, const double limit[LEP_AXES])
+int lep_priv_chain_set_limits(session_chain *ch, const double limit[LEP_AXES])
 {
+    session_load *l = &ch->load;
     static const double none[LEP_AXES] = { 0 };
     int bad;
     if (limit == NULL)

@@ -30,7 +30,11 @@
  *   session_api.c      the flat public functions (leptrino/session.h)
  *   session_guard.c    the driving calls' thread guard (session_guard)
  *
- * test/checks/unit_fields.py holds this map to the code.
+ * Files:  session.c, session_read.c, session_live.c, session_meta.c,
+ *         session_api.c, session_guard.c
+ *
+ * test/checks/unit_fields.py holds this map to the code (the units' headers
+ * say their own files in the same way).
  *
  * Threads: the driving thread (inside the guard) owns everything not marked
  * [mu]; [mu] parts are also read or written by the any-thread calls, under

@@ -170,7 +170,7 @@ static int read_port(lep_session *s, read_call *c, double now)
     int rc = lep_priv_reader_read(&s->rd, &c->rc, now, c->got, c->first,
                                   lep_priv_sink_held(&s->sink) > 0, &t);
     if (rc > 0) {
-        feed(s, s->rd.rbuf, (size_t)rc, t);
+        feed(s, lep_priv_reader_bytes(&s->rd), (size_t)rc, t);
         return READ_AGAIN;
     }
     if (rc == 0) {

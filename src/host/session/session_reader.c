@@ -199,6 +199,11 @@ static double data_deadline(const session_reader *rd)
     return rd->last_data_read_t + (double)rd->cfg.data_timeout_ms / 1000.0;
 }
 
+const uint8_t *lep_priv_reader_bytes(const session_reader *rd)
+{
+    return rd->rbuf;
+}
+
 bool lep_priv_reader_silent(const session_reader *rd, double now)
 {
     return now >= data_deadline(rd);

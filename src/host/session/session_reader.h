@@ -126,6 +126,8 @@ int lep_priv_reader_read(session_reader *rd, reader_call *c, double now, bool go
 /* Whether a call that has something (rows: among them rows) may return. */
 bool lep_priv_reader_call_over(const session_reader *rd, const reader_call *c, double now,
                                bool rows, double first);
+/* The bytes of the last read. */
+const uint8_t *lep_priv_reader_bytes(const session_reader *rd);
 /* No data for data_timeout_ms at now. */
 bool lep_priv_reader_silent(const session_reader *rd, double now);
 /* The sticky outcome of a loss not reconnected (0: none). */

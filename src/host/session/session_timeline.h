@@ -59,8 +59,11 @@
  * budgeted read some time into a stall), not by a hole before it. Known
  * losses (sequence numbers) just move the count on.
  *
- * No field of another unit is written: the verdict says what to do with the
- * rows; the session applies it. */
+ * Owns:   session_timeline.
+ * Given:  each read's time, its samples, known losses; nothing else is read.
+ * Returns: stamps, and a verdict on the rows (timeline_verdict): no field of
+ *         another unit is written; the timing applies the verdict.
+ * Threads: the driving thread's. */
 #ifndef LEPTRINO_HOST_SESSION_TIMELINE_H
 #define LEPTRINO_HOST_SESSION_TIMELINE_H
 
@@ -132,6 +135,7 @@ typedef struct session_timeline {
     bool susp_silent;
 } session_timeline;
 
+/* ---- session_timeline.c ---- */
 void lep_priv_timeline_init(session_timeline *tl, double nominal_period_s, double gap_periods,
                             bool arrival_gaps);
 void lep_priv_timeline_restart(session_timeline *tl);
