@@ -216,32 +216,44 @@ static void test_chain_decimation_overload_and_count(void)
     TEST_ASSERT_EQUAL_UINT64(1, ev.sample);
 }
 
-/* After a reconnect the timing queues the gap into the sink, with the
- * samples lost estimated at the nominal rate, and says so with LEP_SF_GAP. */
-static void test_timing_reconnect_gap_into_the_sink(void)
+/* The timing stamps a read's samples and hands them to the chain; after a
+ * reconnect it queues the gap into the sink (the samples lost estimated at
+ * the nominal rate) before the first row, which is flagged LEP_SF_GAP. */
+static void test_timing_feeds_the_chain_and_queues_a_reconnect(void)
 {
     lep_sample got[1];
-    uint32_t lost[1];
-    timeline_verdict v;
+    lep_session_batch b;
+    double t[2], first = -1.0;
+    uint8_t flags[2];
     lep_session_event ev;
     lep_session_health_info h;
-    double t;
-    memset(got, 0, sizeof got);
+    chain_open(0, 1, 0);
+    got[0] = sample_of(10);
     lep_priv_timing_start(&timing, 1000.0, 3.0, false);
     lep_priv_timing_resume(&timing, 0.0);
-    TEST_ASSERT_FALSE(lep_priv_timing_read(&timing, &sink, got, 1, 1.0, lost, &v));
-    TEST_ASSERT_EQUAL_HEX8(0, lep_priv_timing_sample(&timing, &sink, 0, lost[0], &t));
+    lep_priv_timing_feed(&timing, &chain, &sink, got, 1, 1.0);
     lep_priv_timing_reconnected(&timing, LEP_E_DISCONNECTED);
-    (void)lep_priv_timing_read(&timing, &sink, got, 1, 1.5, lost, &v);
-    TEST_ASSERT_EQUAL_HEX8(LEP_SF_GAP, lep_priv_timing_sample(&timing, &sink, 0, lost[0], &t));
+    lep_priv_timing_feed(&timing, &chain, &sink, got, 1, 1.5);
+    memset(&b, 0, sizeof b);
+    b.cap = 2;
+    b.t_mono = t;
+    b.flags = flags;
+    TEST_ASSERT_EQUAL_size_t(2, lep_priv_sink_deliver(&sink, &b, &first));
+    lep_priv_sink_returned(&sink, 2);
+    TEST_ASSERT_DOUBLE_WITHIN(1e-9, 1.0, t[0]);
+    TEST_ASSERT_TRUE(t[1] > t[0] && t[1] <= 1.5); /* never after the read's return */
+    TEST_ASSERT_EQUAL_HEX8(0, flags[0]);
+    TEST_ASSERT_EQUAL_HEX8(LEP_SF_GAP, flags[1]);
     TEST_ASSERT_TRUE(lep_priv_sink_pop(&sink, &ev));
     TEST_ASSERT_EQUAL_INT(LEP_EV_RECONNECTED, ev.type);
+    TEST_ASSERT_EQUAL_UINT64(1, ev.sample);
     TEST_ASSERT_EQUAL_INT(LEP_E_DISCONNECTED, ev.error);
-    TEST_ASSERT_DOUBLE_WITHIN(1e-9, 1.0, ev.gap_from);
-    TEST_ASSERT_DOUBLE_WITHIN(1e-9, t, ev.gap_to);
-    TEST_ASSERT_EQUAL_UINT32((uint32_t)floor((t - 1.0) * 1000.0 - 1.0 + 0.5), ev.lost);
+    TEST_ASSERT_DOUBLE_WITHIN(1e-9, t[0], ev.gap_from);
+    TEST_ASSERT_DOUBLE_WITHIN(1e-9, t[1], ev.gap_to);
+    TEST_ASSERT_EQUAL_UINT32((uint32_t)floor((t[1] - t[0]) * 1000.0 - 1.0 + 0.5), ev.lost);
     lep_priv_sink_health(&sink, &h);
     TEST_ASSERT_EQUAL_UINT64(1, h.gaps);
+    TEST_ASSERT_EQUAL_UINT64(2, h.received);
 }
 
 int main(void)
@@ -252,6 +264,6 @@ int main(void)
     RUN_TEST(test_sink_moves_held_rows_after_a_gap);
     RUN_TEST(test_chain_start_up_tare_into_the_sink);
     RUN_TEST(test_chain_decimation_overload_and_count);
-    RUN_TEST(test_timing_reconnect_gap_into_the_sink);
+    RUN_TEST(test_timing_feeds_the_chain_and_queues_a_reconnect);
     return UNITY_END();
 }

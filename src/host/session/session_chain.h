@@ -6,8 +6,9 @@
  * Owns:   session_chain (the tare, the low-pass, the frame, decimation,
  *         the run's end; session_load: payload, gravity, limits).
  * Reads:  its own configuration (session_chain_config, set at open).
- * Given:  each sample with its stamps and flags; the sink, into which it
- *         writes its rows and events (through the sink's functions).
+ * Given:  each sample with its stamps and flags (by the timing, the stage
+ *         before it); the sink, into which it writes its rows and events
+ *         (through the sink's functions).
  * Files:  session_chain.c, session_load.c (the payload and the limits).
  * Threads: [mu]: every function is called with the session's mutex held
  *         (the any-thread setters change it while the stream runs). */

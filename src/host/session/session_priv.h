@@ -8,7 +8,8 @@
  *                      session_reconnect.c)
  *   session_timing.h   stamps and gaps: the timeline (session_timeline.h,
  *                      sans-I/O), sequence numbers, reconnects, the UTC
- *                      offset (session_timing.c)
+ *                      offset; it hands each stamped sample to the chain
+ *                      (session_timing.c)
  *   session_chain.h    tare, low-pass, payload, limits, decimation, rotation,
  *                      the run's end (session_chain.c, session_load.c)
  *   session_sink.h     the rows waiting for a read, the event queue, the
@@ -21,9 +22,10 @@
  * below (the units' fields through the units' functions):
  *
  *   session.c          options, open, close, start, stop, accessors
- *   session_read.c     lep_session_read, read_one: the reader's bytes
- *                      through the timing and the chain into the sink, and
- *                      out of it into the caller's batch
+ *   session_read.c     lep_session_read, read_one: the reader's samples
+ *                      into the pipeline (timing -> chain -> sink, each
+ *                      stage given the next), the sink's rows out into the
+ *                      caller's batch; loss and reconnection told to each
  *   session_live.c     the any-thread calls (tare, low-pass, rotation,
  *                      payload, limits, events, health)
  *   session_meta.c     the metadata and its JSON

@@ -1,8 +1,9 @@
 /* Host session, reading: lep_session_read (inside the thread guard, in
  * passes that see a close) and lep_session_read_one. This file wires the
  * units for one call: the reader's bytes and their read times, stepped into
- * samples, stamped by the timing, processed by the chain into the sink, the
- * sink's rows delivered into the caller's batch; a loss and a reconnection
+ * samples, fed to the pipeline (the timing stamps them and hands them to the
+ * chain, which keeps their rows in the sink), the sink's rows delivered into
+ * the caller's batch; a loss and a reconnection
  * told to each unit in turn. It writes no unit's fields: it calls their
  * functions, with the session's mutex held for the [mu] ones. */
 #include <math.h>
@@ -38,36 +39,16 @@ static uint64_t events_pushed(lep_session *s)
 static void feed(lep_session *s, const uint8_t *data, size_t len, double t_read)
 {
     lep_sample got[SESSION_PENDING];
-    uint32_t lost[SESSION_PENDING];
     lep_client_stats st;
-    double utc_off = 0.0;
-    size_t n = lep_priv_reader_samples(&s->rd, data, len, got, t_read), i;
+    size_t n = lep_priv_reader_samples(&s->rd, data, len, got, t_read);
 
     lep_priv_reader_stats(&s->rd, &st);
     if (n > 0)
-        utc_off = lep_priv_timing_utc(&s->tm, t_read);
+        (void)lep_priv_timing_utc(&s->tm, t_read); /* outside the mutex: clock reads */
     pthread_mutex_lock(&s->mu);
     lep_priv_sink_client(&s->sink, &st);
-    if (n > 0) {
-        timeline_verdict v;
-        uint64_t j = 0;
-        size_t before;
-        if (lep_priv_timing_read(&s->tm, &s->sink, got, n, t_read, lost, &v))
-            lep_priv_chain_hole(&s->chain);
-        before = lep_priv_sink_pending(&s->sink);
-        for (i = 0; i < n; i++) {
-            double t;
-            uint8_t flags;
-            j += lost[i];
-            flags = lep_priv_timing_sample(&s->tm, &s->sink, j++, lost[i], &t);
-            if (flags & LEP_SF_GAP)
-                lep_priv_chain_hole(&s->chain);
-            lep_priv_sink_received(&s->sink, t);
-            if (lep_priv_sink_room(&s->sink))
-                lep_priv_chain_sample(&s->chain, &s->sink, &got[i], t, t + utc_off, t_read, flags);
-        }
-        lep_priv_timing_held(&s->tm, &s->sink, &v, before);
-    }
+    if (n > 0)
+        lep_priv_timing_feed(&s->tm, &s->chain, &s->sink, got, n, t_read);
     pthread_mutex_unlock(&s->mu);
 }
 

@@ -111,8 +111,10 @@ static uint64_t seq_lost(session_timing *tm, const lep_sample *got, size_t n, do
     return total;
 }
 
-bool lep_priv_timing_read(session_timing *tm, session_sink *sk, const lep_sample *got, size_t n,
-                          double t_read, uint32_t *lost, timeline_verdict *v)
+/* The timeline's verdict on a read into v; the rows held back at the
+ * previous read judged (true: a gap before them, queued in sk). */
+static bool judge(session_timing *tm, session_sink *sk, const lep_sample *got, size_t n,
+                  double t_read, uint32_t *lost, timeline_verdict *v)
 {
     uint64_t known = seq_lost(tm, got, n, t_read, lost);
     bool gap = false;
@@ -128,8 +130,11 @@ bool lep_priv_timing_read(session_timing *tm, session_sink *sk, const lep_sample
     return gap;
 }
 
-uint8_t lep_priv_timing_sample(session_timing *tm, session_sink *sk, uint64_t j, uint32_t lost,
-                               double *t)
+/* Sample j of the read (lost ones counted), after `lost` missing ones: its
+ * stamp into *t; a gap before it (a reconnect, or lost > 0) queued in sk
+ * and LEP_SF_GAP returned, else 0. */
+static uint8_t stamp_sample(session_timing *tm, session_sink *sk, uint64_t j, uint32_t lost,
+                            double *t)
 {
     double stamp = lep_priv_timeline_stamp(&tm->tl, j);
     uint8_t flags = 0;
@@ -148,8 +153,9 @@ uint8_t lep_priv_timing_sample(session_timing *tm, session_sink *sk, uint64_t j,
     return flags;
 }
 
-void lep_priv_timing_held(session_timing *tm, session_sink *sk, const timeline_verdict *v,
-                          size_t before)
+/* After the read's rows were kept (the sink had `before` pending before
+ * them): hold them back as the verdict says. */
+static void hold(session_timing *tm, session_sink *sk, const timeline_verdict *v, size_t before)
 {
     size_t now = lep_priv_sink_pending(sk);
     if (v->extend) {
@@ -160,6 +166,32 @@ void lep_priv_timing_held(session_timing *tm, session_sink *sk, const timeline_v
     } else if (v->hold) {
         lep_priv_timeline_forget_held(&tm->tl); /* nothing kept to hold */
     }
+}
+
+void lep_priv_timing_feed(session_timing *tm, session_chain *ch, session_sink *sk,
+                          const lep_sample *got, size_t n, double t_read)
+{
+    uint32_t lost[SESSION_PENDING];
+    timeline_verdict v;
+    uint64_t j = 0;
+    size_t i, before;
+    if (n > SESSION_PENDING)
+        n = SESSION_PENDING;
+    if (judge(tm, sk, got, n, t_read, lost, &v))
+        lep_priv_chain_hole(ch);
+    before = lep_priv_sink_pending(sk);
+    for (i = 0; i < n; i++) {
+        double t;
+        uint8_t flags;
+        j += lost[i];
+        flags = stamp_sample(tm, sk, j++, lost[i], &t);
+        if (flags & LEP_SF_GAP)
+            lep_priv_chain_hole(ch);
+        lep_priv_sink_received(sk, t);
+        if (lep_priv_sink_room(sk))
+            lep_priv_chain_sample(ch, sk, &got[i], t, t + tm->utc_off, t_read, flags);
+    }
+    hold(tm, sk, &v, before);
 }
 
 void lep_priv_timing_end(session_timing *tm, session_sink *sk)

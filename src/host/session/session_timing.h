@@ -6,12 +6,15 @@
  * the virtual sensor's sequence numbers. It also holds the UTC offset the
  * samples are stamped with.
  *
+ * A stage of the pipeline: fed a read's samples, it stamps each and hands
+ * it to the next stage, the chain, which keeps its row in the sink.
+ *
  * Owns:   session_timing (the timeline in it).
  * Reads:  the sink's counts (rows pending, held, processed).
- * Given:  each read's samples and return time; the sink, whose held rows it
- *         judges and into which it queues gap events (through the sink's
- *         functions). A gap it queues is told back (LEP_SF_GAP, or true) so
- *         the caller tells the chain.
+ * Given:  each read's samples and return time; the chain (each sample, and
+ *         a hole: its low-pass settles again) and the sink, whose held rows
+ *         it judges and into which it queues gap events and counts the
+ *         samples received, each through its unit's functions.
  * Threads: the driving thread's; the functions given the sink are [mu]. */
 #ifndef LEPTRINO_HOST_SESSION_TIMING_H
 #define LEPTRINO_HOST_SESSION_TIMING_H
@@ -21,6 +24,7 @@
 #include <stdint.h>
 
 #include "leptrino/client.h"
+#include "session_chain.h"
 #include "session_sink.h"
 #include "session_timeline.h"
 
@@ -64,21 +68,13 @@ double lep_priv_timing_utc(session_timing *tm, double t_read);
 double lep_priv_timing_utc_offset(const session_timing *tm);
 /* Stamp of the last sample (before any: far in the past). */
 double lep_priv_timing_last(const session_timing *tm);
-/* A read returned at t_read with got[0..n) (n > 0): the samples known to
- * be missing before each into lost[], the timeline's verdict into v, and the
- * rows held back at the previous read judged (their gap queued in sk: true).
- * [mu] */
-bool lep_priv_timing_read(session_timing *tm, session_sink *sk, const lep_sample *got, size_t n,
-                          double t_read, uint32_t *lost, timeline_verdict *v);
-/* Sample j of the read (lost ones counted), after `lost` missing ones: its
- * stamp into *t; a gap before it (a reconnect, or lost > 0) queued in sk
- * and LEP_SF_GAP returned, else 0. [mu] */
-uint8_t lep_priv_timing_sample(session_timing *tm, session_sink *sk, uint64_t j, uint32_t lost,
-                               double *t);
-/* After the read's rows were kept (the sink had `before` pending before
- * them): hold them back as the verdict says. [mu] */
-void lep_priv_timing_held(session_timing *tm, session_sink *sk, const timeline_verdict *v,
-                          size_t before);
+/* A read returned at t_read with got[0..n) (n > 0): the rows held back at
+ * the previous read judged; each sample stamped (UTC: the offset of
+ * lep_priv_timing_utc), a gap before it queued in sk (flag LEP_SF_GAP),
+ * counted as received, and processed by the chain into sk while the sink
+ * has room; this read's rows held back as the timeline says. [mu] */
+void lep_priv_timing_feed(session_timing *tm, session_chain *ch, session_sink *sk,
+                          const lep_sample *got, size_t n, double t_read);
 /* The run ended: nothing comes to judge the held rows by; they go. */
 void lep_priv_timing_end(session_timing *tm, session_sink *sk);
 
