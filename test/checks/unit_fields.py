@@ -105,13 +105,13 @@ def check(d: str, lifecycle: str, helpers: Set[str]) -> List[str]:
     units, life_files, errors = read_units(d, lifecycle, helpers)
     owner: Dict[str, Unit] = {}
     for u in units:
-        for f in u.files:
-            if f in owner or f in life_files:
-                errors.append(f"{f}: named by two units ({u.header} and another)")
-            owner[f] = u
+        for cfile in u.files:
+            if cfile in owner or cfile in life_files:
+                errors.append(f"{cfile}: named by two units ({u.header} and another)")
+            owner[cfile] = u
     structs = {u.struct: u for u in units if u.struct}
-    with open(os.path.join(d, lifecycle), encoding="utf-8") as f:
-        composed = strip_comments(f.read())
+    with open(os.path.join(d, lifecycle), encoding="utf-8") as fh:
+        composed = strip_comments(fh.read())
     m = re.search(r"struct\s+lep_session\s*\{(.*?)\n\};", composed, re.S)
     unit_members = {name: t for t, name in MEMBER.findall(m.group(1))} if m else {}
     unit_members = {n: t for n, t in unit_members.items() if t in structs}
@@ -121,8 +121,8 @@ def check(d: str, lifecycle: str, helpers: Set[str]) -> List[str]:
         if not name.endswith(".c"):
             continue
         path = os.path.join(d, name)
-        with open(path, encoding="utf-8") as f:
-            raw = f.read()
+        with open(path, encoding="utf-8") as fh:
+            raw = fh.read()
         code = strip_comments(raw)
         lines = code.splitlines()
         if name in life_files:
@@ -138,11 +138,12 @@ def check(d: str, lifecycle: str, helpers: Set[str]) -> List[str]:
                                           f"unit {member} ({structs[unit_members[member]].header}): "
                                           f"{line.strip()}")
             continue
-        u = owner.get(name)
-        if u is None:
+        found = owner.get(name)
+        if found is None:
             errors.append(f"{path}: belongs to no unit and not to the lifecycle "
                           f"(name it in a unit header's 'Files:' or in {lifecycle})")
             continue
+        u = found
         for n, line in enumerate(lines, 1):
             if COMPOSED.search(line):
                 errors.append(f"{path}:{n}: the unit {u.struct or u.header} sees the composed session: "
