@@ -38,7 +38,11 @@ LABEL = re.compile(r"^\s*/?\*\s*([A-Z][a-z]+):\s*(.*)$")
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 COMPOSED = re.compile(r"\bstruct\s+lep_session\b(?!_)|\blep_session\s*\*")
 # a declaration of a pointer to a struct type: `const T *name` (parameters, locals)
-POINTER = re.compile(r"\b(?:const\s+)?([a-z_][a-z0-9_]*)\s*\*\s*(?:const\s+)?([A-Za-z_]\w*)\s*[,;)=\[]")
+POINTER = re.compile(
+    r"\b(?:const\s+)?([a-z_][a-z0-9_]*)\s*\*\s*(?:const\s+)?([A-Za-z_]\w*)\s*[,;)=\[]")
+# after a field path: assigned or stepped; before it: stepped or its address taken
+ASSIGNED = re.compile(r"[\w.\[\]]*\s*(=(?!=)|\+=|-=|\*=|/=|\|=|&=|\+\+|--)")
+STEPPED_OR_TAKEN = re.compile(r"(\+\+|--|&)\s*\w+$")
 MEMBER = re.compile(r"^\s*([a-z_][a-z0-9_]*)\s+(\w+)\s*;", re.M)
 
 
@@ -75,7 +79,8 @@ class Unit:
         self.files = files
 
 
-def read_units(d: str, lifecycle: str, helpers: Set[str]) -> Tuple[List[Unit], List[str], List[str]]:
+def read_units(d: str, lifecycle: str,
+               helpers: Set[str]) -> Tuple[List[Unit], List[str], List[str]]:
     units: List[Unit] = []
     errors: List[str] = []
     life_files: List[str] = []
@@ -130,13 +135,11 @@ def check(d: str, lifecycle: str, helpers: Set[str]) -> List[str]:
                 for member in unit_members:
                     pat = rf"(?:->|\.)\s*{member}\s*\.\s*\w+"
                     for w in re.finditer(pat, line):
-                        rest = line[w.end():]
-                        before = line[:w.start()]
-                        if re.match(r"[\w.\[\]]*\s*(=(?!=)|\+=|-=|\*=|/=|\|=|&=|\+\+|--)", rest) \
-                                or re.search(r"(\+\+|--)\s*\w+$", before) or re.search(r"&\s*\w+$", before):
+                        if ASSIGNED.match(line[w.end():]) or \
+                                STEPPED_OR_TAKEN.search(line[:w.start()]):
+                            header = structs[unit_members[member]].header
                             errors.append(f"{path}:{n}: the lifecycle writes a field of the "
-                                          f"unit {member} ({structs[unit_members[member]].header}): "
-                                          f"{line.strip()}")
+                                          f"unit {member} ({header}): {line.strip()}")
             continue
         found = owner.get(name)
         if found is None:
@@ -146,8 +149,8 @@ def check(d: str, lifecycle: str, helpers: Set[str]) -> List[str]:
         u = found
         for n, line in enumerate(lines, 1):
             if COMPOSED.search(line):
-                errors.append(f"{path}:{n}: the unit {u.struct or u.header} sees the composed session: "
-                              f"{line.strip()}")
+                errors.append(f"{path}:{n}: the unit {u.struct or u.header} sees the "
+                              f"composed session: {line.strip()}")
         for inc in INCLUDE.findall(raw):
             if inc not in local_headers:
                 continue

@@ -1,6 +1,6 @@
 /* Host session, the processing chain (session_chain.h): overload episodes,
  * tare (averaged in raw counts), the host low-pass (2nd-order Butterworth),
- * payload compensation and limits (session_load.c), decimation, rotation and
+ * payload compensation and limits (session_chain_load.c), decimation, rotation and
  * moment-point shift, and the end of a run (duration or count). Its rows and
  * events go into the sink it is given. */
 #define _POSIX_C_SOURCE 200809L

@@ -9,7 +9,7 @@
  * Given:  each sample with its stamps and flags (by the timing, the stage
  *         before it); the sink, into which it writes its rows and events
  *         (through the sink's functions).
- * Files:  session_chain.c, session_load.c (the payload and the limits).
+ * Files:  session_chain.c, session_chain_load.c (the payload and the limits).
  * Threads: [mu]: every function is called with the session's mutex held
  *         (the any-thread setters change it while the stream runs). */
 #ifndef LEPTRINO_HOST_SESSION_CHAIN_H
@@ -122,7 +122,7 @@ bool lep_priv_chain_taring(const session_chain *ch);
 void lep_priv_chain_meta(const session_chain *ch, lep_session_meta *out);
 void lep_priv_lowpass_design(session_lowpass *lp, double cutoff_hz, double fs);
 
-/* ---- session_load.c ---- */
+/* ---- session_chain_load.c ---- */
 /* Check the payload, gravity and limits of options o (one line in err). */
 int lep_priv_load_check(const lep_session_options *o, char *err, size_t errlen);
 /* From checked options. */

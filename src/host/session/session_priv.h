@@ -5,16 +5,16 @@
  *
  *   session_reader.h   the port, the client on it, the latency budget of a
  *                      read, loss and reconnection (session_reader.c,
- *                      session_reconnect.c)
+ *                      session_reader_reconnect.c)
  *   session_timing.h   stamps and gaps: the timeline (session_timeline.h,
  *                      sans-I/O), sequence numbers, reconnects, the UTC
  *                      offset; it hands each stamped sample to the chain
  *                      (session_timing.c)
  *   session_chain.h    tare, low-pass, payload, limits, decimation, rotation,
- *                      the run's end (session_chain.c, session_load.c)
+ *                      the run's end (session_chain.c, session_chain_load.c)
  *   session_sink.h     the rows waiting for a read, the event queue, the
  *                      health counters they imply (session_sink.c,
- *                      session_events.c, session_health.c)
+ *                      session_sink_events.c, session_sink_health.c)
  *   session_clock.h    clock helpers, owning nothing (session_clock.c)
  *
  * Only the files of the lifecycle and the API include this header and see

@@ -12,7 +12,7 @@
  *         bytes, the outcome of a reconnection wait; it writes nothing of
  *         another unit: the loss's event, the counters and the stamps are
  *         the caller's to pass on.
- * Files:  session_reader.c (the port, the budgeted read), session_reconnect.c
+ * Files:  session_reader.c (the port, the budgeted read), session_reader_reconnect.c
  *         (loss and reconnection).
  * Threads: the driving thread's (inside the thread guard). */
 #ifndef LEPTRINO_HOST_SESSION_READER_H
@@ -60,7 +60,7 @@ typedef struct session_reader {
     uint8_t rbuf[SESSION_RBUF];
     double last_read_t;      /* when the last read returned */
     double last_data_read_t; /* when the last read that completed a sample returned */
-    /* loss and reconnection (session_reconnect.c) */
+    /* loss and reconnection (session_reader_reconnect.c) */
     int failed; /* sticky outcome after a loss that is not reconnected (0: none) */
     double down_since;
     double next_attempt;
@@ -133,7 +133,7 @@ bool lep_priv_reader_silent(const session_reader *rd, double now);
 /* The sticky outcome of a loss not reconnected (0: none). */
 int lep_priv_reader_failed(const session_reader *rd);
 
-/* ---- session_reconnect.c ---- */
+/* ---- session_reader_reconnect.c ---- */
 /* The stream is lost at now (error: LEP_E_DISCONNECTED, port gone, or
  * LEP_E_TIMEOUT, no data for data_timeout_ms): without reconnect the sticky
  * outcome (LEP_E_LOST after a data timeout, LEP_E_DISCONNECTED), with it the

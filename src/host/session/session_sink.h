@@ -6,8 +6,8 @@
  * Given:  rows and events (from the chain and the timing), the client's
  *         counters, times, the caller's batch to fill.
  * Files:  session_sink.c (the rows, delivery, and the entry points that
- *         count what they are given), session_events.c (the queue),
- *         session_health.c (the counters' arithmetic).
+ *         count what they are given), session_sink_events.c (the queue),
+ *         session_sink_health.c (the counters' arithmetic).
  * Threads: the rows are the driving thread's; the events and the health
  *         are [mu]: every function marked [mu] is called with the session's
  *         mutex held (the any-thread calls read them too). */
@@ -125,7 +125,7 @@ void lep_priv_sink_health(const session_sink *sk, lep_session_health_info *out);
 /* Append one row to b (b->n < b->cap). */
 void lep_priv_row_append(lep_session_batch *b, const session_row *r);
 
-/* ---- session_events.c ---- */
+/* ---- session_sink_events.c ---- */
 void lep_priv_event_init(lep_session_event *ev, int type, uint64_t sample, double t_mono);
 void lep_priv_events_start(session_events *q);
 void lep_priv_events_stop(session_events *q);
@@ -133,7 +133,7 @@ void lep_priv_events_returned(session_events *q, uint64_t rows);
 void lep_priv_events_push(session_events *q, const lep_session_event *ev);
 bool lep_priv_events_pop(session_events *q, lep_session_event *ev);
 
-/* ---- session_health.c ---- */
+/* ---- session_sink_health.c ---- */
 void lep_priv_health_start(session_health_state *hs, double nominal_hz,
                            const lep_client_stats *base);
 /* The client's counters now: errors and the current connection's stats. */
