@@ -116,13 +116,13 @@ static void test_sink_moves_held_rows_after_a_gap(void)
     lep_priv_sink_row(&sink, &r);
     r = row_at(1.002, 1.004);
     lep_priv_sink_row(&sink, &r);
-    lep_priv_sink_hold(&sink, 2);
+    TEST_ASSERT_EQUAL_size_t(2, lep_priv_sink_hold_since(&sink, 1, false));
     memset(&b, 0, sizeof b);
     b.cap = 4;
     b.t_mono = t;
     b.flags = flags;
     TEST_ASSERT_EQUAL_size_t(1, lep_priv_sink_deliver(&sink, &b, &first));
-    lep_priv_sink_gap_before_held(&sink, 0.005);
+    TEST_ASSERT_TRUE(lep_priv_sink_judged(&sink, true, 0.005));
     TEST_ASSERT_EQUAL_size_t(0, lep_priv_sink_held(&sink));
     TEST_ASSERT_EQUAL_size_t(2, lep_priv_sink_deliver(&sink, &b, &first));
     TEST_ASSERT_DOUBLE_WITHIN(1e-12, 1.006, t[1]);

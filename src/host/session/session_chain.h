@@ -96,7 +96,7 @@ bool lep_priv_chain_ended(const session_chain *ch);
 /* Process one sample stamped t (t_utc), brought by a read that returned at
  * arrived, with the flags the timing gave it: its row, when delivered (not
  * the start-up tare's, decimation's or after the end), and its events go
- * into sk. Call only when lep_priv_sink_room(sk). */
+ * into sk. Call only when the sink has room (lep_priv_sink_received). */
 void lep_priv_chain_sample(session_chain *ch, session_sink *sk, const lep_sample *smp, double t,
                            double t_utc, double arrived, uint8_t flags);
 /* A handshake sample (outside the stream) into row: the tare offsets, SI

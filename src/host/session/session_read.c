@@ -125,10 +125,8 @@ static int delivered(lep_session *s, read_call *c, double *now)
     int failed;
     for (;;) {
         deliver_rows(s, b, &c->first);
-        if (!(lep_priv_chain_ended(&s->chain) &&
-              lep_priv_sink_pending(&s->sink) == lep_priv_sink_held(&s->sink)))
-            break;
-        lep_priv_timing_end(&s->tm, &s->sink); /* nothing comes after the end to judge it by */
+        if (!lep_priv_chain_ended(&s->chain) || !lep_priv_timing_end(&s->tm, &s->sink))
+            break; /* (the end: rows held back go, nothing comes to judge them by) */
         if (lep_priv_sink_pending(&s->sink) == 0)
             return LEP_E_END;
     }

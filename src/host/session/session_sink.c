@@ -27,11 +27,6 @@ void lep_priv_sink_stop(session_sink *sk)
     lep_priv_events_stop(&sk->events); /* the rows their samples wait for are gone */
 }
 
-bool lep_priv_sink_room(const session_sink *sk)
-{
-    return sk->rows.len < SESSION_ROWS;
-}
-
 void lep_priv_sink_row(session_sink *sk, const session_row *row)
 {
     session_rows *r = &sk->rows;
@@ -57,9 +52,22 @@ size_t lep_priv_sink_held(const session_sink *sk)
     return sk->rows.held;
 }
 
-void lep_priv_sink_hold(session_sink *sk, size_t n)
+size_t lep_priv_sink_hold_since(session_sink *sk, size_t before, bool extend)
 {
-    sk->rows.held = n <= sk->rows.len ? n : sk->rows.len;
+    size_t n = sk->rows.len > before ? sk->rows.len - before : 0u;
+    if (extend)
+        sk->rows.held += n;
+    else if (n > 0)
+        sk->rows.held = n;
+    return n;
+}
+
+bool lep_priv_sink_end(session_sink *sk)
+{
+    if (sk->rows.len != sk->rows.held)
+        return false;
+    sk->rows.held = 0;
+    return true;
 }
 
 void lep_priv_sink_release(session_sink *sk)
@@ -73,12 +81,14 @@ static session_row *row_back(session_rows *r, size_t back)
     return &r->pending[(r->head + r->len - 1u - back) % SESSION_ROWS];
 }
 
-void lep_priv_sink_gap_before_held(session_sink *sk, double shift)
+bool lep_priv_sink_judged(session_sink *sk, bool gap, double shift)
 {
     session_rows *rows = &sk->rows;
     size_t b;
-    if (rows->held == 0)
-        return;
+    if (!gap || rows->held == 0) {
+        rows->held = 0;
+        return false;
+    }
     for (b = 0; b < rows->held; b++) {
         session_row *r = row_back(rows, b);
         double t = r->t_mono + shift < r->arrived ? r->t_mono + shift : r->arrived;
@@ -87,6 +97,7 @@ void lep_priv_sink_gap_before_held(session_sink *sk, double shift)
     }
     row_back(rows, rows->held - 1u)->flags |= LEP_SF_GAP;
     rows->held = 0;
+    return true;
 }
 
 void lep_priv_row_append(lep_session_batch *b, const session_row *r)
@@ -171,9 +182,10 @@ void lep_priv_sink_client(session_sink *sk, const lep_client_stats *st)
     lep_priv_health_client(&sk->hs, st);
 }
 
-void lep_priv_sink_received(session_sink *sk, double t)
+bool lep_priv_sink_received(session_sink *sk, double t)
 {
     lep_priv_health_sample(&sk->hs, t);
+    return sk->rows.len < SESSION_ROWS;
 }
 
 uint64_t lep_priv_sink_pushed(const session_sink *sk)

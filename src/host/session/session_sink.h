@@ -81,8 +81,6 @@ void lep_priv_sink_open(session_sink *sk);
 void lep_priv_sink_start(session_sink *sk, double nominal_hz, const lep_client_stats *base);
 /* The stream stopped: the rows go, and every event queued may go. [mu] */
 void lep_priv_sink_stop(session_sink *sk);
-/* Whether a row can be kept. */
-bool lep_priv_sink_room(const session_sink *sk);
 /* Keep a processed row: it is row number lep_priv_sink_processed(). [mu] */
 void lep_priv_sink_row(session_sink *sk, const session_row *row);
 /* Rows kept since start: the next row's number. [mu] */
@@ -91,13 +89,18 @@ uint64_t lep_priv_sink_processed(const session_sink *sk);
 size_t lep_priv_sink_pending(const session_sink *sk);
 /* Rows held back while a hole is suspected. */
 size_t lep_priv_sink_held(const session_sink *sk);
-/* Hold back the newest n rows (n <= pending). */
-void lep_priv_sink_hold(session_sink *sk, size_t n);
+/* Hold back the rows kept since the sink had `before` pending (extend: as
+ * well as those held already); their number. */
+size_t lep_priv_sink_hold_since(session_sink *sk, size_t before, bool extend);
 /* Let the rows held back go as they are. */
 void lep_priv_sink_release(session_sink *sk);
-/* A hole before the rows held back: their stamps move by shift (each no
- * later than its read's return), the first is flagged LEP_SF_GAP; they go. */
-void lep_priv_sink_gap_before_held(session_sink *sk, double shift);
+/* The rows held back are judged; they go. A hole before them (gap): their
+ * stamps move by shift (each no later than its read's return), the first is
+ * flagged LEP_SF_GAP, and true is returned (false: none were held). */
+bool lep_priv_sink_judged(session_sink *sk, bool gap, double shift);
+/* The run ended: when only rows held back wait, nothing comes to judge them
+ * by: they go (true); false while other rows wait to be delivered. */
+bool lep_priv_sink_end(session_sink *sk);
 /* Move the rows not held back into b: the number moved; *first gets the
  * stamp of the first moved (unchanged when none). Driving thread, no [mu]. */
 size_t lep_priv_sink_deliver(session_sink *sk, lep_session_batch *b, double *first);
@@ -114,8 +117,8 @@ void lep_priv_sink_lost(session_sink *sk, const lep_session_event *ev, const lep
 void lep_priv_sink_reconnected(session_sink *sk, const lep_client_stats *base);
 /* The client's counters now. [mu] */
 void lep_priv_sink_client(session_sink *sk, const lep_client_stats *st);
-/* A sample received, stamped t. [mu] */
-void lep_priv_sink_received(session_sink *sk, double t);
+/* A sample received, stamped t, counted: whether its row can be kept. [mu] */
+bool lep_priv_sink_received(session_sink *sk, double t);
 /* Events queued since open. [mu] */
 uint64_t lep_priv_sink_pushed(const session_sink *sk);
 /* The oldest event, once the rows before its sample are returned. [mu] */

@@ -117,17 +117,11 @@ static bool judge(session_timing *tm, session_sink *sk, const lep_sample *got, s
                   double t_read, uint32_t *lost, timeline_verdict *v)
 {
     uint64_t known = seq_lost(tm, got, n, t_read, lost);
-    bool gap = false;
     lep_priv_timeline_read(&tm->tl, t_read, n, known, v);
-    if (!v->release)
+    if (!v->release || !lep_priv_sink_judged(sk, v->gap, v->shift))
         return false;
-    if (v->gap && lep_priv_sink_held(sk) > 0) {
-        lep_priv_sink_gap_before_held(sk, v->shift);
-        gap_event(sk, LEP_EV_GAP, tm->suspect_index, v->from, v->to, v->lost, 0);
-        gap = true;
-    }
-    lep_priv_sink_release(sk);
-    return gap;
+    gap_event(sk, LEP_EV_GAP, tm->suspect_index, v->from, v->to, v->lost, 0);
+    return true;
 }
 
 /* Sample j of the read (lost ones counted), after `lost` missing ones: its
@@ -157,14 +151,15 @@ static uint8_t stamp_sample(session_timing *tm, session_sink *sk, uint64_t j, ui
  * them): hold them back as the verdict says. */
 static void hold(session_timing *tm, session_sink *sk, const timeline_verdict *v, size_t before)
 {
-    size_t now = lep_priv_sink_pending(sk);
+    size_t n;
     if (v->extend) {
-        lep_priv_sink_hold(sk, lep_priv_sink_held(sk) + now - before); /* too soon to judge */
-    } else if (v->hold && now > before) {
-        lep_priv_sink_hold(sk, now - before);
-        tm->suspect_index = lep_priv_sink_processed(sk) - lep_priv_sink_held(sk);
+        (void)lep_priv_sink_hold_since(sk, before, true); /* too soon to judge */
     } else if (v->hold) {
-        lep_priv_timeline_forget_held(&tm->tl); /* nothing kept to hold */
+        n = lep_priv_sink_hold_since(sk, before, false);
+        if (n > 0)
+            tm->suspect_index = lep_priv_sink_processed(sk) - n;
+        else
+            lep_priv_timeline_forget_held(&tm->tl); /* nothing kept to hold */
     }
 }
 
@@ -187,15 +182,16 @@ void lep_priv_timing_feed(session_timing *tm, session_chain *ch, session_sink *s
         flags = stamp_sample(tm, sk, j++, lost[i], &t);
         if (flags & LEP_SF_GAP)
             lep_priv_chain_hole(ch);
-        lep_priv_sink_received(sk, t);
-        if (lep_priv_sink_room(sk))
+        if (lep_priv_sink_received(sk, t))
             lep_priv_chain_sample(ch, sk, &got[i], t, t + tm->utc_off, t_read, flags);
     }
     hold(tm, sk, &v, before);
 }
 
-void lep_priv_timing_end(session_timing *tm, session_sink *sk)
+bool lep_priv_timing_end(session_timing *tm, session_sink *sk)
 {
-    lep_priv_sink_release(sk);
+    if (!lep_priv_sink_end(sk))
+        return false;
     lep_priv_timeline_forget_held(&tm->tl);
+    return true;
 }

@@ -75,7 +75,8 @@ double lep_priv_timing_last(const session_timing *tm);
  * has room; this read's rows held back as the timeline says. [mu] */
 void lep_priv_timing_feed(session_timing *tm, session_chain *ch, session_sink *sk,
                           const lep_sample *got, size_t n, double t_read);
-/* The run ended: nothing comes to judge the held rows by; they go. */
-void lep_priv_timing_end(session_timing *tm, session_sink *sk);
+/* The run ended: when only held rows wait, nothing comes to judge them
+ * by: they go (true); false while other rows wait to be delivered. */
+bool lep_priv_timing_end(session_timing *tm, session_sink *sk);
 
 #endif
