@@ -2,9 +2,10 @@
 """The private headers' map of who owns what is true: each prototype is
 defined by the file whose section it sits in.
 
-A private header (src/host/session/session_priv.h, sim_priv.h) is divided into
-sections by comments that begin with a file's name at the start of a line
-("/* session_proc.c: ..." or "/* ---- session_load.c ---- */"). Each function
+A private header (each of the session's unit headers and session_priv.h in
+src/host/session, sim_priv.h) is divided into sections by comments that begin
+with a file's name at the start of a line ("/* session_guard.c: ..." or
+"/* ---- session_chain_load.c ---- */"). Each function
 prototype at the start of a line (not static, not a typedef) belongs to the
 section above it; the object file compiled from that section's file must
 define it (`nm -P`). Prototypes before any section are reported too.

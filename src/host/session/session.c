@@ -1,6 +1,7 @@
 /* Host session: options, open (port or virtual sensor, start-up recovery,
  * identity, rated values, filter), start, stop, close, and the accessors.
- * The top of the pipeline (session_priv.h): it calls the stages, none calls it. */
+ * The lifecycle of the units (session_priv.h): it makes them, starts and
+ * stops them, and none calls it. */
 #if defined(__APPLE__)
 #define _DARWIN_C_SOURCE
 #else
@@ -119,13 +120,14 @@ static int16_t saturation_for(const char *firmware)
 static int read_identity(lep_session *s, char *err, size_t errlen)
 {
     uint8_t code = 0;
-    int rc = lep_client_rated(&s->client, &s->rated);
+    lep_client *c = lep_priv_reader_client(&s->rd); /* a handshake: the stream is not running */
+    int rc = lep_client_rated(c, &s->rated);
     if (rc != LEP_OK) {
         lep_priv_set_err(err, errlen, "%s: rated values: %s", s->opt.port, lep_strerror(rc));
         return rc;
     }
     /* Some sensors refuse the filter query, or never answer it: not an error. */
-    rc = lep_client_filter_get(&s->client, &code);
+    rc = lep_client_filter_get(c, &code);
     s->sensor_filter = rc == LEP_OK ? (int)code : -1;
     if (rc == LEP_E_DISCONNECTED) {
         lep_priv_set_err(err, errlen, "%s: filter query: %s", s->opt.port, lep_strerror(rc));
@@ -141,6 +143,7 @@ static int read_identity(lep_session *s, char *err, size_t errlen)
         s->nominal_hz = LEP_SESSION_NOMINAL_HZ;
     s->period_s = 1.0 / s->nominal_hz;
     s->saturation = saturation_for(s->info.firmware);
+    lep_priv_reader_set_rate(&s->rd, s->nominal_hz);
     return LEP_OK;
 }
 
@@ -164,7 +167,7 @@ int lep_session_open_so(const lep_session_options *o, lep_session **out, char *e
         lep_priv_set_err(err, errlen, "session: out of memory");
         return LEP_E_IO;
     }
-    lep_priv_events_stop(&s->events); /* not streaming: events go as they come */
+    lep_priv_sink_open(&s->sink); /* not streaming: events go as they come */
     if (pthread_mutex_init(&s->mu, NULL) != 0) {
         free(s);
         lep_priv_set_err(err, errlen, "session: cannot create a mutex");
@@ -177,7 +180,6 @@ int lep_session_open_so(const lep_session_options *o, lep_session **out, char *e
         return LEP_E_IO;
     }
     s->opt = *o;
-    s->conn = CONN_DOWN;
     s->sensor_filter = -1;
     if (o->use_sim) {
         lep_sim_options so = o->sim;
@@ -206,10 +208,28 @@ int lep_session_open_so(const lep_session_options *o, lep_session **out, char *e
      * their strings since they became arrays). */
     s->opt.port = s->port_buf;
 
-    rc = lep_priv_session_connect(s, err, errlen);
-    if (rc == LEP_OK)
-        rc = read_identity(s, err, errlen);
-    s->first_info = s->info;
+    {
+        reader_config rcfg;
+        lep_product_info info;
+        memset(&rcfg, 0, sizeof rcfg);
+        rcfg.port = s->port_buf;
+        rcfg.timeout_ms = o->timeout_ms;
+        rcfg.retries = o->retries;
+        rcfg.sync_quiet_ms = o->sync_quiet_ms;
+        rcfg.data_timeout_ms = o->data_timeout_ms;
+        rcfg.reconnect = o->reconnect;
+        rcfg.reconnect_min_ms = o->reconnect_min_ms;
+        rcfg.reconnect_max_ms = o->reconnect_max_ms;
+        rcfg.reconnect_give_up_ms = o->reconnect_give_up_ms;
+        lep_priv_reader_init(&s->rd, &rcfg);
+        rc = lep_priv_reader_connect(&s->rd, &info, err, errlen);
+        if (rc == LEP_OK) {
+            pthread_mutex_lock(&s->mu); /* the metadata may be read from another thread */
+            s->info = info;
+            pthread_mutex_unlock(&s->mu);
+            rc = read_identity(s, err, errlen);
+        }
+    }
     if (rc != LEP_OK) {
         lep_session_close(s);
         return rc;
@@ -218,10 +238,16 @@ int lep_session_open_so(const lep_session_options *o, lep_session **out, char *e
      * read, `leptrino read`, says when it was taken). */
     s->start_mono = lep_monotonic_seconds();
     s->start_utc = s->start_mono + lep_priv_utc_offset();
-    memcpy(s->proc.rot, o->rotation, sizeof s->proc.rot);
-    memcpy(s->proc.shift, o->shift_m, sizeof s->proc.shift);
-    s->proc.decimate = o->decimate;
-    lep_priv_load_init(&s->load, o);
+    {
+        session_chain_config cc;
+        memset(&cc, 0, sizeof cc);
+        cc.rated = s->rated;
+        cc.saturation = s->saturation;
+        cc.tare_samples = o->tare_samples;
+        cc.duration_s = o->duration_s;
+        cc.count = o->count;
+        lep_priv_chain_init(&s->chain, o, &cc);
+    }
     rc = lep_session_set_rotation(s, o->rotation, o->shift_m);
     if (rc != LEP_OK) {
         lep_priv_set_err(err, errlen, "session: rotation is not a rotation matrix (R R^T != I)");
@@ -253,7 +279,7 @@ void lep_session_close(lep_session *s)
         return; /* another thread is closing it */
     if (s->streaming)
         (void)session_stop(s);
-    lep_priv_session_disconnect(s);
+    lep_priv_reader_disconnect(&s->rd);
     lep_sim_stop(s->sim);
     lep_priv_guard_destroy(&s->guard);
     pthread_mutex_destroy(&s->mu);
@@ -267,27 +293,21 @@ static int session_start(lep_session *s)
     double now;
     if (s->streaming)
         return LEP_E_STATE;
-    if (s->conn != CONN_UP)
-        return LEP_E_DISCONNECTED;
-    rc = lep_client_start(&s->client);
+    rc = lep_priv_reader_start(&s->rd);
     if (rc != LEP_OK)
         return rc;
-    lep_client_get_stats(&s->client, &base);
+    lep_priv_reader_stats(&s->rd, &base);
     now = lep_monotonic_seconds();
-    lep_priv_timing_start(&s->tm, s->period_s, s->opt.gap_periods,
-                          s->sim == NULL); /* measures the UTC offset */
+    lep_priv_timing_start(&s->tm, s->nominal_hz, s->opt.gap_periods,
+                          s->sim != NULL); /* measures the UTC offset */
     pthread_mutex_lock(&s->mu);
-    lep_priv_health_start(&s->hs, s->nominal_hz, &base);
-    lep_priv_events_start(&s->events);
+    lep_priv_sink_start(&s->sink, s->nominal_hz, &base);
     s->start_mono = now;
-    s->start_utc = now + s->tm.utc_off;
-    lep_priv_proc_start(s);
+    s->start_utc = now + lep_priv_timing_utc_offset(&s->tm);
+    lep_priv_chain_start(&s->chain);
     pthread_mutex_unlock(&s->mu);
     s->streaming = true;
-    s->backlog = false;
-    lep_priv_reconnect_start(&s->rc);
-    lep_priv_rows_clear(&s->rows);
-    lep_priv_session_stream_reset(s, now);
+    lep_priv_session_resume(s, now);
     return LEP_OK;
 }
 
@@ -332,25 +352,18 @@ int lep_session_latency(const lep_session *s)
 
 static int session_stop(lep_session *s)
 {
-    int rc = LEP_OK;
+    int rc;
     if (!s->streaming)
         return LEP_E_STATE;
     s->streaming = false;
-    lep_priv_rows_clear(&s->rows);
     pthread_mutex_lock(&s->mu);
-    lep_priv_events_stop(&s->events); /* the rows their samples wait for are gone */
+    lep_priv_sink_stop(&s->sink); /* the rows, and the gate of the events that waited for them */
     pthread_mutex_unlock(&s->mu);
-    if (s->conn == CONN_UP && lep_client_streaming(&s->client)) {
-        rc = lep_client_stop(&s->client);
-        /* one more try, e.g. after a lost answer; not after a silence that
-         * already lost the stream (it would only double the wait) */
-        if (rc != LEP_OK && rc != LEP_E_DISCONNECTED && s->rc.failed != LEP_E_LOST)
-            rc = lep_client_stop(&s->client);
-    }
+    rc = lep_priv_reader_stop(&s->rd);
     pthread_mutex_lock(&s->mu);
-    lep_priv_proc_stop(&s->proc);
+    lep_priv_chain_stop(&s->chain);
     pthread_mutex_unlock(&s->mu);
-    return rc == LEP_E_DISCONNECTED ? LEP_OK : rc;
+    return rc;
 }
 
 int lep_session_stop(lep_session *s)
@@ -360,7 +373,7 @@ int lep_session_stop(lep_session *s)
 
 lep_client *lep_session_client(lep_session *s)
 {
-    return s != NULL && s->conn == CONN_UP ? &s->client : NULL;
+    return s != NULL ? lep_priv_reader_client(&s->rd) : NULL;
 }
 
 lep_sim *lep_session_sim(lep_session *s)
@@ -375,10 +388,19 @@ const char *lep_session_port(const lep_session *s)
 
 int lep_session_fd(const lep_session *s)
 {
-    return s != NULL && s->conn == CONN_UP ? lep_serial_fd(s->serial) : -1;
+    return s != NULL ? lep_priv_reader_fd(&s->rd) : -1;
 }
 
 int lep_session_streaming(const lep_session *s)
 {
     return s != NULL && s->streaming ? 1 : 0;
+}
+
+int lep_session_get_serial_info(const lep_session *s, lep_serial_info *out)
+{
+    if (out != NULL)
+        memset(out, 0, sizeof *out);
+    if (s == NULL || out == NULL)
+        return LEP_E_ARG;
+    return lep_priv_reader_serial_info(&s->rd, out);
 }

@@ -9,7 +9,7 @@
 #include <math.h>
 #include <time.h>
 
-#include "session_priv.h"
+#include "session_clock.h"
 
 double lep_priv_utc_offset(void)
 {

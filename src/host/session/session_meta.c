@@ -17,8 +17,6 @@
 #include "leptrino/leptrino.h"
 #include "session_priv.h"
 
-#define LOWPASS_NAME "2nd-order Butterworth (bilinear, prewarped)"
-
 /* Copy src into dst[0..cap), truncating, always terminated. */
 static void copy_str(char *dst, size_t cap, const char *src)
 {
@@ -51,21 +49,9 @@ void lep_session_get_metadata(lep_session *s, lep_session_meta *out)
     out->sim = s->sim != NULL;
     copy_str(out->library_version, sizeof out->library_version, lep_version());
     pthread_mutex_lock(&s->mu);
-    out->lowpass_hz = s->proc.lp.cutoff_hz;
-    if (s->proc.lp.cutoff_hz > 0.0) {
-        copy_str(out->lowpass_name, sizeof out->lowpass_name, LOWPASS_NAME);
-        out->lowpass_delay_s = s->proc.lp.delay_s;
-    }
-    out->decimate = s->proc.decimate;
-    memcpy(out->rotation, s->proc.rot, sizeof out->rotation);
-    memcpy(out->shift_m, s->proc.shift, sizeof out->shift_m);
-    out->tared = s->proc.tared;
-    memcpy(out->tare, s->proc.tare, sizeof out->tare);
+    lep_priv_chain_meta(&s->chain, out);
     out->start_utc = s->start_utc;
     out->start_mono = s->start_mono;
-    out->payload = s->load.payload;
-    memcpy(out->gravity, s->load.gravity, sizeof out->gravity);
-    memcpy(out->limit, s->load.limit, sizeof out->limit);
     pthread_mutex_unlock(&s->mu);
 }
 

@@ -1,45 +1,26 @@
-/* Host session, reading: lep_session_read (wait for samples within the
- * timeout and the latency budget, read the port, hand the bytes to the feed,
- * reconnect inside the call) and lep_session_read_one (one handshake sample
- * through the session's units and processing). */
+/* Host session, reading: lep_session_read (inside the thread guard, in
+ * passes that see a close) and lep_session_read_one. This file wires the
+ * units for one call: the reader's bytes and their read times, stepped into
+ * samples, fed to the pipeline (the timing stamps them and hands them to the
+ * chain, which keeps their rows in the sink), the sink's rows delivered into
+ * the caller's batch; a loss and a reconnection
+ * told to each unit in turn. It writes no unit's fields: it calls their
+ * functions, with the session's mutex held for the [mu] ones. */
 #include <math.h>
 #include <string.h>
 
 #include "leptrino/error.h"
-#include "posix_clock.h"
 #include "session_priv.h"
 
 /* Not an outcome: go round the read loop again. */
 #define READ_AGAIN 1
 
-/* A read with a latency budget sleeps the budget out, drains the port, then
- * waits for the next frame: its arrival, seen at once, is a point on the
- * sensor's clock as close as an unbudgeted read's (a drain alone returns
- * at a time unrelated to the last sample's arrival, up to a period after
- * it, and in lockstep with the stream when the budget is a whole number of
- * periods). It costs one wake-up more per budget, and is made only when a
- * budget spans PROBE_MIN_PERIODS periods or more (so the wait, at most
- * PROBE_WAIT_PERIODS, is small beside the budget). */
-#define PROBE_MIN_PERIODS 4.0
-#define PROBE_WAIT_PERIODS 2.0
-
-/* Where a call with a latency budget is. */
-enum budget_stage {
-    BUDGET_AWAKE,   /* not slept yet */
-    BUDGET_SLEPT,   /* slept out the budget: draining without waiting */
-    BUDGET_DRAINED, /* the port found empty: the next read waits for a frame */
-    BUDGET_DONE     /* the budgeted read is made: deliver */
-};
-
 /* One call of lep_session_read. */
 typedef struct read_call {
     lep_session_batch *b;
-    double budget;   /* latency budget, s */
-    double deadline; /* of the call's timeout, monotonic s (INFINITY: none) */
-    double first;    /* arrival of the first sample appended (< 0: none yet) */
-    bool probe;      /* wait for a frame after the drain (see PROBE_MIN_PERIODS) */
-    int stage;       /* enum budget_stage */
-    bool got;        /* samples appended or events queued */
+    reader_call rc; /* the budget, the reader's */
+    double first;   /* stamp of the first row appended (< 0: none yet) */
+    bool got;       /* rows appended or events queued */
     size_t n0;
     uint64_t ev0;
 } read_call;
@@ -48,21 +29,91 @@ static uint64_t events_pushed(lep_session *s)
 {
     uint64_t n;
     pthread_mutex_lock(&s->mu);
-    n = s->events.pushed;
+    n = lep_priv_sink_pushed(&s->sink);
     pthread_mutex_unlock(&s->mu);
     return n;
+}
+
+/* Bytes read at t_read: the samples they complete stamped, checked for
+ * gaps, counted, processed and kept as rows for the next read. */
+static void feed(lep_session *s, const uint8_t *data, size_t len, double t_read)
+{
+    lep_sample got[SESSION_PENDING];
+    lep_client_stats st;
+    size_t n = lep_priv_reader_samples(&s->rd, data, len, got, t_read);
+
+    lep_priv_reader_stats(&s->rd, &st);
+    if (n > 0)
+        (void)lep_priv_timing_utc(&s->tm, t_read); /* outside the mutex: clock reads */
+    pthread_mutex_lock(&s->mu);
+    lep_priv_sink_client(&s->sink, &st);
+    if (n > 0)
+        lep_priv_timing_feed(&s->tm, &s->chain, &s->sink, got, n, t_read);
+    pthread_mutex_unlock(&s->mu);
+}
+
+void lep_priv_session_resume(lep_session *s, double now)
+{
+    uint8_t left[LEP_CLIENT_RX_SIZE];
+    size_t n = lep_priv_reader_resume(&s->rd, now, left);
+    lep_priv_timing_resume(&s->tm, now);
+    if (n > 0)
+        feed(s, left, n, now);
+}
+
+/* The stream is lost at now (error: LEP_E_DISCONNECTED, port gone, or
+ * LEP_E_TIMEOUT, no data for data_timeout_ms): the event and the counters,
+ * the stamps start over, the reader gives up or begins to reconnect. */
+static void stream_lost(lep_session *s, int error, double now)
+{
+    lep_session_event ev;
+    lep_client_stats st;
+    lep_priv_reader_stats(&s->rd, &st);
+    pthread_mutex_lock(&s->mu);
+    lep_priv_event_init(&ev, LEP_EV_DISCONNECTED, lep_priv_sink_processed(&s->sink), now);
+    ev.error = error;
+    ev.gap_from = lep_priv_timing_last(&s->tm);
+    lep_priv_sink_lost(&s->sink, &ev, &st);
+    lep_priv_timing_lost(&s->tm, &s->sink);
+    pthread_mutex_unlock(&s->mu);
+    lep_priv_reader_lost(&s->rd, error, now);
+    if (s->opt.reconnect)
+        lep_priv_timing_reconnected(&s->tm, error);
+}
+
+/* While disconnected: the reader waits or attempts; a sensor that answered
+ * is the metadata's, a stream running again is resumed. False when the
+ * deadline passed asleep. */
+static bool reconnect_wait(lep_session *s, double now, double deadline)
+{
+    lep_product_info info;
+    bool identified = false;
+    int w = lep_priv_reader_wait(&s->rd, now, deadline, &info, &identified);
+    if (identified) {
+        pthread_mutex_lock(&s->mu); /* the metadata may be read from another thread */
+        s->info = info;
+        pthread_mutex_unlock(&s->mu);
+    }
+    if (w == READER_RECONNECTED) {
+        lep_client_stats base;
+        lep_priv_reader_stats(&s->rd, &base);
+        pthread_mutex_lock(&s->mu);
+        lep_priv_sink_reconnected(&s->sink, &base);
+        lep_priv_chain_restart_filter(&s->chain);
+        pthread_mutex_unlock(&s->mu);
+        lep_priv_session_resume(s, lep_monotonic_seconds());
+    }
+    return w != READER_TIMED_OUT;
 }
 
 /* Rows into the caller's batch: counted, and their events free to go. */
 static void deliver_rows(lep_session *s, lep_session_batch *b, double *first)
 {
-    size_t n = b->n;
-    lep_priv_rows_deliver(&s->rows, b, first);
-    if (b->n == n)
+    size_t n = lep_priv_sink_deliver(&s->sink, b, first);
+    if (n == 0)
         return;
     pthread_mutex_lock(&s->mu);
-    s->hs.h.delivered += b->n - n;
-    lep_priv_events_returned(&s->events, s->hs.h.delivered);
+    lep_priv_sink_returned(&s->sink, n);
     pthread_mutex_unlock(&s->mu);
 }
 
@@ -71,87 +122,46 @@ static void deliver_rows(lep_session *s, lep_session_batch *b, double *first)
 static int delivered(lep_session *s, read_call *c, double *now)
 {
     lep_session_batch *b = c->b;
+    int failed;
     for (;;) {
         deliver_rows(s, b, &c->first);
-        if (!(s->proc.ended && s->rows.len == s->rows.held))
-            break;
-        s->rows.held = 0; /* nothing comes after the end to judge it by */
-        lep_priv_timeline_forget_held(&s->tm.tl);
-        if (s->rows.len == 0)
+        if (!lep_priv_chain_ended(&s->chain) || !lep_priv_timing_end(&s->tm, &s->sink))
+            break; /* (the end: rows held back go, nothing comes to judge them by) */
+        if (lep_priv_sink_pending(&s->sink) == 0)
             return LEP_E_END;
     }
     if (b->n == b->cap)
         return LEP_OK;
     c->got = b->n > c->n0 || events_pushed(s) != c->ev0;
-    if (s->rc.failed != 0)
-        return c->got ? LEP_OK : s->rc.failed;
+    failed = lep_priv_reader_failed(&s->rd);
+    if (failed != 0)
+        return c->got ? LEP_OK : failed;
     *now = lep_monotonic_seconds();
-    if (c->got && !s->backlog &&
-        (c->budget <= 0.0 || b->n == c->n0 || c->stage == BUDGET_DONE ||
-         *now >= c->first + c->budget))
+    if (c->got && lep_priv_reader_call_over(&s->rd, &c->rc, *now, b->n != c->n0, c->first))
         return LEP_OK;
     return READ_AGAIN;
-}
-
-/* How long the next port read may wait, ms; with a budget, sleep it out first. */
-static int port_wait(lep_session *s, read_call *c, double now, double data_deadline)
-{
-    double wake;
-    if (s->backlog)
-        return 0; /* the last read filled the buffer: more is waiting, take it now */
-    if (c->budget <= 0.0)
-        return lep_priv_ms_until(c->deadline < data_deadline ? c->deadline : data_deadline, now);
-    if (c->stage == BUDGET_DRAINED) {
-        /* the port is empty: the next frame's arrival is seen at once */
-        wake = now + PROBE_WAIT_PERIODS * s->period_s;
-        c->stage = BUDGET_DONE;
-        return lep_priv_ms_until(wake < c->deadline ? wake : c->deadline, now);
-    }
-    /* Save wake-ups: sleep until the budget is spent (less the probe's
-     * period), then take everything in reads that do not wait. */
-    wake = c->got ? c->first + c->budget : s->tm.last_read_t + c->budget;
-    if (c->probe)
-        wake -= s->period_s;
-    if (s->rows.held > 0 && wake > s->tm.last_read_t + SESSION_CONFIRM_S)
-        wake = s->tm.last_read_t + SESSION_CONFIRM_S; /* judge a suspected hole soon */
-    if (wake > c->deadline)
-        wake = c->deadline;
-    if (wake > data_deadline)
-        wake = data_deadline;
-    lep_priv_sleep_until_ns((int64_t)(wake * 1e9));
-    c->stage = BUDGET_SLEPT;
-    return 0;
 }
 
 /* One read of the port, fed on; the call's outcome or READ_AGAIN. */
 static int read_port(lep_session *s, read_call *c, double now)
 {
-    double data_deadline = s->tm.last_data_read_t + (double)s->opt.data_timeout_ms / 1000.0;
-    int wait = port_wait(s, c, now, data_deadline);
-    int rc = s->client.io.read(s->client.io.user, s->rbuf, sizeof s->rbuf, wait);
-    now = lep_monotonic_seconds();
-    /* More may be waiting: a read returns at most what the tty layer holds
-     * (4 KiB on Linux), so with a budget, read until one comes back empty;
-     * without, only after a read that filled the buffer. */
-    s->backlog =
-        rc == (int)sizeof s->rbuf || (c->budget > 0.0 && rc > 0 && c->stage != BUDGET_DONE);
-    if (rc == 0 && c->stage == BUDGET_SLEPT)
-        c->stage = c->probe ? BUDGET_DRAINED : BUDGET_DONE;
+    double t;
+    int rc = lep_priv_reader_read(&s->rd, &c->rc, now, c->got, c->first,
+                                  lep_priv_sink_held(&s->sink) > 0, &t);
     if (rc > 0) {
-        lep_priv_session_feed(s, s->rbuf, (size_t)rc, now);
+        feed(s, lep_priv_reader_bytes(&s->rd), (size_t)rc, t);
         return READ_AGAIN;
     }
     if (rc == 0) {
-        s->tm.last_read_t = now;
-        lep_priv_timeline_empty(&s->tm.tl, now);
-        if (now >= data_deadline)
-            lep_priv_reconnect_lost(s, LEP_E_TIMEOUT, now);
-        else if (now >= c->deadline)
+        lep_priv_timing_empty(&s->tm, t);
+        if (lep_priv_reader_silent(&s->rd, t))
+            stream_lost(s, LEP_E_TIMEOUT, t);
+        else if (t >= c->rc.deadline)
             return c->got ? LEP_OK : LEP_E_TIMEOUT;
         return READ_AGAIN;
     }
     if (rc == LEP_E_DISCONNECTED || rc == LEP_E_IO) {
-        lep_priv_reconnect_lost(s, LEP_E_DISCONNECTED, now);
+        stream_lost(s, LEP_E_DISCONNECTED, t);
         return READ_AGAIN;
     }
     return c->got ? LEP_OK : rc;
@@ -161,7 +171,6 @@ static int read_port(lep_session *s, read_call *c, double now)
 static int read_pass(lep_session *s, lep_session_batch *b, int timeout_ms)
 {
     read_call c;
-    double kernel_s;
 
     if (!s->streaming)
         return LEP_E_STATE;
@@ -170,20 +179,14 @@ static int read_pass(lep_session *s, lep_session_batch *b, int timeout_ms)
     c.first = -1.0;
     c.n0 = b->n;
     c.ev0 = events_pushed(s);
-    /* Never sleep longer than the kernel can buffer for us. */
-    c.budget = (double)s->opt.latency_ms / 1000.0;
-    kernel_s = SESSION_KERNEL_BYTES / (s->nominal_hz * SESSION_MIN_FRAME);
-    if (c.budget > kernel_s)
-        c.budget = kernel_s;
-    c.probe = c.budget >= PROBE_MIN_PERIODS * s->period_s;
-    c.deadline = timeout_ms < 0 ? INFINITY : lep_monotonic_seconds() + (double)timeout_ms / 1000.0;
+    lep_priv_reader_call(&s->rd, &c.rc, s->opt.latency_ms, timeout_ms);
     for (;;) {
         double now = 0.0;
         int rc = delivered(s, &c, &now);
-        if (rc == READ_AGAIN && s->conn == CONN_DOWN)
-            rc = lep_priv_reconnect_wait(s, now, c.deadline) ? READ_AGAIN
-                 : c.got                                     ? LEP_OK
-                                                             : LEP_E_TIMEOUT;
+        if (rc == READ_AGAIN && !lep_priv_reader_up(&s->rd))
+            rc = reconnect_wait(s, now, c.rc.deadline) ? READ_AGAIN
+                 : c.got                               ? LEP_OK
+                                                       : LEP_E_TIMEOUT;
         else if (rc == READ_AGAIN)
             rc = read_port(s, &c, now);
         if (rc != READ_AGAIN)
@@ -200,16 +203,14 @@ static int read_one(lep_session *s, lep_session_batch *b)
 
     if (s->streaming)
         return LEP_E_STATE;
-    if (s->conn != CONN_UP)
-        return LEP_E_DISCONNECTED;
-    rc = lep_client_sample(&s->client, &smp);
+    rc = lep_priv_reader_sample(&s->rd, &smp);
     t = lep_monotonic_seconds();
     if (rc != LEP_OK)
         return rc;
     pthread_mutex_lock(&s->mu);
-    lep_priv_proc_one(s, &smp, t, t + lep_priv_utc_offset(), &row);
+    lep_priv_chain_one(&s->chain, &smp, t, t + lep_priv_utc_offset(), &row);
     pthread_mutex_unlock(&s->mu);
-    lep_priv_rows_append(b, &row);
+    lep_priv_row_append(b, &row);
     return LEP_OK;
 }
 
@@ -236,7 +237,8 @@ int lep_session_read_batch(lep_session *s, lep_session_batch *b, int timeout_ms)
         rc = read_pass(s, b, wait);
         /* nothing in this pass, the stream not given up: wait on unless the
          * caller's time is out or the session is being closed */
-        if (rc != LEP_E_TIMEOUT || s->rc.failed != 0 || left_ms <= (double)slice_ms)
+        if (rc != LEP_E_TIMEOUT || lep_priv_reader_failed(&s->rd) != 0 ||
+            left_ms <= (double)slice_ms)
             break;
         if (lep_priv_guard_closing(&s->guard)) {
             rc = LEP_E_STATE;

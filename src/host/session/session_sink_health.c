@@ -1,10 +1,10 @@
-/* Host session, health: samples received and their rate, gaps, losses,
- * errors over every connection, and lep_session_get_health. [mu] held by the
- * callers of the lep_priv_health_* functions. */
+/* Host session, the sink's health counters (session_sink.h): samples
+ * received and their rate, gaps, losses, errors over every connection.
+ * [mu] held by the callers. */
 #include <string.h>
 
 #include "leptrino/error.h"
-#include "session_priv.h"
+#include "session_sink.h"
 
 static uint64_t conn_errors(const lep_client_stats *now, const lep_client_stats *base)
 {
@@ -71,18 +71,4 @@ void lep_priv_health_reconnected(session_health_state *hs, const lep_client_stat
 {
     hs->base_stats = *base;
     hs->h.reconnects++;
-}
-
-void lep_session_get_health(lep_session *s, lep_session_health_info *out)
-{
-    if (out == NULL)
-        return;
-    if (s == NULL) {
-        memset(out, 0, sizeof *out);
-        return;
-    }
-    pthread_mutex_lock(&s->mu);
-    *out = s->hs.h;
-    out->events_dropped = s->events.dropped;
-    pthread_mutex_unlock(&s->mu);
 }

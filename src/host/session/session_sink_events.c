@@ -1,11 +1,12 @@
-/* Host session, the event queue: events wait here until
+/* Host session, the sink's event queue (session_sink.h): events wait here until
  * lep_session_next_event takes them, and until the rows before their sample
  * are returned (a read may process more rows than its batch takes); a full
  * queue drops its oldest and counts it (lep_session_health_info.events_dropped). */
 #include <stdint.h>
 #include <string.h>
 
-#include "session_priv.h"
+#include "session_clock.h"
+#include "session_sink.h"
 
 void lep_priv_event_init(lep_session_event *ev, int type, uint64_t sample, double t_mono)
 {
@@ -57,15 +58,4 @@ bool lep_priv_events_pop(session_events *q, lep_session_event *ev)
     q->head = (q->head + 1u) % SESSION_EVENTS;
     q->len--;
     return true;
-}
-
-bool lep_session_pop_event(lep_session *s, lep_session_event *ev)
-{
-    bool got;
-    if (s == NULL || ev == NULL)
-        return false;
-    pthread_mutex_lock(&s->mu);
-    got = lep_priv_events_pop(&s->events, ev);
-    pthread_mutex_unlock(&s->mu);
-    return got;
 }

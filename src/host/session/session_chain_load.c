@@ -1,7 +1,7 @@
 /* Host session, the load on the sensor: the payload's gravity wrench removed
  * from the SI values (leptrino/payload.h, the one implementation of the
- * model), and per-axis limits on what is left, with their episodes. Called by
- * session_proc.c; calls session_events.c. */
+ * model), and per-axis limits on what is left, with their episodes: the
+ * chain's part (session_chain.h); its events go into the sink it is given. */
 #define _POSIX_C_SOURCE 200809L
 
 #include <errno.h>
@@ -12,7 +12,7 @@
 #include "errmsg.h"
 #include "leptrino/error.h"
 #include "struct_api.h"
-#include "session_priv.h"
+#include "session_chain.h"
 
 /* A limit episode ends when every axis is back within this share of its limit. */
 #define LIMIT_CLEAR 0.95
@@ -79,9 +79,9 @@ void lep_priv_load_counts(const session_load *l, const lep_rated *rated, double 
         counts[k] = l->wrench[k] * (double)LEP_RAW_FULL_SCALE / (double)rated->axis[k];
 }
 
-uint8_t lep_priv_load_limits(lep_session *s, const double si[LEP_AXES], double t, uint64_t sample)
+uint8_t lep_priv_load_limits(session_load *l, session_sink *sk, const double si[LEP_AXES], double t,
+                             uint64_t sample)
 {
-    session_load *l = &s->load;
     uint8_t axes = 0, near = 0;
     int k;
     for (k = 0; k < LEP_AXES; k++) {
@@ -100,9 +100,7 @@ uint8_t lep_priv_load_limits(lep_session *s, const double si[LEP_AXES], double t
                             t);
         ev.axes = axes;
         memcpy(ev.wrench, si, sizeof ev.wrench);
-        lep_priv_events_push(&s->events, &ev);
-        if (l->beyond)
-            s->hs.h.limit_episodes++;
+        lep_priv_sink_event(sk, &ev); /* counts an episode begun */
     }
     return axes != 0u ? LEP_SF_LIMIT : 0u;
 }
@@ -135,55 +133,49 @@ int lep_limits_parse(const char *text, double limit[LEP_AXES])
     return LEP_OK;
 }
 
-/* ---- the any-thread setters ---- */
+/* ---- the setters ---- */
 
-int lep_session_set_payload(lep_session *s, const lep_payload *p)
+int lep_priv_chain_set_payload(session_chain *ch, const lep_payload *p)
 {
+    session_load *l = &ch->load;
     static const lep_payload none = { 0.0, { 0.0, 0.0, 0.0 } };
     double w[LEP_AXES];
-    if (s == NULL)
-        return LEP_E_ARG;
     if (p == NULL)
         p = &none;
-    pthread_mutex_lock(&s->mu);
-    if (lep_payload_wrench_p(p, s->load.gravity, w) != LEP_OK) {
-        pthread_mutex_unlock(&s->mu);
+    if (lep_payload_wrench_p(p, l->gravity, w) != LEP_OK)
         return LEP_E_ARG;
-    }
-    s->load.payload = *p;
-    memcpy(s->load.wrench, w, sizeof w);
-    pthread_mutex_unlock(&s->mu);
+    l->payload = *p;
+    memcpy(l->wrench, w, sizeof w);
     return LEP_OK;
 }
 
-int lep_session_set_gravity(lep_session *s, const double gravity[3])
+int lep_priv_chain_set_gravity(session_chain *ch, const double gravity[3])
 {
+    session_load *l = &ch->load;
     double w[LEP_AXES];
-    if (s == NULL || gravity == NULL)
+    if (lep_payload_wrench_p(&l->payload, gravity, w) != LEP_OK)
         return LEP_E_ARG;
-    pthread_mutex_lock(&s->mu);
-    if (lep_payload_wrench_p(&s->load.payload, gravity, w) != LEP_OK) {
-        pthread_mutex_unlock(&s->mu);
-        return LEP_E_ARG;
-    }
-    memcpy(s->load.gravity, gravity, sizeof s->load.gravity);
-    memcpy(s->load.wrench, w, sizeof w);
-    pthread_mutex_unlock(&s->mu);
+    memcpy(l->gravity, gravity, sizeof l->gravity);
+    memcpy(l->wrench, w, sizeof w);
     return LEP_OK;
 }
 
-int lep_session_set_limits(lep_session *s, const double limit[LEP_AXES])
+int lep_priv_chain_set_limits(session_chain *ch, const double limit[LEP_AXES])
 {
+    session_load *l = &ch->load;
     static const double none[LEP_AXES] = { 0 };
     int bad;
-    if (s == NULL)
-        return LEP_E_ARG;
     if (limit == NULL)
         limit = none;
     if (!limits_ok(limit, &bad))
         return LEP_E_ARG;
-    pthread_mutex_lock(&s->mu);
-    memcpy(s->load.limit, limit, sizeof s->load.limit);
-    pthread_mutex_unlock(&s->mu);
+    memcpy(l->limit, limit, sizeof l->limit);
     return LEP_OK;
+}
+
+void lep_priv_load_meta(const session_load *l, lep_session_meta *out)
+{
+    out->payload = l->payload;
+    memcpy(out->gravity, l->gravity, sizeof out->gravity);
+    memcpy(out->limit, l->limit, sizeof out->limit);
 }
