@@ -26,5 +26,5 @@ cli=$(objs build/dev/tools/leptrino/CMakeFiles/leptrino_cli.dir tools/leptrino '
 python3 test/checks/depgraph.py --dot build/dev/depgraph.dot --group library $lib --group cli $cli
 # The session's units own their state (test/checks/unit_fields.py: who writes what).
 python3 test/checks/unit_fields.py --dir src/host/session --lifecycle session_priv.h \
-  --helper session_clock.h --helper session_sizes.h
+  --helper session_clock.h --helper session_sizes.h --helper session_tap.h
 echo "depgraph: no cycle ($(( $(date +%s) - start )) s; graph in $root/build/dev/depgraph.dot)"

@@ -18,6 +18,7 @@
 #include "leptrino/error.h"
 #include "options_priv.h"
 #include "session_priv.h"
+#include "session_tap.h"
 
 void lep_session_options_init(lep_session_options *o)
 {
@@ -403,4 +404,9 @@ int lep_session_get_serial_info(const lep_session *s, lep_serial_info *out)
     if (s == NULL || out == NULL)
         return LEP_E_ARG;
     return lep_priv_reader_serial_info(&s->rd, out);
+}
+
+void lep_priv_session_tap_timeline(lep_session *s, const timeline_tap *tap)
+{
+    lep_priv_timing_tap(&s->tm, tap);
 }

@@ -59,6 +59,12 @@
  * budgeted read some time into a stall), not by a hole before it. Known
  * losses (sequence numbers) just move the count on.
  *
+ * A recorder (tap) may be given what the timeline is fed, as it is fed
+ * (init, restart, each read and empty read), to record read traces that
+ * replay deterministically (leptrino-stamp-error --record-reads;
+ * test/vectors/timeline). It is private, set through session_tap.h; without
+ * one (NULL, the default) a feed costs one test of a pointer.
+ *
  * Owns:   session_timeline.
  * Given:  each read's time, its samples, known losses; nothing else is read.
  * Returns: stamps, and a verdict on the rows (timeline_verdict): no field of
@@ -107,11 +113,28 @@ typedef struct timeline_verdict {
     bool extend; /* with hold: too soon to judge; they join the rows held */
 } timeline_verdict;
 
+/* One feed, for a recorder. */
+typedef struct timeline_fed {
+    char what;          /* 'i' init, 's' restart, 'r' read, 'e' empty read */
+    double t;           /* r, e: the time given */
+    size_t n;           /* r: samples */
+    uint64_t lost;      /* r: lost samples known before them */
+    double nominal;     /* i: nominal period, s */
+    double gap_periods; /* i */
+    bool arrival_gaps;  /* i */
+} timeline_fed;
+
+typedef struct timeline_tap {
+    void (*fed)(void *user, const timeline_fed *f);
+    void *user;
+} timeline_tap;
+
 typedef struct session_timeline {
-    double nominal;    /* nominal period, s */
-    double thr;        /* gap threshold, s */
-    bool arrival_gaps; /* decide gaps from arrival times */
-    double prior;      /* the period until the hull spans enough: nominal or learned */
+    const timeline_tap *tap; /* a recorder, or NULL; kept by init (start zeroed) */
+    double nominal;          /* nominal period, s */
+    double thr;              /* gap threshold, s */
+    bool arrival_gaps;       /* decide gaps from arrival times */
+    double prior;            /* the period until the hull spans enough: nominal or learned */
     double period, offset;
     bool started;
     double t0;        /* the stream's first read */

@@ -19,6 +19,11 @@ void lep_priv_timing_start(session_timing *tm, double nominal_hz, double gap_per
     lep_priv_timeline_init(&tm->tl, 1.0 / nominal_hz, gap_periods, !numbered);
 }
 
+void lep_priv_timing_tap(session_timing *tm, const timeline_tap *tap)
+{
+    tm->tl.tap = tap;
+}
+
 void lep_priv_timing_resume(session_timing *tm, double now)
 {
     if (tm->last_sample_t > now)

@@ -53,6 +53,9 @@ void lep_priv_timing_start(session_timing *tm, double nominal_hz, double gap_per
                            bool numbered);
 /* The stream (re)starts at now: no stamp after it. */
 void lep_priv_timing_resume(session_timing *tm, double now);
+/* From now on, tap (NULL: none) is given every feed of the timeline
+ * (session_tap.h). */
+void lep_priv_timing_tap(session_timing *tm, const timeline_tap *tap);
 /* A loss: a suspected hole ends in it (the held rows go), the timeline
  * starts over. [mu] */
 void lep_priv_timing_lost(session_timing *tm, session_sink *sk);
