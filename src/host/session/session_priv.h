@@ -93,10 +93,14 @@ typedef struct session_events {
     uint64_t pushed;  /* queued since open (tells a read it has news) */
     uint64_t dropped; /* pushed out of a full queue since start */
     /* An event waits until the rows before its sample are returned: the head
-     * goes when its sample <= gate (rows returned; UINT64_MAX when stopped),
-     * or while ungated > 0 (queued before a start: another stream's numbers). */
+     * goes when its sample <= gate (rows returned; UINT64_MAX when stopped).
+     * An event queued while stopped, or still queued at a start, is at the
+     * stream's row 0 (its sample is made 0). */
     uint64_t gate;
-    size_t ungated;
+    /* The stream's row number of the current read's batch row 0 (rows
+     * returned before that read, less the rows the batch held already);
+     * 0 while stopped. An event's row in the batch is sample - row_base. */
+    int64_t row_base;
 } session_events;
 
 /* session_health.c: [mu] the health counters and what they are computed from. */
@@ -365,13 +369,16 @@ void lep_priv_health_reconnected(session_health_state *hs, const lep_client_stat
 /* ---- session_events.c ---- */
 void lep_priv_event_init(lep_session_event *ev, int type, uint64_t sample, double t_mono);
 /* A stream starts: the dropped count starts over; events queued stay and go
- * out ahead of the new stream's. [mu] held. */
+ * out ahead of the new stream's, at its row 0. [mu] held. */
 void lep_priv_events_start(session_events *q);
 /* Not streaming (opened, or stopped: the rows an event waited for are gone):
  * every event queued may go. [mu] held. */
 void lep_priv_events_stop(session_events *q);
 /* Rows returned so far: the events up to that sample may go. [mu] held. */
 void lep_priv_events_returned(session_events *q, uint64_t rows);
+/* A read begins: `rows` returned so far, its batch holding `held` rows
+ * already; the events' batch rows count from its row 0. [mu] held. */
+void lep_priv_events_batch(session_events *q, uint64_t rows, size_t held);
 /* Queue ev; a full queue drops its oldest (counted). [mu] held. */
 void lep_priv_events_push(session_events *q, const lep_session_event *ev);
 /* The oldest event, once the rows before its sample are returned. [mu] held. */
