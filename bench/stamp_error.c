@@ -11,7 +11,14 @@
  * RMS, p99 and max of |error| over the first second of the stream and after
  * it, and the sim's own lateness (its write() call minus the deadline).
  *
- * --busy N starts N busy loops (child processes) beside it for the run. */
+ * --busy N starts N busy loops (child processes) beside it for the run.
+ *
+ * --record-reads FILE writes a read trace (test/vectors/timeline/README.md):
+ * what the session's timeline was fed, read by read (its time, how many
+ * samples, the port found empty), from a private recorder of the timeline
+ * (session_tap.h), with the truth: the stream index k of each sample and
+ * the sensor's true rate, times in ns since t0, and the stamp the session
+ * gave each read's newest sample. test_timeline replays such traces. */
 #define _DEFAULT_SOURCE
 #include <math.h>
 #include <signal.h>
@@ -23,6 +30,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <errno.h>
+#include <fcntl.h>
+#include <stdbool.h>
+
+#include "host/session/session_tap.h"
 #include "leptrino/error.h"
 #include "leptrino/options.h"
 #include "leptrino/session.h"
@@ -66,6 +78,96 @@ static void figures(const char *what, const double *e, size_t n)
     free(a);
 }
 
+/* ---- the read trace (--record-reads) ---- */
+
+static timeline_fed *fed;
+static size_t n_fed, cap_fed;
+static bool fed_broken;
+
+static void on_fed(void *user, const timeline_fed *f)
+{
+    (void)user;
+    if (n_fed == cap_fed) {
+        size_t cap = cap_fed ? cap_fed * 2u : 65536u;
+        timeline_fed *p = realloc(fed, cap * sizeof *p);
+        if (p == NULL) {
+            fed_broken = true;
+            return;
+        }
+        fed = p;
+        cap_fed = cap;
+    }
+    fed[n_fed++] = *f;
+}
+
+static long long ns_since(double t, double t0_s)
+{
+    return llround((t - t0_s) * 1e9);
+}
+
+/* The feeds of the stream that was measured, joined with the samples
+ * delivered (in the order fed): k[i] the stream index of sample i, t[i] its
+ * stamp. Stops at the first read not wholly delivered. */
+/* Create path for the read trace (never an existing file): its descriptor, or -1 said. */
+static int create_reads(const char *path)
+{
+    int fd = open(path, O_WRONLY | O_CREAT | O_EXCL, 0644);
+    if (fd < 0)
+        fprintf(stderr, "leptrino-stamp-error: %s: %s%s\n", path, strerror(errno),
+                errno == EEXIST ? " (an existing file is never replaced)" : "");
+    return fd;
+}
+
+static int write_reads(int fd, const char *path, int argc, char **argv, double t0_s, double rate,
+                       const uint64_t *k, const double *t, size_t n)
+{
+    size_t f, i = 0, j;
+    FILE *out = fdopen(fd, "w");
+    if (out == NULL) {
+        close(fd);
+        return 1;
+    }
+    fprintf(out, "# leptrino read trace 1: what the session's timeline was fed, with the truth\n"
+                 "# (test/vectors/timeline/README.md). Made by:\n#");
+    for (j = 0; j < (size_t)argc; j++)
+        fprintf(out, " %s", j == 0 ? "leptrino-stamp-error" : argv[j]);
+    fprintf(out, "\n# times: ns since t0, the stream's start in the sensor's write trace\n");
+    fprintf(out, "rate %.9f\n", rate);
+    for (f = 0; f < n_fed; f++) {
+        const timeline_fed *e = &fed[f];
+        if (e->what == 'i') {
+            fprintf(out, "i %.6f %g %d\n", e->nominal * 1e9, e->gap_periods,
+                    e->arrival_gaps ? 1 : 0);
+        } else if (e->what == 's') {
+            fprintf(out, "s\n");
+        } else if (e->what == 'e') {
+            fprintf(out, "e %lld\n", ns_since(e->t, t0_s));
+        } else if (e->what == 'r') {
+            bool run = true;
+            if (i + e->n > n)
+                break; /* not delivered: the end of the run */
+            for (j = 1; j < e->n; j++)
+                run = run && k[i + j] == k[i + j - 1u] + 1u;
+            fprintf(out, "r %lld %zu %llu %lld", ns_since(e->t, t0_s), e->n,
+                    (unsigned long long)e->lost, llround((e->t - t[i + e->n - 1u]) * 1e9));
+            if (!run) {
+                for (j = 0; j < e->n; j++)
+                    fprintf(out, " %llu", (unsigned long long)k[i + j]);
+            } else if (i == 0 || k[i] != k[i - 1u] + 1u) {
+                fprintf(out, " %llu", (unsigned long long)k[i]);
+            }
+            fprintf(out, "\n");
+            i += e->n;
+        }
+    }
+    if (fclose(out) != 0) {
+        fprintf(stderr, "leptrino-stamp-error: %s: %s\n", path, strerror(errno));
+        return 1;
+    }
+    printf("  read trace %s: %zu samples of %zu delivered\n", path, i, n);
+    return 0;
+}
+
 static pid_t busy[16];
 static int n_busy;
 
@@ -97,7 +199,7 @@ static void busy_stop(void)
 static void usage_to(FILE *to)
 {
     fprintf(to, "usage: leptrino-stamp-error [--seconds S] [--latency MS] [--busy N] "
-                "[--label TEXT] [--sim-NAME VALUE ...]\n");
+                "[--label TEXT] [--record-reads FILE] [--sim-NAME VALUE ...]\n");
 }
 
 static int usage(void)
@@ -117,6 +219,8 @@ static int help(void)
            "  --latency MS   the session's latency budget (default 0)\n"
            "  --busy N       N busy loops beside it (child processes)\n"
            "  --label TEXT   a label for the printed line\n"
+           "  --record-reads FILE  write what the session's timeline was fed, read by read,\n"
+           "                 with the truth (a read trace; FILE must not exist)\n"
            "  --sim-NAME V   any option of the virtual sensor (leptrino help sim)\n");
     return 0;
 }
@@ -124,8 +228,10 @@ static int help(void)
 int main(int argc, char **argv)
 {
     double seconds = 10.0, rate, ppm = 0.0;
-    int latency = 0, nb = 0, i, rc;
-    const char *label = "";
+    int latency = 0, nb = 0, i, rc, record_fd = -1;
+    const char *label = "", *record = NULL;
+    timeline_tap tap = { on_fed, NULL };
+    uint64_t *karr;
     char err[256], trace[64], port[256];
     lep_options *o;
     lep_sim *sim = NULL;
@@ -159,6 +265,8 @@ int main(int argc, char **argv)
             nb = atoi(argv[++i]);
         else if (strcmp(argv[i], "--label") == 0)
             label = argv[++i];
+        else if (strcmp(argv[i], "--record-reads") == 0)
+            record = argv[++i];
         else if (strncmp(argv[i], "--sim-", 6) == 0) {
             if (lep_options_set(o, argv[i] + 2, argv[i + 1], err, sizeof err) != LEP_OK) {
                 fprintf(stderr, "leptrino-stamp-error: %s\n", err);
@@ -167,6 +275,12 @@ int main(int argc, char **argv)
             i++;
         } else
             return usage();
+    }
+    if (record != NULL && (record_fd = create_reads(record)) < 0) {
+        free(t);
+        free(seq);
+        lep_options_free(o);
+        return 1;
     }
     (void)lep_options_get_double(o, "sim-rate", &rate);
     if (lep_option_index("sim-ppm") >= 0)
@@ -188,6 +302,8 @@ int main(int argc, char **argv)
     lep_options_set_int(o, "latency", latency, err, sizeof err);
     busy_start(nb);
     rc = lep_session_open(o, &s, err, sizeof err);
+    if (rc == LEP_OK && record != NULL)
+        lep_priv_session_tap_timeline(s, &tap); /* from the stream's start */
     if (rc == LEP_OK)
         rc = lep_session_start(s);
     if (rc != LEP_OK) {
@@ -233,6 +349,9 @@ int main(int argc, char **argv)
     e0 = malloc(n * sizeof *e0 + 1);
     e1 = malloc(n * sizeof *e1 + 1);
     lateness = malloc(n * sizeof *lateness + 1);
+    karr = malloc(n * sizeof *karr + 1);
+    if (e0 == NULL || e1 == NULL || lateness == NULL || karr == NULL)
+        return 1;
     for (k = 0; k < n; k++) {
         double due, err_s;
         if (k == 0)
@@ -242,6 +361,7 @@ int main(int argc, char **argv)
             unwrapped += d;
             missing += d > 0 ? d - 1u : 0u;
         }
+        karr[k] = unwrapped;
         due = (double)t0 * 1e-9 + (double)(unwrapped + 1u) / rate;
         err_s = t[k] - due;
         if (due - (double)t0 * 1e-9 < 1.0)
@@ -265,6 +385,16 @@ int main(int argc, char **argv)
     figures("first second", e0, n0);
     figures("after it", e1, n1);
     figures("sim lateness", lateness, nl);
+    if (record != NULL) {
+        if (fed_broken) {
+            fprintf(stderr, "leptrino-stamp-error: out of memory for the read trace\n");
+            return 1;
+        }
+        if (write_reads(record_fd, record, argc, argv, (double)t0 * 1e-9, rate, karr, t, n) != 0)
+            return 1;
+    }
+    free(karr);
+    free(fed);
     free(e0);
     free(e1);
     free(lateness);

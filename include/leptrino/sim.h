@@ -123,8 +123,12 @@ LEP_API void lep_sim_hold(lep_sim *s, int ms);
  * its deadlines t0 + (k+1)/rate) and end (stop, power cycle, hang-up) are
  * records with k = 2^64 - 1 (start) and 2^64 - 2 (end) and both times the
  * event's (an end is also written for a stream still running at
- * lep_sim_stop). Records are in the order written, buffered and written in
- * blocks of 256; the end of a stream writes the buffer out before the stop
+ * lep_sim_stop). With "sim-ppm" the deadlines are at the true rate,
+ * rate * (1 + ppm 1e-6); with a transport emulation ("sim-usb-packets",
+ * "sim-ftdi-latency") the write is the one that handed the message's last
+ * byte to the pty when the transport released it (docs/simulator.md,
+ * "Transport and crystal"). Records are in the order written, buffered and
+ * written in blocks of 256; the end of a stream writes the buffer out before the stop
  * command is answered, and lep_sim_stop() writes the rest. The file is
  * created (an existing path is never replaced: LEP_E_BUSY) before the call
  * returns; tracing starts before the next input the sensor reads. Call at

@@ -130,6 +130,14 @@ typedef struct lep_sim_options {
     double gravity[3]; /* [gravity] gravity in the sensor frame, m/s^2, default
                           0,0,-9.80665 (z up): the sensor reads the payload's gravity
                           wrench at it on top of the waveform */
+    /* added with the transport emulation (docs/simulator.md, "Transport"): */
+    double ppm;          /* [ppm] the crystal off by this many ppm, -1000..1000, default 0:
+                             samples come at rate * (1 + ppm 1e-6), the nominal rate reported */
+    bool usb_packets;    /* [usb-packets] the port gets the bytes as a USB full-speed adapter
+                             delivers them: at 1 ms frame boundaries only */
+    int ftdi_latency_ms; /* [ftdi-latency] an FTDI-style adapter with this latency timer, ms,
+                             1..255 (0, default: none): 62-byte packets, or what is held when
+                             the timer runs out, at 1 ms frame boundaries */
 } lep_sim_options;
 
 /* ---- The option table ----

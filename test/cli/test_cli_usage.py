@@ -54,7 +54,8 @@ def test_help_shows_the_command_not_the_virtual_sensor(cmd: str) -> None:
     assert "--sim-model" not in out and "--sim-stall" not in out
     sim = run(["help", "sim"])
     assert sim.returncode == 0 and sim.stderr == ""
-    for word in ("--sim-model", "--sim-hangup-after", "--sim-replay", "--sim-rate"):
+    for word in ("--sim-model", "--sim-hangup-after", "--sim-replay", "--sim-rate",
+                 "--sim-usb-packets", "--sim-ftdi-latency", "--sim-ppm"):
         assert word in sim.stdout, word
 
 

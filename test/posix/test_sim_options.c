@@ -44,7 +44,7 @@ static void set_bad(const char *name, const char *value, const char *needle)
 static void test_table_is_complete_and_consistent(void)
 {
     size_t i, n = lep_sim_option_count();
-    TEST_ASSERT_EQUAL_size_t(25, n); /* one row per field of lep_sim_options */
+    TEST_ASSERT_EQUAL_size_t(28, n); /* one row per field of lep_sim_options */
     TEST_ASSERT_NULL(lep_sim_option_at(n));
     for (i = 0; i < n; i++) {
         const lep_sim_option_info *in = lep_sim_option_at(i);
@@ -205,6 +205,11 @@ static void test_set_rejects(void)
     set_bad("stall", "-5", "0 to 86400000");
     set_bad("stall", "1e3", "integer");
     set_bad("reopen-after", "-2", "-1 to");
+    set_bad("ppm", "1001", "-1000 to 1000");
+    set_bad("ppm", "nan", "-1000 to 1000");
+    set_bad("ftdi-latency", "256", "0 to 255");
+    set_bad("ftdi-latency", "-1", "0 to 255");
+    set_bad("usb-packets", "2", "flag");
     /* times: no infinities, nothing near where nanoseconds leave int64 */
     set_bad("hangup-after", "inf", "0 to 1000000");
     set_bad("hangup-after", "9.3e9", "0 to 1000000");
@@ -250,6 +255,16 @@ static void test_check_is_the_one_validation(void)
     o.stall_after_s = 1.0;
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_sim_options_check(&o, err, sizeof err));
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err, "needs stall"), err);
+    lep_sim_options_init(&o);
+    set_ok("usb-packets", NULL);
+    set_ok("ftdi-latency", "16");
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_sim_options_check(&o, err, sizeof err));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err, "choose one"), err);
+    set_ok("usb-packets", "0");
+    set_ok("ppm", "-300");
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_sim_options_check(&o, err, sizeof err), err);
+    TEST_ASSERT_EQUAL_INT(16, o.ftdi_latency_ms);
+    TEST_ASSERT_EQUAL_DOUBLE(-300.0, o.ppm);
     lep_sim_options_init(&o);
     memset(o.serial, '1', sizeof o.serial); /* no NUL: an FFI caller's mistake */
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_sim_options_check(&o, err, sizeof err));

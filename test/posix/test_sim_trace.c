@@ -1,6 +1,12 @@
 /* The virtual sensor's write trace (lep_sim_trace_writes): one record per
  * data message written, in stream order, between a start and an end record;
- * never replaces an existing file. Orders only, never durations. */
+ * never replaces an existing file. Orders only, never durations.
+ *
+ * The transport emulation seen in it, end to end: with usb-packets or
+ * ftdi-latency no message is written before the frame boundary that
+ * releases it and messages go out in groups; with ppm no message is
+ * written before its deadline on the shifted crystal. Each holds however
+ * late the sensor's thread runs (a bound from below, never a duration). */
 #define _DEFAULT_SOURCE
 
 #include <stdio.h>
@@ -214,6 +220,97 @@ static void test_stream_running_at_stop_is_closed(void)
     free(r);
 }
 
+/* The sensor again with one option set (the one setUp made stopped). */
+static void restart_with(const char *name, const char *value)
+{
+    lep_sim_options o;
+    int rc;
+    lep_sim_stop(sim);
+    sim = NULL;
+    lep_sim_options_init(&o);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_sim_option_set(&o, name, value, err, sizeof err),
+                                  err);
+    rc = lep_sim_start_so(&o, &sim, err, sizeof err);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, rc, err);
+}
+
+/* Stream count samples with the trace on, stop; the records of the stream
+ * (r[0] its start, then k = 0.. in order, then its end): *n of them. */
+static lep_sim_trace_record *traced_stream(unsigned count, size_t *n)
+{
+    lep_sim_trace_record *r;
+    uint64_t k = 0;
+    TEST_ASSERT_EQUAL_INT_MESSAGE(LEP_OK, lep_sim_trace_writes(sim, path, err, sizeof err), err);
+    open_client();
+    stream(count);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_stop(&client));
+    r = load(n);
+    TEST_ASSERT_EQUAL_size_t(*n, check_stream(r, *n, 0, &k));
+    TEST_ASSERT_TRUE(k >= count);
+    return r;
+}
+
+/* The sensor's deadline of sample k, as it computes it. */
+static int64_t deadline(const lep_sim_trace_record *r, double rate, double ppm, uint64_t k)
+{
+    return r[0].t_call_ns + (int64_t)((double)(k + 1u) * (1e9 / (rate * (1.0 + ppm * 1e-6))));
+}
+
+/* Every message written at or after the first 1 ms boundary at or after its
+ * deadline; how many writes carried them (one per distinct call time). */
+static size_t check_frames(const lep_sim_trace_record *r, size_t n)
+{
+    size_t i, writes = 0;
+    for (i = 1; i + 1u < n; i++) {
+        int64_t due = deadline(r, 1200.0, 0.0, r[i].k);
+        int64_t frame = (due + 999999) / 1000000 * 1000000;
+        TEST_ASSERT_TRUE_MESSAGE(r[i].t_call_ns >= frame, "written before its frame");
+        if (i == 1 || r[i].t_call_ns != r[i - 1u].t_call_ns)
+            writes++;
+    }
+    return writes;
+}
+
+static void test_usb_packets_arrive_at_frame_boundaries(void)
+{
+    lep_sim_trace_record *r;
+    size_t n, writes;
+    restart_with("usb-packets", "1");
+    r = traced_stream(600, &n);
+    writes = check_frames(r, n);
+    /* 1.2 samples per 1 ms frame: every fifth frame carries two (more when
+     * the sensor's thread runs late), in one write: 5 writes per 6 samples */
+    TEST_ASSERT_TRUE_MESSAGE(writes <= (n - 2u) * 9u / 10u, "no 1 ms groups");
+    free(r);
+}
+
+static void test_ftdi_latency_sends_62_byte_packets(void)
+{
+    lep_sim_trace_record *r;
+    size_t n, writes;
+    restart_with("ftdi-latency", "16");
+    r = traced_stream(600, &n);
+    writes = check_frames(r, n);
+    /* a 62-byte packet completes two or three messages of 20..25 bytes */
+    TEST_ASSERT_TRUE_MESSAGE(writes <= (n - 2u) / 2u + 1u, "not in packets");
+    free(r);
+}
+
+static void test_ppm_moves_the_rate(void)
+{
+    lep_sim_trace_record *r;
+    size_t n, i;
+    restart_with("ppm", "-1000");
+    r = traced_stream(600, &n);
+    /* the crystal 1000 ppm slow: sample 600 is due 0.5 ms after its nominal
+     * time, and none is written before its true deadline */
+    for (i = 1; i + 1u < n; i++)
+        TEST_ASSERT_TRUE_MESSAGE(r[i].t_call_ns >= deadline(r, 1200.0, -1000.0, r[i].k),
+                                 "written before its deadline");
+    TEST_ASSERT_TRUE(deadline(r, 1200.0, -1000.0, 599) - deadline(r, 1200.0, 0.0, 599) > 490000);
+    free(r);
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -222,5 +319,8 @@ int main(void)
     RUN_TEST(test_stream_running_at_stop_is_closed);
     RUN_TEST(test_existing_file_is_kept);
     RUN_TEST(test_bad_calls);
+    RUN_TEST(test_usb_packets_arrive_at_frame_boundaries);
+    RUN_TEST(test_ftdi_latency_sends_62_byte_packets);
+    RUN_TEST(test_ppm_moves_the_rate);
     return UNITY_END();
 }

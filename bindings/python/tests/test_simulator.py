@@ -20,7 +20,7 @@ def test_options_are_the_c_table(backend: str) -> None:
     names = [o.name for o in table]
     assert len(set(names)) == len(names)
     assert {"model", "rate", "amplitude", "output_rate_field", "nak", "stall_after",
-            "reopen_after", "link"} <= set(names)
+            "reopen_after", "link", "usb_packets", "ftdi_latency", "ppm"} <= set(names)
     for o in table:
         assert o.flag.replace("-", "_") == o.name and o.help
         assert o.type in ("flag", "int", "float", "str", "choice", "numbers")

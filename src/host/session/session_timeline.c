@@ -7,10 +7,27 @@
 
 #define NONE (-1e300)
 
+/* Tell the recorder, if any. */
+static void tap(const session_timeline *tl, char what, double t, size_t n, uint64_t lost)
+{
+    timeline_fed f;
+    memset(&f, 0, sizeof f);
+    f.what = what;
+    f.t = t;
+    f.n = n;
+    f.lost = lost;
+    f.nominal = tl->nominal;
+    f.gap_periods = tl->nominal > 0.0 ? tl->thr / tl->nominal : 0.0;
+    f.arrival_gaps = tl->arrival_gaps;
+    tl->tap->fed(tl->tap->user, &f);
+}
+
 void lep_priv_timeline_init(session_timeline *tl, double nominal_period_s, double gap_periods,
                             bool arrival_gaps)
 {
+    const timeline_tap *keep = tl->tap;
     memset(tl, 0, sizeof *tl);
+    tl->tap = keep;
     tl->nominal = nominal_period_s;
     tl->thr = gap_periods * nominal_period_s;
     tl->arrival_gaps = arrival_gaps;
@@ -19,16 +36,22 @@ void lep_priv_timeline_init(session_timeline *tl, double nominal_period_s, doubl
     tl->last = NONE;
     tl->floor = NONE;
     tl->empty_t = NONE;
+    if (tl->tap != NULL)
+        tap(tl, 'i', 0.0, 0, 0);
 }
 
 void lep_priv_timeline_restart(session_timeline *tl)
 {
+    if (tl->tap != NULL)
+        tap(tl, 's', 0.0, 0, 0);
     tl->started = false;
     tl->held = false;
 }
 
 void lep_priv_timeline_empty(session_timeline *tl, double t)
 {
+    if (tl->tap != NULL)
+        tap(tl, 'e', t, 0, 0);
     tl->empty_t = t;
 }
 
@@ -209,6 +232,8 @@ void lep_priv_timeline_read(session_timeline *tl, double t, size_t n, uint64_t l
     memset(v, 0, sizeof *v);
     if (n == 0)
         return;
+    if (tl->tap != NULL)
+        tap(tl, 'r', t, n, lost);
     if (!tl->started) {
         tl->started = true;
         tl->t0 = t;

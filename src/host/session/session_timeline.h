@@ -60,7 +60,13 @@
  * losses (sequence numbers) just move the count on.
  *
  * No field of another unit is written: the verdict says what to do with the
- * rows; the session applies it. */
+ * rows; the session applies it.
+ *
+ * A recorder (tap) may be given what the timeline is fed, as it is fed
+ * (init, restart, each read and empty read), to record read traces that
+ * replay deterministically (leptrino-stamp-error --record-reads;
+ * test/vectors/timeline). It is private, set through session_tap.h; without
+ * one (NULL, the default) a feed costs one test of a pointer. */
 #ifndef LEPTRINO_HOST_SESSION_TIMELINE_H
 #define LEPTRINO_HOST_SESSION_TIMELINE_H
 
@@ -104,11 +110,28 @@ typedef struct timeline_verdict {
     bool extend; /* with hold: too soon to judge; they join the rows held */
 } timeline_verdict;
 
+/* One feed, for a recorder. */
+typedef struct timeline_fed {
+    char what;          /* 'i' init, 's' restart, 'r' read, 'e' empty read */
+    double t;           /* r, e: the time given */
+    size_t n;           /* r: samples */
+    uint64_t lost;      /* r: lost samples known before them */
+    double nominal;     /* i: nominal period, s */
+    double gap_periods; /* i */
+    bool arrival_gaps;  /* i */
+} timeline_fed;
+
+typedef struct timeline_tap {
+    void (*fed)(void *user, const timeline_fed *f);
+    void *user;
+} timeline_tap;
+
 typedef struct session_timeline {
-    double nominal;    /* nominal period, s */
-    double thr;        /* gap threshold, s */
-    bool arrival_gaps; /* decide gaps from arrival times */
-    double prior;      /* the period until the hull spans enough: nominal or learned */
+    const timeline_tap *tap; /* a recorder, or NULL; kept by init (start zeroed) */
+    double nominal;          /* nominal period, s */
+    double thr;              /* gap threshold, s */
+    bool arrival_gaps;       /* decide gaps from arrival times */
+    double prior;            /* the period until the hull spans enough: nominal or learned */
     double period, offset;
     bool started;
     double t0;        /* the stream's first read */

@@ -6,6 +6,7 @@
 #include <math.h>
 
 #include "session_priv.h"
+#include "session_tap.h"
 
 void lep_priv_timing_start(session_timing *tm, double period_s, double gap_periods,
                            bool arrival_gaps)
@@ -14,6 +15,11 @@ void lep_priv_timing_start(session_timing *tm, double period_s, double gap_perio
     tm->have_seq = false;
     tm->gap_next = false;
     lep_priv_timeline_init(&tm->tl, period_s, gap_periods, arrival_gaps);
+}
+
+void lep_priv_session_tap_timeline(lep_session *s, const timeline_tap *tap)
+{
+    s->tm.tl.tap = tap;
 }
 
 void lep_priv_timing_lost(lep_session *s)

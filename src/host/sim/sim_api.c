@@ -45,7 +45,9 @@ int lep_sim_start_so(const lep_sim_options *o, lep_sim **out, char *err, size_t 
     s->req_hold_ms = -1;
     s->opt = *o;
     s->link = s->opt.link;
-    s->period_ns = NS_PER_S / o->rate_hz;
+    /* the crystal's true rate: off by sim-ppm, the nominal one reported */
+    s->period_ns = NS_PER_S / (o->rate_hz * (1.0 + o->ppm * 1e-6));
+    lep_priv_sim_queue_init(s);
     s->rng = o->seed ^ 0x5EEDF00DCAFEBEEFu;
     (void)lep_sim_model_rated_f(s->opt.model, &s->rated);
     if (pthread_mutex_init(&s->lock, NULL) != 0) {

@@ -49,7 +49,7 @@ static void feed_device(lep_sim *s, const uint8_t *p, size_t len)
         if (ev.type == LEP_DEVICE_COMMAND) {
             s->st.commands++;
             if (ans_len > 0)
-                lep_priv_sim_emit(s, ans, ans_len, false);
+                lep_priv_sim_emit(s, ans, ans_len, false, 0);
             check_streaming(s);
         } else if (ev.type == LEP_DEVICE_NAK) {
             lep_priv_sim_send_nak(s);
@@ -107,7 +107,7 @@ void lep_priv_sim_power_off(lep_sim *s)
     lep_frame_decoder_init(&s->shadow);
     s->pend_len = 0;
     s->streaming = false;
-    s->out_len = 0; /* bytes in flight die with the power */
+    lep_priv_sim_queue_clear(s); /* bytes in flight die with the power */
     lep_priv_sim_trace_discard(s->trace);
 }
 

@@ -17,7 +17,7 @@ static bool roll(lep_sim *s, double p)
 }
 
 /* Send a message frame, through the garbage/corrupt/drop faults. */
-void lep_priv_sim_emit(lep_sim *s, const uint8_t *frame, size_t len, bool data)
+void lep_priv_sim_emit(lep_sim *s, const uint8_t *frame, size_t len, bool data, int64_t at)
 {
     uint8_t buf[LEP_SIM_FRAME_ROOM];
     size_t n = 0;
@@ -36,11 +36,11 @@ void lep_priv_sim_emit(lep_sim *s, const uint8_t *frame, size_t len, bool data)
     }
     memcpy(buf + n, frame, len);
     if (roll(s, s->opt.p_corrupt)) {
-        size_t at = n + (size_t)(lep_priv_splitmix64(&s->rng) % len);
-        buf[at] ^= (uint8_t)(1u << (lep_priv_splitmix64(&s->rng) % 8u));
+        size_t flip = n + (size_t)(lep_priv_splitmix64(&s->rng) % len);
+        buf[flip] ^= (uint8_t)(1u << (lep_priv_splitmix64(&s->rng) % 8u));
         s->st.bytes_corrupted++;
     }
-    if (!lep_priv_sim_queue(s, buf, n + len)) {
+    if (!lep_priv_sim_queue(s, buf, n + len, at)) {
         if (data)
             s->st.samples_blocked++;
         return;
@@ -55,7 +55,7 @@ void lep_priv_sim_emit(lep_sim *s, const uint8_t *frame, size_t len, bool data)
 void lep_priv_sim_send_nak(lep_sim *s)
 {
     static const uint8_t nak[2] = { LEP_DLE, LEP_NAK };
-    if (lep_priv_sim_queue(s, nak, sizeof nak))
+    if (lep_priv_sim_queue(s, nak, sizeof nak, 0))
         s->st.naks++;
 }
 

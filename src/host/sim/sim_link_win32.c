@@ -254,15 +254,15 @@ long lep_priv_sim_read_port(lep_sim *s, uint8_t *buf, size_t cap)
 
 void lep_priv_sim_flush_out(lep_sim *s)
 {
-    while (s->out_len > 0 && sock_of(s->master_s) != INVALID_SOCKET) {
+    size_t ready;
+    while ((ready = lep_priv_sim_queue_ready(s)) > 0 && sock_of(s->master_s) != INVALID_SOCKET) {
         int64_t t_call = s->trace != NULL ? lep_priv_monotonic_ns() : 0;
-        size_t len = s->out_len > 65536u ? 65536u : s->out_len;
+        size_t len = ready > 65536u ? 65536u : ready;
         int n = send(sock_of(s->master_s), (const char *)s->out, (int)len, 0);
         if (n > 0) {
             if (s->trace != NULL)
                 lep_priv_sim_trace_written(s->trace, (size_t)n, t_call, lep_priv_monotonic_ns());
-            memmove(s->out, s->out + n, s->out_len - (size_t)n);
-            s->out_len -= (size_t)n;
+            lep_priv_sim_queue_written(s, (size_t)n);
             continue;
         }
         break; /* WSAEWOULDBLOCK: nobody reads now; keep it queued */

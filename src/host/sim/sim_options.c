@@ -45,6 +45,9 @@ static const opt_row rows[] = {
         filter, S_U8),
     NUM("rate", LEP_SIM_OPT_DOUBLE, "HZ", "continuous output rate in Hz", "1200", 1, 10000, false,
         rate_hz, S_DOUBLE),
+    NUM("ppm", LEP_SIM_OPT_DOUBLE, "N",
+        "crystal off by N ppm: true rate rate*(1+N*1e-6), the nominal one reported", "0", -1000,
+        1000, false, ppm, S_DOUBLE),
     NUM("seed", LEP_SIM_OPT_UINT, "N", "seed of the waveform noise and of the faults", "1", 0,
         18446744073709551615.0, false, seed, S_U64),
     NUM("amplitude", LEP_SIM_OPT_DOUBLE, "F",
@@ -92,6 +95,12 @@ static const opt_row rows[] = {
     TXT("link", LEP_SIM_OPT_STRING, "PATH",
         "also make a symlink PATH to the port (replaces only a stale link to a pty)", NULL, 1,
         LEP_SIM_PATH_SIZE - 33, link, T_ANY),
+    NUM("usb-packets", LEP_SIM_OPT_FLAG, NULL,
+        "the port gets the bytes as a USB full-speed adapter sends them: at 1 ms frames", NULL, 0,
+        0, false, usb_packets, S_BOOL),
+    NUM("ftdi-latency", LEP_SIM_OPT_INT, "MS",
+        "an FTDI adapter: 62-byte packets, or what it holds after MS ms (0: none; chip's 16)", "0",
+        0, 255, false, ftdi_latency_ms, S_INT),
 };
 
 #define N_ROWS (sizeof rows / sizeof rows[0])
@@ -145,6 +154,12 @@ int lep_sim_options_check(const lep_sim_options *o, char *err, size_t errlen)
     if (o->reopen_after_ms >= 0 && o->link[0] == '\0') {
         lep_priv_set_err(err, errlen,
                          "reopen-after needs link (the path that survives the reopen)");
+        return LEP_E_ARG;
+    }
+    if (o->usb_packets && o->ftdi_latency_ms > 0) {
+        lep_priv_set_err(err, errlen,
+                         "usb-packets and ftdi-latency: choose one (an FTDI adapter sends "
+                         "USB packets too)");
         return LEP_E_ARG;
     }
     if (o->stall_after_s > 0 && o->stall_ms == 0) {

@@ -18,7 +18,9 @@
  *   sim_link_win32.c  on Windows, instead of sim_pty.c and sim_link.c: the port
  *                   is one end of a loopback TCP connection whose other end the
  *                   Win32 serial backend opens by name (serial_loopback.h)
- *   sim_queue.c     the output queue; sim_trace.c the write trace
+ *   sim_queue.c     the output queue, and the transport between it and the
+ *                   port (sim_transport.c: the packetising rule, sans-I/O);
+ *                   sim_trace.c the write trace
  *   sim_filter.c, sim_signal.c, sim_replay.c, sim_models.c, sim_options.c:
  *                   the signal, the sensor's filter, the options (no state here)
  *
@@ -38,6 +40,7 @@
 #include "struct_api.h"
 #include "sim_filter.h"
 #include "sim_signal.h"
+#include "sim_transport.h"
 
 #define OUTQ_SIZE 32768u
 #define PEND_SIZE 1024u
@@ -101,6 +104,7 @@ struct lep_sim {
     char pty[PATH_MAX]; /* the port's own name (a pty's path; on Windows a loopback name) */
     uint8_t out[OUTQ_SIZE];
     size_t out_len;
+    sim_transport tr; /* which of out's bytes the port may have by now */
     /* sim_serve.c */
     int64_t stall_until, stall_at, hangup_at, reopen_at; /* 0: none */
     int64_t hold_until; /* output held (made and queued, not written) until then; 0: none */
@@ -141,10 +145,23 @@ int lep_priv_sim_start_thread(lep_sim *s, void *(*fn)(void *));
 /* The serving thread's own settings, from inside it (timer slack). */
 void lep_priv_sim_thread_init(void);
 
-/* sim_queue.c: the output queue */
-bool lep_priv_sim_queue(lep_sim *s, const uint8_t *b, size_t n);
+/* sim_queue.c: the output queue and the transport after it */
+/* Empty, the transport as the options say ("usb-packets", "ftdi-latency"). */
+void lep_priv_sim_queue_init(lep_sim *s);
+/* Queue n bytes that leave the sensor at at (0: now): false when they do not fit. */
+bool lep_priv_sim_queue(lep_sim *s, const uint8_t *b, size_t n, int64_t at);
 /* True when the output queue cannot take another message. */
 bool lep_priv_sim_queue_full(const lep_sim *s);
+/* The transport's frame boundaries up to now happen. */
+void lep_priv_sim_queue_advance(lep_sim *s, int64_t now);
+/* Bytes at the front of the queue the port may take now. */
+size_t lep_priv_sim_queue_ready(const lep_sim *s);
+/* When the transport releases more of the queue (0: nothing waits for it). */
+int64_t lep_priv_sim_queue_next(const lep_sim *s);
+/* n of the ready bytes were written to the port. */
+void lep_priv_sim_queue_written(lep_sim *s, size_t n);
+/* Empty the queue (power off, hang-up): nothing is in flight. */
+void lep_priv_sim_queue_clear(lep_sim *s);
 
 /* sim_link.c (sim_link_win32.c on Windows): ownership of the link path (see
  * the file's comment) */
@@ -161,8 +178,9 @@ void lep_priv_sim_link_release(lep_sim *s);
 
 /* sim_faults.c */
 /* Send a message frame (data: a stream sample) through the garbage, corrupt
- * and drop faults into the output queue. */
-void lep_priv_sim_emit(lep_sim *s, const uint8_t *frame, size_t len, bool data);
+ * and drop faults into the output queue; it leaves the sensor at at (0: now;
+ * a stream sample's deadline). */
+void lep_priv_sim_emit(lep_sim *s, const uint8_t *frame, size_t len, bool data, int64_t at);
 void lep_priv_sim_send_nak(lep_sim *s);
 /* The input's NAK fault: true when a command is withheld (a NAK was sent). */
 bool lep_priv_sim_nak_fault(lep_sim *s);

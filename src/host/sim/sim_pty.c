@@ -155,14 +155,14 @@ void lep_priv_sim_close_pty(lep_sim *s)
 
 void lep_priv_sim_flush_out(lep_sim *s)
 {
-    while (s->out_len > 0 && s->master >= 0) {
+    size_t ready;
+    while ((ready = lep_priv_sim_queue_ready(s)) > 0 && s->master >= 0) {
         int64_t t_call = s->trace != NULL ? lep_priv_monotonic_ns() : 0;
-        ssize_t n = write(s->master, s->out, s->out_len);
+        ssize_t n = write(s->master, s->out, ready);
         if (n > 0) {
             if (s->trace != NULL)
                 lep_priv_sim_trace_written(s->trace, (size_t)n, t_call, lep_priv_monotonic_ns());
-            memmove(s->out, s->out + n, s->out_len - (size_t)n);
-            s->out_len -= (size_t)n;
+            lep_priv_sim_queue_written(s, (size_t)n);
             continue;
         }
         if (n < 0 && errno == EINTR)

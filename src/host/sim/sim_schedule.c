@@ -36,12 +36,13 @@ void lep_priv_sim_stream_due(lep_sim *s, int64_t now)
             s->k++;
             continue;
         }
+        int64_t due = lep_priv_sim_deadline(s, s->k);
         lep_priv_fir_next(&s->fir_state, &s->fir[code], &s->sig, s->k, &smp);
         smp.reserved = (uint16_t)(s->k & 0xFFFFu);
         s->k++;
         if (lep_device_stream_frame(&smp, frame, sizeof frame, &len) == LEP_OK) {
             uint64_t sent = s->st.samples_sent;
-            lep_priv_sim_emit(s, frame, len, true);
+            lep_priv_sim_emit(s, frame, len, true, due); /* leaves at its time */
             if (s->st.samples_sent != sent)
                 lep_priv_sim_trace_queued(s->trace, s->k - 1u, s->out_len);
         }

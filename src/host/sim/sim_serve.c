@@ -114,12 +114,13 @@ void *lep_priv_sim_serve(void *arg)
             lep_priv_sim_trace_mark(s->trace, LEP_SIM_TRACE_END, now);
         s->trace_was_streaming = s->streaming;
         lep_priv_sim_publish(s); /* counters first: a host that got an answer sees them */
+        lep_priv_sim_queue_advance(s, now); /* the transport's frames up to now */
         if (!s->hung && !stalled && !held)
             lep_priv_sim_flush_out(s);
 
         if (!s->hung && !stalled) {
             port = true;
-            want_out = s->out_len > 0 && !held;
+            want_out = lep_priv_sim_queue_ready(s) > 0 && !held;
             /* The next sample's deadline, unless the queue is full (nobody
              * reads): then wait for room (POLLOUT), waking every
              * BLOCKED_WAKE_NS instead of each sample to count the samples
@@ -128,6 +129,8 @@ void *lep_priv_sim_serve(void *arg)
                 until = lep_priv_sim_deadline(s, s->k);
             else if (s->streaming)
                 until = now + BLOCKED_WAKE_NS;
+            if (!held) /* the transport releases more of the queue then */
+                until = earliest(until, lep_priv_sim_queue_next(s));
         }
         if (stalled)
             until = earliest(until, s->stall_until);
@@ -138,12 +141,13 @@ void *lep_priv_sim_serve(void *arg)
         if (s->hung)
             until = earliest(until, s->reopen_at);
 
-        /* Streaming with nothing queued: this period's write is done. Look
+        /* Streaming with nothing to write (what is queued waits for the
+         * transport's next frame): this period's write is done. Look
          * at the requests and the pty's input now (a read that does not
          * wait) and, with neither, sleep to the next deadline: one
          * clock_nanosleep and one read per period instead of a ppoll on
          * two descriptors, which costs more on every wake-up. */
-        quiet = port && s->streaming && s->out_len == 0 && until != 0 &&
+        quiet = port && s->streaming && lep_priv_sim_queue_ready(s) == 0 && until != 0 &&
                 until - now <= QUIET_WAIT_MAX_NS && !lep_priv_sim_queue_full(s);
         idle = quiet;
         if (quiet) {

@@ -553,7 +553,17 @@ fn options_by_name_from_the_library_table() {
     }
     assert!(names.iter().all(|n| !n.starts_with("sim-")));
     let sim_names = SimOptions::names();
-    for n in ["model", "rate", "drop", "payload", "gravity", "link"] {
+    for n in [
+        "model",
+        "rate",
+        "drop",
+        "payload",
+        "gravity",
+        "link",
+        "usb-packets",
+        "ftdi-latency",
+        "ppm",
+    ] {
         assert!(sim_names.contains(&n), "{n} missing from {sim_names:?}");
     }
 
