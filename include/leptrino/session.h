@@ -103,8 +103,15 @@ LEP_API int lep_session_start(lep_session *s);
 /* Stop streaming. Samples already received and not yet read are lost. The
  * stop command is sent again once when it gets no answer, except after the
  * stream was lost to silence ("data-timeout"): then one transaction,
- * (retries + 1) x timeout at most. */
+ * lep_session_stop_wait(s) at most. */
 LEP_API int lep_session_stop(lep_session *s);
+
+/* How long one stop transaction may wait for a sensor that does not answer,
+ * s: (retries + 1) x timeout, from the session's own options ("retries",
+ * "timeout"). After LEP_E_LOST, lep_session_stop waits this long at most (a
+ * front end says so before it stops a sensor that went quiet); otherwise it
+ * may try twice. 0 for NULL. Any thread. */
+LEP_API double lep_session_stop_wait(const lep_session *s);
 
 /* 1 while streaming, 0 otherwise (and for NULL). */
 LEP_API int lep_session_streaming(const lep_session *s);
@@ -179,7 +186,9 @@ enum lep_session_event_type {
  * fills (every field a double; integers are exact). */
 enum lep_event_field {
     LEP_EVF_TYPE = 0,     /* enum lep_session_event_type */
-    LEP_EVF_SAMPLE = 1,   /* index (samples returned by lep_session_read before it) */
+    LEP_EVF_SAMPLE = 1,   /* its row in the stream: the samples lep_session_read returned
+                             before it since lep_session_start; 0 for an event queued
+                             before that start or while stopped (an untare) */
     LEP_EVF_T_MONO = 2,   /* when, monotonic s */
     LEP_EVF_T_UTC = 3,    /* when, UTC s */
     LEP_EVF_GAP_FROM = 4, /* GAP/RECONNECTED: arrival of the last sample before (mono s);
@@ -192,7 +201,15 @@ enum lep_event_field {
     LEP_EVF_STATUS = 9,   /* OVERLOAD_*: the sensor's status bits */
     LEP_EVF_TARE = 10,    /* TARE: 6 fields, the offsets now in force (counts; 0 untared) */
     LEP_EVF_WRENCH = 16,  /* LIMIT_*: 6 fields, the sample's SI values (N, N m) */
-    LEP_EVF_COUNT = 22
+    LEP_EVF_ROW = 22,     /* its row in the batch of the last lep_session_read: the index
+                             in that call's arrays of the first sample after it (SAMPLE
+                             less the samples returned before that call). Taken after a
+                             read and before the next: 0 .. n of that read (n: after its
+                             last row); negative when it lay in an earlier batch. While
+                             stopped: SAMPLE. A front end that takes the events after
+                             each read puts them at its own row count before the read
+                             plus ROW, with no count of the library's. */
+    LEP_EVF_COUNT = 23
 };
 
 /* Number of event fields this library fills (LEP_EVF_COUNT of its header). */
@@ -204,7 +221,8 @@ LEP_API size_t lep_session_event_fields(void);
  * NULL s or fields. A full queue drops its oldest to take a new one
  * (LEP_H_EVENTS_DROPPED). While streaming, an event is returned once
  * lep_session_read has returned the samples before it (its sample field <=
- * the samples read so far); stopped, every queued event is returned. */
+ * the samples read so far); stopped, every queued event is returned. Where
+ * it lies: LEP_EVF_SAMPLE in the stream, LEP_EVF_ROW in the last batch. */
 LEP_API int lep_session_next_event(lep_session *s, double *fields, size_t nfields);
 
 /* ---- Tare ---- */
@@ -261,6 +279,15 @@ LEP_API int lep_session_get_doubles(lep_session *s, const char *name, double *ou
  * named twice (limit then untouched). The option "limit" takes this text too.
  * Re-entrant, no allocation. */
 LEP_API int lep_limits_parse(const char *text, double limit[6]);
+
+/* Several limit texts (a repeated --limit): add the axes of text to those
+ * limit[6] holds already (0: none). The one merge rule: the axes add up, and
+ * an axis limited twice (already in limit, or named twice in text) is
+ * refused rather than one value dropped: LEP_E_ARG, limit untouched (so
+ * "fz=50" then "mz=2" is "fz=50,mz=2"; "fz=50" then "fz=60" is an error).
+ * LEP_E_ARG too for NULL, malformed text, or a negative or non-finite value
+ * in limit. lep_limits_parse is this on six zeros. */
+LEP_API int lep_limits_add(const char *text, double limit[6]);
 
 /* Rotation matrix (row-major, 9 doubles) from roll, pitch, yaw in radians
  * (R = Rz(yaw) Ry(pitch) Rx(roll)), for the option "rotation". */

@@ -340,7 +340,8 @@ typedef struct lep_session_batch {
 
 typedef struct lep_session_event {
     int type;        /* enum lep_session_event_type */
-    uint64_t sample; /* index (count of samples delivered before it) where it applies */
+    uint64_t sample; /* index (count of samples delivered before it since the stream's start)
+                        where it applies; 0 when queued before the start */
     double t_mono;   /* when, monotonic s */
     double t_utc;    /* when, UTC s */
     double gap_from; /* GAP/RECONNECTED: arrival of the last sample before (mono s);
@@ -354,6 +355,9 @@ typedef struct lep_session_event {
     uint8_t status;
     double tare[LEP_AXES];   /* TARE: the offsets now in force (counts; zeros when untared) */
     double wrench[LEP_AXES]; /* LIMIT_*: the sample's SI values (N, N m) */
+    int64_t row; /* the row of the last read's batch it comes before: sample less the rows
+                    returned before that read, plus the rows the batch held already
+                    (LEP_EVF_ROW); while stopped, sample */
 } lep_session_event;
 
 /* Health, since lep_session_start. */

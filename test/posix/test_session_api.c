@@ -200,6 +200,102 @@ static void test_tare_comes_back_as_an_event_with_its_offsets(void)
     TEST_ASSERT_EQUAL_size_t(LEP_EVF_COUNT, lep_session_event_fields());
 }
 
+/* The events' places: LEP_EVF_SAMPLE in the stream and LEP_EVF_ROW in the
+ * last read's batch, the same place (SAMPLE - ROW = the rows read before
+ * that read); the tare's row is the first the new offset zeroes. */
+static void test_event_rows_in_the_stream_and_the_batch(void)
+{
+    double ev[LEP_EVF_COUNT];
+    size_t total = 0, n = 0, before = 0;
+    int found = 0, rc, guard;
+    open_session();
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
+    total = read_n(30);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_tare(s, 10, 0.0));
+    for (guard = 0; !found && guard < 200; guard++) {
+        before = total;
+        rc = lep_session_read(s, 1000, 7, &n, t_mono, t_utc, si, raw, zeroed, status, flags, seq);
+        TEST_ASSERT_EQUAL_INT(LEP_OK, rc);
+        total += n;
+        while (lep_session_next_event(s, ev, LEP_EVF_COUNT) == 1) {
+            double row = ev[LEP_EVF_ROW];
+            TEST_ASSERT_EQUAL_DOUBLE(LEP_EV_TARE, ev[LEP_EVF_TYPE]);
+            TEST_ASSERT_EQUAL_DOUBLE((double)before, ev[LEP_EVF_SAMPLE] - row);
+            TEST_ASSERT_TRUE(row >= 0.0 && row <= (double)n);
+            TEST_ASSERT_TRUE(ev[LEP_EVF_SAMPLE] >= 30.0 + 10.0);
+            if (row < (double)n) /* the first row with the new offset */
+                TEST_ASSERT_EQUAL_DOUBLE(0.0, zeroed[(size_t)row * 6 + LEP_FZ]);
+            if (row > 0.0) /* the last with the old (none) */
+                TEST_ASSERT_EQUAL_DOUBLE(2000.0, zeroed[((size_t)row - 1) * 6 + LEP_FZ]);
+            found = 1;
+        }
+    }
+    TEST_ASSERT_TRUE(found);
+    /* taken two reads late: the row lies before the last batch */
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_untare(s));
+    total += read_n(5);
+    before = total; /* one call: the last read's batch starts here */
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_read(s, 1000, 5, &n, t_mono, t_utc, si, raw, zeroed,
+                                                   status, flags, seq));
+    TEST_ASSERT_EQUAL_INT(1, lep_session_next_event(s, ev, LEP_EVF_COUNT));
+    TEST_ASSERT_EQUAL_DOUBLE(LEP_EV_TARE, ev[LEP_EVF_TYPE]);
+    TEST_ASSERT_EQUAL_DOUBLE((double)before, ev[LEP_EVF_SAMPLE] - ev[LEP_EVF_ROW]);
+    TEST_ASSERT_TRUE(ev[LEP_EVF_ROW] <= -5.0);
+    /* queued while stopped, taken then or after the next start: row 0 of
+     * the next stream (not the last stream's count) */
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_stop(s));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_untare(s));
+    TEST_ASSERT_EQUAL_INT(1, lep_session_next_event(s, ev, LEP_EVF_COUNT));
+    TEST_ASSERT_EQUAL_DOUBLE(0.0, ev[LEP_EVF_SAMPLE]);
+    TEST_ASSERT_EQUAL_DOUBLE(0.0, ev[LEP_EVF_ROW]);
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_untare(s));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_read(s, 1000, 3, &n, t_mono, t_utc, si, raw, zeroed,
+                                                   status, flags, seq));
+    TEST_ASSERT_EQUAL_INT(1, lep_session_next_event(s, ev, LEP_EVF_COUNT));
+    TEST_ASSERT_EQUAL_DOUBLE(LEP_EV_TARE, ev[LEP_EVF_TYPE]);
+    TEST_ASSERT_EQUAL_DOUBLE(0.0, ev[LEP_EVF_SAMPLE]);
+    TEST_ASSERT_EQUAL_DOUBLE(0.0, ev[LEP_EVF_ROW]);
+}
+
+/* The struct form appends from b.n: the batch row counts the rows it held. */
+static void test_event_row_counts_the_rows_a_batch_held(void)
+{
+    lep_session_batch b;
+    lep_session_event e;
+    size_t n;
+    open_session();
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
+    n = read_n(12);
+    memset(&b, 0, sizeof b);
+    b.cap = CAP;
+    b.n = 5; /* rows 0..4 are the caller's own */
+    b.zeroed = zeroed;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_untare(s));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_read_batch(s, &b, 1000));
+    TEST_ASSERT_TRUE(b.n > 5);
+    TEST_ASSERT_TRUE(lep_session_pop_event(s, &e));
+    TEST_ASSERT_EQUAL_INT(LEP_EV_TARE, e.type);
+    TEST_ASSERT_EQUAL_INT64((int64_t)e.sample - (int64_t)n + 5, e.row);
+    TEST_ASSERT_TRUE(e.row >= 5 && e.row <= (int64_t)b.n);
+}
+
+static void test_stop_wait_from_the_sessions_options(void)
+{
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_options_set_int(o, "timeout", 200, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_options_set_int(o, "retries", 1, err, sizeof err));
+    open_session();
+    TEST_ASSERT_EQUAL_DOUBLE(0.4, lep_session_stop_wait(s)); /* 2 tries x 0.2 s */
+    TEST_ASSERT_EQUAL_DOUBLE(0.0, lep_session_stop_wait(NULL));
+    lep_session_close(s);
+    s = NULL;
+    o = lep_options_new();
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_options_set_int(o, "sim", 1, err, sizeof err));
+    open_session();
+    /* the defaults: 500 ms, 3 retries */
+    TEST_ASSERT_EQUAL_DOUBLE((LEP_CLIENT_DEFAULT_RETRIES + 1) * 0.5, lep_session_stop_wait(s));
+}
+
 static void test_live_options_by_name(void)
 {
     double d = 0, r[9], got[9];
@@ -470,6 +566,9 @@ int main(void)
     RUN_TEST(test_samples_into_caller_arrays_with_columns_skipped);
     RUN_TEST(test_short_arrays_get_the_fields_they_know);
     RUN_TEST(test_tare_comes_back_as_an_event_with_its_offsets);
+    RUN_TEST(test_event_rows_in_the_stream_and_the_batch);
+    RUN_TEST(test_event_row_counts_the_rows_a_batch_held);
+    RUN_TEST(test_stop_wait_from_the_sessions_options);
     RUN_TEST(test_live_options_by_name);
     RUN_TEST(test_product_info_form_and_retries);
     RUN_TEST(test_missing_port_says_which);

@@ -373,6 +373,31 @@ static void test_limits_parse(void)
     TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_limits_parse("fz=1", NULL));
 }
 
+/* Several --limit texts: the axes add up, an axis limited twice is refused
+ * and the limits stay as they were. */
+static void test_limits_add_merges_texts(void)
+{
+    double lim[6] = { 0 }, bad[6] = { 0, 0, -1, 0, 0, 0 }, inf[6] = { 0, 0, INFINITY, 0, 0, 0 };
+    int k;
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_limits_add("fz=50", lim));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_limits_add("mz=2,fx=7", lim));
+    for (k = 0; k < 6; k++)
+        TEST_ASSERT_EQUAL_DOUBLE(k == 0 ? 7.0 : k == 2 ? 50.0 : k == 5 ? 2.0 : 0.0, lim[k]);
+    /* fz again, alone or beside a new axis: refused whole (my not added) */
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_limits_add("fz=60", lim));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_limits_add("my=1,fz=60", lim));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_limits_add("my=1,my=2", lim));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_limits_add("my=x", lim));
+    for (k = 0; k < 6; k++)
+        TEST_ASSERT_EQUAL_DOUBLE(k == 0 ? 7.0 : k == 2 ? 50.0 : k == 5 ? 2.0 : 0.0, lim[k]);
+    /* what the limits hold must be limits */
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_limits_add("fx=1", bad));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_limits_add("fx=1", inf));
+    TEST_ASSERT_EQUAL_DOUBLE(0.0, bad[0]);
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_limits_add(NULL, lim));
+    TEST_ASSERT_EQUAL_INT(LEP_E_ARG, lep_limits_add("fz=1", NULL));
+}
+
 static void test_metadata_and_refusals(void)
 {
     double g[3] = { 0, 0, -G0 }, bad3[3] = { 0, NAN, 0 };
@@ -433,6 +458,7 @@ int main(void)
     RUN_TEST(test_tare_with_a_payload_keeps_the_tool);
     RUN_TEST(test_limits_with_overload_episodes);
     RUN_TEST(test_limits_parse);
+    RUN_TEST(test_limits_add_merges_texts);
     RUN_TEST(test_metadata_and_refusals);
     return UNITY_END();
 }

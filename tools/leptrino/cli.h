@@ -7,7 +7,8 @@
  * sensors.c turns PORT / --sim / --sim-* into sessions (leptrino/session.h:
  * the one place that starts a sensor up) and reports their errors,
  * term_*.c and signals_*.c (one per OS) deal with the terminal and signals,
- * safe_text.c with sensor text on it, status.c draws
+ * safe_text.c with sensor text on it, tare_requests.c turns their keys and
+ * signals into tare requests (stream and watch), status.c draws
  * the live status line, watch_view.c the screen of `leptrino watch`.
  * No sensor logic lives here: tare, units, filtering, gaps, reconnection
  * and the formatting of samples belong to the session and its writer.
@@ -205,6 +206,18 @@ unsigned cli_take_untare_requests(void);
 bool cli_take_resize(void);
 /* Sleep ms milliseconds, returning early when a stop is requested. */
 void cli_sleep_ms(int ms);
+
+/* ---- tare_requests.c: keys and signals into tare requests ---- */
+typedef struct cli_tare_asks {
+    bool tare;   /* t or T pressed, or SIGUSR1, since the last call */
+    bool untare; /* u or U, or SIGUSR2 */
+    bool quit;   /* q or Q (for the commands that stop on it) */
+} cli_tare_asks;
+/* Everything asked since the last call: the signals' requests and every key
+ * waiting (never blocks; several of one kind count once). */
+cli_tare_asks cli_take_tare_asks(void);
+/* Do what a asks on s: the untare first, then a tare over `samples` samples. */
+void cli_tare_apply(lep_session *s, cli_tare_asks a, unsigned samples);
 
 /* ---- watch_view.c: the screen of `leptrino watch` ---- */
 typedef struct cli_watch_view {

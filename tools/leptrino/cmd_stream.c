@@ -370,9 +370,9 @@ static void note(stream_state *st, const sensor_run *r, const char *fmt, ...)
 }
 
 /* With --stop-on-limit, the first limit exceeded among ev[0..*nev) ends the
- * run: the rows of b after its sample (numbered from first) and the events
- * after it are dropped, and it is reported. */
-static void stop_at_limit(stream_state *st, sensor_run *r, lep_session_batch *b, uint64_t first,
+ * run: the rows of b after its row and the events after it are dropped, and
+ * it is reported. */
+static void stop_at_limit(stream_state *st, sensor_run *r, lep_session_batch *b,
                           lep_session_event *ev, size_t *nev)
 {
     static const char *const names[LEP_AXES] = { "fx", "fy", "fz", "mx", "my", "mz" };
@@ -386,8 +386,8 @@ static void stop_at_limit(stream_state *st, sensor_run *r, lep_session_batch *b,
         return;
     r->limit_stop = true;
     *nev = k + 1;
-    if (ev[k].sample >= first && ev[k].sample - first < b->n)
-        b->n = (size_t)(ev[k].sample - first) + 1u;
+    if (ev[k].row >= 0 && (uint64_t)ev[k].row < b->n) /* the row of this read's batch */
+        b->n = (size_t)ev[k].row + 1u;
     lep_session_get_metadata(r->s, &m);
     cli_status_clear(&st->st);
     fprintf(stderr, "leptrino: stream: %s: limit exceeded at t=%.6f s:", r->sensor->name,
@@ -408,19 +408,13 @@ static void emit(stream_state *st, sensor_run *r, const lep_session_batch *batch
     int rc;
     size_t from = 0;
     bool more = true;
-    uint64_t first = 0;
-    if (st->o.stop_on_limit) {
-        lep_session_health_info h;
-        lep_session_get_health(r->s, &h);
-        first = h.delivered - b->n; /* the session's number of the batch's first row */
-    }
     while (more) {
         nev = 0;
         while (nev < EVENTS && lep_session_pop_event(r->s, &ev[nev]))
             nev++;
         more = nev == EVENTS;
         if (st->o.stop_on_limit) {
-            stop_at_limit(st, r, b, first, ev, &nev);
+            stop_at_limit(st, r, b, ev, &nev);
             more = more && !r->limit_stop;
         }
         for (k = 0; k < nev; ++k) {
@@ -480,21 +474,10 @@ static void status_line(stream_state *st)
 
 static void tare_requests(stream_state *st)
 {
-    unsigned t = cli_take_tare_requests(), u = cli_take_untare_requests();
-    int key;
+    cli_tare_asks a = cli_take_tare_asks(); /* q means nothing here: Ctrl-C stops */
     size_t i;
-    while ((key = cli_term_read_key()) >= 0) {
-        if (key == 't' || key == 'T')
-            t++;
-        else if (key == 'u' || key == 'U')
-            u++;
-    }
-    for (i = 0; i < st->n && (t > 0 || u > 0); ++i) {
-        if (u > 0)
-            lep_session_untare(st->run[i].s);
-        if (t > 0)
-            lep_session_tare(st->run[i].s, (int)st->o.retare, 0.0);
-    }
+    for (i = 0; i < st->n; ++i)
+        cli_tare_apply(st->run[i].s, a, st->o.retare);
 }
 
 /* Read and write until every sensor is done, one fails, a signal or an
@@ -751,13 +734,11 @@ int cli_cmd_stream(int argc, char **argv)
             /* A sensor that went quiet may not answer the stop either: the
              * wait is said first, with the option that bounds it. */
             int per_try = st.o.po.timeout_ms;
-            /* one stop transaction after a silence (session.h, lep_session_stop) */
-            double most = (LEP_CLIENT_DEFAULT_RETRIES + 1.0) * per_try / 1000.0;
             if (st.run[i].failed == LEP_E_LOST)
                 note(&st, &st.run[i],
                      "stopping the sensor's stream: up to %.1f s without an answer "
                      "(-t/--timeout %d ms a try)",
-                     most, per_try);
+                     lep_session_stop_wait(st.run[i].s), per_try);
             rc = lep_session_stop(st.run[i].s);
             if (rc == LEP_E_TIMEOUT)
                 note(&st, &st.run[i],

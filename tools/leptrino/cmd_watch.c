@@ -176,8 +176,7 @@ int cli_cmd_watch(int argc, char **argv)
         bool ready[1];
         lep_session_batch b;
         lep_session_event ev;
-        unsigned n;
-        int key;
+        cli_tare_asks asks;
         double now;
 
         /* Wake for a key or every 50 ms, then take all the samples that came:
@@ -205,18 +204,9 @@ int cli_cmd_watch(int argc, char **argv)
             break;
         }
 
-        for (n = cli_take_tare_requests(); n > 0; --n)
-            lep_session_tare(s, (int)o.tare_n, 0.0);
-        for (n = cli_take_untare_requests(); n > 0; --n)
-            lep_session_untare(s);
-        while ((key = cli_term_read_key()) >= 0) {
-            if (key == 't' || key == 'T')
-                lep_session_tare(s, (int)o.tare_n, 0.0);
-            else if (key == 'u' || key == 'U')
-                lep_session_untare(s);
-            else if (key == 'q' || key == 'Q')
-                quit = true;
-        }
+        asks = cli_take_tare_asks();
+        cli_tare_apply(s, asks, o.tare_n);
+        quit = asks.quit;
 
         now = lep_monotonic_seconds();
         if (cli_take_resize()) {
@@ -243,8 +233,7 @@ int cli_cmd_watch(int argc, char **argv)
             fprintf(stderr,
                     "leptrino: watch: %s: stopping the sensor's stream: up to %.1f s without an "
                     "answer (-t/--timeout %d ms a try)\n",
-                    port, (LEP_CLIENT_DEFAULT_RETRIES + 1.0) * o.po.timeout_ms / 1000.0,
-                    o.po.timeout_ms);
+                    port, lep_session_stop_wait(s), o.po.timeout_ms);
             (void)lep_session_stop(s);
         }
     } else {

@@ -1,7 +1,8 @@
 /* The options about the load on the sensor, shared by the commands that take
  * them (`stream`, `watch`): --payload, --gravity and --limit into a
  * lep_session_options, and their help. The session does the compensation and
- * the limits; the limits' text syntax is the library's (lep_limits_parse). */
+ * the limits; the limits' text syntax and the merge of a repeated --limit are
+ * the library's (lep_limits_add). */
 #include <string.h>
 
 #include "cli.h"
@@ -20,22 +21,14 @@ bool cli_load_option(cli_args *a, lep_session_options *so, bool limits)
     } else if (cli_args_is(a, NULL, "--gravity")) {
         (void)cli_args_doubles(a, so->gravity, 3);
     } else if (limits && cli_args_is(a, NULL, "--limit")) {
-        double lim[LEP_AXES];
-        int k;
         v = cli_args_value(a);
-        if (v != NULL && lep_limits_parse(v, lim) != LEP_OK) {
+        /* a repeated --limit adds its axes: the library's merge rule */
+        if (v != NULL && lep_limits_add(v, so->limit) != LEP_OK)
             cli_args_error(a,
                            "option --limit: '%s' is not AXIS=VALUE,... with AXIS one of "
-                           "fx, fy, fz, mx, my, mz (each once) and VALUE > 0 (N, N m)",
+                           "fx, fy, fz, mx, my, mz and VALUE > 0 (N, N m), each axis limited "
+                           "once over every --limit",
                            v);
-        } else if (v != NULL) { /* a repeated --limit adds its axes */
-            for (k = 0; k < LEP_AXES; k++)
-                if (lim[k] > 0.0 && so->limit[k] > 0.0)
-                    cli_args_error(
-                        a, "option --limit: '%s' limits an axis an earlier --limit limits", v);
-                else if (lim[k] > 0.0)
-                    so->limit[k] = lim[k];
-        }
     } else {
         return false;
     }

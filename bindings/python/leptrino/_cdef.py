@@ -484,6 +484,7 @@ int lep_session_open(const lep_options *o, lep_session **out, char *err, size_t 
 void lep_session_close(lep_session *s);
 int lep_session_start(lep_session *s);
 int lep_session_stop(lep_session *s);
+double lep_session_stop_wait(const lep_session *s);
 int lep_session_streaming(const lep_session *s);
 int lep_session_read(lep_session *s, int timeout_ms, size_t cap, size_t *n, double *t_mono, double *t_utc, double *si, int16_t *raw, double *zeroed, uint8_t *status, uint8_t *flags, uint16_t *seq);
 int lep_session_read_one(lep_session *s, double *t_mono, double *t_utc, double *si, int16_t *raw, double *zeroed, uint8_t *status, uint8_t *flags, uint16_t *seq);
@@ -512,7 +513,8 @@ enum lep_event_field
   LEP_EVF_STATUS = 9,
   LEP_EVF_TARE = 10,
   LEP_EVF_WRENCH = 16,
-  LEP_EVF_COUNT = 22
+  LEP_EVF_ROW = 22,
+  LEP_EVF_COUNT = 23
 };
 size_t lep_session_event_fields(void);
 int lep_session_next_event(lep_session *s, double *fields, size_t nfields);
@@ -530,6 +532,7 @@ int lep_session_get_int(lep_session *s, const char *name, int64_t *out);
 int lep_session_get_double(lep_session *s, const char *name, double *out);
 int lep_session_get_doubles(lep_session *s, const char *name, double *out, size_t cap, size_t *n);
 int lep_limits_parse(const char *text, double limit[6]);
+int lep_limits_add(const char *text, double limit[6]);
 void lep_rotation_from_rpy(double roll, double pitch, double yaw, double r[9]);
 enum lep_session_text
 {
@@ -818,6 +821,7 @@ FUNCTIONS = (
     'lep_session_close',
     'lep_session_start',
     'lep_session_stop',
+    'lep_session_stop_wait',
     'lep_session_streaming',
     'lep_session_read',
     'lep_session_read_one',
@@ -837,6 +841,7 @@ FUNCTIONS = (
     'lep_session_get_double',
     'lep_session_get_doubles',
     'lep_limits_parse',
+    'lep_limits_add',
     'lep_rotation_from_rpy',
     'lep_session_info',
     'lep_session_rated',

@@ -183,7 +183,8 @@ LEP_EV_OVERLOAD_END = 6
 LEP_EV_LIMIT_EXCEEDED = 7  # an SI value went beyond its limit (axes: which)
 LEP_EV_LIMIT_CLEARED = 8  # every SI value is back within 95 % of its limit
 LEP_EVF_TYPE = 0  # enum lep_session_event_type
-LEP_EVF_SAMPLE = 1  # index (samples returned by lep_session_read before it)
+LEP_EVF_SAMPLE = 1  # its row in the stream: the samples lep_session_read returned before it since
+# lep_session_start; 0 for an event queued before that start or while stopped (an untare)
 LEP_EVF_T_MONO = 2  # when, monotonic s
 LEP_EVF_T_UTC = 3  # when, UTC s
 LEP_EVF_GAP_FROM = 4  # GAP/RECONNECTED: arrival of the last sample before (mono s); DISCONNECTED:
@@ -195,7 +196,12 @@ LEP_EVF_AXES = 8  # OVERLOAD_*, LIMIT_*: bit i = axis i
 LEP_EVF_STATUS = 9  # OVERLOAD_*: the sensor's status bits
 LEP_EVF_TARE = 10  # TARE: 6 fields, the offsets now in force (counts; 0 untared)
 LEP_EVF_WRENCH = 16  # LIMIT_*: 6 fields, the sample's SI values (N, N m)
-LEP_EVF_COUNT = 22
+LEP_EVF_ROW = 22  # its row in the batch of the last lep_session_read: the index in that call's
+# arrays of the first sample after it (SAMPLE less the samples returned before that call). Taken
+# after a read and before the next: 0 .. n of that read (n: after its last row); negative when it
+# lay in an earlier batch. While stopped: SAMPLE. A front end that takes the events after each read
+# puts them at its own row count before the read plus ROW, with no count of the library's.
+LEP_EVF_COUNT = 23
 LEP_INFO_MODEL = 0  # product info: model ("PFS055YA501U6")
 LEP_INFO_SERIAL = 1  # serial number
 LEP_INFO_FIRMWARE = 2  # firmware version ("1.13")

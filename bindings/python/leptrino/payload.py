@@ -147,17 +147,22 @@ def read_pose(path: str, backend: Optional[str] = None) -> Tuple[Vec6, int]:
     return cast(Vec6, tuple(float(mean[i]) for i in range(6))), int(be.value(n))
 
 
-def parse_limits(text: str, backend: Optional[str] = None) -> Vec6:
-    """Limits from the `--limit` text ("fz=50,mz=2": AXIS=VALUE pairs, AXIS
-    one of fx fy fz mx my mz, VALUE > 0 in N or N·m) as six numbers (fx..mz,
-    0 = none) for Sensor.set_limits: the library's parser
-    (lep_limits_parse), the one `leptrino stream --limit` uses. ValueError
-    when malformed or when an axis is named twice."""
-    if not isinstance(text, str):
-        raise TypeError(f"limits: {text!r} is not text")
+def parse_limits(text: str, *more: str, backend: Optional[str] = None) -> Vec6:
+    """Limits from `--limit` texts ("fz=50,mz=2": AXIS=VALUE pairs, AXIS one
+    of fx fy fz mx my mz, VALUE > 0 in N or N·m) as six numbers (fx..mz, 0 =
+    none) for Sensor.set_limits. Several texts (a repeated --limit) merge by
+    the library's one rule (lep_limits_add, as `leptrino stream --limit`):
+    the axes add up, and an axis limited twice is refused. ValueError when a
+    text is malformed or an axis is limited twice."""
+    texts = (text, *more)
+    for t in texts:
+        if not isinstance(t, str):
+            raise TypeError(f"limits: {t!r} is not text")
     be = get_backend(backend)
     out = be.doubles(K.LEP_AXES)
-    if "\x00" in text or be.lib.lep_limits_parse(text.encode(), out) < 0:
-        raise ValueError(f"limits {text!r}: expected AXIS=VALUE,... with AXIS one of fx, fy, "
-                         "fz, mx, my, mz and VALUE > 0 (N, N·m)")
+    for t in texts:
+        if "\x00" in t or be.lib.lep_limits_add(t.encode(), out) < 0:
+            raise ValueError(f"limits {t!r}: expected AXIS=VALUE,... with AXIS one of fx, fy, "
+                             "fz, mx, my, mz, each limited once over every text, and VALUE > 0 "
+                             "(N, N·m)")
     return cast(Vec6, tuple(float(out[i]) for i in range(K.LEP_AXES)))

@@ -240,8 +240,6 @@ class Sensor:
         self._offsets = be.doubles(K.LEP_AXES)
         #: events read by tare(wait=True) in a stream of its own (not a recording's)
         self.events: List[SessionEvent] = []
-        self._start_mono = 0.0
-        self._delivered = 0
         self._decimate = int(decimate)
 
     # -- life cycle ----------------------------------------------------------
@@ -358,29 +356,31 @@ class Sensor:
         """The message of a read that failed; a lost stream names the option."""
         if rc == K.LEP_E_LOST:
             # the stop that follows (record() makes it, a stream() at its close) waits for a
-            # sensor that went quiet: say how long and what changes it, as `leptrino` does
-            tries = self._retries + 1
+            # sensor that went quiet: say how long (the library's bound) and what changes it,
+            # as `leptrino` does
+            wait = float(self._be.lib.lep_session_stop_wait(self._live()))
             return (f"{self.port}: {what}: no data for {self._data_timeout_s:g} s "
                     "(data_timeout=): the stream is lost (reconnect=True waits for the sensor "
-                    f"to come back); stopping the sensor's stream waits up to "
-                    f"{tries * self._timeout_ms / 1000:g} s for an answer "
-                    f"(timeout= {self._timeout_ms / 1000:g} s a try, {tries} tries: retries=)")
+                    f"to come back); stopping the sensor's stream waits up to {wait:g} s for an "
+                    f"answer (timeout= {self._timeout_ms / 1000:g} s a try, "
+                    f"retries= {self._retries} more)")
         return f"{self.port}: {what}"
 
-    def _drain_events(self, base: int = 0) -> List[SessionEvent]:
-        """The queued events, .sample counted from the stream's sample base."""
+    def _drain_events(self, first: Optional[int] = None) -> List[SessionEvent]:
+        """The queued events, .sample the stream's row (LEP_EVF_SAMPLE); with
+        first (the caller's row count before its last read), first plus the
+        event's row in that read's batch (LEP_EVF_ROW); one from before the
+        caller's first row is at 0."""
         be, ev, s = self._be, self._ev, self._s
         out: List[SessionEvent] = []
         while s is not None and be.lib.lep_session_next_event(s, ev, K.LEP_EVF_COUNT) == 1:
             f = [float(ev[i]) for i in range(K.LEP_EVF_COUNT)]
             typ = int(f[K.LEP_EVF_TYPE])
-            t_mono = f[K.LEP_EVF_T_MONO]
             out.append(SessionEvent(
                 type=EVENT_NAMES.get(typ, str(typ)),
-                # queued before this stream started (an untare while stopped): at its start
-                sample=(max(0, int(f[K.LEP_EVF_SAMPLE]) - base) if t_mono >= self._start_mono
-                        else 0),
-                t=t_mono, t_utc=f[K.LEP_EVF_T_UTC],
+                sample=(int(f[K.LEP_EVF_SAMPLE]) if first is None
+                        else max(0, first + int(f[K.LEP_EVF_ROW]))),
+                t=f[K.LEP_EVF_T_MONO], t_utc=f[K.LEP_EVF_T_UTC],
                 gap_from=f[K.LEP_EVF_GAP_FROM], gap_to=f[K.LEP_EVF_GAP_TO],
                 lost=int(f[K.LEP_EVF_LOST]), error=int(f[K.LEP_EVF_ERROR]),
                 axes=int(f[K.LEP_EVF_AXES]), status=int(f[K.LEP_EVF_STATUS]),
@@ -404,10 +404,8 @@ class Sensor:
         not), or a negative LEP_E_* code: LEP_E_TIMEOUT (nothing came),
         LEP_E_END (the stream ended), another error while the session
         reconnects (status_text() says it). LeptrinoError when the sensor is
-        closed. The samples count for the events' .sample (take_events())."""
-        rc = buffer.read(self._live(), max(0, int(timeout * 1000)), buffer.cap)
-        self._delivered += buffer.n
-        return rc
+        closed."""
+        return buffer.read(self._live(), max(0, int(timeout * 1000)), buffer.cap)
 
     @property
     def latency(self) -> float:
@@ -422,8 +420,9 @@ class Sensor:
     @_any_thread
     def take_events(self) -> List[SessionEvent]:
         """The session's events queued since the last call (gaps, reconnects,
-        tare done, limits...), .sample counted from the stream's start."""
-        return self._drain_events(0)
+        tare done, limits...), .sample the stream's row it comes before (counted
+        from the start; 0 for one queued while stopped)."""
+        return self._drain_events()
 
     def status_text(self, rc: int) -> str:
         """The library's text for a status code (read_batch's)."""
@@ -544,7 +543,6 @@ class Sensor:
             while lib.lep_session_taring(s):
                 rc = arrays.read(s, self._timeout_ms, _ITER_BATCH)
                 self._guard.check(self.port)
-                self._delivered += arrays.n
                 if rc < 0 and rc != K.LEP_E_END:
                     self._check(rc, None, f"{self.port}: tare")
                 self.events += self._drain_events()
@@ -698,8 +696,6 @@ class Sensor:
     def start(self) -> None:
         """Start the stream (stream(), record() and tare() do it themselves)."""
         self._check(self._be.lib.lep_session_start(self._live()), K.LEP_CMD_START)
-        self._delivered = 0  # samples read since the start: the events' .sample base
-        self._start_mono = self._md()[K.LEP_MD_START_MONO]
 
     @_driving
     def stop(self) -> None:
@@ -750,7 +746,6 @@ class Sensor:
         if not lib.lep_session_streaming(s):
             self.start()
             started = True
-        base = self._delivered
         latency_before = self._latency_ms()
         if latency_before < _RECORD_LATENCY_MS:
             self._set_latency_ms(_RECORD_LATENCY_MS)
@@ -789,9 +784,7 @@ class Sensor:
                 self._guard.check(self.port)
                 if seconds is not None and n == 0 and arrays.n > 0:
                     end = float(arrays.t_mono[0]) + seconds
-                self._delivered += arrays.n - n
-                new = self._drain_events(base)
-                events += new
+                events += self._drain_events(n)  # .sample: rows of the recording
                 now = float(lib.lep_monotonic_seconds())
                 if rc == K.LEP_E_END:
                     break
@@ -931,7 +924,7 @@ class Stream:
         self._end: Optional[float] = None
         self._arrays = _Arrays(sensor._be, _ITER_BATCH)
         self._pending: Iterator[Sample] = iter(())
-        self._base = 0
+        self._rows = 0  # read by this iterator: its events' .sample count from its start
         self.events: List[SessionEvent] = []
 
     def __enter__(self) -> Stream:
@@ -961,7 +954,6 @@ class Stream:
             s._guard.release()
             raise
         self._open = True
-        self._base = s._delivered
 
     def close(self) -> None:
         """Stop the stream if this iterator started it (best effort when the port is gone)."""
@@ -1021,9 +1013,8 @@ class Stream:
             if a.n == 0 and left <= 0:
                 self.close()  # past the end and nothing more arrived before it
                 raise StopIteration
-            s._delivered += a.n
-            new = s._drain_events(self._base)
-            self.events += new
+            self.events += s._drain_events(self._rows)
+            self._rows += a.n
             if a.n:
                 break
             if rc == K.LEP_E_END:

@@ -145,7 +145,10 @@ class SessionEvent:
 
     type: str  # gap, disconnected, reconnected, tare, overload_begin, overload_end,
     #            limit_exceeded, limit_cleared
-    sample: int  # index of the sample it applies to (samples delivered before it)
+    # index of the sample it applies to: the row of the recording / Stream it came with
+    # (the library's LEP_EVF_ROW plus the rows read before), take_events(): the stream's
+    # row (LEP_EVF_SAMPLE); 0 for one from before the stream (an untare while stopped)
+    sample: int
     t: float  # monotonic s
     t_utc: float
     gap_from: float  # gap/reconnected: arrival of the last sample before (monotonic s)

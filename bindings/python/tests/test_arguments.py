@@ -186,6 +186,18 @@ def test_bridge_limits_add_up_and_an_axis_twice_is_refused(capsys: Any) -> None:
         assert "--limit" in capsys.readouterr().err
 
 
+def test_parse_limits_merges_texts_by_the_librarys_rule() -> None:
+    from leptrino.payload import parse_limits
+
+    assert parse_limits("fz=50,mz=2") == (0, 0, 50, 0, 0, 2)
+    assert parse_limits("fz=50", "mz=2", "fx=1") == (1, 0, 50, 0, 0, 2)
+    for texts in (("fz=50", "fz=60"), ("fz=50", "mz=1,fz=60"), ("fz=50", "mz=x")):
+        with pytest.raises(ValueError, match="limited once"):
+            parse_limits(*texts)
+    with pytest.raises(TypeError):
+        parse_limits("fz=1", 5)  # type: ignore[arg-type]
+
+
 def test_recordings_and_simulator(sensor: Any, sim: Any, tmp_path: Any) -> None:
     rec = sensor.record(count=5)
     cases = [

@@ -81,6 +81,33 @@ def test_tare_over_seconds_and_untare(backend: str) -> None:
         assert [e.tare for e in s.events if e.type == "tare"] == [(1000.0,) * 6]
 
 
+def test_events_sit_at_rows_of_a_recording_in_a_running_stream(backend: str) -> None:
+    """The library places each event (LEP_EVF_ROW): a recording made in a
+    stream that runs already has its tare at its own first zeroed row; an
+    untare while stopped is at the next stream's row 0."""
+    with leptrino.Sensor(sim={"constant": True, "amplitude": 0.25}, backend=backend) as s:
+        s.start()
+        assert len(s.record(count=300)) == 300  # rows the next recording does not hold
+        s.tare(50, wait=False)
+        rec = s.record(count=400)
+        tares = [e for e in rec.events if e.type == "tare"]
+        assert len(tares) == 1
+        i = tares[0].sample
+        assert 0 < i < len(rec)
+        assert np.all(rec.zeroed[i] == 0.0) and np.all(rec.zeroed[i - 1] == 2500.0)
+        # the same event place for a Stream begun in the running stream
+        s.tare(50, wait=False)
+        with s.stream(count=400) as st:
+            rows = list(st)
+        tares = [e for e in st.events if e.type == "tare"]
+        assert len(tares) == 1 and 0 < tares[0].sample < len(rows)
+        assert rows[tares[0].sample].taring is False and rows[tares[0].sample - 1].taring
+        s.stop()
+        s.untare()
+        untare = [e for e in s.take_events() if e.type == "tare"]
+        assert len(untare) == 1 and untare[0].sample == 0  # not the last stream's count
+
+
 def test_lowpass_and_decimate(backend: str) -> None:
     with leptrino.Sensor(sim={"seed": 3}, lowpass=50.0, decimate=4, backend=backend) as s:
         assert s.lowpass == 50.0
@@ -346,7 +373,7 @@ def test_data_timeout_ends_the_stream(backend: str) -> None:
         # no silent wait: the message names the stop's wait and what changes it
         assert "no data for 0.5 s (data_timeout=)" in str(info.value)
         assert ("stopping the sensor's stream waits up to 2 s for an answer "
-                "(timeout= 0.5 s a try, 4 tries: retries=)") in str(info.value), str(info.value)
+                "(timeout= 0.5 s a try, retries= 3 more)") in str(info.value), str(info.value)
 
 
 def test_a_lost_stream_ends_the_iterator_with_the_sessions_code(backend: str) -> None:

@@ -91,6 +91,7 @@ void lep_event_to_fields(const lep_session_event *ev, double f[LEP_EVF_COUNT])
         f[LEP_EVF_TARE + k] = ev->tare[k];
         f[LEP_EVF_WRENCH + k] = ev->wrench[k];
     }
+    f[LEP_EVF_ROW] = (double)ev->row;
 }
 
 void lep_event_from_fields(const double *f, lep_session_event *ev)
@@ -111,6 +112,7 @@ void lep_event_from_fields(const double *f, lep_session_event *ev)
         ev->tare[k] = f[LEP_EVF_TARE + k];
         ev->wrench[k] = f[LEP_EVF_WRENCH + k];
     }
+    ev->row = (int64_t)f[LEP_EVF_ROW];
 }
 
 int lep_session_next_event(lep_session *s, double *fields, size_t nfields)
@@ -124,6 +126,15 @@ int lep_session_next_event(lep_session *s, double *fields, size_t nfields)
     lep_event_to_fields(&ev, all);
     memcpy(fields, all, sizeof(double) * (nfields < LEP_EVF_COUNT ? nfields : LEP_EVF_COUNT));
     return 1;
+}
+
+double lep_session_stop_wait(const lep_session *s)
+{
+    /* one stop transaction: the first try and `retries` more, a timeout each
+     * (options read at open only: no lock needed) */
+    if (s == NULL)
+        return 0.0;
+    return ((double)s->opt.retries + 1.0) * (double)s->opt.timeout_ms / 1000.0;
 }
 
 /* ---- options of an open session ---- */

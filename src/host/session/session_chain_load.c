@@ -108,16 +108,33 @@ uint8_t lep_priv_load_limits(session_load *l, session_sink *sk, const double si[
 int lep_limits_parse(const char *text, double limit[LEP_AXES])
 {
     double v[LEP_AXES] = { 0 };
+    int rc;
+    if (limit == NULL)
+        return LEP_E_ARG;
+    rc = lep_limits_add(text, v);
+    if (rc == LEP_OK)
+        memcpy(limit, v, sizeof v);
+    return rc;
+}
+
+int lep_limits_add(const char *text, double limit[LEP_AXES])
+{
+    double v[LEP_AXES];
     const char *p = text;
+    int k;
     if (text == NULL || limit == NULL)
         return LEP_E_ARG;
+    for (k = 0; k < LEP_AXES; k++)
+        if (!isfinite(limit[k]) || limit[k] < 0.0)
+            return LEP_E_ARG;
+    memcpy(v, limit, sizeof v);
     for (;;) {
         char *end;
-        int k, axis = -1;
+        int axis = -1;
         for (k = 0; k < LEP_AXES; k++)
             if (strncmp(p, axis_name[k], 2) == 0 && p[2] == '=')
                 axis = k;
-        if (axis < 0 || v[axis] > 0.0) /* unknown, or named twice: which would the user mean? */
+        if (axis < 0 || v[axis] > 0.0) /* unknown, or limited twice: which would the user mean? */
             return LEP_E_ARG;
         errno = 0;
         v[axis] = strtod(p + 3, &end);

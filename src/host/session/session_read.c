@@ -227,6 +227,9 @@ int lep_session_read_batch(lep_session *s, lep_session_batch *b, int timeout_ms)
     rc = lep_priv_guard_enter(&s->guard);
     if (rc != LEP_OK)
         return rc;
+    pthread_mutex_lock(&s->mu); /* the events' batch rows count from this batch's row 0 */
+    lep_priv_sink_batch(&s->sink, b->n);
+    pthread_mutex_unlock(&s->mu);
     /* A pass must be able to sleep out the latency budget, or the budget
      * would end at every pass. */
     slice_ms = s->opt.latency_ms + GUARD_SLICE_MS;

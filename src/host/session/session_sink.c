@@ -27,6 +27,11 @@ void lep_priv_sink_stop(session_sink *sk)
     lep_priv_events_stop(&sk->events); /* the rows their samples wait for are gone */
 }
 
+void lep_priv_sink_batch(session_sink *sk, size_t held)
+{
+    lep_priv_events_batch(&sk->events, sk->hs.h.delivered, held);
+}
+
 void lep_priv_sink_row(session_sink *sk, const session_row *row)
 {
     session_rows *r = &sk->rows;

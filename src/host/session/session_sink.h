@@ -49,10 +49,14 @@ typedef struct session_events {
     uint64_t pushed;  /* queued since open (tells a read it has news) */
     uint64_t dropped; /* pushed out of a full queue since start */
     /* An event waits until the rows before its sample are returned: the head
-     * goes when its sample <= gate (rows returned; UINT64_MAX when stopped),
-     * or while ungated > 0 (queued before a start: another stream's numbers). */
+     * goes when its sample <= gate (rows returned; UINT64_MAX when stopped).
+     * An event queued while stopped, or still queued at a start, is at the
+     * stream's row 0 (its sample is made 0). */
     uint64_t gate;
-    size_t ungated;
+    /* The stream's row number of the current read's batch row 0 (rows
+     * returned before that read, less the rows the batch held already);
+     * 0 while stopped. An event's row in the batch is sample - row_base. */
+    int64_t row_base;
 } session_events;
 
 /* [mu] the health counters and what they are computed from. */
@@ -81,6 +85,9 @@ void lep_priv_sink_open(session_sink *sk);
 void lep_priv_sink_start(session_sink *sk, double nominal_hz, const lep_client_stats *base);
 /* The stream stopped: the rows go, and every event queued may go. [mu] */
 void lep_priv_sink_stop(session_sink *sk);
+/* A read begins, its batch holding `held` rows already: the events' batch
+ * rows count from its row 0. [mu] held. */
+void lep_priv_sink_batch(session_sink *sk, size_t held);
 /* Keep a processed row: it is row number lep_priv_sink_processed(). [mu] */
 void lep_priv_sink_row(session_sink *sk, const session_row *row);
 /* Rows kept since start: the next row's number. [mu] */
@@ -133,6 +140,7 @@ void lep_priv_event_init(lep_session_event *ev, int type, uint64_t sample, doubl
 void lep_priv_events_start(session_events *q);
 void lep_priv_events_stop(session_events *q);
 void lep_priv_events_returned(session_events *q, uint64_t rows);
+void lep_priv_events_batch(session_events *q, uint64_t rows, size_t held);
 void lep_priv_events_push(session_events *q, const lep_session_event *ev);
 bool lep_priv_events_pop(session_events *q, lep_session_event *ev);
 

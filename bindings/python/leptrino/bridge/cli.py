@@ -125,15 +125,15 @@ def _parse_gravity(text: str) -> Tuple[Optional[str], List[float]]:
 
 
 def _limits(p: argparse.ArgumentParser, texts: List[str]) -> Optional[Tuple[float, ...]]:
-    """The --limit options as one text, for the library's parser (the one
-    `leptrino stream` uses): the axes of repeated options add up, and an axis
-    named twice is refused rather than one of its values dropped."""
+    """The --limit options, parsed and merged by the library (lep_limits_add,
+    as `leptrino stream` does): the axes of repeated options add up, and an
+    axis limited twice is refused rather than one of its values dropped."""
     from ..payload import parse_limits
 
     if not texts:
         return None
     try:
-        return parse_limits(",".join(texts))
+        return parse_limits(*texts)
     except ValueError:
         p.error(f"--limit {' --limit '.join(texts)}: expected AXIS=VALUE,... with AXIS one of "
                 "fx, fy, fz, mx, my, mz, each limited once, and VALUE > 0 (N, N m)")

@@ -425,9 +425,6 @@ pub struct Sensor {
     nominal_hz: f64,
     decimate: u32,
     timeout_ms: i32,
-    /// samples delivered since the stream started: the events' sample base
-    delivered: u64,
-    start_mono: f64,
     events: Vec<Event>,
     _not_sync: PhantomData<Cell<()>>,
 }
@@ -527,8 +524,6 @@ impl Sensor {
             decimate: u32::try_from(int(c"decimate")).unwrap_or(1).max(1),
             timeout_ms: i32::try_from(int(c"timeout")).unwrap_or(500).max(1),
             control,
-            delivered: 0,
-            start_mono: 0.0,
             events: Vec::new(),
             _not_sync: PhantomData,
         })
@@ -678,10 +673,7 @@ impl Sensor {
     pub fn start(&mut self) -> Result<()> {
         // SAFETY: driving-thread call.
         let rc = unsafe { sys::lep_session_start(self.ptr()) };
-        self.check_cmd(rc, "starting the stream")?;
-        self.delivered = 0;
-        self.start_mono = self.control.numbers().start_mono();
-        Ok(())
+        self.check_cmd(rc, "starting the stream")
     }
 
     /// Stop the stream; samples received and not yet read are dropped.
@@ -763,9 +755,8 @@ impl Sensor {
         // SAFETY (each call): driving-thread calls on an open session.
         while unsafe { sys::lep_session_taring(self.ptr()) } == 1 {
             scratch.clear_rows();
-            let (rc, n) = read_into(self.ptr(), &mut scratch, ITER_BATCH, self.timeout_ms);
-            self.delivered += n as u64;
-            let mut new = self.drain_events(0);
+            let (rc, _) = read_into(self.ptr(), &mut scratch, ITER_BATCH, self.timeout_ms);
+            let mut new = self.drain_events(None);
             self.events.append(&mut new);
             if rc < 0 && rc != sys::LEP_E_END {
                 return Err(self.cmd_error(rc, "tare"));
@@ -774,12 +765,13 @@ impl Sensor {
         Ok(())
     }
 
-    fn drain_events(&mut self, base: u64) -> Vec<Event> {
+    /// The queued events (`Event::from_fields` says what `first` does).
+    fn drain_events(&mut self, first: Option<u64>) -> Vec<Event> {
         let mut out = Vec::new();
         let mut ev = [0.0; EVF_COUNT];
         // SAFETY: any-thread call; ev holds EVF_COUNT doubles.
         while unsafe { sys::lep_session_next_event(self.ptr(), ev.as_mut_ptr(), EVF_COUNT) } == 1 {
-            out.push(Event::from_fields(&ev, base, self.start_mono));
+            out.push(Event::from_fields(&ev, first));
         }
         out
     }
@@ -827,12 +819,11 @@ impl Sensor {
         if started {
             self.start()?;
         }
-        let base = self.delivered;
         let latency_before = self.latency_ms();
         if latency_before < RECORD_LATENCY_MS {
             self.set_latency_ms(RECORD_LATENCY_MS);
         }
-        let result = self.record_loop(&mut rec, seconds, count, rate, base);
+        let result = self.record_loop(&mut rec, seconds, count, rate);
         self.set_latency_ms(latency_before);
         if started {
             let _ = self.stop();
@@ -850,7 +841,6 @@ impl Sensor {
         seconds: Option<f64>,
         count: Option<usize>,
         rate: f64,
-        base: u64,
     ) -> Result<()> {
         let timeout_s = f64::from(self.timeout_ms) / 1000.0;
         let mut now = monotonic();
@@ -888,8 +878,7 @@ impl Sensor {
                     end = rec.t[0] + s;
                 }
             }
-            self.delivered += added as u64;
-            let mut new = self.drain_events(base);
+            let mut new = self.drain_events(Some(n as u64)); // rows of the recording
             rec.events.append(&mut new);
             now = monotonic();
             if rc == sys::LEP_E_END {
@@ -924,13 +913,12 @@ impl Sensor {
         if started {
             self.start()?;
         }
-        let base = self.delivered;
         Ok(Stream {
             sensor: self,
             started,
             buf: Recording::with_capacity(ITER_BATCH),
             pos: 0,
-            base,
+            rows: 0,
             events: Vec::new(),
             done: false,
         })
@@ -1036,7 +1024,8 @@ pub struct Stream<'a> {
     started: bool,
     buf: Recording,
     pos: usize,
-    base: u64,
+    /// rows read by this iterator: its events' `sample` count from its start
+    rows: u64,
     events: Vec<Event>,
     done: bool,
 }
@@ -1078,8 +1067,8 @@ impl Stream<'_> {
             self.pos = 0;
             let s = &mut *self.sensor;
             let (rc, n) = read_into(s.ptr(), &mut self.buf, ITER_BATCH, s.timeout_ms);
-            s.delivered += n as u64;
-            let mut new = s.drain_events(self.base);
+            let mut new = s.drain_events(Some(self.rows));
+            self.rows += n as u64;
             self.events.append(&mut new);
             if n > 0 {
                 return Some(Ok(()));

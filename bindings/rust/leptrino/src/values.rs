@@ -166,7 +166,11 @@ pub enum EventKind {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Event {
     /// Where it applies: the number of samples delivered before it, counted
-    /// from the start of the recording or iteration it came with.
+    /// from the start of the recording or iteration it came with (the
+    /// library's row of the event in the batch, `LEP_EVF_ROW`, plus the rows
+    /// read before that batch); from [`Sensor::take_events`](crate::Sensor::take_events),
+    /// counted from the stream's start (`LEP_EVF_SAMPLE`). 0 for an event
+    /// from before the stream (an untare while stopped) or the recording.
     pub sample: u64,
     /// When, monotonic seconds.
     pub t: f64,
@@ -192,8 +196,12 @@ pub(crate) fn three(f: &[f64], i: u32) -> [f64; 3] {
 }
 
 impl Event {
-    /// From the fields of `lep_session_next_event` (indices `LEP_EVF_*`).
-    pub(crate) fn from_fields(f: &[f64; EVF_COUNT], base: u64, start_mono: f64) -> Event {
+    /// From the fields of `lep_session_next_event` (indices `LEP_EVF_*`):
+    /// `sample` the stream's row (`LEP_EVF_SAMPLE`), or with `first` (the
+    /// caller's row count before its last read) `first` plus the event's row
+    /// in that read's batch (`LEP_EVF_ROW`; one from before the caller's
+    /// first row is at 0).
+    pub(crate) fn from_fields(f: &[f64; EVF_COUNT], first: Option<u64>) -> Event {
         let at = |i: u32| f[i as usize];
         let error = at(sys::LEP_EVF_ERROR) as i32;
         let cause = ErrorKind::from_code(error).unwrap_or(ErrorKind::Disconnected);
@@ -223,16 +231,13 @@ impl Event {
             },
             _ => EventKind::Other(type_),
         };
-        let t = at(sys::LEP_EVF_T_MONO);
-        // queued before this stream started (an untare while stopped): at its start
-        let sample = if t >= start_mono {
-            (at(sys::LEP_EVF_SAMPLE) as u64).saturating_sub(base)
-        } else {
-            0
+        let sample = match first {
+            None => at(sys::LEP_EVF_SAMPLE) as u64,
+            Some(first) => (first as i64 + at(sys::LEP_EVF_ROW) as i64).max(0) as u64,
         };
         Event {
             sample,
-            t,
+            t: at(sys::LEP_EVF_T_MONO),
             t_utc: at(sys::LEP_EVF_T_UTC),
             kind,
         }

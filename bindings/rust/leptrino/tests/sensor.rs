@@ -137,6 +137,42 @@ fn record_count_and_in_a_running_stream() {
 }
 
 #[test]
+fn events_sit_at_rows_of_a_recording_in_a_running_stream() {
+    let mut s = open_sim(
+        &[("constant", "true"), ("amplitude", "0.25")],
+        Options::new(),
+    );
+    s.start().unwrap();
+    let before = s.record_count(300).unwrap(); // rows the next recording does not hold
+    assert_eq!(before.len(), 300);
+    s.control().begin_tare(50).unwrap();
+    let rec = s.record_count(400).unwrap();
+    let tares: Vec<_> = rec
+        .events
+        .iter()
+        .filter(|e| matches!(e.kind, EventKind::Tare { .. }))
+        .collect();
+    assert_eq!(tares.len(), 1);
+    // the library's row in the batch, counted in this recording's rows: the
+    // first row the new offset zeroes, after the last one averaged
+    let i = tares[0].sample as usize;
+    assert!(i > 0 && i < rec.len(), "tare at row {i}");
+    assert_eq!(rec.zeroed[i], [0.0; 6]);
+    assert_eq!(rec.zeroed[i - 1], [2500.0; 6]);
+    // an untare while stopped sits at the next stream's first row
+    s.stop().unwrap();
+    s.untare().unwrap();
+    let mut it = s.stream().unwrap();
+    assert!(it.next().unwrap().is_ok());
+    let ev = it.take_events();
+    assert_eq!(ev.len(), 1);
+    assert_eq!(
+        (ev[0].kind, ev[0].sample),
+        (EventKind::Tare { offsets: [0.0; 6] }, 0)
+    );
+}
+
+#[test]
 fn handshake_read() {
     let mut s = open_sim(
         &[("constant", "true"), ("amplitude", "0.5")],
