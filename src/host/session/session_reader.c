@@ -17,22 +17,32 @@
 #include "session_clock.h"
 #include "session_reader.h"
 
-/* A read with a latency budget sleeps the budget out, drains the port, then
- * waits for the next frame: its arrival, seen at once, is a point on the
- * sensor's clock as close as an unbudgeted read's (a drain alone returns
- * at a time unrelated to the last sample's arrival, up to a period after
- * it, and in lockstep with the stream when the budget is a whole number of
- * periods). It costs one wake-up more per budget, and is made only when a
- * budget spans PROBE_MIN_PERIODS periods or more (so the wait, at most
- * PROBE_WAIT_PERIODS, is small beside the budget). */
-#define PROBE_MIN_PERIODS 4.0
-#define PROBE_WAIT_PERIODS 2.0
+/* A read with a latency budget sleeps most of the budget out, drains the
+ * port, then waits for the next arrival: seen at once, it is a point on the
+ * sensor's clock as close as an unbudgeted read's. A drain alone returns at
+ * a time unrelated to the newest sample's arrival: up to a packet after it,
+ * and in lockstep with the stream when the budget is a whole number of
+ * periods. The drain comes PROBE_SHARE of the budget (at most PROBE_MAX_S)
+ * before the budget ends, less up to half of that by a golden-ratio dither,
+ * so that successive probes see every phase of a transport's packets (1 ms
+ * USB frames against a 1.2 kHz sample period repeat every 5 ms; an FTDI
+ * adapter's 62-byte packets come every 2 ms). The probe takes up to
+ * PROBE_ARRIVALS arrivals one by one, waiting at most until the budget
+ * ends: each a point as tight as the transport allows, of a packet phase of
+ * its own. PROBE_ARRIVALS wake-ups more per budget; made when that leaves
+ * the probe PROBE_MIN_PERIODS periods or more. */
+#define PROBE_SHARE 0.25
+#define PROBE_MAX_S 0.02
+#define PROBE_MIN_PERIODS 2.0
+#define PROBE_ARRIVALS 4
+#define GOLDEN_FRACTION 0.6180339887498949
 
 /* Where a call with a latency budget is. */
 enum budget_stage {
     BUDGET_AWAKE,   /* not slept yet */
     BUDGET_SLEPT,   /* slept out the budget: draining without waiting */
     BUDGET_DRAINED, /* the port found empty: the next read waits for a frame */
+    BUDGET_PROBING, /* that read is made */
     BUDGET_DONE     /* the budgeted read is made: deliver */
 };
 
@@ -190,7 +200,9 @@ void lep_priv_reader_call(const session_reader *rd, reader_call *c, int latency_
     c->budget = (double)latency_ms / 1000.0;
     if (c->budget > kernel_s)
         c->budget = kernel_s;
-    c->probe = c->budget >= PROBE_MIN_PERIODS * (1.0 / rd->cfg.nominal_hz);
+    c->probe = c->budget * PROBE_SHARE < PROBE_MAX_S ? c->budget * PROBE_SHARE : PROBE_MAX_S;
+    if (c->probe < PROBE_MIN_PERIODS / rd->cfg.nominal_hz)
+        c->probe = 0.0;
     c->deadline = timeout_ms < 0 ? INFINITY : lep_monotonic_seconds() + (double)timeout_ms / 1000.0;
 }
 
@@ -227,22 +239,26 @@ static int port_wait(session_reader *rd, reader_call *c, double now, bool got, d
     if (c->budget <= 0.0)
         return lep_priv_ms_until(c->deadline < dd ? c->deadline : dd, now);
     if (c->stage == BUDGET_DRAINED) {
-        /* the port is empty: the next frame's arrival is seen at once */
-        wake = now + PROBE_WAIT_PERIODS * period_s;
-        c->stage = BUDGET_DONE;
+        /* the port is empty: the next arrival is seen at once */
+        wake = c->wake > now + PROBE_MIN_PERIODS * period_s ? c->wake
+                                                            : now + PROBE_MIN_PERIODS * period_s;
+        c->stage = BUDGET_PROBING;
         return lep_priv_ms_until(wake < c->deadline ? wake : c->deadline, now);
     }
     /* Save wake-ups: sleep until the budget is spent (less the probe's
-     * period), then take everything in reads that do not wait. */
+     * share), then take everything in reads that do not wait. */
     wake = got ? first + c->budget : rd->last_read_t + c->budget;
-    if (c->probe)
-        wake -= period_s;
     if (holding && wake > rd->last_read_t + SESSION_CONFIRM_S)
         wake = rd->last_read_t + SESSION_CONFIRM_S; /* judge a suspected hole soon */
     if (wake > c->deadline)
         wake = c->deadline;
     if (wake > dd)
         wake = dd;
+    c->wake = wake;
+    if (c->probe > 0.0) {
+        rd->probes++;
+        wake -= c->probe * (1.0 - 0.5 * fmod((double)rd->probes * GOLDEN_FRACTION, 1.0));
+    }
     lep_priv_sleep_until_ns((int64_t)(wake * 1e9));
     c->stage = BUDGET_SLEPT;
     return 0;
@@ -258,9 +274,14 @@ int lep_priv_reader_read(session_reader *rd, reader_call *c, double now, bool go
      * (4 KiB on Linux), so with a budget, read until one comes back empty;
      * without, only after a read that filled the buffer. */
     rd->backlog =
-        rc == (int)sizeof rd->rbuf || (c->budget > 0.0 && rc > 0 && c->stage != BUDGET_DONE);
-    if (rc == 0 && c->stage == BUDGET_SLEPT)
-        c->stage = c->probe ? BUDGET_DRAINED : BUDGET_DONE;
+        rc == (int)sizeof rd->rbuf || (c->budget > 0.0 && rc > 0 && c->stage == BUDGET_SLEPT);
+    if (rc == 0 && c->stage == BUDGET_SLEPT) {
+        c->stage = c->probe > 0.0 ? BUDGET_DRAINED : BUDGET_DONE;
+        c->arrivals = PROBE_ARRIVALS;
+    } else if (c->stage == BUDGET_PROBING) {
+        /* another arrival while the budget lasts, or done */
+        c->stage = rc > 0 && --c->arrivals > 0 && *t < c->wake ? BUDGET_DRAINED : BUDGET_DONE;
+    }
     if (rc >= 0)
         rd->last_read_t = *t;
     return rc;

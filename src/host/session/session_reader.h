@@ -60,6 +60,7 @@ typedef struct session_reader {
     uint8_t rbuf[SESSION_RBUF];
     double last_read_t;      /* when the last read returned */
     double last_data_read_t; /* when the last read that completed a sample returned */
+    uint32_t probes;         /* budgeted reads' probes made: their dither */
     /* loss and reconnection (session_reader_reconnect.c) */
     int failed; /* sticky outcome after a loss that is not reconnected (0: none) */
     double down_since;
@@ -72,7 +73,9 @@ typedef struct session_reader {
 typedef struct reader_call {
     double budget;   /* latency budget, s */
     double deadline; /* of the call's timeout, monotonic s (INFINITY: none) */
-    bool probe;      /* wait for a frame after the drain */
+    double probe;    /* drain this long before the budget ends, then wait (0: no probe) */
+    double wake;     /* the budget's end */
+    int arrivals;    /* arrivals the probe still takes */
     int stage;       /* where the budget is */
 } reader_call;
 
