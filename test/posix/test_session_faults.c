@@ -173,8 +173,18 @@ static void test_dropped_samples_are_counted_exactly(void)
 typedef struct thief {
     int fd;
     st_flag stop;
-    size_t stolen;
+    pthread_mutex_t mu;
+    size_t stolen; /* under mu */
 } thief;
+
+static size_t thief_stolen(thief *t)
+{
+    size_t n;
+    pthread_mutex_lock(&t->mu);
+    n = t->stolen;
+    pthread_mutex_unlock(&t->mu);
+    return n;
+}
 
 /* Steals in bursts: races the session for every byte during 50 ms of each
  * 150 ms and leaves the port alone otherwise. A thief that never paused could
@@ -196,17 +206,30 @@ static void *steal(void *arg)
         p.revents = 0;
         if (poll(&p, 1, 10) > 0) {
             ssize_t n = read(t->fd, buf, sizeof buf);
-            if (n > 0)
+            if (n > 0) {
+                pthread_mutex_lock(&t->mu);
                 t->stolen += (size_t)n;
+                pthread_mutex_unlock(&t->mu);
+            }
         }
     }
     return NULL;
 }
 
+/* Bytes the thief takes while the session holds off: more than ten frames,
+ * a hole well beyond the gap threshold (3 periods) wherever it begins. */
+#define THEFT_WHILE_AWAY 300u
+/* A failure bound, never a measure: the thief's burst comes within 150 ms. */
+#define THEFT_DEADLINE_S 20.0
+
 /* Another program reading the same port takes bytes the session never sees:
  * it must show up as gaps (and broken frames as errors), not "0 gaps".
  * on_port: the sensor behind a port path (holes found from arrival times)
- * instead of the in-process one (sequence numbers). */
+ * instead of the in-process one (sequence numbers).
+ * The thief races the session's reads; and once, the session holds off until
+ * the thief has taken THEFT_WHILE_AWAY bytes (a handshake, not a hope that
+ * the thief's thread wins some race in time on a loaded machine: it may win
+ * none, or only pieces too small to be told from transit jitter on a port). */
 static void steal_from(bool on_port)
 {
     lep_session_options o;
@@ -216,7 +239,8 @@ static void steal_from(bool on_port)
     lep_session_health_info h;
     thief t;
     pthread_t th;
-    size_t holes;
+    size_t holes, before;
+    double deadline;
 
     if (on_port) {
         lep_session_options_init(&o);
@@ -231,6 +255,7 @@ static void steal_from(bool on_port)
     TEST_ASSERT_EQUAL_INT(LEP_OK, read_until(s, &b, 100));
     memset(&t, 0, sizeof t);
     st_flag_init(&t.stop);
+    pthread_mutex_init(&t.mu, NULL);
     /* A second open of the pty works for root despite TIOCEXCL; otherwise
      * share the session's descriptor, as a forked program would. */
     t.fd = open(lep_sim_pty_path(sim), O_RDWR | O_NOCTTY | O_NONBLOCK);
@@ -238,12 +263,19 @@ static void steal_from(bool on_port)
         t.fd = dup(lep_session_fd(s));
     TEST_ASSERT_TRUE(t.fd >= 0);
     TEST_ASSERT_EQUAL_INT(0, pthread_create(&th, NULL, steal, &t));
-    TEST_ASSERT_EQUAL_INT(LEP_OK, read_until(s, &b, 700));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, read_until(s, &b, 300)); /* racing */
+    before = thief_stolen(&t);
+    deadline = now_s() + THEFT_DEADLINE_S;
+    while (thief_stolen(&t) < before + THEFT_WHILE_AWAY && now_s() < deadline)
+        (void)poll(NULL, 0, 5); /* the session away: the thief's bytes */
+    TEST_ASSERT_TRUE_MESSAGE(thief_stolen(&t) >= before + THEFT_WHILE_AWAY,
+                             "the thief took too little while the session was away");
+    TEST_ASSERT_EQUAL_INT(LEP_OK, read_until(s, &b, b.b.n + 400)); /* racing again */
     st_flag_raise(&t.stop);
     pthread_join(th, NULL);
     close(t.fd);
-    TEST_ASSERT_EQUAL_INT(LEP_OK, read_until(s, &b, 900));
-    TEST_ASSERT_TRUE(t.stolen > 0);
+    /* the last hole judged: reads well after it */
+    TEST_ASSERT_EQUAL_INT(LEP_OK, read_until(s, &b, b.b.n + 200));
     lep_session_get_health(s, &h);
     TEST_ASSERT_TRUE_MESSAGE(h.gaps > 0, "bytes stolen by another reader were not reported");
     TEST_ASSERT_TRUE(h.lost > 0);
@@ -252,6 +284,7 @@ static void steal_from(bool on_port)
     lep_session_close(s);
     if (on_port)
         lep_sim_stop(sim);
+    pthread_mutex_destroy(&t.mu);
     st_batch_free(&b);
 }
 
