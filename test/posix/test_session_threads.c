@@ -75,6 +75,7 @@ static void test_two_readers_share_no_sample(void)
     size_t i, total = 0;
     int k;
     uint16_t lo = 0xFFFF, hi = 0;
+    lep_sim_counters st;
 
     memset(r, 0, sizeof r);
     memset(seen, 0, sizeof seen);
@@ -102,9 +103,13 @@ static void test_two_readers_share_no_sample(void)
             total++;
         }
     }
-    /* and none lost between them: the two sets tile one run of numbers */
+    /* and none lost between them: the two sets tile one run of numbers, but
+     * for what the sensor never sent (a sensor thread more than 500 ms late
+     * skips those periods: under valgrind on a loaded machine) */
     TEST_ASSERT_TRUE(total > 300);
-    TEST_ASSERT_EQUAL_size_t((size_t)(hi - lo) + 1u, total);
+    lep_sim_get_stats(lep_session_sim(s), &st);
+    TEST_ASSERT_TRUE((size_t)(hi - lo) + 1u >= total);
+    TEST_ASSERT_TRUE((size_t)(hi - lo) + 1u - total <= st.samples_skipped + st.samples_blocked);
     printf("two readers: %zu + %zu samples, %d + %d reads refused\n", r[0].b.b.n, r[1].b.b.n,
            r[0].refused, r[1].refused);
     lep_session_close(s);

@@ -43,6 +43,13 @@ void tearDown(void)
     }
 }
 
+/* A failure bound on waiting for a sample that is due (every 0.8 ms): a
+ * loaded machine delivers late, and a test waits for it, never times it. */
+#define SAMPLE_WAIT_MS 5000
+/* A long timeout, so that a wait a hang-up cuts short is told from one
+ * run out by a wide margin (half of it), whatever the load. */
+#define HANGUP_WAIT_MS 20000
+
 static void sleep_ms(long ms)
 {
     struct timespec ts;
@@ -166,7 +173,7 @@ static void test_every_command(void)
     TEST_ASSERT_TRUE(smp.raw[LEP_FX] > -2100 && smp.raw[LEP_FX] < 2100);
 
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_next_sample(&client, &smp, 500));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_next_sample(&client, &smp, SAMPLE_WAIT_MS));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_stop(&client));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_filter_set(&client, 1));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_filter_get(&client, &code));
@@ -238,6 +245,9 @@ static void test_stream_exact_accounting(void)
     unsigned received = 0, gaps = 0;
     uint16_t expect = 0;
     start_default();
+    /* no command sent twice (its second answer could come after the stop's,
+     * unread): the transactions' timeout a failure bound too */
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_timeout(&client, SAMPLE_WAIT_MS));
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
     while (received < 2400) {
         /* (the timeout is a failure bound: the sensor sends every 0.8 ms) */
@@ -264,6 +274,7 @@ static void test_stream_exact_accounting(void)
          * read before the stop's answer: the client saw every message sent */
         TEST_ASSERT_TRUE_MESSAGE(st.samples_sent >= received, msg);
         TEST_ASSERT_EQUAL_UINT64_MESSAGE(st.samples_sent + st.responses, cs.messages, msg);
+        TEST_ASSERT_EQUAL_UINT64_MESSAGE(2, st.responses, msg); /* the start's, the stop's */
     }
     TEST_ASSERT_EQUAL_UINT64(0, st.samples_skipped + st.samples_blocked);
     TEST_ASSERT_FALSE(st.streaming);
@@ -386,20 +397,27 @@ static void test_hangup_is_disconnected(void)
     int rc = LEP_OK, i;
     start_default();
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
-    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_next_sample(&client, &smp, 500));
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_next_sample(&client, &smp, SAMPLE_WAIT_MS));
     lep_sim_hangup(sim);
+    /* Each wait is cut short by the hang-up, never run out: it returns
+     * LEP_E_DISCONNECTED (not LEP_E_TIMEOUT) well within its timeout,
+     * whatever the load (the timeout is long, so that "within" has room). */
     t = lep_monotonic_ms();
     for (i = 0; i < 10000 && rc == LEP_OK; i++)
-        rc = lep_client_next_sample(&client, &smp, 1000);
+        rc = lep_client_next_sample(&client, &smp, HANGUP_WAIT_MS);
     TEST_ASSERT_EQUAL_INT(LEP_E_DISCONNECTED, rc);
-    TEST_ASSERT_TRUE(lep_monotonic_ms() - t < 1000);
+    TEST_ASSERT_TRUE(lep_monotonic_ms() - t < (uint32_t)HANGUP_WAIT_MS / 2u);
     /* it stays so: no hang, no stream of timeouts */
     t = lep_monotonic_ms();
-    TEST_ASSERT_EQUAL_INT(LEP_E_DISCONNECTED, lep_client_next_sample(&client, &smp, 1000));
-    TEST_ASSERT_TRUE_MESSAGE(lep_monotonic_ms() - t < 100, "next sample after a hang-up");
+    TEST_ASSERT_EQUAL_INT(LEP_E_DISCONNECTED,
+                          lep_client_next_sample(&client, &smp, HANGUP_WAIT_MS));
+    TEST_ASSERT_TRUE_MESSAGE(lep_monotonic_ms() - t < (uint32_t)HANGUP_WAIT_MS / 2u,
+                             "next sample after a hang-up");
+    TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_set_timeout(&client, HANGUP_WAIT_MS));
     t = lep_monotonic_ms();
     TEST_ASSERT_EQUAL_INT(LEP_E_DISCONNECTED, lep_client_product_info(&client, &scratch_info));
-    TEST_ASSERT_TRUE_MESSAGE(lep_monotonic_ms() - t < 100, "query after a hang-up");
+    TEST_ASSERT_TRUE_MESSAGE(lep_monotonic_ms() - t < (uint32_t)HANGUP_WAIT_MS / 2u,
+                             "query after a hang-up");
     TEST_ASSERT_EQUAL_UINT64(1, stats_now().hangups);
 }
 
@@ -422,7 +440,7 @@ static void test_hangup_after_and_reopen_at_link(void)
     open_client();
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
     for (i = 0; i < 100000 && rc == LEP_OK; i++)
-        rc = lep_client_next_sample(&client, &smp, 1000);
+        rc = lep_client_next_sample(&client, &smp, SAMPLE_WAIT_MS);
     TEST_ASSERT_EQUAL_INT(LEP_E_DISCONNECTED, rc);
     lep_serial_close(port);
     port = NULL;
@@ -651,19 +669,21 @@ static void test_stall_option_skips_samples(void)
     lep_sim_options o;
     lep_sample smp;
     uint16_t last = 0;
-    unsigned got = 0, jumps = 0;
-    double t0;
+    unsigned got = 0, jumps = 0, after = 0;
     lep_sim_options_init(&o);
     o.stall_ms = 200;
     o.stall_after_s = 0.3;
     start_sim(&o);
     open_client();
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
-    t0 = lep_monotonic_seconds();
-    while (lep_monotonic_seconds() - t0 < 0.8) {
-        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_next_sample(&client, &smp, 1000));
+    /* until 200 samples after the first jump: the stall's, counted, not timed
+     * (at most 0.3 s of samples come before it; 3000 bound the wait) */
+    while (after < 200) {
+        TEST_ASSERT_TRUE_MESSAGE(got < 3000, "no jump in the sequence numbers");
+        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_next_sample(&client, &smp, SAMPLE_WAIT_MS));
         if (got > 0 && smp.reserved != (uint16_t)(last + 1u))
             jumps++;
+        after += jumps > 0 ? 1u : 0u;
         last = smp.reserved;
         got++;
     }
@@ -779,7 +799,7 @@ static void test_corruption_is_caught(void)
     while (lep_client_start(&client) != LEP_OK)
         TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_sync(&client, 30, NULL));
     while (got < 600) {
-        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_next_sample(&client, &smp, 500));
+        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_next_sample(&client, &smp, SAMPLE_WAIT_MS));
         got++;
     }
     lep_client_get_stats(&client, &cs);
@@ -799,7 +819,7 @@ static void test_overload_saturates(void)
     open_client();
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
     while (got < 600) { /* 0.5 s: two episodes */
-        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_next_sample(&client, &smp, 500));
+        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_next_sample(&client, &smp, SAMPLE_WAIT_MS));
         /* episode j: sample numbers 240 j to 240 j + 59 (0.2 s and 0.05 s at 1.2 kHz) */
         bool in = smp.reserved >= 240u && smp.reserved % 240u < 60u;
         TEST_ASSERT_EQUAL_INT(in, (smp.status & LEP_STATUS_OVERLOAD) != 0u);
@@ -833,7 +853,7 @@ static void test_replay_and_determinism(void)
     open_client();
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
     for (i = 0; i < 6; i++) {
-        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_next_sample(&client, &smp, 500));
+        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_next_sample(&client, &smp, SAMPLE_WAIT_MS));
         TEST_ASSERT_EQUAL_UINT16(i, smp.reserved);
         if (i % 3 == 0)
             TEST_ASSERT_EQUAL_INT16(1, smp.raw[0]);
@@ -864,7 +884,7 @@ static void test_replay_and_determinism(void)
     open_client();
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
     for (i = 0; i < 50; i++)
-        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_next_sample(&client, &first[i], 500));
+        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_next_sample(&client, &first[i], SAMPLE_WAIT_MS));
     lep_serial_close(port);
     port = NULL;
     lep_sim_stop(sim);
@@ -873,7 +893,7 @@ static void test_replay_and_determinism(void)
     open_client();
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
     for (i = 0; i < 50; i++) {
-        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_next_sample(&client, &smp, 500));
+        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_next_sample(&client, &smp, SAMPLE_WAIT_MS));
         TEST_ASSERT_EQUAL_MEMORY(&first[i], &smp, sizeof smp);
     }
 }
@@ -930,7 +950,7 @@ static void test_replay_of_a_raw_recording(void)
     open_client();
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
     for (i = 0; i < 3; i++) {
-        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_next_sample(&client, &smp, 2000));
+        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_next_sample(&client, &smp, SAMPLE_WAIT_MS));
         TEST_ASSERT_EQUAL_INT16(want[i][0], smp.raw[0]);
     }
     lep_serial_close(port);
