@@ -7,8 +7,11 @@ from __future__ import annotations
 
 import json
 import os
+import signal
 import subprocess
-from collections.abc import Iterator
+import time
+from collections.abc import Callable, Iterator
+from pathlib import Path
 from typing import IO, Any, Sequence
 
 import pytest
@@ -37,6 +40,61 @@ def run(args: Sequence[str], timeout: float = 60.0) -> subprocess.CompletedProce
         timeout=timeout,
         check=False,
     )
+
+
+def wait_until(cond: Callable[[], bool], what: str,
+               proc: subprocess.Popen[Any] | None = None, timeout: float = 60.0) -> None:
+    """Poll cond until it holds: the tests wait for what they need to have
+    happened, never for a time. The timeout is a failure bound only (a loaded
+    machine is slow, never wrong); a proc that exits meanwhile fails at once."""
+    deadline = time.monotonic() + timeout
+    while not cond():
+        if proc is not None and proc.poll() is not None:
+            pytest.fail(f"waiting for {what}: the process exited ({proc.returncode})")
+        if time.monotonic() > deadline:
+            pytest.fail(f"waiting for {what}: not within {timeout:g} s")
+        time.sleep(0.02)
+
+
+def rows_between(path: Path, word: str = "tare") -> list[int]:
+    """The rows a running `stream -o path` has written so far (whole lines),
+    counted between its '# WORD ...' event lines: [before the first, after
+    the first, ...]; [0] while nothing is written."""
+    counts = [0]
+    header = False
+    text = path.read_text() if path.exists() else ""
+    for line in text.split("\n")[:-1]:  # (a last line cut in its middle is not counted)
+        if line.startswith("#"):
+            parts = line[1:].split()
+            if parts and parts[0] == word:
+                counts.append(0)
+        elif header:
+            counts[-1] += 1
+        else:
+            header = True
+    return counts
+
+
+def wait_rows_after(path: Path, events: int, rows: int, proc: subprocess.Popen[Any] | None,
+                    word: str = "tare") -> None:
+    """Wait until path holds `events` '# WORD' event lines and `rows` rows
+    after the last of them (rows in all when events is 0)."""
+    def done() -> bool:
+        c = rows_between(path, word)
+        return len(c) > events and c[events] >= rows
+    wait_until(done, f"{rows} rows after {events} '# {word}' lines in {path.name}", proc)
+
+
+def wait_catching(proc: subprocess.Popen[Any], sig: signal.Signals) -> None:
+    """Wait until proc has a handler for sig (Linux: SigCgt in /proc/PID/status):
+    a signal sent before that would kill it instead of being handled."""
+    def catching() -> bool:
+        with open(f"/proc/{proc.pid}/status") as f:
+            for line in f:
+                if line.startswith("SigCgt:"):
+                    return bool(int(line.split()[1], 16) >> (int(sig) - 1) & 1)
+        return False
+    wait_until(catching, f"a handler for {sig.name}", proc)
 
 
 class Csv:

@@ -6,11 +6,10 @@ from __future__ import annotations
 import json
 import signal
 import subprocess
-import time
 from pathlib import Path
 
 import pytest
-from conftest import Csv, cli_path, run
+from conftest import Csv, cli_path, run, wait_catching
 
 CHECK_CODES = {"status": 10, "errors": 11, "loss": 12, "rate": 13, "overload": 14, "noise": 15}
 
@@ -72,7 +71,7 @@ def test_check_interrupted_is_no_pass(sig: signal.Signals) -> None:
     proc = subprocess.Popen([cli_path(), "check", "--sim", "--duration", "30"],
                             stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, text=True)
-    time.sleep(1.0)
+    wait_catching(proc, sig)  # (before, the signal would kill it: no message to test)
     proc.send_signal(sig)
     out, err = proc.communicate(timeout=20)
     assert proc.returncode == 1, (proc.returncode, out, err)

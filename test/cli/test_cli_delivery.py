@@ -14,38 +14,55 @@ import subprocess
 import time
 from pathlib import Path
 
-from conftest import METADATA_PREFIX, cli_path
+from conftest import METADATA_PREFIX, cli_path, wait_until
 
 STALL = ["--sim-stall", "4000", "--sim-stall-after", "0.3", "--data-timeout", "20"]
+# Rows stamped after this came after the stall (t_s <= 0.3 before it, >= 4.3
+# after): the tests tell the two apart on the sensor's clock, never on theirs.
+AFTER_STALL_S = 2.0
 
 
 def _rows(text: str) -> list[str]:
     return [ln for ln in text.splitlines() if ln and not ln.startswith("#") and ln[0].isdigit()]
 
 
+def _before_stall(text: str) -> list[str]:
+    """The whole rows of text stamped before the stall."""
+    return [r for r in _rows(text[:text.rfind("\n") + 1])
+            if float(r.split(",")[0]) < AFTER_STALL_S]
+
+
+def _after_stall(text: str) -> bool:
+    return len(_before_stall(text)) < len(_rows(text[:text.rfind("\n") + 1]))
+
+
 def test_pipe_gets_each_batch_at_once() -> None:
     p = subprocess.Popen([cli_path(), "stream", "--sim", "--duration", "10", *STALL],
                          stdout=subprocess.PIPE, stderr=subprocess.DEVNULL)
     assert p.stdout is not None
-    got = b""
+    got = b""  # what came before the first row after the stall
     try:
-        deadline = time.monotonic() + 3.0  # well inside the 4 s stall
+        # read until a row after the stall comes (a failure bound, not a measure)
+        deadline = time.monotonic() + 60.0
         while time.monotonic() < deadline:
             r, _, _ = select.select([p.stdout], [], [], 0.1)
             if r:
                 chunk = os.read(p.stdout.fileno(), 65536)
-                if not chunk:
+                assert chunk, "the stream ended before the stall did"
+                if _after_stall((got + chunk).decode()):
+                    before = _before_stall((got + chunk).decode())
                     break
                 got += chunk
-        assert p.poll() is None, "the stream ended before the stall did"
+        else:
+            raise AssertionError("no row after the stall within 60 s")
     finally:
         p.kill()
         p.wait()
     text = got.decode()
     assert text.startswith(METADATA_PREFIX)
-    rows = _rows(text)
-    # the 0.3 s before the stall (about 360 rows) came through while it lasted
-    assert len(rows) > 200, len(rows)
+    # every row before the stall (0.3 s of them less the start-up) came
+    # through while it lasted, whole, not with the rows after it
+    assert before and _rows(text) == before, (len(_rows(text)), len(before))
     assert text.endswith("\n")  # whole rows only
 
 
@@ -64,20 +81,27 @@ def test_file_has_rows_during_a_stall_and_after_kill_9(tmp_path: Path) -> None:
     f = tmp_path / "rec.csv"
     p = subprocess.Popen([cli_path(), "stream", "--sim", "--duration", "10", "-o", str(f),
                           *STALL], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    snaps: list[str] = []  # the file as read every 20 ms
+
+    def stall_over() -> bool:
+        snaps.append(f.read_text() if f.exists() else "")
+        return _after_stall(snaps[-1])
+
     try:
-        time.sleep(2.0)  # inside the stall, started 0.3 s after the stream
-        assert p.poll() is None
-        during = f.read_text()
+        wait_until(stall_over, "a row after the stall", p)
         p.send_signal(signal.SIGKILL)
         p.wait()
     finally:
         if p.poll() is None:
             p.kill()
             p.wait()
-    assert during.startswith(METADATA_PREFIX)
-    rows = _rows(during)
-    assert len(rows) > 200, len(rows)  # the rows before the stall are on disk
+    # the file as it was last seen during the stall (at most 20 ms before its
+    # first row after it was written) held every row of before the stall
+    during = [s for s in snaps if not _after_stall(s)][-1]
     after = f.read_text()
+    before = _before_stall(after)
+    assert during.startswith(METADATA_PREFIX)
+    assert before and _before_stall(during) == before, (len(_before_stall(during)), len(before))
     assert after.startswith(during)  # kill -9 lost none of them
     assert after.endswith("\n")
 
@@ -91,7 +115,7 @@ def test_kill_9_keeps_the_metadata_line_with_the_tare(tmp_path: Path) -> None:
                           "--data-timeout", "20"],
                          stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     try:
-        time.sleep(1.5)
+        wait_until(lambda: len(_rows(f.read_text() if f.exists() else "")) > 50, "rows", p)
         p.send_signal(signal.SIGKILL)
         p.wait()
     finally:

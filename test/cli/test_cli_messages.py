@@ -10,7 +10,7 @@ import subprocess
 import time
 from pathlib import Path
 
-from conftest import cli_path, run
+from conftest import cli_path, rows_between, run, wait_until
 
 
 def test_lost_stream_names_the_options() -> None:
@@ -40,28 +40,33 @@ def test_overwrite_refusal_names_the_flag(tmp_path: Path) -> None:
     assert f.read_text() == "keep"
 
 
-def _summary(args: list, signals: list) -> str:
-    p = subprocess.Popen([cli_path(), "stream", "--sim", "-o", os.devnull, *args],
+def _summary(out: Path, args: list, signals: list) -> str:
+    """The summary line of a stream sent `signals` in turn, each once the
+    recording shows the one before it done (its '# tare' line written), the
+    first once rows are written (after any start-up tare): never on a
+    clock, which a loaded machine outruns."""
+    p = subprocess.Popen([cli_path(), "stream", "--sim", "-o", str(out), *args],
                          stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
                          stderr=subprocess.PIPE, text=True)
-    time.sleep(0.8)
+    wait_until(lambda: sum(rows_between(out)) > 0, "rows", p)
     for sig in signals:
+        done = len(rows_between(out))
         p.send_signal(sig)
-        time.sleep(0.5)
+        wait_until(lambda: len(rows_between(out)) > done, f"the tare line of {sig.name}", p)
     p.send_signal(signal.SIGTERM)
     _, err = p.communicate(timeout=30)
     return [ln for ln in err.splitlines() if " samples in " in ln][0]
 
 
-def test_summary_says_what_the_tare_is() -> None:
+def test_summary_says_what_the_tare_is(tmp_path: Path) -> None:
     # a tare, then an un-tare: every tare finished; the summary says untared
-    s = _summary(["--tare", "50"], [signal.SIGUSR2])
+    s = _summary(tmp_path / "a.csv", ["--tare", "50"], [signal.SIGUSR2])
     assert "tare incomplete" not in s and "untared" in s, s
     # a tare during a run without --tare is reported
-    s = _summary([], [signal.SIGUSR1])
+    s = _summary(tmp_path / "b.csv", [], [signal.SIGUSR1])
     assert "tared" in s and "untared" not in s, s
     # no tare at all: nothing said
-    s = _summary([], [])
+    s = _summary(tmp_path / "c.csv", [], [])
     assert "tare" not in s, s
 
 

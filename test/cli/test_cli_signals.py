@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import Csv, SimProcess, cli_path, parse_csv, parse_jsonl, run
+from conftest import Csv, SimProcess, cli_path, parse_csv, parse_jsonl, run, wait_rows_after
 
 
 def wait_streaming(sim: SimProcess, want: int, timeout: float = 10.0) -> bool:
@@ -31,7 +31,7 @@ def test_signal_stops_the_sensor_stream_and_exits_0(sig: signal.Signals, tmp_pat
         proc = subprocess.Popen([cli_path(), "stream", sim.port, "-o", str(out)],
                                 stdin=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
         assert wait_streaming(sim, 1), "the stream never started"
-        time.sleep(0.5)
+        wait_rows_after(out, 0, 101, proc)
         proc.send_signal(sig)
         _, err = proc.communicate(timeout=20)
         assert proc.returncode == 0, err
@@ -50,11 +50,16 @@ def test_sigint_with_in_process_sim_exits_0() -> None:
     proc = subprocess.Popen([cli_path(), "stream", "--sim", "-f", "jsonl"],
                             stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, text=True)
-    time.sleep(1.5)
+    assert proc.stdout is not None
+    first = [proc.stdout.readline() for _ in range(101)]  # the metadata and 100 rows
     proc.send_signal(signal.SIGINT)
-    out, err = proc.communicate(timeout=20)
-    assert proc.returncode == 0, err
-    lines = out.splitlines()
+    # (the rest through the same buffered reader: communicate() would miss
+    # what it has read ahead)
+    out = proc.stdout.read()
+    assert proc.stderr is not None
+    err = proc.stderr.read()
+    assert proc.wait(timeout=20) == 0, err
+    lines = "".join(first).splitlines() + out.splitlines()
     assert len(lines) > 100
     for line in lines:
         json.loads(line)  # every line complete, the last one included

@@ -9,7 +9,8 @@ import subprocess
 import time
 from pathlib import Path
 
-from conftest import AXES, RAW, Csv, SimProcess, cli_path, parse_jsonl, run
+from conftest import (AXES, RAW, Csv, SimProcess, cli_path, parse_jsonl, run,
+                      wait_rows_after)
 
 
 def mean(values: list[float]) -> float:
@@ -111,11 +112,12 @@ def test_tare_and_untare_during_the_run_by_signal(tmp_path: Path) -> None:
     proc = subprocess.Popen([cli_path(), "stream", "--sim", "--sim-constant", "--retare", "50",
                              "--columns", "zeroed,si", "-o", str(out)],
                             stdin=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-    time.sleep(1.0)
+    # each signal once the recording shows what came before it
+    wait_rows_after(out, 0, 100, proc)  # loaded rows
     proc.send_signal(signal.SIGUSR1)
-    time.sleep(1.0)
+    wait_rows_after(out, 1, 700, proc)  # zeroed rows after the tare
     proc.send_signal(signal.SIGUSR2)
-    time.sleep(1.0)
+    wait_rows_after(out, 2, 100, proc)  # loaded again after the untare
     proc.send_signal(signal.SIGTERM)
     _, err = proc.communicate(timeout=20)
     assert proc.returncode == 0, err

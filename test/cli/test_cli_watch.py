@@ -21,7 +21,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import Csv, cli_path
+from conftest import Csv, cli_path, wait_rows_after
 
 if shutil.which("tmux") is None:
     if os.environ.get("LEPTRINO_REQUIRE_TMUX") == "1":
@@ -239,14 +239,12 @@ def test_stream_keys_tare_and_untare_in_a_terminal(marker: str, tmp_path: Path) 
     t = Tmux(shell_command(["stream", "--sim", "--sim-constant", "--retare", "50",
                             "-o", str(out)], marker))
     try:
-        deadline = time.monotonic() + 20
-        while time.monotonic() < deadline and (not out.exists() or out.stat().st_size < 20000):
-            time.sleep(0.1)
-        time.sleep(0.3)
+        # each key once the recording shows what came before it
+        wait_rows_after(out, 0, 100, None)  # loaded rows
         t.keys("t")
-        time.sleep(1.0)
+        wait_rows_after(out, 1, 500, None)  # zeroed rows after the tare
         t.keys("u")
-        time.sleep(0.5)
+        wait_rows_after(out, 2, 100, None)  # loaded again after the untare
         t.keys("C-c")
         screen = t.wait_for(lambda s: marker in s)
         assert f"{marker} exit=0 tty=restored" in screen
@@ -267,7 +265,8 @@ def test_stream_as_a_background_job_is_not_stopped(tmp_path: Path) -> None:
     try:
         t.keys(" ".join(shlex.quote(a) for a in [cli_path(), "stream", "--sim", "--duration",
                                                  "1", "-o", str(out)]) + " &", "Enter")
-        t.keys("sleep 3; jobs; echo BG-DONE", "Enter")
+        # until the job has finished or stopped (jobs -r: the running ones)
+        t.keys("while [ -n \"$(jobs -r)\" ]; do sleep 0.1; done; jobs; echo BG-DONE", "Enter")
         screen = t.wait_for(lambda s: re.search(r"^BG-DONE\s*$", s, re.M) is not None)
         assert "Stopped" not in screen, screen
         assert "samples in" in screen  # the summary, on the terminal

@@ -35,7 +35,7 @@ static void sleep_ms(long ms)
 typedef struct reader {
     lep_session *s;
     st_batch b;
-    st_flag entered;
+    st_flag inside; /* the test saw this reader inside its read */
     int rc;
     int refused;       /* driving calls refused with LEP_E_STATE */
     int other;         /* any other error */
@@ -75,6 +75,7 @@ static void test_two_readers_share_no_sample(void)
     size_t i, total = 0;
     int k;
     uint16_t lo = 0xFFFF, hi = 0;
+    lep_sim_counters st;
 
     memset(r, 0, sizeof r);
     memset(seen, 0, sizeof seen);
@@ -102,9 +103,13 @@ static void test_two_readers_share_no_sample(void)
             total++;
         }
     }
-    /* and none lost between them: the two sets tile one run of numbers */
+    /* and none lost between them: the two sets tile one run of numbers, but
+     * for what the sensor never sent (a sensor thread more than 500 ms late
+     * skips those periods: under valgrind on a loaded machine) */
     TEST_ASSERT_TRUE(total > 300);
-    TEST_ASSERT_EQUAL_size_t((size_t)(hi - lo) + 1u, total);
+    lep_sim_get_stats(lep_session_sim(s), &st);
+    TEST_ASSERT_TRUE((size_t)(hi - lo) + 1u >= total);
+    TEST_ASSERT_TRUE((size_t)(hi - lo) + 1u - total <= st.samples_skipped + st.samples_blocked);
     printf("two readers: %zu + %zu samples, %d + %d reads refused\n", r[0].b.b.n, r[1].b.b.n,
            r[0].refused, r[1].refused);
     lep_session_close(s);
@@ -112,12 +117,14 @@ static void test_two_readers_share_no_sample(void)
     st_batch_free(&r[1].b);
 }
 
-/* One read that waits for ever on a silent stream. */
+/* One read that waits for ever on a silent stream (tried again while the
+ * test's probe, a driving call of its own, refuses it). */
 static void *blocked_read(void *arg)
 {
     reader *r = arg;
-    st_flag_raise(&r->entered);
-    r->rc = lep_session_read_batch(r->s, &r->b.b, -1);
+    do
+        r->rc = lep_session_read_batch(r->s, &r->b.b, -1);
+    while (r->rc == LEP_E_STATE && !st_flag_is_up(&r->inside));
     r->returned_t = lep_monotonic_seconds();
     return NULL;
 }
@@ -135,7 +142,7 @@ static void test_second_caller_refused_and_close_interrupts(void)
     o.data_timeout_ms = 30000; /* the silence below is not a lost stream */
     s = open_sim(&o, &o);
     memset(&r, 0, sizeof r);
-    st_flag_init(&r.entered);
+    st_flag_init(&r.inside);
     r.s = s;
     st_batch_init(&r.b, 4000);
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_session_start(s));
@@ -149,9 +156,17 @@ static void test_second_caller_refused_and_close_interrupts(void)
     r.b.b.n = 0;
 
     TEST_ASSERT_EQUAL_INT(0, pthread_create(&th, NULL, blocked_read, &r));
-    while (!st_flag_is_up(&r.entered))
+    /* until the reader is inside its read (not a sleep that hopes so): a
+     * driving call of this thread is refused then; one that got in first
+     * (setting the latency in force: no change) refuses the reader instead,
+     * which tries again. 20 s bound the wait. */
+    t0 = lep_monotonic_seconds();
+    while ((rc = lep_session_set_latency(s, o.latency_ms)) != LEP_E_STATE) {
+        TEST_ASSERT_EQUAL_INT(LEP_OK, rc);
+        TEST_ASSERT_TRUE_MESSAGE(lep_monotonic_seconds() - t0 < 20.0, "the reader never got in");
         sleep_ms(5);
-    sleep_ms(150);
+    }
+    st_flag_raise(&r.inside);
     /* the driving calls of a second thread are refused at once */
     t0 = lep_monotonic_seconds();
     {

@@ -149,7 +149,7 @@ static void test_step_response(void)
     lep_sim_power_cycle(sim);
     {
         lep_sim_counters st;
-        for (i = 0; i < 300; i++) {
+        for (i = 0; i < 2000; i++) { /* 20 s bound the wait */
             lep_sim_get_stats(sim, &st);
             if (st.filter == 1)
                 break;

@@ -131,8 +131,8 @@ static void test_session_and_clean_exit(void)
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_rated(&client, &rated));
     TEST_ASSERT_EQUAL_FLOAT(300.0f, rated.axis[LEP_FZ]);
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_start(&client));
-    for (i = 0; i < 100; i++) {
-        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_next_sample(&client, &smp, 500));
+    for (i = 0; i < 100; i++) { /* (5 s: a failure bound, a sample is due every 2 ms) */
+        TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_next_sample(&client, &smp, 5000));
         TEST_ASSERT_EQUAL_UINT16(i, smp.reserved);
     }
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_stop(&client));

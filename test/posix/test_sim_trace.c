@@ -20,6 +20,7 @@
 #include "leptrino/serial.h"
 #include "leptrino/sim.h"
 #include "host_os.h"
+#include "sim_trace_file.h"
 #include "struct_api.h"
 #include "unity.h"
 
@@ -63,19 +64,7 @@ static void open_client(void)
 /* The whole file; *n records (malloc'd). */
 static lep_sim_trace_record *load(size_t *n)
 {
-    struct stat st;
-    lep_sim_trace_record *r;
-    FILE *f;
-    TEST_ASSERT_EQUAL_INT(0, stat(path, &st));
-    TEST_ASSERT_EQUAL_INT(0, (int)(st.st_size % (off_t)sizeof(lep_sim_trace_record)));
-    *n = (size_t)st.st_size / sizeof(lep_sim_trace_record);
-    r = malloc(*n * sizeof *r + 1u);
-    TEST_ASSERT_NOT_NULL(r);
-    f = fopen(path, "rb");
-    TEST_ASSERT_NOT_NULL(f);
-    TEST_ASSERT_EQUAL_size_t(*n, fread(r, sizeof *r, *n, f));
-    fclose(f);
-    return r;
+    return lep_test_load_trace(path, n);
 }
 
 /* One stream: START, k = 0, 1, ... in order, END; times ordered. Returns the
