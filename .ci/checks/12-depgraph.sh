@@ -24,7 +24,6 @@ lib=$(objs build/dev/src/CMakeFiles/leptrino_static.dir src 'src/core/*.c' 'src/
 cli=$(objs build/dev/tools/leptrino/CMakeFiles/leptrino_cli.dir tools/leptrino 'tools/leptrino/*.c')
 # shellcheck disable=SC2086
 python3 test/checks/depgraph.py --dot build/dev/depgraph.dot --group library $lib --group cli $cli
-# The session's units own their state (test/checks/unit_fields.py: who writes what).
-python3 test/checks/unit_fields.py --dir src/host/session --lifecycle session_priv.h \
-  --helper session_clock.h --helper session_sizes.h --helper session_tap.h
+# (The session's map of who writes what, test/checks/unit_fields.py, is a
+# ctest of its own: every build's suite runs it with its one set of arguments.)
 echo "depgraph: no cycle ($(( $(date +%s) - start )) s; graph in $root/build/dev/depgraph.dot)"

@@ -63,17 +63,23 @@ w info info COM5 || { cat "$tmp/info.txt"; echo "windows: info COM5 FAILED"; fai
 tr -d '\r' <"$tmp/info.out" | grep -E "^(model|serial|firmware):" || true
 grep -q "PFS055YA501U6" "$tmp/info.out" || { echo "windows: info COM5: no model"; fail=1; }
 
+# A 2 s stream's output (NAME.out, NAME.txt) holds ~1200 Hz, 0 gaps, >= 2300 rows.
+check_stream() { # NAME LABEL
+  local rows hz gaps
+  cat "$tmp/$1.txt"
+  rows=$(grep -c '^[0-9]' "$tmp/$1.out" || true)
+  hz=$(sed -nE 's/.* ([0-9.]+) Hz measured.*/\1/p' "$tmp/$1.txt" | head -n 1)
+  gaps=$(sed -nE 's/.*, ([0-9]+) gaps.*/\1/p' "$tmp/$1.txt" | head -n 1)
+  echo "windows: $2 2 s: $rows rows, ${hz:-?} Hz, ${gaps:-?} gaps"
+  if [ "${gaps:-x}" != 0 ] || ! awk -v h="${hz:-0}" 'BEGIN { exit !(h >= 1180 && h <= 1220) }' ||
+     [ "$rows" -lt 2300 ]; then
+    echo "windows: $2: want ~1200 Hz, 0 gaps, >= 2300 rows"
+    fail=1
+  fi
+}
+
 w stream stream COM5 --duration 2 || { echo "windows: stream FAILED"; fail=1; }
-cat "$tmp/stream.txt"
-rows=$(grep -c '^[0-9]' "$tmp/stream.out" || true)
-hz=$(sed -nE 's/.* ([0-9.]+) Hz measured.*/\1/p' "$tmp/stream.txt" | head -n 1)
-gaps=$(sed -nE 's/.*, ([0-9]+) gaps.*/\1/p' "$tmp/stream.txt" | head -n 1)
-echo "windows: stream COM5 2 s: $rows rows, ${hz:-?} Hz, ${gaps:-?} gaps"
-if [ "${gaps:-x}" != 0 ] || ! awk -v h="${hz:-0}" 'BEGIN { exit !(h >= 1180 && h <= 1220) }' ||
-   [ "$rows" -lt 2300 ]; then
-  echo "windows: stream COM5: want ~1200 Hz, 0 gaps, >= 2300 rows"
-  fail=1
-fi
+check_stream stream "stream COM5"
 
 rc=0
 w missing info COM9 || rc=$?
@@ -81,17 +87,8 @@ echo "windows: info COM9 (no such port): exit $rc: $(head -n 1 "$tmp/missing.txt
 [ "$rc" = 6 ] || { echo "windows: want exit 6 (port not found)"; fail=1; }
 
 # The in-process virtual sensor (a loopback port, no hardware, no pty).
-w sim stream --sim --duration 2 || { cat "$tmp/sim.txt"; echo "windows: stream --sim FAILED"; fail=1; }
-cat "$tmp/sim.txt"
-rows=$(grep -c '^[0-9]' "$tmp/sim.out" || true)
-hz=$(sed -nE 's/.* ([0-9.]+) Hz measured.*/\1/p' "$tmp/sim.txt" | head -n 1)
-gaps=$(sed -nE 's/.*, ([0-9]+) gaps.*/\1/p' "$tmp/sim.txt" | head -n 1)
-echo "windows: stream --sim 2 s: $rows rows, ${hz:-?} Hz, ${gaps:-?} gaps"
-if [ "${gaps:-x}" != 0 ] || ! awk -v h="${hz:-0}" 'BEGIN { exit !(h >= 1180 && h <= 1220) }' ||
-   [ "$rows" -lt 2300 ]; then
-  echo "windows: stream --sim: want ~1200 Hz, 0 gaps, >= 2300 rows"
-  fail=1
-fi
+w sim stream --sim --duration 2 || { echo "windows: stream --sim FAILED"; fail=1; }
+check_stream sim "stream --sim"
 set +e
 wine "$build/examples/example_stream.exe" --sim >"$tmp/example.out" 2>&1 </dev/null
 rc=$?
