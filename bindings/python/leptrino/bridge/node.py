@@ -346,13 +346,21 @@ class SensorNode:
                     failing = False
                 lw, lr = wrench.listening, wrench_raw.listening
                 listening = lw or lr
+                came = listening and idle
                 if listening == idle:
                     idle = not listening
                     try:
                         sensor.latency = idle_latency if idle else busy_latency
                     except (LeptrinoError, ValueError) as e:
                         log.debug("%s: latency: %s", self.spec.name, e)
-                if listening:
+                if came:
+                    # This batch was held while nobody listened (up to the idle budget):
+                    # skipped, not sent at once to the listener that came since (a
+                    # reliable KEEP_LAST(10) writer would drop all but its last 10 for
+                    # a reader that falls behind the burst: samples missing mid-stream).
+                    wrench.skip(n)
+                    wrench_raw.skip(n)
+                elif listening:
                     w, r, stamps = wb.encode(lw, lr)
                     if lw:
                         wrench.send_batch(w, stamps)
