@@ -10,6 +10,7 @@
 #include "leptrino/error.h"
 #include "posix_clock.h"
 #include "sim_priv.h"
+#include "sim_punctual.h"
 
 void lep_priv_sim_publish(lep_sim *s)
 {
@@ -79,7 +80,9 @@ static bool requests_pending(lep_sim *s)
 void *lep_priv_sim_serve(void *arg)
 {
     lep_sim *s = arg;
+    sim_punctual punctual; /* deadlines kept to the microsecond */
     lep_priv_sim_thread_init();
+    lep_priv_sim_punctual_init(&punctual);
     for (;;) {
         bool port = false, want_out = false;
         unsigned ready = 0;
@@ -146,13 +149,18 @@ void *lep_priv_sim_serve(void *arg)
          * at the requests and the pty's input now (a read that does not
          * wait) and, with neither, sleep to the next deadline: one
          * clock_nanosleep and one read per period instead of a ppoll on
-         * two descriptors, which costs more on every wake-up. */
+         * two descriptors, which costs more on every wake-up. Either
+         * wait ends the punctual margin before the deadline and the rest
+         * is watched on the clock (sim_punctual.h): a ppoll's early end
+         * comes back here with the deadline that near, so quiet. */
         quiet = port && s->streaming && lep_priv_sim_queue_ready(s) == 0 && until != 0 &&
                 until - now <= QUIET_WAIT_MAX_NS && !lep_priv_sim_queue_full(s);
         idle = quiet;
         if (quiet) {
             ready = (requests_pending(s) ? LEP_SIM_READY_WAKE : 0u) | LEP_SIM_READY_PORT;
-        } else if (lep_priv_sim_wait(s, port, want_out, until, &ready) < 0) {
+        } else if (lep_priv_sim_wait(s, port, want_out,
+                                     until != 0 ? lep_priv_sim_punctual_wake(&punctual, until) : 0,
+                                     &ready) < 0) {
             break;
         }
 
@@ -209,7 +217,7 @@ void *lep_priv_sim_serve(void *arg)
             }
         }
         if (idle)
-            lep_priv_sleep_until_ns(until);
+            lep_priv_sim_punctual_sleep(&punctual, until);
     }
     if (s->trace_was_streaming || s->streaming) /* a stream running at lep_sim_stop */
         lep_priv_sim_trace_mark(s->trace, LEP_SIM_TRACE_END, lep_priv_monotonic_ns());
