@@ -156,7 +156,7 @@ class Port:
 
     def ask(self, msg: bytes) -> Optional[bytes]:
         self.send(frame(msg))
-        ev = self.next_event()
+        ev = self.next_event(5.0)
         return ev[1] if ev and ev[0] == "msg" else None
 
 
@@ -234,15 +234,20 @@ def session(exe: str, model: str, rate_field: bool) -> None:
         check(r == bytes([0x04, 0xFF, 0xA6, 0x00]), "set filter 1: accepted")
         r = port.ask(command(0xB6))
         check(r is not None and r[4] == 0, "filter still 0 before a power cycle")
+        # the power cycle takes effect when the sim's thread gets to it: ask
+        # until it has (a loaded machine may take a while), at most 10 s
         proc.send_signal(signal.SIGUSR1)
-        time.sleep(0.2)
+        end = time.monotonic() + 10.0
         r = port.ask(command(0xB6))
+        while (r is None or r[4] != 1) and time.monotonic() < end:
+            time.sleep(0.05)
+            r = port.ask(command(0xB6))
         check(r is not None and r[4] == 1, "filter 1 after SIGUSR1 (power cycle)")
 
         # continuous output
         port.events.clear()
         port.send(frame(command(0x32)))
-        ev = port.next_event(1.0)
+        ev = port.next_event(5.0)
         check(ev == ("msg", bytes([0x04, 0xFF, 0x32, 0x00])), "start: answered 04 FF 32 00")
         data: List[Tuple[bytes, float]] = []
         bad = 0
@@ -263,7 +268,7 @@ def session(exe: str, model: str, rate_field: bool) -> None:
             rate = (len(data) - 1) / (data[-1][1] - data[0][1])
             check(abs(rate - 1200) / 1200 < 0.03, f"stream rate {rate:.1f} Hz (1200 expected)")
         port.send(frame(command(0x33)))
-        ev = port.next_event(1.0)
+        ev = port.next_event(5.0)
         check(ev == ("msg", bytes([0x04, 0xFF, 0x33, 0x00])), "stop: answered 04 FF 33 00 (data before it skipped)")
         check(port.next_event(0.1, skip_stream=False) is None, "silence after the stop")
     finally:

@@ -105,8 +105,10 @@ static void test_stops_at_the_deadline(void)
     start = lep_monotonic_seconds();
     TEST_ASSERT_EQUAL_INT(LEP_OK,
                           lep_record_fill_batch(&client, &rated, &batch, start + 0.25, 500));
+    /* stopped at the deadline: a fill that ran on would fill all CAP (0.83 s
+     * of samples); the time bound only catches a hang, not a loaded machine */
     TEST_ASSERT_TRUE(batch.n > 100 && batch.n < CAP);
-    TEST_ASSERT_TRUE(lep_monotonic_seconds() - start < 1.0);
+    TEST_ASSERT_TRUE(lep_monotonic_seconds() - start < 5.0);
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_stop(&client));
 }
 

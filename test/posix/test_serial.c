@@ -187,7 +187,9 @@ static void test_timeout_precision(void)
         TEST_ASSERT_EQUAL_INT(0, io.read(io.user, buf, sizeof buf, ms[i]));
         dt = lep_monotonic_seconds() - t;
         snprintf(msg, sizeof msg, "timeout %d ms took %.3f ms", ms[i], dt * 1e3);
-        TEST_ASSERT_TRUE_MESSAGE(dt >= ms[i] / 1e3 && dt < ms[i] / 1e3 + 0.5, msg);
+        /* never early; late only by the scheduler (a loaded machine, valgrind):
+         * the bound catches a timeout taken as seconds or ignored, not jitter */
+        TEST_ASSERT_TRUE_MESSAGE(dt >= ms[i] / 1e3 && dt < ms[i] / 1e3 + 5.0, msg);
     }
 }
 
@@ -201,10 +203,12 @@ static void test_disconnect(void)
     lep_serial_get_io(port, &io);
     close(master); /* the cable is pulled */
     master = -1;
+    /* at once, not at the end of the read's 60 s timeout (half of it bounds a
+     * loaded machine's delay with room to spare) */
     t = lep_monotonic_seconds();
-    TEST_ASSERT_EQUAL_INT(LEP_E_DISCONNECTED, io.read(io.user, buf, sizeof buf, 2000));
-    TEST_ASSERT_TRUE(lep_monotonic_seconds() - t < 0.5);
-    TEST_ASSERT_EQUAL_INT(LEP_E_DISCONNECTED, io.read(io.user, buf, sizeof buf, 2000));
+    TEST_ASSERT_EQUAL_INT(LEP_E_DISCONNECTED, io.read(io.user, buf, sizeof buf, 60000));
+    TEST_ASSERT_TRUE(lep_monotonic_seconds() - t < 30.0);
+    TEST_ASSERT_EQUAL_INT(LEP_E_DISCONNECTED, io.read(io.user, buf, sizeof buf, 60000));
     TEST_ASSERT_EQUAL_INT(LEP_E_DISCONNECTED, io.write(io.user, buf, 4));
 }
 

@@ -646,7 +646,9 @@ static void test_timeouts_honoured(void)
     t = lep_monotonic_seconds();
     TEST_ASSERT_EQUAL_INT(0, io.read(io.user, buf, sizeof buf, 250));
     dt = lep_monotonic_seconds() - t;
-    TEST_ASSERT_TRUE_MESSAGE(dt >= 0.250 && dt < 0.250 + 0.5, "silent read");
+    /* never early; the upper bound catches a timeout ignored or taken as
+     * seconds, not a loaded machine's lateness */
+    TEST_ASSERT_TRUE_MESSAGE(dt >= 0.250 && dt < 0.250 + 5.0, "silent read");
 
     lep_sim_stall(sim, 3000);
     sleep_ms(20);
@@ -658,9 +660,10 @@ static void test_timeouts_honoured(void)
     TEST_ASSERT_EQUAL_INT(LEP_E_TIMEOUT, rc);
     TEST_ASSERT_TRUE_MESSAGE(dt >= 0.299 && dt < 0.300 + 0.7, "transaction during a stall");
 
+    /* a read that does not wait: one that did would wait out the stall (3 s) */
     t = lep_monotonic_seconds();
     TEST_ASSERT_EQUAL_INT(0, io.read(io.user, buf, sizeof buf, 0));
-    TEST_ASSERT_TRUE(lep_monotonic_seconds() - t < 0.05);
+    TEST_ASSERT_TRUE(lep_monotonic_seconds() - t < 1.5);
 
     lep_sim_stall(sim, 0); /* end it: the buffered command is answered */
     TEST_ASSERT_EQUAL_INT(LEP_OK, lep_client_sync(&client, 30, NULL));

@@ -9,12 +9,13 @@
  * the rest (a spin of about the margin less its wake-up lateness).
  *
  * The margin follows the thread's own wake-up lateness: a running estimate of
- * its 95th percentile (a stochastic quantile rule: up by SIM_PUNCTUAL_UP_NS
+ * its 80th percentile (a stochastic quantile rule: up by SIM_PUNCTUAL_UP_NS
  * after a wake-up later than the margin, down by SIM_PUNCTUAL_DOWN_NS after
  * one within it), kept within [0, SIM_PUNCTUAL_MAX_NS]. It starts at the
- * maximum, so the first samples are punctual too. About one wake-up in
- * twenty is still late, by what its lateness exceeds the margin; a wake-up
- * later than the maximum (a loaded machine) is late by the rest.
+ * maximum, so the first samples are punctual too. About one wake-up in five
+ * is still late, by what its lateness exceeds the margin (a host's stamps
+ * rest on the earliest arrivals, which are punctual); a wake-up later than
+ * the maximum (a loaded machine) is late by the rest.
  *
  * Times are nanoseconds of the monotonic clock. The rule (init, wake, learn)
  * has no clock and no I/O; lep_priv_sim_punctual_sleep is the only call that
@@ -25,7 +26,7 @@
 #include <stdint.h>
 
 #define SIM_PUNCTUAL_MAX_NS 250000 /* the margin's ceiling: 250 us */
-#define SIM_PUNCTUAL_UP_NS 19000   /* 95th percentile: 19 up for 1 down */
+#define SIM_PUNCTUAL_UP_NS 4000    /* 80th percentile: 4 up for 1 down */
 #define SIM_PUNCTUAL_DOWN_NS 1000
 
 typedef struct sim_punctual {
