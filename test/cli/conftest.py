@@ -56,6 +56,14 @@ def wait_until(cond: Callable[[], bool], what: str,
         time.sleep(0.02)
 
 
+def data_rows(text: str) -> list[str]:
+    """The data rows of a CSV the CLI wrote (no '#' line, not the header).
+    A row starts with its time, and t_s may be a little below 0 for the
+    first samples: stamped on the sensor's clock, they left it before the
+    host noted the start (its answer read late on a loaded machine)."""
+    return [ln for ln in text.splitlines() if ln[:1].isdigit() or ln[:1] == "-"]
+
+
 def rows_between(path: Path, word: str = "tare") -> list[int]:
     """The rows a running `stream -o path` has written so far (whole lines),
     counted between its '# WORD ...' event lines: [before the first, after

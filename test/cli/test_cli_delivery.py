@@ -14,7 +14,7 @@ import subprocess
 import time
 from pathlib import Path
 
-from conftest import METADATA_PREFIX, cli_path, wait_until
+from conftest import METADATA_PREFIX, cli_path, data_rows, wait_until
 
 STALL = ["--sim-stall", "4000", "--sim-stall-after", "0.3", "--data-timeout", "20"]
 # Rows stamped after this came after the stall (t_s <= 0.3 before it, >= 4.3
@@ -22,18 +22,14 @@ STALL = ["--sim-stall", "4000", "--sim-stall-after", "0.3", "--data-timeout", "2
 AFTER_STALL_S = 2.0
 
 
-def _rows(text: str) -> list[str]:
-    return [ln for ln in text.splitlines() if ln and not ln.startswith("#") and ln[0].isdigit()]
-
-
 def _before_stall(text: str) -> list[str]:
     """The whole rows of text stamped before the stall."""
-    return [r for r in _rows(text[:text.rfind("\n") + 1])
+    return [r for r in data_rows(text[:text.rfind("\n") + 1])
             if float(r.split(",")[0]) < AFTER_STALL_S]
 
 
 def _after_stall(text: str) -> bool:
-    return len(_before_stall(text)) < len(_rows(text[:text.rfind("\n") + 1]))
+    return len(_before_stall(text)) < len(data_rows(text[:text.rfind("\n") + 1]))
 
 
 def test_pipe_gets_each_batch_at_once() -> None:
@@ -62,7 +58,7 @@ def test_pipe_gets_each_batch_at_once() -> None:
     assert text.startswith(METADATA_PREFIX)
     # every row before the stall (0.3 s of them less the start-up) came
     # through while it lasted, whole, not with the rows after it
-    assert before and _rows(text) == before, (len(_rows(text)), len(before))
+    assert before and data_rows(text) == before, (len(data_rows(text)), len(before))
     assert text.endswith("\n")  # whole rows only
 
 
@@ -115,7 +111,7 @@ def test_kill_9_keeps_the_metadata_line_with_the_tare(tmp_path: Path) -> None:
                           "--data-timeout", "20"],
                          stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     try:
-        wait_until(lambda: len(_rows(f.read_text() if f.exists() else "")) > 50, "rows", p)
+        wait_until(lambda: len(data_rows(f.read_text() if f.exists() else "")) > 50, "rows", p)
         p.send_signal(signal.SIGKILL)
         p.wait()
     finally:
@@ -126,4 +122,4 @@ def test_kill_9_keeps_the_metadata_line_with_the_tare(tmp_path: Path) -> None:
     lines = text.splitlines()
     assert lines[0].startswith(METADATA_PREFIX) and '"tared":true' in lines[0]
     assert lines[1].startswith("t_s,")
-    assert len(_rows(text)) > 50
+    assert len(data_rows(text)) > 50

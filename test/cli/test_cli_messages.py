@@ -10,7 +10,7 @@ import subprocess
 import time
 from pathlib import Path
 
-from conftest import cli_path, rows_between, run, wait_until
+from conftest import cli_path, data_rows, rows_between, run, wait_until
 
 
 def test_lost_stream_names_the_options() -> None:
@@ -83,8 +83,8 @@ def test_replay_of_a_file_cut_by_a_crash(tmp_path: Path) -> None:
     assert out.returncode == 0, out.stderr
     assert "warning" in out.stderr and "the last line is cut" in out.stderr, out.stderr
     assert "99 whole rows" in out.stderr
-    rows = [ln for ln in text.splitlines() if ln[:1].isdigit()][:99]
-    again = [ln for ln in got.read_text().splitlines() if ln[:1].isdigit()]
+    rows = data_rows(text)[:99]
+    again = data_rows(got.read_text())
     assert [r.split(",")[1:7] for r in rows] == [r.split(",")[1:7] for r in again]
 
 
