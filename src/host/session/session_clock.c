@@ -11,15 +11,15 @@
 
 #include "session_clock.h"
 
-double lep_priv_utc_offset(void)
+double lep_priv_utc_offset_within(double *width)
 {
-    /* The wall clock read between two monotonic reads; of three tries, the
-     * one with the narrowest bracket wins, so a thread descheduled between
-     * the reads (which skews one try by the time it lost) does not move the
-     * offset: UTC intervals then equal monotonic ones to well under 1 ms. */
+    /* The wall clock read between two monotonic reads; the try with the
+     * narrowest bracket wins, so a thread descheduled between the reads
+     * (which skews a try by the time it lost) does not move the offset:
+     * UTC intervals then equal monotonic ones to well under 1 ms. */
     double best = 0.0, best_width = -1.0;
     int i;
-    for (i = 0; i < 3; ++i) {
+    for (i = 0; i < SESSION_UTC_TRIES && (i < 3 || best_width >= SESSION_UTC_BRACKET_S); ++i) {
         struct timespec a, r, b;
         double ma, mb, rt;
         (void)clock_gettime(CLOCK_MONOTONIC, &a);
@@ -33,7 +33,14 @@ double lep_priv_utc_offset(void)
             best = rt - (ma + mb) / 2.0;
         }
     }
+    if (width != NULL)
+        *width = best_width;
     return best;
+}
+
+double lep_priv_utc_offset(void)
+{
+    return lep_priv_utc_offset_within(NULL);
 }
 
 /* One CLOCK_REALTIME read happened at a monotonic instant between t_before

@@ -53,9 +53,11 @@ void lep_priv_timing_empty(session_timing *tm, double t)
 double lep_priv_timing_utc(session_timing *tm, double t_read)
 {
     if (lep_priv_utc_may_have_moved(tm->utc_off, t_read)) {
-        double fresh = lep_priv_utc_offset();
-        if (fabs(fresh - tm->utc_off) > SESSION_UTC_STEP_S)
-            tm->utc_off = fresh; /* the wall clock was set (NTP step, by hand) */
+        double width, fresh = lep_priv_utc_offset_within(&width);
+        /* the wall clock was set (NTP step, by hand): its whole bracket left
+         * the band (a measurement skewed by a lost CPU moves nothing) */
+        if (fabs(fresh - tm->utc_off) - width / 2.0 > SESSION_UTC_STEP_S)
+            tm->utc_off = fresh;
     }
     return tm->utc_off;
 }
